@@ -1,0 +1,92 @@
+"""Stiffness of one inclined seta: a cantilever rod (paper eq 16–21).
+
+Plain vectorized functions, valid in any consistent unit set (µm, MPa → µN/µm in gecko_agents).
+``r`` is the rod **radius** (the paper's text says diameter, its formulas need the radius:
+NOTES.md). θ is the angle between the seta and the backing plate, in radians.
+
+The seta axis points from root to tip along n = (cos θ, −sin θ) (x along the plate, y up).
+Ka acts along n, Kp across it; the tip's 2×2 stiffness is K = Ka·n nᵀ + Kp·t tᵀ.
+Eq 20 and eq 21 are the inverse diagonal compliances of that matrix: the stiffness felt when
+a force acts along y (or x) and the tip is free to move in the other direction.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["axial_stiffness", "bending_stiffness", "longitudinal_stiffness",
+           "transverse_stiffness", "stiffness_matrix", "deflection_ratio"]
+
+
+def axial_stiffness(r, L, E):
+    """Axial stiffness Ka = πr²E/L (eq 17) [force/length].
+
+    Parameters
+    ----------
+    r : rod radius [length]. L : rod length [length]. E : Young's modulus [force/length²].
+    """
+    return np.pi * np.square(r) * E / L
+
+
+def bending_stiffness(r, L, E):
+    """Tip bending stiffness of a cantilever Kp = 3EI/L³ = 3πr⁴E/(4L³) (eq 18–19) [force/length].
+
+    Parameters
+    ----------
+    r : rod radius [length]. L : rod length [length]. E : Young's modulus [force/length²].
+    """
+    return 3.0 * np.pi * np.power(r, 4) * E / (4.0 * np.power(L, 3))
+
+
+def longitudinal_stiffness(Ka, Kp, theta):
+    """Stiffness normal to the plate Ky = KpKa/(Kp sin²θ + Ka cos²θ) (eq 20) [force/length].
+
+    Parameters
+    ----------
+    Ka, Kp : axial and bending stiffness [force/length]. theta : seta angle to the plate [rad].
+    """
+    s2, c2 = np.sin(theta) ** 2, np.cos(theta) ** 2
+    return Kp * Ka / (Kp * s2 + Ka * c2)
+
+
+def transverse_stiffness(Ka, Kp, theta):
+    """Stiffness along the plate Kx = KpKa/(Kp cos²θ + Ka sin²θ) (eq 21) [force/length].
+
+    Parameters
+    ----------
+    Ka, Kp : axial and bending stiffness [force/length]. theta : seta angle to the plate [rad].
+    """
+    s2, c2 = np.sin(theta) ** 2, np.cos(theta) ** 2
+    return Kp * Ka / (Kp * c2 + Ka * s2)
+
+
+def stiffness_matrix(Ka, Kp, theta):
+    """Tip stiffness matrix K = Ka·n nᵀ + Kp·t tᵀ [force/length], n = (cos θ, −sin θ).
+
+    Returns ``[[Kxx, Kxy], [Kxy, Kyy]]``; the spring force on the tip is −K·(tip − rest).
+    Its inverse diagonal gives eq 21 (1/C_xx) and eq 20 (1/C_yy).
+    """
+    c, s = np.cos(theta), np.sin(theta)
+    kxx = Ka * c * c + Kp * s * s
+    kyy = Ka * s * s + Kp * c * c
+    kxy = -(Ka - Kp) * c * s
+    return np.array([[kxx, kxy], [kxy, kyy]])
+
+
+def deflection_ratio(force, Ka, Kp, theta, L, direction=(0.0, 1.0)):
+    """How far a tip force takes the seta, relative to its length, under the linear model [-].
+
+    ``|K⁻¹·F| / L`` for a force of magnitude ``force`` along ``direction`` (default: normal to
+    the plate). The linear beam model (eq 16–21) is a small-deflection theory: values above
+    ~0.1 mean it is outside its validity (NOTES.md: the paper's seta needs 9–27 L to hold Fc).
+
+    Parameters
+    ----------
+    force : tip force magnitude [force]. Ka, Kp [force/length]. theta [rad]. L [length].
+    direction : 2-vector, need not be normalised.
+    """
+    d = np.asarray(direction, dtype=float)
+    d = d / np.linalg.norm(d)
+    K = stiffness_matrix(Ka, Kp, theta)
+    disp = np.linalg.solve(K, d) * np.asarray(force, dtype=float)[..., None]
+    return np.linalg.norm(disp, axis=-1) / L

@@ -1,0 +1,322 @@
+"""Validated, frozen parameter sets and the paper's named presets.
+
+Unit system (the one used everywhere in gecko_agents)
+-----------------------------------------------------
+========================  =========  ==================================================
+quantity                  unit       note
+========================  =========  ==================================================
+length                    µm
+force                     µN
+time                      µs
+mass                      ng         = µN·µs²/µm, so F = m·a holds without factors
+elastic modulus, pressure MPa        = µN/µm²
+stiffness                 µN/µm      = N/m
+surface / adhesion energy µN/µm      = J/m²  (40 mJ/m² is 0.04)
+energy                    pJ         = µN·µm
+density                   ng/µm³     = 10⁶ kg/m³  (polyurethane 1200 kg/m³ is 1.2e-3)
+angles                    degrees in parameter sets, radians inside formulas
+========================  =========  ==================================================
+
+The pure functions in :mod:`gecko_agents.jkr` and :mod:`gecko_agents.beam` hold in any
+consistent unit set; the parameter sets and the pymunk model use the table above.
+
+Every dataclass validates itself on construction: a bad value raises ``ValueError`` naming the
+field, the value and the allowed range, before anything is simulated.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+from . import beam, jkr
+
+MECHANICS = ("linear", "rod")
+FRICTION_LAWS = ("adhesive", "paper")
+
+
+def _check(obj: object, name: str, lo: float, hi: float = math.inf, *, lo_open: bool = True,
+           hi_open: bool = True, integer: bool = False) -> None:
+    """Raise ValueError unless ``getattr(obj, name)`` is a finite number in the interval."""
+    value = getattr(obj, name)
+    kind = type(obj).__name__
+    interval = f"{'(' if lo_open else '['}{lo}, {hi}{')' if hi_open else ']'}"
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise ValueError(f"{kind}.{name} = {value!r} must be a number in {interval}")
+    if integer and int(value) != value:
+        raise ValueError(f"{kind}.{name} = {value!r} must be an integer in {interval}")
+    ok = math.isfinite(value) or (hi == math.inf and value == math.inf and not hi_open)
+    below = value < lo or (lo_open and value == lo)
+    above = value > hi or (hi_open and value == hi)
+    if not ok or below or above:
+        raise ValueError(f"{kind}.{name} = {value!r} is outside the allowed range {interval}")
+
+
+@dataclass(frozen=True)
+class Contact:
+    """The tip sphere against the floor (JKR, paper eq 1–15).
+
+    Attributes
+    ----------
+    R : tip sphere radius [µm] (the floor is flat, so R is also the equivalent radius).
+    E1 : Young's modulus of the seta material (tip and rod) [MPa].
+    nu1 : Poisson's ratio of the seta material [-], in [0, 0.5).
+    E2 : Young's modulus of the floor [MPa].
+    nu2 : Poisson's ratio of the floor [-], in [0, 0.5).
+    gamma1, gamma2 : surface energies of tip and floor [µN/µm = J/m²].
+    w : work of adhesion [µN/µm]; ``None`` means the paper's rule w = 2√(γ1γ2) (eq 5 text).
+    """
+
+    R: float = 4.0
+    E1: float = 1.413
+    nu1: float = 0.3
+    E2: float = 55_000.0
+    nu2: float = 0.25
+    gamma1: float = 0.040
+    gamma2: float = 0.170
+    w: float | None = None
+
+    def __post_init__(self):
+        for name in ("R", "E1", "E2", "gamma1", "gamma2"):
+            _check(self, name, 0.0)
+        for name in ("nu1", "nu2"):
+            _check(self, name, 0.0, 0.5, lo_open=False)
+        if self.w is not None:
+            _check(self, "w", 0.0)
+
+    @property
+    def work_of_adhesion(self) -> float:
+        """w [µN/µm]: the override if given, else 2√(γ1γ2)."""
+        if self.w is not None:
+            return self.w
+        return float(jkr.work_of_adhesion(self.gamma1, self.gamma2))
+
+    @property
+    def E_star(self) -> float:
+        """Effective modulus E* [MPa] (paper, below eq 3)."""
+        return float(jkr.effective_modulus(self.E1, self.nu1, self.E2, self.nu2))
+
+    @property
+    def pull_off_force(self) -> float:
+        """Load-controlled JKR pull-off magnitude Fc = 1.5πRw [µN]."""
+        return float(jkr.pull_off_force(self.R, self.work_of_adhesion))
+
+    @property
+    def snap_off_overlap(self) -> float:
+        """Displacement-controlled end of the stable branch δc < 0 [µm]."""
+        return float(jkr.snap_off_overlap(self.R, self.work_of_adhesion, self.E_star))
+
+    def jkr_args(self) -> tuple[float, float, float]:
+        """(R, w, E*) in the order the :mod:`jkr` functions take them."""
+        return self.R, self.work_of_adhesion, self.E_star
+
+
+@dataclass(frozen=True)
+class Seta:
+    """One seta: an inclined cantilever rod (paper eq 16–21), material E1 from :class:`Contact`.
+
+    Attributes
+    ----------
+    r : rod **radius** [µm] (Table 1 gives a 3 µm diameter; NOTES.md on eq 16–19).
+    L : rod length [µm].
+    theta_deg : angle between the seta and the backing plate [degrees], in (0, 90).
+    density : material density [ng/µm³]; polyurethane ≈ 1.2e-3 (1200 kg/m³).
+    """
+
+    r: float = 1.5
+    L: float = 20.0
+    theta_deg: float = 30.0
+    density: float = 1.2e-3
+
+    def __post_init__(self):
+        _check(self, "r", 0.0)
+        _check(self, "L", 0.0)
+        _check(self, "theta_deg", 0.0, 90.0)
+        _check(self, "density", 0.0)
+
+    @property
+    def theta(self) -> float:
+        """θ [rad]."""
+        return math.radians(self.theta_deg)
+
+
+@dataclass(frozen=True)
+class Array:
+    """The array on the backing plate.
+
+    Attributes
+    ----------
+    count : number of setae N [-] in the physical array (10⁷ in the paper, section 3.3.2).
+    pitch : spacing between neighbouring roots [µm] (4 µm in the paper).
+    """
+
+    count: int = 1
+    pitch: float = 4.0
+
+    def __post_init__(self):
+        _check(self, "count", 1, lo_open=False, integer=True)
+        _check(self, "pitch", 0.0)
+
+
+@dataclass(frozen=True)
+class Floor:
+    """Rough floor with Gaussian heights (paper eq 28).
+
+    Attributes
+    ----------
+    sigma : RMS height σ [µm], ≥ 0 (0 is a flat floor).
+    correlation_length : Gaussian correlation length of the profile [µm], ≥ 0; 0 means an
+        independent height under every seta, as in the paper.
+    seed : seed of the floor's ``numpy.random.Generator``.
+    """
+
+    sigma: float = 0.0
+    correlation_length: float = 0.0
+    seed: int = 0
+
+    def __post_init__(self):
+        _check(self, "sigma", 0.0, lo_open=False)
+        _check(self, "correlation_length", 0.0, lo_open=False)
+        _check(self, "seed", 0, 2**63, lo_open=False, integer=True)
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Coulomb friction at the tip.
+
+    Attributes
+    ----------
+    mu : friction coefficient [-], ≥ 0 (0.2 in the paper, section 3.3.2).
+    law : ``"adhesive"`` caps the tangential force at μ|P + 2Fc| (Thornton's JKR convention:
+        a contact in tension still holds shear) or ``"paper"``: μ·max(P, 0) (eq 27).
+    """
+
+    mu: float = 0.2
+    law: str = "adhesive"
+
+    def __post_init__(self):
+        _check(self, "mu", 0.0, lo_open=False)
+        if self.law not in FRICTION_LAWS:
+            raise ValueError(f"Friction.law = {self.law!r} must be one of {FRICTION_LAWS}")
+
+    def cap(self, P, Fc):
+        """Largest tangential force magnitude [µN] for normal force(s) ``P`` [µN] (≥ 0)."""
+        import numpy as np
+
+        if self.law == "paper":
+            return self.mu * np.maximum(P, 0.0)
+        return self.mu * np.abs(np.asarray(P) + 2.0 * Fc)
+
+
+@dataclass(frozen=True)
+class SetaArray:
+    """Everything that defines a simulated array.
+
+    ``mechanics`` is ``"linear"`` (the paper's 2×2 beam stiffness, eq 20–21) or ``"rod"``
+    (large rotation: a rigid rod on a rotary bending spring plus an axial spring).
+    """
+
+    contact: Contact = field(default_factory=Contact)
+    seta: Seta = field(default_factory=Seta)
+    array: Array = field(default_factory=Array)
+    floor: Floor = field(default_factory=Floor)
+    friction: Friction = field(default_factory=Friction)
+    mechanics: str = "linear"
+
+    def __post_init__(self):
+        if self.mechanics not in MECHANICS:
+            raise ValueError(f"SetaArray.mechanics = {self.mechanics!r} must be one of {MECHANICS}")
+
+    # Derived quantities used throughout ---------------------------------------------------
+    @property
+    def axial_stiffness(self) -> float:
+        """Ka [µN/µm] (eq 17)."""
+        return float(beam.axial_stiffness(self.seta.r, self.seta.L, self.contact.E1))
+
+    @property
+    def bending_stiffness(self) -> float:
+        """Kp [µN/µm] (eq 19)."""
+        return float(beam.bending_stiffness(self.seta.r, self.seta.L, self.contact.E1))
+
+    @property
+    def Ky(self) -> float:
+        """Longitudinal (normal) stiffness Ky [µN/µm] (eq 20)."""
+        return float(beam.longitudinal_stiffness(self.axial_stiffness, self.bending_stiffness,
+                                                 self.seta.theta))
+
+    @property
+    def Kx(self) -> float:
+        """Transverse stiffness Kx [µN/µm] (eq 21)."""
+        return float(beam.transverse_stiffness(self.axial_stiffness, self.bending_stiffness,
+                                               self.seta.theta))
+
+    def replace(self, **overrides) -> SetaArray:
+        """A copy with dotted overrides, e.g. ``replace(**{"floor.sigma": 0.5})``."""
+        groups: dict[str, dict] = {}
+        top: dict = {}
+        for key, value in overrides.items():
+            part, _, name = key.partition(".")
+            if not name:
+                if part not in {f.name for f in dataclasses.fields(self)}:
+                    raise ValueError(f"unknown parameter {key!r}")
+                top[part] = value
+                continue
+            if part not in {"contact", "seta", "array", "floor", "friction"}:
+                raise ValueError(f"unknown parameter group {part!r} in {key!r}")
+            sub = getattr(self, part)
+            if name not in {f.name for f in dataclasses.fields(sub)}:
+                raise ValueError(f"unknown parameter {key!r}")
+            groups.setdefault(part, {})[name] = value
+        for part, vals in groups.items():
+            top[part] = dataclasses.replace(getattr(self, part), **vals)
+        return dataclasses.replace(self, **top)
+
+    def to_dict(self) -> dict:
+        """Plain nested dict of every parameter (for metadata.json)."""
+        return dataclasses.asdict(self)
+
+    @classmethod
+    def from_dict(cls, d: dict) -> SetaArray:
+        """Inverse of :meth:`to_dict`."""
+        return cls(contact=Contact(**d["contact"]), seta=Seta(**d["seta"]),
+                   array=Array(**d["array"]), floor=Floor(**d["floor"]),
+                   friction=Friction(**d["friction"]), mechanics=d["mechanics"])
+
+
+PAPER_TABLE1 = SetaArray(
+    contact=Contact(R=4.0, E1=1.413, nu1=0.3, E2=55_000.0, nu2=0.25, gamma1=0.040, gamma2=0.170),
+    seta=Seta(r=1.5, L=20.0, theta_deg=30.0),
+    array=Array(count=1, pitch=4.0),
+    floor=Floor(sigma=0.0),
+    friction=Friction(mu=0.2),
+)
+"""Single seta of the paper's Table 1 (Fig 8).
+
+Table 1: slope 30°, diameter 3 µm (→ rod radius r = 1.5 µm, NOTES.md), length 20 µm, ν = 0.3,
+E = 1.413 MPa, "adhesive energy" 40 mJ/m² read as the seta's surface energy γ1; the floor is the
+55 GPa, ν = 0.25, γ2 = 170 mJ/m² plane of section 3.1.1, and w = 2√(γ1γ2) = 0.1649 J/m² (the
+paper's own rule). Tip radius R = 4 µm from section 3.1.1 (Table 1 gives none). μ = 0.2 from
+section 3.3.2. The alternative reading that matches Fig 5 (w = 0.080 J/m²) is
+:data:`PAPER_FIG5_READING`.
+"""
+
+PAPER_ARRAY = SetaArray(
+    contact=PAPER_TABLE1.contact,
+    seta=Seta(r=1.5, L=20.0, theta_deg=60.0),
+    array=Array(count=10_000_000, pitch=4.0),
+    floor=Floor(sigma=1.0, correlation_length=0.0, seed=0),
+    friction=Friction(mu=0.2),
+)
+"""The array of section 3.3.2 (Fig 10–11).
+
+10⁷ setae on 1 cm² at 4 µm pitch (count and pitch kept separate: a square 4 µm pitch would give
+6.25×10⁶, NOTES.md), θ = 60°, E = 1.413 MPa, ν = 0.3, γ1 = 40 mJ/m², floor 55 GPa, ν = 0.25,
+γ2 = 170 mJ/m², μ = 0.2, roughness "mean square error 1" read as RMS height σ = 1 µm with an
+independent height under each seta (eq 28). Rod r = 1.5 µm, L = 20 µm and R = 4 µm carried over
+from Table 1 and section 3.1.1, which the array section does not restate.
+"""
+
+PAPER_FIG5_READING = PAPER_TABLE1.replace(**{"contact.w": 0.080})
+"""Table 1 with w = 0.080 J/m², the work of adhesion that Fig 5's −1.5 µN pull-off at R = 4 µm
+implies (= 2 × 40 mJ/m², i.e. w = 2γ1; NOTES.md)."""
