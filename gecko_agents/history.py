@@ -1,0 +1,212 @@
+"""Recorded force histories, kept apart from stepping, with atomic save/load.
+
+A :class:`History` is what a run leaves behind: a table of scalar series (one row per recorded
+step), optional per-seta arrays, the floor, and the metadata needed to reproduce and draw it.
+Nothing here imports pymunk or matplotlib.
+
+Sign conventions (units µm, µN, µs, pJ):
+
+* ``force_normal_uN`` — total normal contact force of the floor on the tips, positive when it
+  pushes the tips up (compression), negative in adhesion (tension);
+* ``plate_force_y_uN`` — force the setae exert on the plate, positive up (so it equals the
+  contact force in the quasi-static limit);
+* per-seta ``state``: 0 free, 1 attached and sticking, 2 attached and sliding.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+import platform
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .params import SetaArray
+
+__all__ = ["History", "SCALAR_COLUMNS", "PER_SETA_FIELDS", "STATE_FREE", "STATE_STICK",
+           "STATE_SLIP", "load", "versions", "atomic_write_bytes"]
+
+STATE_FREE, STATE_STICK, STATE_SLIP = 0, 1, 2
+
+SCALAR_COLUMNS = (
+    "time_us", "plate_x_um", "plate_y_um",
+    "force_normal_uN", "force_tangential_uN",
+    "plate_force_x_uN", "plate_force_y_uN",
+    "n_attached", "n_sliding",
+    "energy_elastic_pJ", "energy_kinetic_pJ", "energy_dissipated_pJ", "work_plate_pJ",
+)
+"""Columns of ``history.csv``; every name carries its unit."""
+
+PER_SETA_FIELDS = ("tip_x_um", "tip_y_um", "force_normal_uN", "force_tangential_uN",
+                   "overlap_um", "state")
+"""Per-seta arrays of shape (n_records, N) in ``setae.npz`` (optional)."""
+
+
+def versions() -> dict:
+    """Versions of the package and the libraries that produced a result."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    out = {"python": platform.python_version()}
+    for name in ("gecko_agents", "numpy", "scipy", "pymunk", "matplotlib"):
+        try:
+            out[name] = version(name)
+        except PackageNotFoundError:
+            out[name] = None
+    return out
+
+
+def atomic_write_bytes(path: Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` via a temporary file in the same directory and a rename."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+@dataclass
+class History:
+    """A recorded run.
+
+    Attributes
+    ----------
+    params : the :class:`~gecko_agents.params.SetaArray` simulated.
+    seed : seed of the run's ``numpy.random.Generator``.
+    scalars : dict column → array (n_records,), columns :data:`SCALAR_COLUMNS`.
+    setae : dict field → array (n_records, N), fields from :data:`PER_SETA_FIELDS` (may be
+        empty when per-seta recording is off).
+    geometry : dict of static arrays for drawing: ``root_dx_um`` (N,) root abscissae relative
+        to the plate, ``root_dy_um`` (N,) root heights relative to the plate, ``floor_x_um``,
+        ``floor_y_um`` (floor polyline).
+    detachments : dict of arrays, one entry per detachment event: ``seta``, ``time_us``,
+        ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``.
+    meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…).
+    """
+
+    params: SetaArray
+    seed: int
+    scalars: dict[str, np.ndarray]
+    setae: dict[str, np.ndarray] = field(default_factory=dict)
+    geometry: dict[str, np.ndarray] = field(default_factory=dict)
+    detachments: dict[str, np.ndarray] = field(default_factory=dict)
+    meta: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        missing = [c for c in SCALAR_COLUMNS if c not in self.scalars]
+        if missing:
+            raise ValueError(f"History.scalars lacks columns {missing}")
+        n = {len(np.asarray(v)) for v in self.scalars.values()}
+        if len(n) != 1:
+            raise ValueError(f"History.scalars columns differ in length: {sorted(n)}")
+
+    def __len__(self) -> int:
+        return len(self.scalars["time_us"])
+
+    def __getitem__(self, column: str) -> np.ndarray:
+        return self.scalars[column]
+
+    @property
+    def peak_pull_off(self) -> float:
+        """Largest adhesive (tensile) contact force magnitude over the run [µN], ≥ 0."""
+        return float(max(0.0, -np.min(self.scalars["force_normal_uN"])))
+
+    def metadata(self) -> dict:
+        """Everything needed to reproduce the run: parameters, seed, meta, versions."""
+        meta = {"params": self.params.to_dict(), "seed": int(self.seed),
+                "n_records": len(self), "columns": list(SCALAR_COLUMNS)}
+        meta.update(self.meta)
+        meta.setdefault("versions", versions())
+        return meta
+
+    def save(self, directory) -> Path:
+        """Write ``history.csv``, ``metadata.json`` and ``setae.npz`` into ``directory``.
+
+        Each file is written to a temporary name and renamed, so a killed run never leaves a
+        half-written file under the final name.
+        """
+        d = Path(directory)
+        d.mkdir(parents=True, exist_ok=True)
+        buf = io.StringIO()
+        writer = csv.writer(buf, lineterminator="\n")
+        writer.writerow(SCALAR_COLUMNS)
+        cols = [np.asarray(self.scalars[c]) for c in SCALAR_COLUMNS]
+        for row in zip(*cols, strict=True):
+            writer.writerow([repr(float(v)) for v in row])
+        atomic_write_bytes(d / "history.csv", buf.getvalue().encode())
+        arrays = {f"setae__{k}": np.asarray(v) for k, v in self.setae.items()}
+        arrays |= {f"geometry__{k}": np.asarray(v) for k, v in self.geometry.items()}
+        arrays |= {f"detachments__{k}": np.asarray(v) for k, v in self.detachments.items()}
+        npz = io.BytesIO()
+        np.savez_compressed(npz, **arrays)
+        atomic_write_bytes(d / "setae.npz", npz.getvalue())
+        text = json.dumps(self.metadata(), indent=2, default=_json_default)
+        atomic_write_bytes(d / "metadata.json", text.encode())
+        return d
+
+
+def _json_default(obj):
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.floating):
+        return float(obj)
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    raise TypeError(f"cannot store {type(obj).__name__} in metadata.json")
+
+
+def load(directory) -> History:
+    """Read a run saved by :meth:`History.save`.
+
+    Raises
+    ------
+    FileNotFoundError naming the missing file, or ValueError naming the file that is corrupt.
+    """
+    d = Path(directory)
+    if not d.is_dir():
+        raise FileNotFoundError(f"run directory {str(d)!r} does not exist")
+    for name in ("history.csv", "metadata.json"):
+        if not (d / name).is_file():
+            raise FileNotFoundError(f"{name} is missing from run directory {str(d)!r}")
+    try:
+        meta = json.loads((d / "metadata.json").read_text())
+        params = SetaArray.from_dict(meta.pop("params"))
+        seed = meta.pop("seed")
+    except (json.JSONDecodeError, KeyError, TypeError) as err:
+        raise ValueError(f"{d / 'metadata.json'} is not a gecko_agents metadata file: "
+                         f"{err}") from err
+    try:
+        table = np.loadtxt(d / "history.csv", delimiter=",", skiprows=1, ndmin=2)
+        header = (d / "history.csv").read_text().split("\n", 1)[0].split(",")
+    except ValueError as err:
+        raise ValueError(f"{d / 'history.csv'} is corrupt: {err}") from err
+    if header != list(SCALAR_COLUMNS) or table.shape[1] != len(SCALAR_COLUMNS):
+        raise ValueError(f"{d / 'history.csv'} has columns {header}, expected "
+                         f"{list(SCALAR_COLUMNS)}")
+    scalars = {c: table[:, i] for i, c in enumerate(SCALAR_COLUMNS)}
+    setae: dict = {}
+    geometry: dict = {}
+    detachments: dict = {}
+    if (d / "setae.npz").is_file():
+        try:
+            with np.load(d / "setae.npz") as z:
+                for key in z.files:
+                    group, _, name = key.partition("__")
+                    {"setae": setae, "geometry": geometry,
+                     "detachments": detachments}[group][name] = z[key]
+        except (OSError, ValueError, KeyError) as err:
+            raise ValueError(f"{d / 'setae.npz'} is corrupt: {err}") from err
+    for k in ("n_records", "columns"):
+        meta.pop(k, None)
+    return History(params=params, seed=seed, scalars=scalars, setae=setae, geometry=geometry,
+                   detachments=detachments, meta=meta)
