@@ -1,0 +1,171 @@
+"""The quasi-static solver against oracles derived independently of it."""
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from gecko_agents import jkr
+from gecko_agents import quasistatic as qs
+from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
+
+P1 = PAPER_TABLE1
+RWE = P1.contact.jkr_args()
+FC = P1.contact.pull_off_force
+
+
+def test_release_radius_limits_and_definition():
+    a_c = jkr.snap_off_radius(*RWE)
+    a_lc = 0.25 ** (1 / 3) * jkr.zero_load_contact_radius(*RWE)
+    assert_allclose(qs.release_radius(1e9, *RWE), a_c, rtol=1e-5)
+    assert_allclose(qs.release_radius(1e-9, *RWE), a_lc, rtol=1e-6)
+    for k in (0.01, 0.5, 5.0):
+        a = qs.release_radius(k, *RWE)
+        assert_allclose(jkr.contact_stiffness(a, *RWE), -k, rtol=1e-8)
+    with pytest.raises(ValueError, match="k = "):
+        qs.release_radius(0.0, *RWE)
+
+
+def _plate_of_radius(a, h, k):
+    """Plate height holding a seta of normal stiffness k at contact radius a (eq 22–25)."""
+    R, w, E = RWE
+    return (h + R + P1.seta.L * np.sin(P1.seta.theta) - jkr.overlap_from_radius(a, R, w, E)
+            - jkr.force_from_radius(a, R, w, E) / k)
+
+
+@pytest.mark.parametrize("scale", [1.0, 300.0])
+def test_single_seta_free_lateral_releases_at_the_fold_of_eq25(scale):
+    # Oracle: Z(a) on a dense grid (no branch tables, no Newton); release where Z is maximal.
+    p = P1
+    ky = p.Ky * scale
+    a = np.linspace(jkr.snap_off_radius(*RWE), 3.0, 2_000_001)
+    Z = _plate_of_radius(a, 0.0, ky)
+    Z_rel, a_rel = Z.max(), a[np.argmax(Z)]
+    r = qs.press_pull(p, [0.0], 0.5, lateral="free", stiffness_scale=scale, n_retract=20_000,
+                      record_setae=True)
+    (i, j, d_rel), = r.releases
+    assert r.plate_y[i - 1] <= Z_rel + 1e-9 < r.plate_y[i]
+    assert_allclose(d_rel, jkr.overlap_from_radius(a_rel, *RWE), rtol=1e-4)
+    # Every attached step sits on the oracle curve: Z(a) at the solver's overlap.
+    att = r.per_seta["state"][:, 0] != 0
+    aa = jkr.radius_from_overlap(r.per_seta["overlap"][att, 0], *RWE)
+    assert_allclose(_plate_of_radius(aa, 0.0, ky), r.plate_y[att], atol=1e-8)
+    # The largest tension on this branch is the load-controlled Fc (it passes a = 0.63 a0).
+    assert_allclose(r.pull_off, FC, rtol=1e-3)
+
+
+def test_jump_in_soft_and_rigid():
+    Ztouch = P1.contact.R + P1.seta.L * np.sin(P1.seta.theta)
+    Zs = np.array([Ztouch + 0.1, Ztouch - 1e-12])
+    soft = qs.single_seta(P1, Zs, lateral="free")
+    # A soft seta cannot resist the adhesive pull: it snaps to zero load (δ ≈ a0²/(3R)).
+    a0 = jkr.zero_load_contact_radius(*RWE)
+    assert soft.force_normal[0] == 0.0
+    assert_allclose(soft.per_seta["overlap"][1, 0], a0**2 / (3 * P1.contact.R), rtol=0.01)
+    rigid = qs.single_seta(P1, Zs, lateral="free", stiffness_scale=1e7)
+    assert_allclose(rigid.force_normal[1], -8 / 9 * FC, rtol=1e-4)
+
+
+def test_rigid_setae_array_is_fuller_tabor():
+    """Infinitely stiff setae: each tip is a JKR asperity at a fixed overlap (Fuller–Tabor)."""
+    rng = np.random.default_rng(5)
+    h = 0.3 * rng.standard_normal(400)
+    r = qs.press_pull(P1, h, 0.4, lateral="free", stiffness_scale=1e7, n_approach=400,
+                      n_retract=4000)
+    Zc = P1.contact.R + P1.seta.L * np.sin(P1.seta.theta)
+    dc = jkr.snap_off_overlap(*RWE)
+    touched = np.zeros(h.size, bool)
+    attached = np.zeros(h.size, bool)
+    expect = []
+    for Z in r.plate_y:
+        d = h + Zc - Z
+        touched |= d >= 0
+        attached = np.where(attached, d >= dc, d >= 0)
+        expect.append(jkr.force_from_overlap(d[attached], *RWE).sum())
+    expect = np.array(expect)
+    assert_allclose(r.force_normal, expect, atol=2e-3 * np.abs(expect).max())
+
+
+def test_flat_floor_equal_sharing_pulls_off_at_n_fc():
+    n = 7
+    r = qs.press_pull(P1, np.zeros(n), 0.5, lateral="free", n_retract=20_000)
+    assert_allclose(r.pull_off, n * FC, rtol=1e-3)
+    assert len(r.releases) == n and len({i for i, _, _ in r.releases}) == 1
+    # Coupled friction changes the branch, not the cap on tension: still n·Fc at most.
+    rc = qs.press_pull(P1, np.zeros(n), 0.5, n_retract=20_000)
+    assert rc.pull_off <= n * FC * (1 + 1e-9) and rc.pull_off > 0.9 * n * FC
+
+
+def test_no_friction_coupled_equals_free():
+    p = PAPER_ARRAY.replace(**{"friction.mu": 0.0})
+    h = np.random.default_rng(2).standard_normal(300)
+    a = qs.press_pull(p, h, 1.0)
+    b = qs.press_pull(p, h, 1.0, lateral="free")
+    assert_allclose(a.force_normal, b.force_normal, rtol=1e-9, atol=1e-9)
+
+
+@pytest.mark.parametrize("law", ["adhesive", "paper"])
+def test_friction_invariants_on_every_step(law):
+    p = PAPER_ARRAY.replace(**{"friction.law": law})
+    h = 0.5 * np.random.default_rng(3).standard_normal(200)
+    br = qs.Branches.from_params(p)
+    r = qs.press_pull(p, h, 1.5, record_setae=True)
+    P, state, u = r.per_seta["force"], r.per_seta["state"], r.per_seta["tip_dx"]
+    # Tangential force recomputed from the spring: K·(p − p0) with p − p0 = (u, −D).
+    dy = np.where(state == qs.STICK, (P - br.Kxy * u) / br.Kyy, 0.0)
+    Ft = br.Kxx * u + br.Kxy * dy
+    stick = state == qs.STICK
+    assert np.all(np.abs(Ft[stick]) <= br.cap(P[stick]) * (1 + 1e-9) + 1e-12)
+    # A sticking tip does not move sideways between two sticking steps.
+    both = stick[1:] & stick[:-1]
+    assert_allclose(u[1:][both], u[:-1][both], atol=1e-12)
+    assert np.any(state == qs.SLIP)
+    if law == "paper":  # eq 27: no friction without compression, so a tip in tension slides
+        assert np.all(P[stick] >= 0)
+    else:               # the adhesive cap μ|P + 2Fc| lets tips in tension stick
+        assert np.any(stick & (P < 0))
+    assert np.all(P[state == qs.FREE] == 0)
+    # Tension never exceeds Fc per seta nor n_attached·Fc in total.
+    assert P.min() >= -FC * (1 + 1e-9)
+    assert np.all(-r.force_normal <= r.n_attached * FC * (1 + 1e-9))
+
+
+def test_representative_blocks_converge_to_brute_force():
+    h = np.random.default_rng(11).standard_normal(10_000)
+    brute = qs.press_pull(PAPER_ARRAY, h, 1.0)
+    hs = np.sort(h)
+    errs = []
+    for per_block in (20, 5):
+        hr = hs.reshape(-1, per_block).mean(axis=1)
+        rep = qs.solve(PAPER_ARRAY, hr, brute.plate_y, weights=np.full(hr.size, per_block))
+        errs.append(np.abs(rep.force_normal - brute.force_normal).max()
+                    / np.abs(brute.force_normal).max())
+    assert errs[1] < errs[0] and errs[1] < 0.03
+    # The helper itself: block means of the sorted sample, weights summing to N.
+    hr, w = qs.representative_heights(1000, 1.0, np.random.default_rng(0), 100)
+    assert w.sum() == 1000 and np.all(np.diff(hr) >= 0)
+    assert_allclose(np.sum(hr * w) / 1000, np.mean(1.0 * np.random.default_rng(0)
+                                                    .standard_normal(1000)))
+
+
+def test_preload_is_hit_and_pull_off_saturates():
+    h = np.random.default_rng(4).standard_normal(300)
+    pulls = []
+    for pre in (5.0, 40.0, 150.0, 400.0):
+        r = qs.preload_pull(PAPER_ARRAY, h, pre)
+        assert_allclose(r.preload, pre, rtol=1e-6)
+        pulls.append(r.pull_off)
+    assert np.all(np.diff(pulls) >= -1e-9)
+    # Saturation: the last increase is much smaller than the first; and never above N·Fc.
+    assert pulls[3] - pulls[2] < 0.2 * (pulls[1] - pulls[0])
+    assert pulls[-1] <= h.size * FC
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="depth"):
+        qs.press_pull(P1, [0.0], -1.0)
+    with pytest.raises(ValueError, match="preload"):
+        qs.preload_pull(P1, [0.0], 0.0)
+    with pytest.raises(ValueError, match="lateral"):
+        qs.solve(P1, [0.0], [30.0], lateral="sideways")
+    with pytest.raises(ValueError, match="self-locks"):
+        qs.Branches.from_params(P1.replace(**{"seta.theta_deg": 85.0, "friction.mu": 2.0}))
