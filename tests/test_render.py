@@ -1,0 +1,264 @@
+"""render: GIF frames and size, tip colours at the right pixels, determinism, clear errors."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from gecko_agents import history as hist
+from gecko_agents import render
+from gecko_agents.params import PAPER_TABLE1
+
+N_REC = 30
+TENSION_SETA, TENSION_RECORD = 2, 22  # seta 2 holds on in tension while the plate rises
+SLIDE_SETA, DEEPEST = 3, 14  # seta 3 slides at the deepest point
+DETACH_RECORD = 25
+
+
+def _toy(N=5, pitch=30.0, mechanics="linear"):
+    """Plate goes down 7 µm and back up 12 µm; tips follow the rest pose unless held.
+
+    Free tips sit at root + L(cos θ, −sin θ) = root + (17.3, −10) µm; with R = 4 µm a tip
+    touches the floor (y = 0) once the plate is below y = 14 µm.
+    """
+    p = PAPER_TABLE1.replace(**{"array.count": N, "array.pitch": pitch, "mechanics": mechanics})
+    L, th, R = p.seta.L, p.seta.theta, p.contact.R
+    plate_y = np.concatenate([np.linspace(20.0, 13.0, DEEPEST + 1),
+                              np.linspace(13.0, 25.0, N_REC - DEEPEST)[1:]])
+    t = np.arange(N_REC) * 0.5
+    root_dx = (np.arange(N) - (N - 1) / 2) * pitch
+    tip_x = np.tile(root_dx + L * np.cos(th), (N_REC, 1))
+    tip_y = np.tile(plate_y[:, None] - L * np.sin(th), (1, N))
+    overlap = R - tip_y
+    state = np.where(overlap > 0, hist.STATE_STICK, hist.STATE_FREE)
+    force = np.where(overlap > 0, 2.0 * overlap, 0.0)
+    # Seta 2 stays stuck (overlap −0.1 µm, pulling) from the turnaround until it snaps off.
+    hold = np.arange(N_REC)
+    held = (hold > DEEPEST) & (hold < DETACH_RECORD)
+    tip_y[held, TENSION_SETA] = R + 0.1
+    overlap[held, TENSION_SETA] = -0.1
+    state[held, TENSION_SETA] = hist.STATE_STICK
+    force[held, TENSION_SETA] = -1.2
+    tip_x[held, TENSION_SETA] += 1.5  # dragged a little sideways
+    state[DEEPEST - 2:DEEPEST + 2, SLIDE_SETA] = hist.STATE_SLIP
+    force_total = force.sum(axis=1)
+    scalars = {
+        "time_us": t, "plate_x_um": np.zeros(N_REC), "plate_y_um": plate_y,
+        "force_normal_uN": force_total, "force_tangential_uN": 0.1 * force_total,
+        "plate_force_x_uN": -0.1 * force_total, "plate_force_y_uN": force_total,
+        "n_attached": (state > 0).sum(axis=1).astype(float),
+        "n_sliding": (state == hist.STATE_SLIP).sum(axis=1).astype(float),
+        "energy_elastic_pJ": np.abs(force_total), "energy_kinetic_pJ": np.zeros(N_REC),
+        "energy_dissipated_pJ": np.linspace(0, 1, N_REC), "work_plate_pJ": np.zeros(N_REC),
+    }
+    setae = {"tip_x_um": tip_x, "tip_y_um": tip_y, "force_normal_uN": force,
+             "force_tangential_uN": 0.1 * force, "overlap_um": overlap,
+             "state": state.astype(np.int8)}
+    floor_x = np.linspace(-200.0, 200.0, 81)
+    geometry = {"root_dx_um": root_dx, "root_dy_um": np.zeros(N), "floor_x_um": floor_x,
+                "floor_y_um": 0.3 * np.sin(floor_x / 7.0)}
+    k = DETACH_RECORD
+    det = {"seta": np.array([TENSION_SETA]), "time_us": np.array([t[k] - 0.25]),
+           "plate_y_um": np.array([plate_y[k - 1]]), "overlap_um": np.array([-0.1]),
+           "force_uN": np.array([-1.2])}
+    assert all(c in scalars for c in hist.SCALAR_COLUMNS)
+    assert all(f in setae for f in hist.PER_SETA_FIELDS)
+    return hist.History(p, 0, scalars, setae, geometry, det, {"dt_us": 0.5})
+
+
+@pytest.fixture(scope="module")
+def toy():
+    return _toy()
+
+
+@pytest.fixture(scope="module")
+def gif(toy, tmp_path_factory):
+    return render.animate(toy, tmp_path_factory.mktemp("anim") / "run.gif", dpi=60)
+
+
+def _gif_frames(path):
+    with Image.open(path) as im:
+        frames = []
+        for i in range(im.n_frames):
+            im.seek(i)
+            frames.append(np.asarray(im.convert("RGB")))
+        return frames
+
+
+def _colour_at(rgb, rc, half=2):
+    """Median colour of a small square around pixel (row, col)."""
+    r, c = rc
+    return np.median(rgb[r - half:r + half + 1, c - half:c + half + 1].reshape(-1, 3), axis=0)
+
+
+def _is(colour, hex_code, tol=40):
+    target = np.array([int(hex_code[i:i + 2], 16) for i in (1, 3, 5)])
+    return np.all(np.abs(colour - target) <= tol)
+
+
+def test_gif_has_one_frame_per_record_at_the_promised_size(gif):
+    with Image.open(gif) as im:
+        assert im.n_frames == N_REC
+        assert im.size == (round(render.FIGSIZE[0] * 60), round(render.FIGSIZE[1] * 60))
+    assert not list(gif.parent.glob(".*"))  # the temporary file was renamed away
+
+
+def test_frames_are_spread_over_the_records():
+    np.testing.assert_array_equal(render.frame_records(30), np.arange(30))
+    r = render.frame_records(1000)
+    assert len(r) == 300 and r[0] == 0 and r[-1] == 999 and np.all(np.diff(r) > 0)
+    assert len(render.frame_records(1000, 7)) == 7
+    assert len(render.frame_records(5, 50)) == 5
+
+
+def test_side_view_changes_while_the_plate_moves(toy, gif):
+    frames = _gif_frames(gif)
+    frame = render.render_frame(toy, 0, dpi=60)
+    box = frame.side_ax.get_window_extent()
+    h = frames[0].shape[0]
+    rows = slice(int(h - box.y1) + 2, int(h - box.y0) - 2)
+    cols = slice(int(box.x0) + 2, int(box.x1) - 2)
+    for a, b in zip(frames[:-1], frames[1:], strict=True):
+        assert np.any(a[rows, cols] != b[rows, cols])
+
+
+@pytest.mark.parametrize(("k", "seta", "colour"), [
+    (TENSION_RECORD, TENSION_SETA, "tension"),
+    (TENSION_RECORD, 0, "free"),
+    (DEEPEST, 0, "compressed"),
+    (DEEPEST, SLIDE_SETA, "sliding"),
+    (0, SLIDE_SETA, "free"),
+])
+def test_tip_colour_at_the_tip(toy, k, seta, colour):
+    frame = render.render_frame(toy, k)
+    rgb = frame.rgb()
+    assert rgb.shape == (round(render.FIGSIZE[1] * render.DPI),
+                         round(render.FIGSIZE[0] * render.DPI), 3)
+    rc = frame.pixel(toy.setae["tip_x_um"][k, seta], toy.setae["tip_y_um"][k, seta])
+    assert _is(_colour_at(rgb, rc), render.STATE_COLOURS[colour])
+
+
+def test_gif_frame_shows_the_tension_colour_at_the_tip(toy, gif):
+    frame = render.render_frame(toy, TENSION_RECORD, dpi=60)
+    rgb = _gif_frames(gif)[TENSION_RECORD]
+    x, y = toy.setae["tip_x_um"][TENSION_RECORD], toy.setae["tip_y_um"][TENSION_RECORD]
+    assert _is(_colour_at(rgb, frame.pixel(x[TENSION_SETA], y[TENSION_SETA]), 1),
+               render.STATE_COLOURS["tension"])
+    assert _is(_colour_at(rgb, frame.pixel(x[1], y[1]), 1), render.STATE_COLOURS["free"])
+
+
+def test_rod_mechanics_and_sub_frame_selection(tmp_path):
+    out = render.animate(_toy(mechanics="rod"), tmp_path / "rod.gif", frames=4, dpi=40)
+    with Image.open(out) as im:
+        assert im.n_frames == 4
+
+
+def test_same_history_gives_the_same_bytes(toy, tmp_path):
+    a = render.animate(toy, tmp_path / "a.gif", frames=6, dpi=40)
+    b = render.animate(toy, tmp_path / "b.gif", frames=6, dpi=40)
+    assert a.read_bytes() == b.read_bytes()
+
+
+def test_window_of_a_large_array_is_announced():
+    assert render.window_range(1000, 40) == range(480, 520)
+    assert render.window_range(5, 40) == range(5)
+    h = _toy(N=100, pitch=4.0)
+    frame = render.render_frame(h, 5, window=10)
+    assert frame.shown == range(45, 55)
+    assert frame.window_text == "setae 45–54 of 100 shown"
+    assert "setae 45–54 of 100 shown" in [t.get_text() for t in frame.figure.texts]
+    assert render.render_frame(_toy(), 5).window_text == ""
+
+
+def test_side_view_is_to_scale(toy):
+    frame = render.render_frame(toy, 0)
+    x0, y0 = frame.side_ax.transData.transform((0.0, 0.0))
+    x1, y1 = frame.side_ax.transData.transform((10.0, 10.0))
+    assert x1 - x0 == pytest.approx(y1 - y0, rel=1e-6)
+
+
+def test_no_per_seta_data_is_refused(toy, tmp_path):
+    bare = hist.History(toy.params, 0, toy.scalars, geometry=toy.geometry)
+    with pytest.raises(ValueError, match="record_setae=True"):
+        render.animate(bare, tmp_path / "x.gif")
+    assert not list(tmp_path.iterdir())
+
+
+def test_bad_format_and_missing_ffmpeg(toy, tmp_path, monkeypatch):
+    with pytest.raises(ValueError, match="gif or .mp4"):
+        render.animate(toy, tmp_path / "x.avi")
+    monkeypatch.setitem(sys.modules, "imageio_ffmpeg", None)  # import now fails
+    with pytest.raises(RuntimeError, match=r"pip install -e '\.\[video\]'"):
+        render.animate(toy, tmp_path / "x.mp4")
+    assert not list(tmp_path.iterdir())
+
+
+def test_plot_history_labels_legend_and_marks(toy, tmp_path):
+    fig = render.plot_history(toy, tmp_path / "f.png")
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "plate displacement [µm]"
+    assert ax.get_ylabel() == "contact force [µN]"
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert {"approach", "retract"} <= set(labels)
+    assert any(s.startswith("pull-off") for s in labels) and "snap-off (1)" in labels
+    with Image.open(tmp_path / "f.png") as im:
+        assert im.size == (round(6.4 * render.PNG_DPI), round(4.4 * render.PNG_DPI))
+    assert [p.name for p in tmp_path.iterdir()] == ["f.png"]
+
+
+def test_approach_and_retract_split_where_the_plate_turns():
+    y = np.array([5.0, 4.0, 4.0, 3.0, 3.5, 3.5, 6.0, 2.0])
+    assert render._direction_runs(y) == [(0, 3, True), (3, 6, False), (6, 7, True)]
+
+
+def test_plot_force_curves_and_annotations(tmp_path):
+    x = np.linspace(-1, 1, 20)
+    curves = [{"x": x, "y": x**2, "label": "a"},
+              {"x": x, "y": -x, "label": "b", "style": {"ls": "--", "color": "k"}}]
+    fig = render.plot_force_curves(curves, tmp_path / "c.png", "overlap δ [µm]",
+                                   "force P [µN]", "two curves")
+    ax = fig.axes[0]
+    render.annotate_points(ax, [(0.0, 0.0, "origin"), (1.0, -1.0, "end")])
+    assert ax.get_xlabel() == "overlap δ [µm]" and ax.get_title() == "two curves"
+    assert "origin" in [t.get_text() for t in ax.texts]
+    assert (tmp_path / "c.png").is_file()
+
+
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "gecko_agents.render", *map(str, args)],
+                          capture_output=True, text=True, timeout=60)
+
+
+def test_render_imports_no_pymunk_and_no_pyplot():
+    code = ("import sys, gecko_agents.render; "
+            "print('pymunk' in sys.modules, 'matplotlib.pyplot' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.split() == ["False", "False"]
+
+
+def test_missing_and_corrupt_runs(tmp_path, capsys):
+    assert render.main([str(tmp_path / "nope")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: run directory") and "does not exist" in err
+    res = _cli(tmp_path / "nope")
+    assert res.returncode == 2 and "does not exist" in res.stderr
+    assert "Traceback" not in res.stderr and len(res.stderr.strip().splitlines()) == 1
+    _toy().save(tmp_path / "run")
+    (tmp_path / "run" / "history.csv").write_text("garbage,1\nx,y\n")
+    res = _cli(tmp_path / "run")
+    assert res.returncode == 2 and "history.csv" in res.stderr
+    assert "Traceback" not in res.stderr and len(res.stderr.strip().splitlines()) == 1
+
+
+def test_cli_renders_a_saved_run(tmp_path, capsys):
+    _toy().save(tmp_path / "run")
+    assert render.main([str(tmp_path / "run"), "--frames", "3", "--fps", "5"]) == 0
+    out = capsys.readouterr().out
+    gif, png = tmp_path / "run" / "detachment.gif", tmp_path / "run" / "force_history.png"
+    assert str(gif) in out and str(png) in out and "rendered in" in out
+    with Image.open(gif) as im:
+        assert im.n_frames == 3
+    assert png.is_file()
