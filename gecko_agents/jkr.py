@@ -26,7 +26,7 @@ __all__ = [
     "effective_modulus", "work_of_adhesion", "pull_off_force", "zero_load_contact_radius",
     "snap_off_overlap", "snap_off_radius", "force_from_radius", "overlap_from_radius",
     "contact_radius_from_force", "force_from_overlap", "radius_from_overlap",
-    "contact_stiffness", "hertz_contact_radius", "hertz_overlap", "hertz_force",
+    "contact_stiffness", "contact_energy", "hertz_contact_radius", "hertz_overlap", "hertz_force",
     "hertz_pressure", "dimensionless_force", "dimensionless_radius", "dimensionless_overlap",
     "dimensionless_force_from_radius", "dimensionless_overlap_from_radius",
 ]
@@ -202,6 +202,30 @@ def contact_stiffness(a, R, w, E_star):
     dP = 4.0 * E_star * a**2 / R - 1.5 * np.sqrt(8.0 * np.pi * w * E_star * a)
     dd = 2.0 * a / R - 0.5 * np.sqrt(2.0 * np.pi * w / (E_star * a))
     return dP / dd
+
+
+def contact_energy(a, R, w, E_star):
+    """Work done on the contact along the JKR branch from jump-in (δ = 0) to radius a [energy].
+
+    U(a) = ∫ P dδ from δ = 0, with P from eq 7 and dδ from eq 10 integrated in closed form:
+    U = 2Aa⁵/(5R) − (AC/7 + 4B/(7R))·a^(7/2) + πw·a² − U(a_j), A = 4E*/(3R),
+    B = √(8πwE*), C = √(2πw/E*), a_j = (CR)^(2/3) the radius where δ = 0 (BC = 4πw).
+    Positive values are energy stored in the contact; what is stored when a tip lets go is
+    dissipated by the snap-off. dU/dδ = P.
+
+    Parameters
+    ----------
+    a : contact radius [length]. R [length], w [force/length], E_star [force/length²].
+    """
+    A = 4.0 * E_star / (3.0 * R)
+    B = np.sqrt(8.0 * np.pi * w * E_star)
+    C = np.sqrt(2.0 * np.pi * w / E_star)
+
+    def U(x):
+        return (2.0 * A * x**5 / (5.0 * R) - (A * C / 7.0 + 4.0 * B / (7.0 * R)) * x**3.5
+                + np.pi * w * x * x)
+
+    return U(np.asarray(a, dtype=float)) - U(np.cbrt((C * R) ** 2))
 
 
 # --- Hertz (no adhesion), eq 1–3 ---------------------------------------------------------------

@@ -34,6 +34,7 @@ Units: µm, µN (see :mod:`gecko_agents.params`). The plate only moves verticall
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -93,6 +94,8 @@ class Branches:
     Kxy: float
     Kyy: float
     Ky: float
+    r_t: float
+    Kyy_stick: float
     mu: float
     law: str
     lateral: str
@@ -102,11 +105,17 @@ class Branches:
 
     @classmethod
     def from_params(cls, params: SetaArray, lateral: str = "coupled",
-                    stiffness_scale: float = 1.0, n_grid: int = 16384) -> Branches:
+                    stiffness_scale: float = 1.0, tangential_stiffness: float = math.inf,
+                    n_grid: int = 16384) -> Branches:
         """Build the branch tables for ``params``.
 
         ``stiffness_scale`` multiplies Ka and Kp (1e6 ≈ rigid setae: the Fuller–Tabor limit).
+        ``tangential_stiffness`` k_t [µN/µm] is the stick spring of the contact (∞: a sticking
+        tip does not move, as in eq 26–27). A sticking tip then sits on a lateral spring k_t to
+        its anchor, which softens the stick branch to K_yy − K_xy²/(K_xx + k_t).
         """
+        if not tangential_stiffness > 0:
+            raise ValueError(f"tangential_stiffness = {tangential_stiffness!r} must be > 0")
         if lateral not in ("coupled", "free"):
             raise ValueError(f"lateral = {lateral!r} must be 'coupled' or 'free'")
         if not stiffness_scale > 0:
@@ -116,14 +125,18 @@ class Branches:
                                   params.bending_stiffness * stiffness_scale, params.seta.theta)
         Kxx, Kxy, Kyy = float(K[0, 0]), float(K[0, 1]), float(K[1, 1])
         Ky = Kyy - Kxy * Kxy / Kxx      # Schur complement = eq 20
+        r_t = 1.0 if math.isinf(tangential_stiffness) else (
+            tangential_stiffness / (Kxx + tangential_stiffness))
+        Kyy_stick = Kyy - Kxy * Kxy * (1.0 - r_t) / Kxx
         mu = params.friction.mu if lateral == "coupled" else 0.0
         self = cls(R, w, Es, params.contact.pull_off_force, params.seta.L, params.seta.theta,
-                   Kxx, Kxy, Kyy, Ky, mu, params.friction.law, lateral, {}, {}, {})
+                   Kxx, Kxy, Kyy, Ky, r_t, Kyy_stick, mu, params.friction.law, lateral,
+                   {}, {}, {})
         a0 = jkr.zero_load_contact_radius(R, w, Es)
         q = Kxy / Kxx
         names = ["free"] if lateral == "free" else ["stick", "slip+", "slip-"]
         for name in names:
-            k_eff = {"stick": Kyy, "free": Ky}.get(name)
+            k_eff = {"stick": Kyy_stick, "free": Ky}.get(name)
             if k_eff is None:
                 sigma = 1.0 if name == "slip+" else -1.0
                 # Near the fold P < 0; the adhesive cap grows with P there, the paper's is 0.
@@ -150,7 +163,7 @@ class Branches:
     def deflection(self, name, P):
         """Spring deflection D_b (tip minus rest, downward positive) for force P [µm]."""
         if name == "stick":
-            return P / self.Kyy
+            return P / self.Kyy_stick
         if name == "free":
             return P / self.Ky
         sigma = 1.0 if name == "slip+" else -1.0
@@ -168,7 +181,7 @@ class Branches:
         dP = 4.0 * Es * a * a / R - 1.5 * np.sqrt(8.0 * np.pi * w * Es * a)
         dd = 2.0 * a / R - 0.5 * np.sqrt(2.0 * np.pi * w / (Es * a))
         if name == "stick":
-            dD = 1.0 / self.Kyy
+            dD = 1.0 / self.Kyy_stick
         elif name == "free":
             dD = 1.0 / self.Ky
         else:
@@ -286,14 +299,15 @@ def _step(br: Branches, st: _State, Z: float, h: np.ndarray):
         rel_overlap[gone] = jkr.overlap_from_radius(br.a_fold["free"], *args)
         return P, Ft, delta, released, rel_overlap
 
-    # 1) Stick trial at the previous tip abscissa.
+    # 1) Stick trial at the previous anchor (u: anchor abscissa relative to the rest tip).
     u = st.u[idx]
-    a = br.invert("stick", t0[idx] - br.Kxy * u / br.Kyy)
+    a = br.invert("stick", t0[idx] - br.r_t * br.Kxy * u / br.Kyy_stick)
     exists = np.isfinite(a)
     a_s = np.where(exists, a, br.a_fold["stick"])
     Ps = jkr.force_from_radius(a_s, *args)
-    dy = (Ps - br.Kxy * u) / br.Kyy
-    Ft_s = br.Kxx * u + br.Kxy * dy
+    dy = (Ps - br.r_t * br.Kxy * u) / br.Kyy_stick
+    e = br.r_t * u - (1.0 - br.r_t) * br.Kxy * dy / br.Kxx   # tip abscissa
+    Ft_s = br.Kxx * e + br.Kxy * dy
     stick_ok = exists & (np.abs(Ft_s) <= br.cap(Ps) * (1 + 1e-12))
     j = idx[stick_ok]
     P[j], Ft[j] = Ps[stick_ok], Ft_s[stick_ok]
@@ -322,7 +336,8 @@ def _step(br: Branches, st: _State, Z: float, h: np.ndarray):
         P[good], Ft[good] = Pk[ok], cap[ok]
         delta[good] = jkr.overlap_from_radius(ai[ok], *args)
         st.state[good] = SLIP
-        st.u[good] = uk[ok]
+        # The anchor trails the sliding tip by cap/k_t (F_t = −k_t·(tip − anchor)).
+        st.u[good] = uk[ok] + (1.0 - br.r_t) / br.r_t * cap[ok] / br.Kxx
         st.sigma[good] = sig[ok]
         # 3) No equilibrium on either branch: the tip lets go at its fold.
         gone = jk[~ok]
@@ -343,8 +358,8 @@ def plate_start_height(params: SetaArray, heights, gap: float = 0.5) -> float:
 
 
 def solve(params: SetaArray, heights, plate_y, *, weights=None, lateral: str = "coupled",
-          stiffness_scale: float = 1.0, record_setae: bool = False,
-          branches: Branches | None = None,
+          stiffness_scale: float = 1.0, tangential_stiffness: float = math.inf,
+          record_setae: bool = False, branches: Branches | None = None,
           stop_when_free_after: int | None = None) -> QuasiStaticResult:
     """Quasi-static history of setae over floor heights along a vertical plate path.
 
@@ -356,11 +371,12 @@ def solve(params: SetaArray, heights, plate_y, *, weights=None, lateral: str = "
     weights : setae each entry stands for (default 1 each).
     lateral : ``"coupled"`` (stick/slip friction) or ``"free"`` (eq 25).
     stiffness_scale : multiplies Ka and Kp (large → rigid setae).
+    tangential_stiffness : stick spring of the contact [µN/µm] (∞: rigid stick).
     record_setae : keep per-seta force, overlap, state and lateral offset.
     branches : prebuilt :class:`Branches` (``lateral`` and ``stiffness_scale`` are then unused).
     stop_when_free_after : stop at the first step past this index where no seta is attached.
     """
-    br = branches or Branches.from_params(params, lateral, stiffness_scale)
+    br = branches or Branches.from_params(params, lateral, stiffness_scale, tangential_stiffness)
     h = np.asarray(heights, dtype=float)
     w = np.ones_like(h) if weights is None else np.asarray(weights, dtype=float)
     Zs = np.asarray(plate_y, dtype=float)
@@ -415,7 +431,8 @@ def retract_travel(params: SetaArray, br: Branches, heights, Z_from: float) -> f
 
 def press_pull(params: SetaArray, heights, depth: float, *, n_approach: int = 500,
                n_retract: int = 2000, start_gap: float = 0.5, lateral: str = "coupled",
-               stiffness_scale: float = 1.0, weights=None,
+               stiffness_scale: float = 1.0, tangential_stiffness: float = math.inf,
+               weights=None,
                record_setae: bool = False) -> QuasiStaticResult:
     """Displacement control: approach to ``depth`` [µm], then retract.
 
@@ -429,7 +446,7 @@ def press_pull(params: SetaArray, heights, depth: float, *, n_approach: int = 50
     """
     if not depth > 0:
         raise ValueError(f"depth = {depth!r} must be > 0 [µm]")
-    br = Branches.from_params(params, lateral, stiffness_scale)
+    br = Branches.from_params(params, lateral, stiffness_scale, tangential_stiffness)
     Z0 = plate_start_height(params, heights, start_gap)
     Zmin = plate_start_height(params, [0.0], 0.0) - depth
     if Zmin >= Z0:
@@ -445,7 +462,8 @@ def press_pull(params: SetaArray, heights, depth: float, *, n_approach: int = 50
 
 def preload_pull(params: SetaArray, heights, preload: float, *, dz: float | None = None,
                  weights=None, lateral: str = "coupled", stiffness_scale: float = 1.0,
-                 record_setae: bool = False, max_steps: int = 200_000,
+                 tangential_stiffness: float = math.inf, record_setae: bool = False,
+                 max_steps: int = 200_000,
                  retract_steps: int | None = None) -> QuasiStaticResult:
     """Force control: approach until the total normal force equals ``preload`` [µN], retract.
 
@@ -461,7 +479,7 @@ def preload_pull(params: SetaArray, heights, preload: float, *, dz: float | None
     """
     if not preload > 0:
         raise ValueError(f"preload = {preload!r} must be > 0 [µN]")
-    br = Branches.from_params(params, lateral, stiffness_scale)
+    br = Branches.from_params(params, lateral, stiffness_scale, tangential_stiffness)
     h = np.asarray(heights, dtype=float)
     w = np.ones_like(h) if weights is None else np.asarray(weights, dtype=float)
     dz = abs(params.contact.snap_off_overlap) / 20 if dz is None else float(dz)

@@ -139,3 +139,13 @@ def test_contact_stiffness_signs():
 def test_load_below_pull_off_is_refused():
     with pytest.raises(ValueError, match="pull-off"):
         jkr.contact_radius_from_force(-1.1 * FC, R, W, ES)
+
+
+def test_contact_energy_is_the_integral_of_force():
+    d = np.linspace(jkr.snap_off_overlap(R, W, ES), 2.0, 200_001)
+    P = jkr.force_from_overlap(d, R, W, ES)
+    a = jkr.radius_from_overlap(d, R, W, ES)
+    U = jkr.contact_energy(a, R, W, ES)
+    num = np.concatenate([[0], np.cumsum(0.5 * (P[1:] + P[:-1]) * np.diff(d))])
+    assert_allclose(U, num - np.interp(0.0, d, num), atol=1e-6 * FC * abs(d[0]))
+    assert abs(jkr.contact_energy(jkr.radius_from_overlap(0.0, R, W, ES), R, W, ES)) < 1e-12

@@ -1,0 +1,223 @@
+"""The pymunk agent model against analytic oracles, the quasi-static solver and invariants."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from gecko_agents import jkr, protocol
+from gecko_agents import quasistatic as qs
+from gecko_agents.history import STATE_FREE
+from gecko_agents.model import Model, SimulationUnstable
+from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
+
+# A stubby seta (L = 5 µm) so a press-and-pull takes a few thousand steps; everything else is
+# the paper's array (θ = 60°, E = 1.413 MPa, w = 2√(γ1γ2), μ = 0.2).
+STUBBY = PAPER_ARRAY.replace(**{"array.count": 20, "seta.L": 5.0, "floor.sigma": 0.3})
+SPEED = 0.02  # µm/µs
+
+
+@pytest.fixture(scope="module")
+def rough_run():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = Model(STUBBY, record_setae=True)
+        return m, m.run(protocol.press_pull(0.5, speed=SPEED), progress=False)
+
+
+def _static_stiffness(params, direction, force):
+    """Hold a free tip under a constant force until it settles; return force/displacement."""
+    m = Model(params.replace(**{"array.count": 1}))
+    m.reset_state_arrays()
+    f = np.asarray(direction, float) * force
+    m.external_force[0] = f
+    x0 = None
+    for i in range(4_000):
+        _, _, _, x = m.step((0.0, 0.0))
+        if i == 0:
+            x0 = x[0] - m._vel_now[0] * m.dt
+    u = x[0] - x0
+    return force / np.dot(u, direction), u
+
+
+@pytest.mark.parametrize("mechanics", ["linear", "rod"])
+def test_static_stiffness_matches_eq20_eq21(mechanics):
+    p = PAPER_TABLE1.replace(**{"seta.L": 5.0, "mechanics": mechanics})
+    F = 1e-3 * p.Ky * p.seta.L          # deflection ~0.1 % of L: small-deflection regime
+    ky, _ = _static_stiffness(p, (0.0, 1.0), F)
+    kx, _ = _static_stiffness(p, (1.0, 0.0), F)
+    assert_allclose(ky, p.Ky, rtol=0.01)
+    assert_allclose(kx, p.Kx, rtol=0.01)
+
+
+def test_linear_stays_linear_and_rod_stiffens_at_large_deflection():
+    p = PAPER_TABLE1.replace(**{"seta.L": 5.0})
+    F = 0.3 * p.Ky * p.seta.L           # 30 % of L under the linear law
+    with pytest.warns(UserWarning, match="small deflection"):
+        ky_lin, _ = _static_stiffness(p, (0.0, 1.0), F)
+    ky_rod, _ = _static_stiffness(p.replace(mechanics="rod"), (0.0, 1.0), F)
+    assert_allclose(ky_lin, p.Ky, rtol=0.01)
+    assert abs(ky_rod / p.Ky - 1) > 0.05   # geometry changes the stiffness at large rotation
+
+
+def test_single_seta_flat_floor_pull_off_matches_quasistatic():
+    p = STUBBY.replace(**{"array.count": 1, "floor.sigma": 0.0})
+    m = Model(p)
+    h = m.run(protocol.press_pull(0.3, speed=SPEED / 4), progress=False)
+    q = qs.press_pull(p, [0.0], 0.3, n_retract=40_000, tangential_stiffness=m.k_t)
+    assert_allclose(h.peak_pull_off, q.pull_off, rtol=0.01)
+    # Where it let go: the quasi-static fold of its branch, found by the dynamics.
+    (_, _, d_fold), = q.releases
+    assert len(h.detachments["seta"]) == 1
+    assert h.detachments["overlap_um"][0] < p.contact.snap_off_overlap  # broke past δc …
+    assert_allclose(h.detachments["release_overlap_um"][0], d_fold, atol=0.05)  # … left at fold
+
+
+def _curve_error(h, q_dense, y_dense, sub, travel=0.1):
+    """Distance of each recorded model force from the quasi-static curve drawn as a graph
+    (its jumps as vertical segments), allowing an event to lag by up to ``travel`` µm of plate
+    motion: a jump-in or the escape from a fold takes time (one seta here lets go
+    0.05–0.09 µm of plate travel after its fold at 0.005–0.02 µm/µs)."""
+    F, y = h["force_normal_uN"], h["plate_y_um"]
+    err = []
+    for k in range(len(F)):
+        lo, hi = max(0, (k - 4) * sub), min(len(y_dense), (k + 4) * sub + 1)
+        near = np.abs(y_dense[lo:hi] - y[k]) <= travel
+        window = q_dense[lo:hi][near]
+        err.append(max(0.0, window.min() - F[k], F[k] - window.max()))
+    return np.array(err)
+
+
+def _dense(y, sub):
+    return np.interp(np.arange((len(y) - 1) * sub + 1) / sub, np.arange(len(y)), y)
+
+
+@pytest.mark.parametrize("mu", [0.0, 0.2])
+def test_rough_floor_matches_quasistatic_curve(mu):
+    p = STUBBY.replace(**{"friction.mu": mu})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = Model(p)
+        h = m.run(protocol.press_pull(0.5, speed=SPEED), progress=False)
+    sub = 10
+    y_dense = _dense(h["plate_y_um"], sub)
+    q = qs.solve(p, m.profile.pad_heights, y_dense, tangential_stiffness=m.k_t)
+    assert_allclose(h.peak_pull_off, q.pull_off, rtol=0.02)
+    err = _curve_error(h, q.force_normal, y_dense, sub)
+    turn = int(np.argmin(h["plate_y_um"]))
+    # Retraction (where the pull-off is): within 2 % of the peak.
+    assert err[turn:].max() < 0.02 * q.pull_off
+    # Approach: a tip that jumps in pulls with up to (8/9)Fc until it has snapped into its
+    # quasi-static state (a soft seta: P ≈ 0); the static curve never shows that transient.
+    assert err[:turn].max() < STUBBY.contact.pull_off_force
+
+
+def test_invariants_on_every_recorded_step(rough_run):
+    m, h = rough_run
+    Fc = STUBBY.contact.pull_off_force
+    n_att = h["n_attached"]
+    for c in h.scalars.values():
+        assert np.all(np.isfinite(c))
+    assert np.all(h["force_normal_uN"][n_att == 0] == 0)
+    assert np.all(h["force_tangential_uN"][n_att == 0] == 0)
+    assert np.all(-h["force_normal_uN"] <= n_att * Fc * (1 + 1e-9))
+    P, state, d = (h.setae[k] for k in ("force_normal_uN", "state", "overlap_um"))
+    assert np.all(P >= -Fc * (1 + 1e-9))
+    attached = state != STATE_FREE
+    assert np.all(P[~attached] == 0)
+    assert np.all(d[attached] >= STUBBY.contact.snap_off_overlap)
+    # A tip is never seen attached with δ < 0 in the record where it attached.
+    newly = attached[1:] & ~attached[:-1]
+    assert np.all(d[1:][newly] >= 0)
+    assert h["n_attached"][-1] == 0 and h["force_normal_uN"][-1] == 0
+    # Quasi-static limit: the plate feels what the floor does.
+    peak = h.peak_pull_off
+    assert np.abs(h["plate_force_y_uN"] - h["force_normal_uN"]).max() < 0.03 * peak
+    assert h.meta["max_kinetic_to_elastic"] < 0.05
+
+
+def test_energy_balance():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m0 = Model(STUBBY)
+        m = Model(STUBBY, dt=m0.dt / 2)
+        h = m.run(protocol.press_pull(0.5, speed=SPEED), progress=False)
+    W = h["work_plate_pJ"]
+    E = h["energy_elastic_pJ"] + h["energy_kinetic_pJ"] + h["energy_dissipated_pJ"]
+    assert np.abs(W - E).max() < 0.01 * np.abs(W).max()
+    assert np.all(np.diff(h["energy_dissipated_pJ"]) >= -1e-9)
+
+
+def test_same_seed_same_history_and_seed_matters():
+    p = STUBBY.replace(**{"array.count": 4})
+    a = Model(p, seed=3).run(protocol.press_pull(0.3, speed=0.05), progress=False)
+    b = Model(p, seed=3).run(protocol.press_pull(0.3, speed=0.05), progress=False)
+    c = Model(p, seed=4).run(protocol.press_pull(0.3, speed=0.05), progress=False)
+    for col in a.scalars:
+        if col != "time_us":
+            np.testing.assert_array_equal(a[col], b[col])
+    assert not np.array_equal(a["force_normal_uN"], c["force_normal_uN"][: len(a)]) or len(
+        a) != len(c)
+
+
+def test_reference_callback_path_gives_the_same_history():
+    p = STUBBY.replace(**{"array.count": 3})
+    hs = [Model(p, contact=c, record_every=5).run(protocol.press_pull(0.3, speed=0.05),
+                                                   progress=False)
+          for c in ("batch", "callback")]
+    assert len(hs[0]) == len(hs[1])
+    for col in ("force_normal_uN", "force_tangential_uN", "plate_force_y_uN", "n_attached"):
+        scale = np.abs(hs[0][col]).max() + 1e-300
+        assert np.abs(hs[0][col] - hs[1][col]).max() <= 1e-9 * scale
+
+
+def test_convergence_in_dt_and_speed():
+    p = STUBBY.replace(**{"array.count": 6})
+    base = Model(p)
+    peaks = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name, dt, v in (("base", base.dt, SPEED), ("dt/2", base.dt / 2, SPEED),
+                            ("v/2", base.dt, SPEED / 2)):
+            h = Model(p, dt=dt).run(protocol.press_pull(0.4, speed=v), progress=False)
+            peaks[name] = h.peak_pull_off
+    assert abs(peaks["dt/2"] / peaks["base"] - 1) < 0.01
+    assert abs(peaks["v/2"] / peaks["base"] - 1) < 0.01
+
+
+def test_bad_input_and_instability():
+    m = Model(STUBBY)
+    bound = 2 / m.omega_max
+    with pytest.raises(ValueError, match="dt = .* stable range"):
+        Model(STUBBY, dt=1.01 * bound)
+    with pytest.raises(ValueError, match="n_sim"):
+        Model(PAPER_ARRAY)
+    with pytest.raises(ValueError, match="contact"):
+        Model(STUBBY, contact="psychic")
+    with pytest.raises(ValueError, match="callback"):
+        Model(STUBBY.replace(**{"floor.correlation_length": 3.0}), contact="callback")
+    with pytest.raises(ValueError, match="protocol is empty"):
+        m.run([], progress=False)
+    with pytest.raises(ValueError, match="speed"):
+        protocol.Move(dy=1.0, speed=-1.0)
+    # A run whose kinetic energy runs away stops with an actionable message.
+    with pytest.raises(SimulationUnstable, match="reduce dt"):
+        Model(STUBBY, dt=0.99 * bound).run(protocol.press_pull(0.5, speed=0.5),
+                                           progress=False, ke_bound=1e-9)
+
+
+def test_correlated_floor_runs_and_touches_nearest_point():
+    p = STUBBY.replace(**{"array.count": 6, "floor.correlation_length": 3.0,
+                          "floor.sigma": 0.2, "mechanics": "rod"})
+    m = Model(p, record_setae=True)
+    h = m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
+    assert h.peak_pull_off > 0 and h["n_attached"][-1] == 0
+    # Attached tips sit at δ = R − distance to the floor polyline.
+    st, tx, ty, d = (h.setae[k] for k in ("state", "tip_x_um", "tip_y_um", "overlap_um"))
+    k, i = np.argwhere(st != STATE_FREE)[len(np.argwhere(st != STATE_FREE)) // 2]
+    xs = np.linspace(tx[k, i] - 5, tx[k, i] + 5, 20001)
+    dist = np.min(np.hypot(xs - tx[k, i], m.profile.height_at(xs) - ty[k, i]))
+    assert_allclose(d[k, i], p.contact.R - dist, atol=1e-4)
+    assert math.isfinite(jkr.force_from_overlap(d[k, i], *p.contact.jkr_args()))
