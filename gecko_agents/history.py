@@ -29,7 +29,7 @@ import numpy as np
 from .params import SetaArray
 
 __all__ = ["History", "SCALAR_COLUMNS", "PER_SETA_FIELDS", "STATE_FREE", "STATE_STICK",
-           "STATE_SLIP", "load", "versions", "atomic_write_bytes"]
+           "STATE_SLIP", "load", "versions", "atomic_write_bytes", "invariant_violations"]
 
 STATE_FREE, STATE_STICK, STATE_SLIP = 0, 1, 2
 
@@ -211,3 +211,37 @@ def load(directory) -> History:
         meta.pop(k, None)
     return History(params=params, seed=seed, scalars=scalars, setae=setae, geometry=geometry,
                    detachments=detachments, meta=meta)
+
+
+def invariant_violations(h: History, rtol: float = 1e-9) -> list[str]:
+    """Force-history invariants that every recorded step must satisfy; [] when all hold.
+
+    * every recorded value is finite;
+    * no contact force while no tip is attached;
+    * total tension ≤ n_attached·Fc, and (per-seta records) each tip's tension ≤ Fc;
+    * (per-seta records) a free tip carries no force; an attached tip has δ ≥ δc;
+    * once every tip has let go at the end of a run, the force is zero.
+    """
+    out = []
+    Fc = h.params.contact.pull_off_force
+    for name, col in h.scalars.items():
+        if not np.all(np.isfinite(col)):
+            out.append(f"{name} has non-finite values")
+    n_att = h["n_attached"]
+    fn, ft = h["force_normal_uN"], h["force_tangential_uN"]
+    if np.any(fn[n_att == 0] != 0) or np.any(ft[n_att == 0] != 0):
+        out.append("contact force while no tip is attached")
+    if np.any(-fn > n_att * Fc * (1 + rtol)):
+        out.append("total tension exceeds n_attached·Fc")
+    if h.setae:
+        P, state = h.setae["force_normal_uN"], h.setae["state"]
+        if np.any(P < -Fc * (1 + rtol)):
+            out.append("a tip pulls harder than Fc")
+        if np.any(P[state == STATE_FREE] != 0):
+            out.append("a free tip carries a contact force")
+        d = h.setae["overlap_um"][state != STATE_FREE]
+        if np.any(d < h.params.contact.snap_off_overlap * (1 + rtol)):
+            out.append("an attached tip is past the snap-off overlap δc")
+    if len(h) and n_att[-1] == 0 and fn[-1] != 0:
+        out.append("force is not zero after full detachment")
+    return out

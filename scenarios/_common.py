@@ -1,0 +1,73 @@
+"""Shared plumbing for the scenario scripts: arguments, output folders, tables, claims.
+
+Every scenario has ``main(argv=None) -> dict`` and accepts ``--quick`` (seconds, small N, used
+by the tests) and ``--out DIR`` (default ``renders/<name>/``); it writes only there. The dict it
+returns holds its key numbers and, for reproduce_paper, ``"claims"``: rows of the
+paper-comparison table built with :func:`claim`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+if str(ROOT) not in sys.path:  # run as `python scenarios/x.py` from a source checkout
+    sys.path.insert(0, str(ROOT))
+
+from gecko_agents.history import atomic_write_bytes, versions  # noqa: E402
+
+VERDICTS = ("reproduced", "trend reproduced", "not reproducible from the stated parameters")
+
+
+def parse_args(doc: str, argv=None, extra=None) -> argparse.Namespace:
+    """Parse the common options; ``extra(parser)`` may add scenario-specific ones."""
+    parser = argparse.ArgumentParser(description=(doc or "").strip().splitlines()[0])
+    parser.add_argument("--quick", action="store_true",
+                        help="small and fast (seconds): for tests and a first look")
+    parser.add_argument("--out", type=Path, default=None,
+                        help="output folder (default renders/<scenario>/)")
+    parser.add_argument("--no-progress", action="store_true", help="hide progress bars")
+    if extra is not None:
+        extra(parser)
+    return parser.parse_args(argv)
+
+
+def output_dir(name: str, args: argparse.Namespace) -> Path:
+    """The scenario's output folder, created if needed."""
+    out = args.out if args.out is not None else ROOT / "renders" / name
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+def write_table(path: Path, rows: list[dict]) -> Path:
+    """Write dict rows as CSV (atomic); columns from the union of keys in first-seen order."""
+    cols: list[str] = []
+    for r in rows:
+        cols += [k for k in r if k not in cols]
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=cols, lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+    atomic_write_bytes(Path(path), buf.getvalue().encode())
+    return Path(path)
+
+
+def write_json(path: Path, data: dict) -> Path:
+    """Write JSON (atomic) with the package versions added under ``versions``."""
+    data = dict(data, versions=versions())
+    atomic_write_bytes(Path(path), json.dumps(data, indent=2, default=float).encode())
+    return Path(path)
+
+
+def claim(figure: str, claim: str, paper: str, ours: str, verdict: str, reason: str,
+          alternative: str = "—") -> dict:
+    """One row of renders/paper_comparison.md. ``ours``/``alternative`` are computed strings."""
+    if verdict not in VERDICTS:
+        raise ValueError(f"verdict {verdict!r} must be one of {VERDICTS}")
+    return {"figure": figure, "claim": claim, "paper": paper, "ours": ours,
+            "alternative": alternative, "verdict": verdict, "reason": reason}
