@@ -61,3 +61,23 @@ def test_failed_write_leaves_no_file(tmp_path, monkeypatch):
     with pytest.raises(OSError):
         hist.atomic_write_bytes(target, b"abc")
     assert not target.exists() and not list(tmp_path.iterdir())
+
+
+def test_invariant_checks_catch_violations():
+    h = _toy()
+    n = len(h)
+    h.scalars["n_attached"] = np.ones(n)
+    Fc = h.params.contact.pull_off_force
+    h.scalars["force_normal_uN"] = np.full(n, -0.5 * Fc)
+    h.scalars["force_tangential_uN"] = np.zeros(n)
+    h.setae["state"] = np.ones_like(h.setae["state"])
+    h.setae["force_normal_uN"] = np.full((n, 3), -0.1 * Fc)
+    h.setae["overlap_um"] = np.zeros((n, 3))
+    assert hist.invariant_violations(h) == []
+    h.scalars["force_normal_uN"][2] = -1.5 * Fc
+    h.scalars["energy_kinetic_pJ"][1] = np.nan
+    h.setae["overlap_um"][0, 0] = 2 * h.params.contact.snap_off_overlap
+    h.scalars["n_attached"][-1] = 0
+    v = hist.invariant_violations(h)
+    assert any("non-finite" in s for s in v) and any("n_attached·Fc" in s for s in v)
+    assert any("δc" in s for s in v) and any("no tip is attached" in s for s in v)
