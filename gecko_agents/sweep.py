@@ -4,6 +4,8 @@ A sweep is ``grid`` (dotted parameter name → list of values, as in
 :meth:`~gecko_agents.params.SetaArray.replace`) × ``seeds``; every point is an independent call
 ``point_fn(params, seed, **fn_kwargs) -> dict[str, float]`` that returns one result row
 (e.g. peak pull-off [µN], snap-off depth [µm]). Units are those of :mod:`gecko_agents.params`.
+A grid name ``"fn.<name>"`` sweeps a keyword argument of the point function instead of a
+parameter (e.g. ``{"fn.preload_uN": [1e5, 1e6]}`` for a protocol quantity).
 
 On disk (``out_dir``)::
 
@@ -41,7 +43,7 @@ import traceback
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures import as_completed as futures_as_completed
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from urllib.parse import urlsplit
 
@@ -54,6 +56,8 @@ __all__ = ["SweepPoint", "expand_grid", "point_key", "run_sweep", "parse_dask_ar
            "DaskArgError", "analytic_point", "cpu_bound_point", "benchmark_dask_scaling"]
 
 _DASK_HINT = "install it with: pip install -e '.[dask]'"
+FN_PREFIX = "fn."
+"""Grid names with this prefix sweep a keyword argument of the point function."""
 
 
 @dataclass(frozen=True)
@@ -62,14 +66,16 @@ class SweepPoint:
 
     Attributes
     ----------
-    overrides : dotted parameter name → value for this point (the grid's names, in grid order).
+    overrides : grid name → value for this point (the grid's names, in grid order).
     seed : seed handed to the point function (≥ 0).
-    params : ``base.replace(**overrides)``, already validated.
+    params : ``base`` with the parameter overrides applied, already validated.
+    fn_overrides : point-function keyword arguments from ``"fn.<name>"`` grid entries.
     """
 
     overrides: dict
     seed: int
     params: SetaArray
+    fn_overrides: dict = field(default_factory=dict)
 
 
 def _plain(value):
@@ -113,6 +119,17 @@ def expand_grid(base: SetaArray, grid: dict[str, Sequence], seeds: Sequence[int]
         repeated = [v for i, v in enumerate(vals) if v in vals[:i]]
         if repeated:
             raise ValueError(f"sweep grid[{name!r}] repeats the value(s) {repeated}")
+        if name.startswith(FN_PREFIX):
+            if not name[len(FN_PREFIX):].isidentifier():
+                raise ValueError(f"sweep grid[{name!r}]: {name[len(FN_PREFIX):]!r} is not a "
+                                 "keyword argument name")
+            try:
+                _canonical_json(vals)
+            except TypeError as err:
+                raise ValueError(f"sweep grid[{name!r}] values must be JSON-serialisable: "
+                                 f"{err}") from err
+            values[name] = vals
+            continue
         try:
             base.replace(**{name: vals[0]})
         except (ValueError, TypeError) as err:
@@ -132,17 +149,19 @@ def expand_grid(base: SetaArray, grid: dict[str, Sequence], seeds: Sequence[int]
     seen: dict[str, dict] = {}
     for combo in itertools.product(*values.values()):
         overrides = dict(zip(values, combo, strict=True))
+        fn_over = {k[len(FN_PREFIX):]: v for k, v in overrides.items() if k.startswith(FN_PREFIX)}
         try:
-            params = base.replace(**overrides)
+            params = base.replace(**{k: v for k, v in overrides.items()
+                                     if not k.startswith(FN_PREFIX)})
         except (ValueError, TypeError) as err:
             raise ValueError(f"sweep point {overrides}: {err}") from err
         for seed in seeds:
-            ident = _canonical_json([params.to_dict(), seed])
+            ident = _canonical_json([params.to_dict(), fn_over, seed])
             if ident in seen:
                 raise ValueError(f"sweep points {seen[ident]} and {overrides} have identical "
                                  f"parameters (seed {seed})")
             seen[ident] = overrides
-            points.append(SweepPoint(overrides, seed, params))
+            points.append(SweepPoint(overrides, seed, params, fn_over))
     return points
 
 
@@ -209,7 +228,7 @@ def _run_point(fn: Callable, fn_name: str, fn_kwargs: dict, point: SweepPoint, k
               "params": point.params.to_dict(), "status": "ok", "result": {}, "error": None,
               "traceback": None}
     try:
-        result = fn(point.params, point.seed, **fn_kwargs)
+        result = fn(point.params, point.seed, **(fn_kwargs | point.fn_overrides))
         record["result"] = _check_result(result, {"key", "seed", "status", "error",
                                                   *point.overrides})
     except Exception as err:
@@ -328,7 +347,7 @@ def run_sweep(point_fn, base: SetaArray, grid: dict[str, Sequence], seeds: Seque
 
     out = Path(out_dir)
     point_dir = out / "points"
-    keys = [point_key(fn_name, fn_kwargs, p.params, p.seed) for p in points]
+    keys = [point_key(fn_name, fn_kwargs | p.fn_overrides, p.params, p.seed) for p in points]
     done = {k for k in keys
             if (_read_record(point_dir / f"{k}.json", k) or {}).get("status") == "ok"}
     todo = [(p, k) for p, k in zip(points, keys, strict=True) if k not in done]
@@ -518,3 +537,92 @@ def benchmark_dask_scaling(n_points: int = 8, work_s: float = 0.5,
                 times[n] = time.perf_counter() - t0
     return {"t1_s": times[1], "t2_s": times[2], "speedup": times[1] / times[2],
             "repeats": repeats}
+
+
+# Preload sweeps (paper Fig 11) -----------------------------------------------------------------
+#
+# The preload is a protocol quantity: sweep it with the grid name "fn.preload_uN". The seed
+# draws the floor.
+
+def quasistatic_preload_point(params: SetaArray, seed: int, *, preload_uN: float,
+                              n_blocks: int = 1000, retract_steps: int | None = None,
+                              lateral: str = "coupled") -> dict[str, float]:
+    """Force-controlled press and pull-off of the whole array with the quasi-static solver.
+
+    The ``params.array.count`` floor heights (σ = ``params.floor.sigma``, drawn with
+    ``numpy.random.default_rng(seed)``) are reduced to ``n_blocks`` weighted
+    representative heights (:func:`gecko_agents.quasistatic.representative_heights`; 1000
+    blocks reproduce 20 000 to < 0.2 % for the paper's array) and pressed until the total
+    normal force is ``preload_uN`` [µN] (:func:`gecko_agents.quasistatic.preload_pull`), then pulled
+    off in up to ``retract_steps`` plate steps (default 4000; for the paper's array 2000 changes
+    the pull-off by < 0.05 %, 500 by < 0.3 %).
+
+    Returns
+    -------
+    ``preload_uN`` compressive force reached [µN]; ``pull_off_uN`` maximum tensile force [µN];
+    ``pull_off_per_seta_uN`` the same per seta of the array [µN]; ``pull_off_over_ideal``
+    pull-off / (N·Fc) [-]; ``attached_fraction`` largest fraction of setae attached [-].
+    """
+    from . import quasistatic
+
+    n = params.array.count
+    rng = np.random.default_rng(seed)
+    heights, weights = quasistatic.representative_heights(n, params.floor.sigma, rng, n_blocks)
+    res = quasistatic.preload_pull(params, heights, float(preload_uN), weights=weights,
+                                   lateral=lateral, retract_steps=retract_steps)
+    return {"preload_uN": res.preload, "pull_off_uN": res.pull_off,
+            "pull_off_per_seta_uN": res.pull_off / n,
+            "pull_off_over_ideal": res.pull_off / (n * params.contact.pull_off_force),
+            "attached_fraction": float(res.n_attached.max()) / n}
+
+
+def agent_preload_point(params: SetaArray, seed: int, *, preload_uN: float, n_sim: int = 16,
+                        speed: float = 0.02,
+                        presses: int = 5, hold_us: float = 10.0,
+                        damping_normal: float = 1.0) -> dict[str, float]:
+    """Force-controlled press and pull-off of an ``n_sim``-seta patch with the agent model.
+
+    ``preload_uN`` is the preload on the whole array of ``params.array.count`` setae [µN]; the
+    patch gets its share, ``preload_uN · n_sim / count``, and its pull-off is scaled back by
+    ``count / n_sim``. The patch's floor is drawn from ``seed``.
+
+    Protocol: ``presses`` × (:class:`~gecko_agents.protocol.Press` to the patch preload at
+    ``speed`` [µm/µs], :class:`~gecko_agents.protocol.Hold` ``hold_us`` [µs]), then a vertical
+    :class:`~gecko_agents.protocol.PullOff`. A Press ends on the first step whose total contact
+    force reaches the target, and the ring-down of a fresh jump-in contact can do that before
+    the static force has; the contact damping ratio ``damping_normal`` (1 = critical) and the
+    repeated press after each hold make the plate stop on the static preload
+    (``preload_held_uN``, the force at the end of the last hold, reports what was held).
+
+    Returns
+    -------
+    ``preload_patch_uN`` target on the patch [µN]; ``preload_held_uN`` force held at the deepest
+    plate position [µN]; ``pull_off_patch_uN`` peak tensile force of the patch [µN];
+    ``pull_off_array_uN`` that × count / n_sim [µN]; ``pull_off_per_seta_uN`` [µN];
+    ``attached_fraction`` largest fraction of the patch attached [-]; ``n_steps`` time steps;
+    ``max_kinetic_to_elastic`` peak kinetic / peak elastic energy (quasi-static if ≪ 1).
+    """
+    from .model import Damping, Model
+    from .protocol import Hold, Press, PullOff
+
+    if isinstance(presses, bool) or not isinstance(presses, int) or presses < 1:
+        raise ValueError(f"presses = {presses!r} must be an integer ≥ 1")
+    count = params.array.count
+    target = preload_uN * n_sim / count
+    steps = []
+    for _ in range(presses):
+        steps += [Press(target, speed), Hold(hold_us)]
+    model = Model(params, n_sim=n_sim, seed=seed,
+                  damping=Damping(normal=damping_normal))
+    hist = model.run(steps + [PullOff(speed)], progress=False)
+    y = hist["plate_y_um"]
+    held = float(hist["force_normal_uN"][np.flatnonzero(y <= y.min())[-1]])
+    peak = hist.peak_pull_off
+    return {"preload_patch_uN": target, "preload_held_uN": held, "pull_off_patch_uN": peak,
+            "pull_off_array_uN": peak * count / n_sim, "pull_off_per_seta_uN": peak / n_sim,
+            "attached_fraction": float(hist["n_attached"].max()) / n_sim,
+            "n_steps": int(hist.meta["n_steps"]),
+            "max_kinetic_to_elastic": float(hist.meta["max_kinetic_to_elastic"])}
+
+
+__all__ += ["quasistatic_preload_point", "agent_preload_point"]

@@ -271,3 +271,65 @@ def test_dask_local_cluster_gives_the_same_table_as_processes(tmp_path):
     # the same points, whoever ran them
     assert (sorted(p.name for p in (tmp_path / "dask" / "points").iterdir())
             == sorted(p.name for p in (tmp_path / "processes" / "points").iterdir()))
+
+
+# preload point functions (paper Fig 11) -----------------------------------------------------
+
+def test_quasistatic_preload_point_blocks_of_one_are_brute_force(tmp_path):
+    from gecko_agents import quasistatic
+    from gecko_agents.params import PAPER_ARRAY
+
+    p = PAPER_ARRAY.replace(**{"array.count": 300})
+    row = sweep.quasistatic_preload_point(p, 5, preload_uN=30.0, n_blocks=300)
+    heights = p.floor.sigma * np.random.default_rng(5).standard_normal(300)
+    brute = quasistatic.preload_pull(p, heights, 30.0)
+    assert row["preload_uN"] == pytest.approx(30.0, rel=1e-8)
+    assert row["pull_off_uN"] == pytest.approx(brute.pull_off, rel=1e-9)
+    assert row["pull_off_per_seta_uN"] == pytest.approx(brute.pull_off / 300)
+    assert 0 < row["pull_off_over_ideal"] <= 1
+    assert row["attached_fraction"] == brute.n_attached.max() / 300
+    # the seed draws the floor; a larger preload attaches more setae
+    other = sweep.quasistatic_preload_point(p, 6, preload_uN=30.0, n_blocks=300)
+    assert other["pull_off_uN"] != row["pull_off_uN"]
+    more = sweep.quasistatic_preload_point(p, 5, preload_uN=300.0, n_blocks=300)
+    assert more["attached_fraction"] > row["attached_fraction"]
+    assert more["pull_off_uN"] > row["pull_off_uN"]
+    with pytest.raises(ValueError, match="preload"):
+        sweep.quasistatic_preload_point(p, 5, preload_uN=0.0)
+    # through run_sweep, the preload as an "fn." axis of the grid
+    rows = sweep.run_sweep(sweep.quasistatic_preload_point, p, {"fn.preload_uN": [30.0, 300.0]},
+                           [5], tmp_path, fn_kwargs={"n_blocks": 300}, n_workers=1,
+                           progress=False)
+    assert [r["fn.preload_uN"] for r in rows] == [30.0, 300.0]
+    assert rows[0]["pull_off_uN"] == row["pull_off_uN"]
+    assert rows[1]["pull_off_uN"] == more["pull_off_uN"]
+    assert rows[0]["key"] != rows[1]["key"]
+
+
+def test_fn_axis_validation():
+    from gecko_agents.params import PAPER_ARRAY
+
+    pts = sweep.expand_grid(PAPER_ARRAY, {"floor.sigma": [0.5, 1.0], "fn.preload_uN": [1.0]},
+                            [0])
+    assert [p.fn_overrides for p in pts] == [{"preload_uN": 1.0}] * 2
+    assert pts[0].params.floor.sigma == 0.5
+    with pytest.raises(ValueError, match="keyword argument name"):
+        sweep.expand_grid(PAPER_ARRAY, {"fn.2bad": [1.0]}, [0])
+    with pytest.raises(ValueError, match="empty"):
+        sweep.expand_grid(PAPER_ARRAY, {"fn.preload_uN": []}, [0])
+
+
+def test_agent_preload_point_holds_its_share_of_the_preload():
+    from gecko_agents.params import PAPER_ARRAY
+
+    p = PAPER_ARRAY.replace(**{"mechanics": "rod", "array.count": 1000, "floor.sigma": 0.2})
+    row = sweep.agent_preload_point(p, 3, preload_uN=200.0, n_sim=2, speed=0.05, presses=2)
+    fc = p.contact.pull_off_force
+    assert row["preload_patch_uN"] == pytest.approx(200 * 2 / 1000)
+    assert row["preload_held_uN"] >= 0.99 * row["preload_patch_uN"]
+    assert 0 < row["pull_off_patch_uN"] <= 2 * fc * 1.01
+    assert row["pull_off_array_uN"] == pytest.approx(row["pull_off_patch_uN"] * 500)
+    assert row["pull_off_per_seta_uN"] == pytest.approx(row["pull_off_patch_uN"] / 2)
+    assert 0 < row["attached_fraction"] <= 1 and row["n_steps"] > 0
+    with pytest.raises(ValueError, match="presses"):
+        sweep.agent_preload_point(p, 3, preload_uN=200.0, n_sim=2, presses=0)
