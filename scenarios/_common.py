@@ -19,6 +19,9 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:  # run as `python scenarios/x.py` from a source checkout
     sys.path.insert(0, str(ROOT))
 
+import numpy as np  # noqa: E402
+
+from gecko_agents import jkr  # noqa: E402
 from gecko_agents.history import atomic_write_bytes, versions  # noqa: E402
 
 VERDICTS = ("reproduced", "trend reproduced", "not reproducible from the stated parameters")
@@ -71,3 +74,18 @@ def claim(figure: str, claim: str, paper: str, ours: str, verdict: str, reason: 
         raise ValueError(f"verdict {verdict!r} must be one of {VERDICTS}")
     return {"figure": figure, "claim": claim, "paper": paper, "ours": ours,
             "alternative": alternative, "verdict": verdict, "reason": reason}
+
+
+def jkr_curves(contact, n: int, P_max: float) -> dict:
+    """Arrays along eq 7/10 for one tip (µm, µN): the reachable branch a ≥ a_c up to the
+    compressive force P_max (``a_st``, ``P_st``, ``d_st``) and the part below a_c that no
+    tip reaches (``a_un``, ``P_un``, ``d_un``)."""
+    R, w, E = contact.jkr_args()
+    a_D = float(jkr.snap_off_radius(R, w, E))
+    a_max = float(jkr.contact_radius_from_force(P_max, R, w, E))
+    a_st = np.linspace(a_D, a_max, n)
+    a_un = np.linspace(0.0, a_D, max(n // 4, 20))
+    return {"a_st": a_st, "P_st": jkr.force_from_radius(a_st, R, w, E),
+            "d_st": jkr.overlap_from_radius(a_st, R, w, E),
+            "a_un": a_un, "P_un": jkr.force_from_radius(a_un, R, w, E),
+            "d_un": jkr.overlap_from_radius(a_un, R, w, E)}

@@ -18,8 +18,7 @@ renders/fig6_modulus/ (or --out).
 from __future__ import annotations
 
 import matplotlib as mpl
-import numpy as np
-from _common import claim, output_dir, parse_args, write_json, write_table
+from _common import claim, jkr_curves, output_dir, parse_args, write_json, write_table
 from scipy.optimize import brentq
 
 from gecko_agents import jkr
@@ -74,26 +73,13 @@ def contact_numbers(contact) -> dict:
     return out
 
 
-def curves(contact, n: int, P_max: float) -> dict:
-    """Arrays along eq 7/10 for one tip: reachable branch (a ≥ a_D) and the rest."""
-    R, w, E = contact.jkr_args()
-    a_D = float(jkr.snap_off_radius(R, w, E))
-    a_max = float(jkr.contact_radius_from_force(P_max, R, w, E))
-    a_st = np.linspace(a_D, a_max, n)
-    a_un = np.linspace(0.0, a_D, max(n // 4, 20))
-    return {"a_st": a_st, "P_st": jkr.force_from_radius(a_st, R, w, E),
-            "d_st": jkr.overlap_from_radius(a_st, R, w, E),
-            "a_un": a_un, "P_un": jkr.force_from_radius(a_un, R, w, E),
-            "d_un": jkr.overlap_from_radius(a_un, R, w, E)}
-
-
 def draw(contacts: list, rows: list[dict], n: int, out) -> list:
     """fig6a.png (radius vs force) and fig6b.png (force vs overlap)."""
     P_max = 2.0 * max(r["Fc_uN"] for r in rows)
     colours = STYLE_RC["axes.prop_cycle"].by_key()["color"]
     ca, cb, pa, pb = [], [], [], []
     for contact, row, col in zip(contacts, rows, colours[:len(rows)], strict=True):
-        c = curves(contact, n, P_max)
+        c = jkr_curves(contact, n, P_max)
         label = f"E1 = {row['E1_MPa']:g} MPa (E* = {row['E_star_MPa']:.3g} MPa)"
         ca += [{"x": c["P_st"], "y": c["a_st"], "label": label, "style": {"color": col}},
                {"x": c["P_un"], "y": c["a_un"], "style": {"color": col, "ls": ":"}}]

@@ -22,7 +22,7 @@ import math
 
 import matplotlib as mpl
 import numpy as np
-from _common import claim, output_dir, parse_args, write_json, write_table
+from _common import claim, jkr_curves, output_dir, parse_args, write_json, write_table
 from scipy.optimize import brentq
 
 from gecko_agents import jkr
@@ -70,26 +70,13 @@ def contact_numbers(contact) -> dict:
             "delta_s_paper_um": PAPER_DELTA_S_COEF * a0**2 / R}
 
 
-def curves(contact, n: int, P_max: float) -> dict:
-    """Arrays along eq 7/10 for one tip: reachable branch (a ≥ a_D) and the rest."""
-    R, w, E = contact.jkr_args()
-    a_D = float(jkr.snap_off_radius(R, w, E))
-    a_max = float(jkr.contact_radius_from_force(P_max, R, w, E))
-    a_st = np.linspace(a_D, a_max, n)
-    a_un = np.linspace(0.0, a_D, max(n // 4, 20))
-    return {"a_st": a_st, "P_st": jkr.force_from_radius(a_st, R, w, E),
-            "d_st": jkr.overlap_from_radius(a_st, R, w, E),
-            "a_un": a_un, "P_un": jkr.force_from_radius(a_un, R, w, E),
-            "d_un": jkr.overlap_from_radius(a_un, R, w, E)}
-
-
 def draw(contacts: list, rows: list[dict], n: int, out) -> list:
     """fig7a.png (radius vs force) and fig7b.png (force vs overlap)."""
     P_max = max(r["Fc_uN"] for r in rows)  # compression up to the largest Fc
     colours = STYLE_RC["axes.prop_cycle"].by_key()["color"][:len(rows)]
     ca, cb, pa, pb = [], [], [], []
     for contact, row, col in zip(contacts, rows, colours, strict=True):
-        c = curves(contact, n, P_max)
+        c = jkr_curves(contact, n, P_max)
         label = (f"γ1 = {1e3 * row['gamma1_J_m2']:g} mJ/m² "
                  f"(w = {1e3 * row['w_J_m2']:.0f} mJ/m²)")
         ca += [{"x": c["P_st"], "y": c["a_st"],
