@@ -107,8 +107,9 @@ def force_from_radius(a, R, w, E_star):
     ----------
     a : contact radius [length], ≥ 0. R [length], w [force/length], E_star [force/length²].
     """
-    a3 = np.power(a, 3)
-    return 4.0 * E_star * a3 / (3.0 * R) - np.sqrt(8.0 * np.pi * w * E_star * a3)
+    a = np.asarray(a, dtype=float)
+    a3 = a * a * a
+    return (4.0 * E_star / (3.0 * R)) * a3 - np.sqrt((8.0 * np.pi * w * E_star) * a3)
 
 
 def overlap_from_radius(a, R, w, E_star):
@@ -161,7 +162,7 @@ def radius_from_overlap(overlap, R, w, E_star):
     d = np.maximum(np.asarray(overlap, dtype=float) * R / np.square(ac), -3.0)
     # Cardano for m³ + d·m − 2 = 0 gives m = A − Bp with A = ∛(1 + √Δ), Bp = d/(3A); since
     # A³ − Bp³ = 2 this equals 2/(A² + A·Bp + Bp²), which has no cancellation.
-    disc = np.sqrt(1.0 + d**3 / 27.0)
+    disc = np.sqrt(1.0 + d * d * d / 27.0)
     A = np.cbrt(1.0 + disc)
     Bp = d / (3.0 * A)
     m = 2.0 / (A * A + A * Bp + Bp * Bp)
@@ -170,8 +171,9 @@ def radius_from_overlap(overlap, R, w, E_star):
     u = 0.5 * (np.sqrt(2.0 * m) + np.sqrt(inner))
     # One Newton step on f(u) = u⁴ − 4u − d removes the rounding of the closed form where it
     # is well conditioned (u away from 1).
-    f = u**4 - 4.0 * u - d
-    fp = 4.0 * u**3 - 4.0
+    u2 = u * u
+    f = u2 * u2 - 4.0 * u - d
+    fp = 4.0 * u2 * u - 4.0
     safe = fp > 1e-3
     u = np.where(safe, u - f / np.where(safe, fp, 1.0), u)
     return ac * np.square(np.maximum(u, 1.0))

@@ -10,7 +10,7 @@ from numpy.testing import assert_allclose
 from gecko_agents import jkr, protocol
 from gecko_agents import quasistatic as qs
 from gecko_agents.history import STATE_FREE
-from gecko_agents.model import Model, SimulationUnstable
+from gecko_agents.model import Model, SimulationUnstable, numba_available
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 
 # A stubby seta (L = 5 µm) so a press-and-pull takes a few thousand steps; everything else is
@@ -162,15 +162,80 @@ def test_same_seed_same_history_and_seed_matters():
         a) != len(c)
 
 
-def test_reference_callback_path_gives_the_same_history():
+@pytest.mark.parametrize("kernel", ["numpy", "python"])
+def test_reference_callback_path_gives_the_same_history(kernel):
     p = STUBBY.replace(**{"array.count": 3})
-    hs = [Model(p, contact=c, record_every=5).run(protocol.press_pull(0.3, speed=0.05),
-                                                   progress=False)
-          for c in ("batch", "callback")]
+    hs = [Model(p, contact=c, record_every=5, **kw).run(protocol.press_pull(0.3, speed=0.05),
+                                                         progress=False)
+          for c, kw in (("batch", {"kernel": kernel}), ("callback", {}))]
     assert len(hs[0]) == len(hs[1])
     for col in ("force_normal_uN", "force_tangential_uN", "plate_force_y_uN", "n_attached"):
         scale = np.abs(hs[0][col]).max() + 1e-300
         assert np.abs(hs[0][col] - hs[1][col]).max() <= 1e-9 * scale
+
+
+def _same_history(a, b, rtol=1e-9):
+    assert len(a) == len(b)
+    for col in a.scalars:
+        scale = np.abs(a[col]).max() + 1e-300
+        assert np.abs(a[col] - b[col]).max() <= rtol * scale, col
+    for k in a.setae:
+        x, y = (np.nan_to_num(np.asarray(h.setae[k], dtype=float)) for h in (a, b))
+        assert np.abs(x - y).max() <= rtol * (np.abs(x).max() + 1e-300), k
+    np.testing.assert_array_equal(a.detachments["seta"], b.detachments["seta"])
+    assert_allclose(a.detachments["overlap_um"], b.detachments["overlap_um"], rtol=1e-9)
+
+
+@pytest.mark.parametrize("kernel", ["python", "numba"])
+@pytest.mark.parametrize("mechanics", ["linear", "rod"])
+def test_kernels_give_the_same_history(kernel, mechanics):
+    """The per-seta loop (compiled by numba, or interpreted) against the numpy path, on a drag
+    that makes tips stick, slide sideways past their pad window, and let go."""
+    if kernel == "numba" and not numba_available():
+        pytest.skip("numba is not installed (optional extra 'fast')")
+    p = STUBBY.replace(**{"array.count": 5, "mechanics": mechanics})
+    prot = protocol.drag_pull(10.0, 12.0 if mechanics == "rod" else -8.0, 60.0, speed=0.05)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ref = Model(p, kernel="numpy", record_setae=True).run(prot, progress=False)
+        m = Model(p, kernel=kernel, record_setae=True)
+        h = m.run(prot, progress=False)
+    assert h.meta["kernel"] == kernel and ref.meta["kernel"] == "numpy"
+    _same_history(ref, h)
+    assert len(h.detachments["seta"]) == 5
+
+
+def test_pad_windows_follow_sliding_tips():
+    """pymunk sees a short window of each pad that follows the tip: a tip dragged far past it
+    stays in contact (a lost candidate would let go with overlap −∞)."""
+    p = STUBBY.replace(**{"array.count": 3, "mechanics": "rod", "friction.mu": 0.05})
+    m = Model(p, record_setae=True)
+    x0 = m.root_dx + m.L * math.cos(m.theta)
+    h = m.run(protocol.drag_pull(6.0, 25.0, 90.0, speed=0.05), progress=False)
+    slid = np.abs(h.setae["tip_x_um"] - x0).max(axis=0)
+    assert np.all(slid > 2 * m._pad_half)
+    assert np.all(np.isfinite(h.detachments["overlap_um"]))
+    assert len(h.detachments["seta"]) == 3
+    assert np.all(np.abs(m._pad_c - m._xy[0]) <= m._pad_slack)
+
+
+def test_fast_approach_skips_free_travel_and_keeps_the_pull_off():
+    """Starting 4 µm higher, the free approach is skipped once the setae follow the plate;
+    the pull-off is that of the run stepped at constant speed."""
+    p = STUBBY.replace(**{"array.count": 6})
+    prot = [protocol.Move(dy=4.0, speed=SPEED), *protocol.press_pull(0.5, speed=SPEED)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        slow = Model(p).run(prot, progress=False, fast_approach=False)
+        fast = Model(p).run(prot, progress=False)
+    assert slow.meta["skipped_travel_um"] == 0.0
+    assert fast.meta["skipped_travel_um"] > 6.0          # of the 8 µm up and back down
+    assert fast.meta["n_steps"] < 0.7 * slow.meta["n_steps"]
+    assert abs(fast.peak_pull_off / slow.peak_pull_off - 1) < 0.005
+    assert_allclose(fast["time_us"][-1], slow["time_us"][-1], rtol=1e-3)
+    # The same setae let go at the same plate heights (to a step of plate travel).
+    assert_allclose(np.sort(fast.detachments["plate_y_um"]),
+                    np.sort(slow.detachments["plate_y_um"]), atol=2e-3)
 
 
 def test_convergence_in_dt_and_speed():

@@ -140,11 +140,60 @@ def test_representative_blocks_converge_to_brute_force():
         errs.append(np.abs(rep.force_normal - brute.force_normal).max()
                     / np.abs(brute.force_normal).max())
     assert errs[1] < errs[0] and errs[1] < 0.03
+    # With the sample, blocks crossing a jump-in, stick/slide or release boundary are split
+    # there: even blocks of 1000 setae give the curve of all 10⁴ to ~1e-9 of its peak.
+    peak = np.abs(brute.force_normal).max()
+    for per_block in (20, 1000):
+        hr = hs.reshape(-1, per_block).mean(axis=1)
+        rep = qs.solve(PAPER_ARRAY, hr, brute.plate_y, weights=np.full(hr.size, per_block),
+                       sample=hs)
+        assert np.abs(rep.force_normal - brute.force_normal).max() < 1e-7 * peak
+        assert rep.weights.sum() == h.size and rep.weights.size > hr.size   # it split
+        assert_allclose(rep.n_attached, brute.n_attached, atol=1e-9)
     # The helper itself: block means of the sorted sample, weights summing to N.
     hr, w = qs.representative_heights(1000, 1.0, np.random.default_rng(0), 100)
     assert w.sum() == 1000 and np.all(np.diff(hr) >= 0)
     assert_allclose(np.sum(hr * w) / 1000, np.mean(1.0 * np.random.default_rng(0)
                                                     .standard_normal(1000)))
+    hr2, w2, sample = qs.representative_heights(1000, 1.0, np.random.default_rng(0), 100,
+                                                return_sample=True)
+    np.testing.assert_array_equal(hr2, hr)
+    np.testing.assert_array_equal(w2, w)
+    np.testing.assert_array_equal(sample, np.sort(np.random.default_rng(0).standard_normal(1000)))
+
+
+@pytest.mark.parametrize("control", ["displacement", "force"])
+def test_split_blocks_match_every_seta_under_both_controls(control):
+    """press_pull / preload_pull on 40 blocks with the sample = the same on all 2000 setae."""
+    hr, w, sample = qs.representative_heights(2000, 1.0, np.random.default_rng(5), 40,
+                                              return_sample=True)
+    if control == "displacement":
+        brute = qs.press_pull(PAPER_ARRAY, sample, 1.0, n_retract=1000)
+        rep = qs.press_pull(PAPER_ARRAY, hr, 1.0, weights=w, sample=sample, n_retract=1000)
+    else:
+        brute = qs.preload_pull(PAPER_ARRAY, sample, 400.0)
+        rep = qs.preload_pull(PAPER_ARRAY, hr, 400.0, weights=w, sample=sample)
+    # (force control: the turning point is bisected to 1e-9 of the preload)
+    tol = 1e-12 if control == "displacement" else 1e-6
+    assert_allclose(rep.plate_y, brute.plate_y, rtol=0, atol=tol)
+    peak = np.abs(brute.force_normal).max()
+    assert np.abs(rep.force_normal - brute.force_normal).max() < 1e-7 * peak
+    assert np.abs(rep.force_tangential - brute.force_tangential).max() < 1e-7 * peak
+    assert_allclose(rep.pull_off, brute.pull_off, rtol=1e-8)
+
+
+def test_sample_refuses_blocks_that_do_not_match_it():
+    hr, w, sample = qs.representative_heights(100, 1.0, np.random.default_rng(1), 10,
+                                              return_sample=True)
+    Z = [30.0, 20.0]
+    with pytest.raises(ValueError, match="sorted"):
+        qs.solve(PAPER_ARRAY, hr, Z, weights=w, sample=sample[::-1])
+    with pytest.raises(ValueError, match="whole numbers"):
+        qs.solve(PAPER_ARRAY, hr, Z, weights=w * 0.5, sample=sample)
+    with pytest.raises(ValueError, match="means"):
+        qs.solve(PAPER_ARRAY, hr + 0.1, Z, weights=w, sample=sample)
+    with pytest.raises(ValueError, match="record_setae"):
+        qs.solve(PAPER_ARRAY, hr, Z, weights=w, sample=sample, record_setae=True)
 
 
 def test_preload_is_hit_and_pull_off_saturates():

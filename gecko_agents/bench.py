@@ -1,0 +1,156 @@
+"""Throughput benchmark: the agent model against pymunk's own stepping, and the 10⁷ curve.
+
+Run ``python -m gecko_agents.bench`` (``--quick`` for a seconds-long smoke run). It prints
+
+* seta-steps/s of :class:`gecko_agents.model.Model` for N setae pressed onto a flat floor
+  (every tip attached), stepped through a plate move with :meth:`Model.run` (recording
+  included), for N = 1 000 and 10 000;
+* seta-steps/s of the bare engine on an identical world (same bodies, sensor circles, floor
+  segments and collision handler, pressed the same way): one ``space.step`` plus one
+  ``pymunk.batch.get_space_bodies`` read and one ``set_space_bodies`` force write per step,
+  which is the least any pymunk model with per-step forces must do;
+* their ratio (1 would mean our per-step force computation is free), the best of a few
+  interleaved repeats of each, so machine noise hits both alike; for the numpy kernel and,
+  when numba is installed, the numba one (the last line is the default kernel's);
+* the wall time of the quasi-static force–displacement curve of the paper's 10⁷-seta array
+  (:func:`gecko_agents.quasistatic.press_pull` on
+  :func:`~gecko_agents.quasistatic.representative_heights` with the sorted sample, so blocks
+  are split at jump-in / stick-slide / release boundaries; heights drawn inside the timing),
+  for 2000 and 20 000 blocks, and for 20 000 plain block means.
+
+The last line is always ``agent/pymunk ratio at N=<largest N>: X.XX``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+import numpy as np
+import pymunk.batch as pb
+
+from . import quasistatic as qs
+from .model import Model, numba_available
+from .params import PAPER_ARRAY
+from .protocol import DEFAULT_SPEED, Move
+
+__all__ = ["pressed_model", "agent_rate", "pymunk_rate", "quasistatic_time", "main"]
+
+_READ = pb.BodyFields.BODY_ID | pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
+
+
+def pressed_model(n: int, depth: float = 0.3, settle: int = 200, **kw) -> Model:
+    """The paper's array with ``n`` setae over a flat floor, the plate ``depth`` [µm] below
+    touch-down and every tip attached, after ``settle`` steps of rest."""
+    p = PAPER_ARRAY.replace(**{"array.count": int(n), "floor.sigma": 0.0})
+    m = Model(p, **kw)
+    plate_y = m.z_touch - depth
+    m.plate.position = (0.0, plate_y)
+    rest = m._root_offset + m.L * m.axis + np.array([0.0, plate_y])
+    for body, xy in zip(m.tips, rest, strict=True):
+        body.position = (float(xy[0]), float(xy[1]))
+        body.velocity = (0.0, 0.0)
+    m.reset_state_arrays()
+    for _ in range(settle):
+        m.step((0.0, 0.0))
+    if not np.all(m.attached):
+        raise RuntimeError(f"only {int(m.attached.sum())} of {n} tips attached after settling")
+    return m
+
+
+def agent_rate(m: Model, steps: int) -> float:
+    """Seta-steps per second of ``m.run`` through a ``steps``-step downward plate move."""
+    speed = DEFAULT_SPEED
+    n0 = steps
+    # A Move of exactly `steps` steps (the last one may be partial).
+    h = m.run([Move(dy=-speed * m.dt * (n0 - 0.5), speed=speed)], progress=False)
+    return m.n * h.meta["n_steps"] / h.meta["wall_time_s"]
+
+
+def pymunk_rate(m: Model, steps: int) -> float:
+    """Seta-steps per second of the bare engine on ``m``'s space: per step one batch read of
+    ids, positions and velocities, one batch force write, one ``space.step``."""
+    space, dt = m.space, m.dt
+    read, write = pb.Buffer(), pb.Buffer()
+    read.clear()
+    pb.get_space_bodies(space, _READ, read)
+    n_rows = len(np.frombuffer(read.int_buf(), dtype=np.uintp))
+    forces = np.zeros(2 * n_rows)
+    t = time.perf_counter()
+    for _ in range(steps):
+        read.clear()
+        pb.get_space_bodies(space, _READ, read)
+        write.set_float_buf(forces)
+        pb.set_space_bodies(space, pb.BodyFields.FORCE, write)
+        space.step(dt)
+    return m.n * steps / (time.perf_counter() - t)
+
+
+def quasistatic_time(n_setae: int = 10**7, n_positions: int = 1000, n_blocks: int = 2000,
+                     seed: int = 0, split: bool = True) -> tuple[float, float, int]:
+    """Wall time [s] of the quasi-static press-and-pull of ``n_setae`` setae (PAPER_ARRAY,
+    σ = 1 µm, 1 µm deep) over ``n_positions`` plate positions, including drawing and sorting
+    the heights; the pull-off force [µN]; the positions solved before every seta let go.
+
+    ``split``: pass the sorted sample so blocks are split at jump-in, stick/slide and release
+    boundaries (:func:`gecko_agents.quasistatic.solve`); else plain block means."""
+    t = time.perf_counter()
+    rng = np.random.default_rng(seed)
+    h, w, sample = qs.representative_heights(n_setae, PAPER_ARRAY.floor.sigma, rng, n_blocks,
+                                             return_sample=True)
+    n_app = n_positions // 3
+    r = qs.press_pull(PAPER_ARRAY, h, 1.0, weights=w, n_approach=n_app,
+                      n_retract=n_positions - n_app, sample=sample if split else None)
+    return time.perf_counter() - t, r.pull_off, r.plate_y.size
+
+
+def main(argv=None) -> dict:
+    """Run the benchmark and print its table; returns the numbers."""
+    ap = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
+    ap.add_argument("--sizes", type=int, nargs="+", default=[1_000, 10_000],
+                    help="array sizes N to step")
+    ap.add_argument("--steps", type=int, default=300, help="time steps per timed repeat")
+    ap.add_argument("--repeats", type=int, default=3, help="repeats (the best one counts)")
+    ap.add_argument("--qs-setae", type=int, default=10**7,
+                    help="setae of the quasi-static curve (0: skip it)")
+    ap.add_argument("--quick", action="store_true", help="tiny sizes: a smoke run")
+    args = ap.parse_args(argv)
+    if args.quick:
+        args.sizes, args.steps, args.repeats, args.qs_setae = [50, 200], 40, 2, 10**5
+    default = Model(PAPER_ARRAY, n_sim=max(args.sizes)).kernel
+    kernels = ["numpy"] + (["numba"] if numba_available() else [])
+    out = {"sizes": args.sizes, "kernels": kernels, "default_kernel": default,
+           "agent": {}, "pymunk": {}, "ratio": {}}
+    if args.qs_setae:
+        for n_blocks, split in ((2000, True), (20_000, True), (20_000, False)):
+            t_qs, pull, n_pos = quasistatic_time(args.qs_setae, n_blocks=n_blocks, split=split)
+            out.setdefault("quasistatic_s", t_qs)
+            print(f"quasi-static press-and-pull of {args.qs_setae:.0e} setae, 1000 plate "
+                  f"positions ({n_pos} before all let go), {n_blocks} blocks"
+                  f"{' split at boundaries' if split else ' (plain means)'}, heights "
+                  f"included: {t_qs:.2f} s, pull-off {pull:.7g} µN")
+    for n in args.sizes:
+        bare = pressed_model(n)
+        agents = {k: pressed_model(n, kernel=k) for k in kernels}
+        rp, ra = 0.0, dict.fromkeys(kernels, 0.0)
+        for _ in range(args.repeats):       # interleaved, best of each
+            rp = max(rp, pymunk_rate(bare, args.steps))
+            for k, m in agents.items():
+                ra[k] = max(ra[k], agent_rate(m, args.steps))
+        out["pymunk"][n] = rp
+        print(f"N={n:>6}: pymunk        {rp:10.4g} seta-steps/s ({n / rp * 1e3:.3g} ms/step)")
+        for k in kernels:
+            out["agent"][(n, k)], out["ratio"][(n, k)] = ra[k], ra[k] / rp
+            print(f"          agent[{k}] {ra[k]:10.4g} seta-steps/s ({n / ra[k] * 1e3:.3g} "
+                  f"ms/step)  agent/pymunk {ra[k] / rp:.2f}")
+    big = max(args.sizes)
+    ratio = out["ratio"][(big, default)]
+    print(f"agent/pymunk ratio at N={big}: {ratio:.2f}")
+    if not math.isfinite(ratio):
+        raise RuntimeError("benchmark produced a non-finite ratio")
+    return out
+
+
+if __name__ == "__main__":
+    main()
