@@ -205,6 +205,8 @@ class Model:
         self.k_phi = self.Kp * self.L**2
         self.mass = seta_mass(params)
         self.k_t = tangential_stiffness(params)
+        # Slowest period of a free seta (normal mode, eq 20): the force servo averages over it.
+        self.settle_time = 2 * math.pi * math.sqrt(self.mass / params.Ky)
         a0 = float(jkr.zero_load_contact_radius(self.R, self.w, self.E_star))
         self.c_seta = 2 * damping.seta * math.sqrt(params.Ky * self.mass)
         self.c_n = 2 * damping.normal * math.sqrt(2 * self.E_star * a0 * self.mass)
@@ -1138,10 +1140,16 @@ class Model:
                 return (rx / dt, ry / dt), False
             return (rx / dist * seg.speed, ry / dist * seg.speed), False
         if isinstance(seg, Press):
-            normal_force = float(self._P.sum())
-            if normal_force >= seg.preload:
+            # Servo on the force averaged over the seta's slowest period: a fresh contact's
+            # ring-down can push the instantaneous force past the target before the static
+            # force gets there.
+            force = float(self._P.sum())
+            avg = state.setdefault("force_avg", force)
+            avg += (force - avg) * min(1.0, dt / self.settle_time)
+            state["force_avg"] = avg
+            if avg >= seg.preload:
                 return None, True
-            frac = (seg.preload - normal_force) / (seg.band * seg.preload)
+            frac = (seg.preload - avg) / (seg.band * seg.preload)
             return (0.0, -seg.speed * min(1.0, max(frac, 0.02))), False
         if isinstance(seg, Hold):
             return ((0.0, 0.0), False) if self.time - state["t0"] < seg.duration - 1e-9 * dt \

@@ -51,8 +51,9 @@ class PressTo:
 class Press:
     """Force control: move down until the total normal contact force reaches ``preload`` [µN].
 
-    A velocity servo: full ``speed`` far from the target, slowing linearly within the last
-    ``band`` (fraction of the preload) so the plate stops on the target without overshoot.
+    A velocity servo on the force averaged over the seta's slowest period (a fresh contact's
+    ring-down must not end the press): full ``speed`` far from the target, slowing linearly
+    within the last ``band`` (fraction of the preload); it stops once the average reaches it.
     """
 
     preload: float

@@ -577,44 +577,31 @@ def quasistatic_preload_point(params: SetaArray, seed: int, *, preload_uN: float
 
 
 def agent_preload_point(params: SetaArray, seed: int, *, preload_uN: float, n_sim: int = 16,
-                        speed: float = 0.02,
-                        presses: int = 5, hold_us: float = 10.0,
-                        damping_normal: float = 1.0) -> dict[str, float]:
+                        speed: float = 0.02) -> dict[str, float]:
     """Force-controlled press and pull-off of an ``n_sim``-seta patch with the agent model.
 
     ``preload_uN`` is the preload on the whole array of ``params.array.count`` setae [µN]; the
     patch gets its share, ``preload_uN · n_sim / count``, and its pull-off is scaled back by
-    ``count / n_sim``. The patch's floor is drawn from ``seed``.
-
-    Protocol: ``presses`` × (:class:`~gecko_agents.protocol.Press` to the patch preload at
-    ``speed`` [µm/µs], :class:`~gecko_agents.protocol.Hold` ``hold_us`` [µs]), then a vertical
-    :class:`~gecko_agents.protocol.PullOff`. A Press ends on the first step whose total contact
-    force reaches the target, and the ring-down of a fresh jump-in contact can do that before
-    the static force has; the contact damping ratio ``damping_normal`` (1 = critical) and the
-    repeated press after each hold make the plate stop on the static preload
-    (``preload_held_uN``, the force at the end of the last hold, reports what was held).
+    ``count / n_sim``. The patch's floor is drawn from ``seed``. Protocol:
+    :class:`~gecko_agents.protocol.Press` to the patch preload at ``speed`` [µm/µs], then a
+    vertical :class:`~gecko_agents.protocol.PullOff` at the same speed.
 
     Returns
     -------
-    ``preload_patch_uN`` target on the patch [µN]; ``preload_held_uN`` force held at the deepest
-    plate position [µN]; ``pull_off_patch_uN`` peak tensile force of the patch [µN];
-    ``pull_off_array_uN`` that × count / n_sim [µN]; ``pull_off_per_seta_uN`` [µN];
-    ``attached_fraction`` largest fraction of the patch attached [-]; ``n_steps`` time steps;
-    ``max_kinetic_to_elastic`` peak kinetic / peak elastic energy (quasi-static if ≪ 1).
+    ``preload_patch_uN`` target on the patch [µN]; ``preload_held_uN`` force at the deepest
+    plate position [µN] (a small patch cannot hit a preload finer than one contact's jump-in);
+    ``pull_off_patch_uN`` peak tensile force of the patch [µN]; ``pull_off_array_uN`` that ×
+    count / n_sim [µN]; ``pull_off_per_seta_uN`` [µN]; ``attached_fraction`` largest fraction
+    of the patch attached [-]; ``n_steps`` time steps; ``max_kinetic_to_elastic`` peak kinetic
+    / peak elastic energy (quasi-static if ≪ 1).
     """
-    from .model import Damping, Model
-    from .protocol import Hold, Press, PullOff
+    from .model import Model
+    from .protocol import Press, PullOff
 
-    if isinstance(presses, bool) or not isinstance(presses, int) or presses < 1:
-        raise ValueError(f"presses = {presses!r} must be an integer ≥ 1")
     count = params.array.count
     target = preload_uN * n_sim / count
-    steps = []
-    for _ in range(presses):
-        steps += [Press(target, speed), Hold(hold_us)]
-    model = Model(params, n_sim=n_sim, seed=seed,
-                  damping=Damping(normal=damping_normal))
-    hist = model.run(steps + [PullOff(speed)], progress=False)
+    model = Model(params, n_sim=n_sim, seed=seed)
+    hist = model.run([Press(target, speed), PullOff(speed)], progress=False)
     y = hist["plate_y_um"]
     held = float(hist["force_normal_uN"][np.flatnonzero(y <= y.min())[-1]])
     peak = hist.peak_pull_off

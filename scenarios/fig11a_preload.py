@@ -41,10 +41,9 @@ PAPER_ONSET_N = 1.0                           # "after the pre-pressure reached 
 W_ALT = 0.080                                 # NOTES.md: the w that Fig 5 implies [J/m²]
 N_BLOCKS = 1000
 RETRACT_STEPS = 2000                          # pull-off within 0.05 % of 8000 steps
-AGENT = {"n_sim": 16, "speed": 0.02, "presses": 5, "hold_us": 10.0, "damping_normal": 1.0}
+AGENT = {"n_sim": 16, "speed": 0.02}
 """Agent patch settings: 16 rod setae, plate at 0.02 µm/µs (20 mm/s; peak within 0.7 % of
-0.005 µm/µs), critically damped contact ring-down so the force servo stops on the static
-preload (see :func:`gecko_agents.sweep.agent_preload_point`)."""
+0.005 µm/µs); see :func:`gecko_agents.sweep.agent_preload_point`."""
 
 
 def log_preloads(lo_exp4: int, hi_exp4: int) -> list[float]:
@@ -59,7 +58,7 @@ def config(quick: bool) -> dict:
                 "preloads_N": [0.1, 1.0, 10.0],
                 "floor_seeds": [0], "alt_preloads_N": [0.1, 1.0, 10.0],
                 "agent_preloads_N": [1.0], "agent_seeds": [0],
-                "agent": dict(AGENT, n_sim=4, speed=0.1, presses=3)}
+                "agent": dict(AGENT, n_sim=4, speed=0.1)}
     return {"count": FULL_COUNT, "n_blocks": N_BLOCKS, "retract_steps": RETRACT_STEPS,
             "preloads_N": log_preloads(-6, 5),
             "floor_seeds": [0, 1, 2], "alt_preloads_N": log_preloads(-6, 5),

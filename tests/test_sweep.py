@@ -323,7 +323,7 @@ def test_agent_preload_point_holds_its_share_of_the_preload():
     from gecko_agents.params import PAPER_ARRAY
 
     p = PAPER_ARRAY.replace(**{"mechanics": "rod", "array.count": 1000, "floor.sigma": 0.2})
-    row = sweep.agent_preload_point(p, 3, preload_uN=200.0, n_sim=2, speed=0.05, presses=2)
+    row = sweep.agent_preload_point(p, 3, preload_uN=200.0, n_sim=2, speed=0.05)
     fc = p.contact.pull_off_force
     assert row["preload_patch_uN"] == pytest.approx(200 * 2 / 1000)
     assert row["preload_held_uN"] >= 0.99 * row["preload_patch_uN"]
@@ -331,5 +331,5 @@ def test_agent_preload_point_holds_its_share_of_the_preload():
     assert row["pull_off_array_uN"] == pytest.approx(row["pull_off_patch_uN"] * 500)
     assert row["pull_off_per_seta_uN"] == pytest.approx(row["pull_off_patch_uN"] / 2)
     assert 0 < row["attached_fraction"] <= 1 and row["n_steps"] > 0
-    with pytest.raises(ValueError, match="presses"):
-        sweep.agent_preload_point(p, 3, preload_uN=200.0, n_sim=2, presses=0)
+    with pytest.raises(ValueError, match="n_sim"):
+        sweep.agent_preload_point(p, 3, preload_uN=200.0, n_sim=0)
