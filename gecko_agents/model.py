@@ -478,7 +478,9 @@ class Model:
         d = x - root
         if self.params.mechanics == "linear":
             u = d - self.L * self.axis
-            F = -u @ self.K.T
+            K = self.K                  # F = −K·u, written out (no BLAS call per record)
+            F = np.column_stack([-(u[:, 0] * K[0, 0] + u[:, 1] * K[0, 1]),
+                                 -(u[:, 0] * K[1, 0] + u[:, 1] * K[1, 1])])
             energy = -0.5 * (u[:, 0] * F[:, 0] + u[:, 1] * F[:, 1])
             return F, energy, u
         ell = np.hypot(d[:, 0], d[:, 1])
@@ -851,10 +853,15 @@ class Model:
         np.multiply(self._F, hm, out=vm)
         vm += self._pv[2:4]                       # mid-step velocity ½(v + v_next)
         Fd = self._Fd
-        # −dt·[Σ Fd·(v_mid − vp) + Σ F_contact_damping·v_mid]
-        s = float(np.vdot(Fd, vm)) - vpx * float(Fd[0].sum()) - vpy * float(Fd[1].sum())
+        # −dt·[Σ Fd·(v_mid − vp) + Σ F_contact_damping·v_mid]. (Products and sums rather than
+        # np.dot/vdot: BLAS threads that spin-wait on a busy machine cost milliseconds.)
+        prod = self._tmp[3:5]
         if self._any_contact_damping:
-            s += float(np.vdot(self._Fdmp, vm))
+            np.add(Fd, self._Fdmp, out=prod)
+            prod *= vm
+        else:
+            np.multiply(Fd, vm, out=prod)
+        s = float(prod.sum()) - vpx * float(Fd[0].sum()) - vpy * float(Fd[1].sum())
         self._diss_step -= s * self.dt
         # Release bookkeeping: where a tip began to run away from the plate.
         # A tip following its branch moves slower than the plate; past the fold it runs away.
@@ -1026,9 +1033,9 @@ class Model:
         n_steps = 0
         every = self.record_every
         est = sum(self._estimate_duration(s) for s in segments)
-        bar = tqdm(total=est, unit="µs", disable=not progress, desc="gecko_agents",
-                   mininterval=0.5, bar_format="{l_bar}{bar}| {n:.0f}/{total:.0f} µs "
-                   "[{elapsed}<{remaining}]")
+        # Whole microseconds of simulated time; the total is an estimate and may be exceeded.
+        bar = tqdm(total=max(int(est), 1), unit="µs", disable=not progress, desc="gecko_agents",
+                   mininterval=0.5)
         t_wall = time.perf_counter()
         try:
             for seg in segments:
@@ -1051,7 +1058,7 @@ class Model:
                         row = rec.record(self, work, dissipated)
                         bound = ke_bound if ke_bound is not None else 100 * (e_scale + abs(work))
                         self._check_stable(row, bound)
-                        bar.update(self.time - bar.n)
+                        bar.update(int(self.time) - bar.n)
                     if n_steps >= max_steps:
                         raise RuntimeError(f"max_steps = {max_steps} reached in segment {seg}")
         finally:
@@ -1217,7 +1224,7 @@ class _Recorder:
         # Kinetic energy at the recorded positions: ½m·v(n−½)·v(n+½), the form that
         # semi-implicit Euler conserves exactly for a linear spring.
         v = m._pv[2:4]
-        ke = 0.5 * m.mass * float(np.vdot(v, v + m._F * (m.dt / m.mass)))
+        ke = 0.5 * m.mass * float(np.sum(v * (v + m._F * (m.dt / m.mass))))
         U = m._contact_energies()
         el = float(np.sum(m._spring_energy()) + np.sum(U))
         reaction = m._reaction

@@ -299,3 +299,10 @@ def test_press_stops_on_the_static_preload_not_a_transient():
     held = h["force_normal_uN"][-1]          # after the plate has stood still
     assert held >= 0.9 * target and h["n_attached"][-1] > 1
     assert held <= 3 * target                # overshoot bounded by a few jump-ins
+
+
+def test_progress_bar_survives_a_run_longer_than_its_estimate(capsys):
+    p = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.5, "array.count": 2})
+    h = Model(p, seed=7).run(protocol.drag_pull(2.0, 1.0, 60.0, speed=0.1), progress=True)
+    assert h.peak_pull_off > 0 and h["time_us"][-1] > 0
+    assert "gecko_agents" in capsys.readouterr().err
