@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import time
 
 import numpy as np
@@ -115,6 +116,8 @@ def main(argv=None) -> dict:
     ap.add_argument("--qs-setae", type=int, default=10**7,
                     help="setae of the quasi-static curve (0: skip it)")
     ap.add_argument("--quick", action="store_true", help="tiny sizes: a smoke run")
+    ap.add_argument("--no-dask", action="store_true",
+                    help="skip the 1- vs 2-worker Dask sweep throughput")
     args = ap.parse_args(argv)
     if args.quick:
         args.sizes, args.steps, args.repeats, args.qs_setae = [50, 200], 40, 2, 10**5
@@ -144,6 +147,17 @@ def main(argv=None) -> dict:
             out["agent"][(n, k)], out["ratio"][(n, k)] = ra[k], ra[k] / rp
             print(f"          agent[{k}] {ra[k]:10.4g} seta-steps/s ({n / ra[k] * 1e3:.3g} "
                   f"ms/step)  agent/pymunk {ra[k] / rp:.2f}")
+    if not args.no_dask and not args.quick:
+        try:
+            from .sweep import benchmark_dask_scaling
+            d = benchmark_dask_scaling(n_points=8, work_s=0.5)
+        except ImportError as err:
+            print(f"sweep on Dask: skipped ({err})")
+        else:
+            out["dask_speedup"] = d["speedup"]
+            print(f"sweep on Dask, 8 CPU-bound points: 1 worker {d['t1_s']:.2f} s, 2 workers "
+                  f"{d['t2_s']:.2f} s; 2-worker/1-worker throughput {d['speedup']:.2f} "
+                  f"({os.cpu_count()} cores)")
     big = max(args.sizes)
     ratio = out["ratio"][(big, default)]
     print(f"agent/pymunk ratio at N={big}: {ratio:.2f}")
