@@ -16,7 +16,9 @@ Run ``python -m gecko_agents.bench`` (``--quick`` for a seconds-long smoke run).
   (:func:`gecko_agents.quasistatic.press_pull` on
   :func:`~gecko_agents.quasistatic.representative_heights` with the sorted sample, so blocks
   are split at jump-in / stick-slide / release boundaries; heights drawn inside the timing),
-  for 2000 and 20 000 blocks, and for 20 000 plain block means.
+  for 2000 and 20 000 blocks, and for 20 000 plain block means;
+* the throughput of a sweep of CPU-bound points on a Dask LocalCluster with 2 workers
+  relative to 1 (skip with ``--no-dask``).
 
 The last line is always ``agent/pymunk ratio at N=<largest N>: X.XX``.
 """
