@@ -209,6 +209,23 @@ def add_args(parser) -> None:
     parser.add_argument("--dask", type=sweep.parse_dask_arg, default=None,
                         help="run sweep points on Dask: 'local' or 'tcp://host:port' "
                              "(default: local processes)")
+    parser.add_argument("--animate", action="store_true",
+                        help="also animate one agent patch pressed to 1 N (detachment.gif)")
+
+
+def animate_patch(params, cfg: dict, out, preload_N: float = 1.0) -> None:
+    """Record one agent patch (rod setae) pressed to its share of ``preload_N`` [N] and pulled
+    off, save it under ``out/animated_run`` and render ``out/detachment.gif``."""
+    from gecko_agents import protocol
+    from gecko_agents.model import Model
+    from gecko_agents.render import animate
+
+    n_sim, speed = cfg["agent"]["n_sim"], cfg["agent"]["speed"]
+    m = Model(params.replace(**{"mechanics": "rod"}), n_sim=n_sim, seed=0, record_setae=True)
+    target = preload_values([preload_N], FULL_COUNT)[0] * n_sim / FULL_COUNT
+    h = m.run([protocol.Press(target, speed), protocol.PullOff(speed)], progress=False)
+    h.save(out / "animated_run")
+    animate(h, out / "detachment.gif")
 
 
 def main(argv=None) -> dict:
@@ -363,6 +380,8 @@ def main(argv=None) -> dict:
                                                   "onset_preload_N": PAPER_ONSET_N},
         "results": result,
     })
+    if args.animate:
+        animate_patch(PAPER_ARRAY, cfg, out)
     print(f"{NAME}: saturation {m['saturation_N']:.2f} N (N·Fc {ideal_N:.2f} N), 90 % at "
           f"{fmt_p90(m)}; w={W_ALT}: {m_alt['saturation_N']:.2f} N; agent {ag_last}; "
           f"{runtime:.0f} s → {out}")

@@ -208,6 +208,8 @@ def main(argv=None) -> dict:
     print(f"{NAME}: saturation {slash(sat, '.2f')} N for σ = {sig} µm "
           f"({'decreasing' if sat_decreasing else 'not decreasing'}); at 1 N {slash(at_ref)} N; "
           f"agent {slash(ag_ref)} N; {runtime:.0f} s → {out}")
+    if args.animate:
+        f11a.animate_patch(PAPER_ARRAY.replace(**{"floor.sigma": max(SIGMAS)}), cfg, out)
     return result
 
 
