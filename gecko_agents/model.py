@@ -1034,7 +1034,8 @@ class Model:
         every = self.record_every
         est = sum(self._estimate_duration(s) for s in segments)
         # Whole microseconds of simulated time; the total is an estimate and may be exceeded.
-        bar = tqdm(total=max(int(est), 1), unit="µs", disable=not progress, desc="gecko_agents",
+        bar = tqdm(total=max(int(est), 1), unit="µs", disable=not progress,
+                   desc=f"gecko_agents (dt = {self.dt:.3g} µs)",
                    mininterval=0.5)
         t_wall = time.perf_counter()
         try:
