@@ -34,6 +34,7 @@ from . import beam, jkr
 
 MECHANICS = ("linear", "rod")
 FRICTION_LAWS = ("adhesive", "paper")
+FLOOR_KINDS = ("gaussian", "self_affine")
 
 
 def _check(obj: object, name: str, lo: float, hi: float = math.inf, *, lo_open: bool = True,
@@ -161,24 +162,61 @@ class Array:
 
 @dataclass(frozen=True)
 class Floor:
-    """Rough floor with Gaussian heights (paper eq 28).
+    """Rough floor: Gaussian heights (paper eq 28) or a self-affine (fractal) profile.
 
     Attributes
     ----------
     sigma : RMS height σ [µm], ≥ 0 (0 is a flat floor).
     correlation_length : Gaussian correlation length of the profile [µm], ≥ 0; 0 means an
-        independent height under every seta, as in the paper.
+        independent height under every seta, as in the paper. Only for ``kind="gaussian"``.
     seed : seed of the floor's ``numpy.random.Generator``.
+    kind : ``"gaussian"`` (default; eq 28, :func:`gecko_agents.floor.make_profile`) or
+        ``"self_affine"``: a continuous profile with PSD C(q) ∝ q^−(1+2H) between the cutoffs
+        and flat below the long one (:func:`gecko_agents.floor.self_affine`; Persson et al.
+        2005, J Phys Condens Matter 17:R1). A measured profile is not a parameter: pass it to
+        the model as an object (``floor.for_array(..., measured=profile)``).
+    hurst : Hurst exponent H [-], in (0, 1) (self-affine only).
+    short_cutoff : short-wavelength cutoff λs [µm], > 0: no roughness below it; the profile's
+        vertex spacing is λs/4 (self-affine only).
+    long_cutoff : long-wavelength cutoff λL [µm], > short_cutoff: the PSD is flat (roll-off)
+        for wavelengths above it (self-affine only).
+    rms_slope : RMS slope of the self-affine profile [-], > 0, used instead of ``sigma``
+        (then ``sigma`` must be 0); ``None`` (default): the profile has RMS height ``sigma``.
+
+    The self-affine fields are ignored for ``kind="gaussian"``, so the defaults leave the
+    Gaussian floor (and every history made with it) exactly as before.
     """
 
     sigma: float = 0.0
     correlation_length: float = 0.0
     seed: int = 0
+    kind: str = "gaussian"
+    hurst: float = 0.8
+    short_cutoff: float = 2.0
+    long_cutoff: float = 50.0
+    rms_slope: float | None = None
 
     def __post_init__(self):
         _check(self, "sigma", 0.0, lo_open=False)
         _check(self, "correlation_length", 0.0, lo_open=False)
         _check(self, "seed", 0, 2**63, lo_open=False, integer=True)
+        if self.kind not in FLOOR_KINDS:
+            raise ValueError(f"Floor.kind = {self.kind!r} must be one of {FLOOR_KINDS}")
+        _check(self, "hurst", 0.0, 1.0)
+        _check(self, "short_cutoff", 0.0)
+        _check(self, "long_cutoff", self.short_cutoff)
+        if self.rms_slope is not None:
+            _check(self, "rms_slope", 0.0)
+            if self.kind != "self_affine":
+                raise ValueError(f"Floor.rms_slope = {self.rms_slope!r} applies to "
+                                 "kind='self_affine' only; use None")
+            if self.sigma != 0:
+                raise ValueError(f"Floor.rms_slope = {self.rms_slope!r} and Floor.sigma = "
+                                 f"{self.sigma!r}: give one of RMS height or RMS slope (set "
+                                 "sigma = 0 to use rms_slope)")
+        if self.kind == "self_affine" and self.correlation_length != 0:
+            raise ValueError(f"Floor.correlation_length = {self.correlation_length!r} applies "
+                             "to kind='gaussian' only; it must be 0 for kind='self_affine'")
 
 
 @dataclass(frozen=True)
