@@ -54,13 +54,26 @@ import numpy as np
 from scipy.optimize import brentq
 
 from . import beam, jkr
+from .history import STATE_FREE as FREE
+from .history import STATE_SLIP as SLIP
+from .history import STATE_STICK as STICK
 from .params import SetaArray
 
-__all__ = ["release_radius", "Branches", "QuasiStaticResult", "solve", "press_pull",
-           "retract_travel",
-           "preload_pull", "representative_heights", "plate_start_height", "single_seta"]
-
-FREE, STICK, SLIP = 0, 1, 2
+__all__ = [
+    "release_radius",
+    "Branches",
+    "QuasiStaticResult",
+    "solve",
+    "press_pull",
+    "retract_travel",
+    "rod_force",
+    "RodSetup",
+    "rod_retract_travel",
+    "preload_pull",
+    "representative_heights",
+    "plate_start_height",
+    "single_seta",
+]
 
 
 def release_radius(k, R, w, E_star):
@@ -117,9 +130,14 @@ class Branches:
     a_fold: dict = field(repr=False)
 
     @classmethod
-    def from_params(cls, params: SetaArray, lateral: str = "coupled",
-                    stiffness_scale: float = 1.0, tangential_stiffness: float = math.inf,
-                    n_grid: int = 16384) -> Branches:
+    def from_params(
+        cls,
+        params: SetaArray,
+        lateral: str = "coupled",
+        stiffness_scale: float = 1.0,
+        tangential_stiffness: float = math.inf,
+        n_grid: int = 16384,
+    ) -> Branches:
         """Build the branch tables for ``params``.
 
         ``stiffness_scale`` multiplies Ka and Kp (1e6 ≈ rigid setae: the Fuller–Tabor limit).
@@ -134,17 +152,40 @@ class Branches:
         if not stiffness_scale > 0:
             raise ValueError(f"stiffness_scale = {stiffness_scale!r} must be > 0")
         R, w, Es = params.contact.jkr_args()
-        K = beam.stiffness_matrix(params.axial_stiffness * stiffness_scale,
-                                  params.bending_stiffness * stiffness_scale, params.seta.theta)
+        K = beam.stiffness_matrix(
+            params.axial_stiffness * stiffness_scale,
+            params.bending_stiffness * stiffness_scale,
+            params.seta.theta,
+        )
         Kxx, Kxy, Kyy = float(K[0, 0]), float(K[0, 1]), float(K[1, 1])
-        Ky = Kyy - Kxy * Kxy / Kxx      # Schur complement = eq 20
-        r_t = 1.0 if math.isinf(tangential_stiffness) else (
-            tangential_stiffness / (Kxx + tangential_stiffness))
+        Ky = Kyy - Kxy * Kxy / Kxx  # Schur complement = eq 20
+        r_t = (
+            1.0
+            if math.isinf(tangential_stiffness)
+            else (tangential_stiffness / (Kxx + tangential_stiffness))
+        )
         Kyy_stick = Kyy - Kxy * Kxy * (1.0 - r_t) / Kxx
         mu = params.friction.mu if lateral == "coupled" else 0.0
-        self = cls(R, w, Es, params.contact.pull_off_force, params.seta.L, params.seta.theta,
-                   Kxx, Kxy, Kyy, Ky, r_t, Kyy_stick, mu, params.friction.law, lateral,
-                   {}, {}, {})
+        self = cls(
+            R,
+            w,
+            Es,
+            params.contact.pull_off_force,
+            params.seta.L,
+            params.seta.theta,
+            Kxx,
+            Kxy,
+            Kyy,
+            Ky,
+            r_t,
+            Kyy_stick,
+            mu,
+            params.friction.law,
+            lateral,
+            {},
+            {},
+            {},
+        )
         a0 = jkr.zero_load_contact_radius(R, w, Es)
         q = Kxy / Kxx
         names = ["free"] if lateral == "free" else ["stick", "slip+", "slip-"]
@@ -158,7 +199,8 @@ class Branches:
                 if factor <= 0:
                     raise ValueError(
                         f"friction self-locks: μ = {mu} with θ = {params.seta.theta_deg}° makes "
-                        "the sliding seta's normal stiffness negative; lower friction.mu")
+                        "the sliding seta's normal stiffness negative; lower friction.mu"
+                    )
                 k_eff = Ky / factor
             a_f = release_radius(k_eff, R, w, Es)
             a = np.geomspace(a_f, max(40.0 * a0, 4.0 * a_f), n_grid)
@@ -210,9 +252,9 @@ class Branches:
         k1, k2 = math.sqrt(8.0 * math.pi * w * Es), math.sqrt(2.0 * math.pi * w / Es)
         sa = np.sqrt(a)
         a2 = a * a
-        P = (4.0 * Es / (3.0 * R)) * a2 * a - k1 * (a * sa)       # eq 7
+        P = (4.0 * Es / (3.0 * R)) * a2 * a - k1 * (a * sa)  # eq 7
         dP = (4.0 * Es / R) * a2 - (1.5 * k1) * sa
-        G = k2 * sa - a2 / R                                       # −δ, eq 10
+        G = k2 * sa - a2 / R  # −δ, eq 10
         dG = (0.5 * k2) / sa - (2.0 / R) * a
         if name == "stick":
             G -= P / self.Kyy_stick
@@ -232,8 +274,10 @@ class Branches:
         a_tab, G_tab = self.a_grid[name], self.G_grid[name]
         target = np.asarray(target, dtype=float)
         if np.any(target < G_tab[-1]):
-            raise ValueError("a seta is compressed beyond the tabulated range "
-                             f"(G = {target.min():.3g} µm); the plate went implausibly deep")
+            raise ValueError(
+                "a seta is compressed beyond the tabulated range "
+                f"(G = {target.min():.3g} µm); the plate went implausibly deep"
+            )
         a = np.interp(target, G_tab[::-1], a_tab[::-1])
         a_f = self.a_fold[name]
         for _ in range(2):  # Newton polish of the interpolated start; G' < 0 above the fold
@@ -242,8 +286,7 @@ class Branches:
             if ok.all():
                 a = np.maximum(a - (G - target) / slope, a_f)
             else:
-                a = np.where(ok, np.maximum(a - (G - target) / np.where(ok, slope, -1.0), a_f),
-                             a)
+                a = np.where(ok, np.maximum(a - (G - target) / np.where(ok, slope, -1.0), a_f), a)
         return np.where(target <= G_tab[0], a, np.nan)
 
 
@@ -313,14 +356,14 @@ def _step(br: Branches, st: _State, Z: float, h: np.ndarray, margins: bool = Fal
     (< 0: no equilibrium, the tip lets go).
     """
     n = len(h)
-    t0 = (Z - br.L * np.sin(br.theta) - br.R) - h   # G target for zero lateral shift
+    t0 = (Z - br.L * np.sin(br.theta) - br.R) - h  # G target for zero lateral shift
     P = np.zeros(n)
     Ft = np.zeros(n)
-    delta = -t0                                     # free tip: δ = h + R − p0_y
+    delta = -t0  # free tip: δ = h + R − p0_y
     was = st.state != FREE
     jump = delta >= 0.0
     jump &= ~was
-    if jump.any():                                  # jump-in at δ = 0
+    if jump.any():  # jump-in at δ = 0
         st.state[jump] = STICK
         st.u[jump] = 0.0
         st.sigma[jump] = 0.0
@@ -356,7 +399,7 @@ def _step(br: Branches, st: _State, Z: float, h: np.ndarray, margins: bool = Fal
     a_s = np.where(exists, a, br.a_fold["stick"])
     Ps = jkr.force_from_radius(a_s, *args)
     dy = (Ps - br.r_t * br.Kxy * u) / br.Kyy_stick
-    e = br.r_t * u - (1.0 - br.r_t) * br.Kxy * dy / br.Kxx   # tip abscissa
+    e = br.r_t * u - (1.0 - br.r_t) * br.Kxy * dy / br.Kxx  # tip abscissa
     Ft_s = br.Kxx * e + br.Kxy * dy
     cap_s = br.cap(Ps)
     abs_ft = np.abs(Ft_s)
@@ -366,8 +409,7 @@ def _step(br: Branches, st: _State, Z: float, h: np.ndarray, margins: bool = Fal
     if margins:
         mg["stick"][idx] = np.where(exists, cap_s - abs_ft, -np.inf)
         mg["ft"][idx] = Ft_s
-        mg["fold"][idx] = np.where(sig_all > 0, br.G_grid["slip+"][0],
-                                   br.G_grid["slip-"][0]) - t0i
+        mg["fold"][idx] = np.where(sig_all > 0, br.G_grid["slip+"][0], br.G_grid["slip-"][0]) - t0i
     if stick_ok.all():
         P[idx], Ft[idx] = Ps, Ft_s
         delta[idx] = jkr.overlap_from_radius(a_s, *args)
@@ -434,19 +476,26 @@ class _Blocks:
         counts = np.asarray(weights, dtype=float)
         if sample.ndim != 1 or sample.size == 0 or np.any(np.diff(sample) < 0):
             raise ValueError("sample must be the sorted 1-D array of setae heights [µm]")
-        if (np.any(counts < 1) or np.any(counts != np.round(counts))
-                or int(counts.sum()) != sample.size):
-            raise ValueError("with a sample, weights must be the whole numbers of consecutive "
-                             f"setae in each block, summing to the sample size {sample.size}")
+        if (
+            np.any(counts < 1)
+            or np.any(counts != np.round(counts))
+            or int(counts.sum()) != sample.size
+        ):
+            raise ValueError(
+                "with a sample, weights must be the whole numbers of consecutive "
+                f"setae in each block, summing to the sample size {sample.size}"
+            )
         self.sample = sample
         self.hi = np.cumsum(counts.astype(np.int64))
         self.lo = self.hi - counts.astype(np.int64)
         means = np.add.reduceat(sample, self.lo) / counts
         h = np.asarray(heights, dtype=float)
         if h.shape != means.shape or not np.allclose(h, means, rtol=0.0, atol=1e-9):
-            raise ValueError("heights must be the means of the sample's consecutive blocks of "
-                             "`weights` setae (as representative_heights(..., "
-                             "return_sample=True) gives)")
+            raise ValueError(
+                "heights must be the means of the sample's consecutive blocks of "
+                "`weights` setae (as representative_heights(..., "
+                "return_sample=True) gives)"
+            )
         self.h, self.w = h.copy(), counts.copy()
         self.hmin, self.hmax = sample[self.lo], sample[self.hi - 1]
 
@@ -459,8 +508,9 @@ class _Blocks:
 
     @staticmethod
     def _codes(st):
-        return np.where(st.state == FREE, 0, np.where(st.state == STICK, 1,
-                                                      np.where(st.sigma > 0, 2, 3)))
+        return np.where(
+            st.state == FREE, 0, np.where(st.state == STICK, 1, np.where(st.sigma > 0, 2, 3))
+        )
 
     def step(self, br: Branches, st: _State, Z: float):
         """:func:`_step` on the blocks, then split the blocks a boundary now runs through."""
@@ -483,8 +533,9 @@ class _Blocks:
             for jj, hh in zip(cand[inside].tolist(), hs[inside].tolist(), strict=True):
                 splits.setdefault(jj, hh)
         # Stick/slide and slide direction: interpolate between neighbours that differ now.
-        bnd = np.flatnonzero((c1[1:] != c1[:-1]) & (c0[1:] == c0[:-1])
-                             & (c1[1:] != 0) & (c1[:-1] != 0))
+        bnd = np.flatnonzero(
+            (c1[1:] != c1[:-1]) & (c0[1:] == c0[:-1]) & (c1[1:] != 0) & (c1[:-1] != 0)
+        )
         for b in bnd.tolist():
             g = mg["ft"] if {int(c1[b]), int(c1[b + 1])} == {2, 3} else mg["stick"]
             g1, g2 = g[b], g[b + 1]
@@ -503,12 +554,13 @@ class _Blocks:
         plo, phi = np.concatenate([lo[js], cut]), np.concatenate([cut, hi[js]])
         ph = np.array([self.sample[a:b].mean() for a, b in zip(plo, phi, strict=True)])
         sub = _State(0)
-        sub.state, sub.sigma, sub.u = (np.concatenate([x[js], x[js]])
-                                       for x in (pre.state, pre.sigma, pre.u))
+        sub.state, sub.sigma, sub.u = (
+            np.concatenate([x[js], x[js]]) for x in (pre.state, pre.sigma, pre.u)
+        )
         sP, sFt, sd, srel, srel_d = _step(br, sub, Z, ph)
         m = js.size
 
-        def put(a, part):      # block j becomes its lower part, its upper part follows it
+        def put(a, part):  # block j becomes its lower part, its upper part follows it
             a = a.copy()
             a[js] = part[:m]
             return np.insert(a, js + 1, part[m:])
@@ -516,21 +568,387 @@ class _Blocks:
         self.h, self.lo, self.hi = put(h, ph), put(lo, plo), put(hi, phi)
         self.w = (self.hi - self.lo).astype(float)
         self.hmin, self.hmax = self.sample[self.lo], self.sample[self.hi - 1]
-        st.state, st.sigma, st.u = put(st.state, sub.state), put(st.sigma, sub.sigma), \
-            put(st.u, sub.u)
+        st.state, st.sigma, st.u = (
+            put(st.state, sub.state),
+            put(st.sigma, sub.sigma),
+            put(st.u, sub.u),
+        )
         return (put(P, sP), put(Ft, sFt), put(d, sd), put(rel, srel), put(rel_d, srel_d))
+
+
+# --------------------------------------------------------------------------------------------
+# Rod mechanics (params.mechanics == "rod")
+# --------------------------------------------------------------------------------------------
+def rod_force(x, y, Ka, k_phi, L, theta):
+    """Force of a rod seta on its tip and the tip's tangent stiffness (the agent's ``rod`` law).
+
+    The rod is rigid, pivots at its root on a rotary spring k_φ = Kp·L² and has an axial spring
+    Ka (Kp, Ka: eq 19, 17). With the tip at d = (x, y) from the root, ℓ = |d|, e = d/ℓ,
+    e⊥ = (−e_y, e_x) and Δφ = atan2(y, x) + θ wrapped to (−π, π]:
+
+        U = ½Ka(ℓ − L)² + ½k_φΔφ²,    F = −∇U = −Ka(ℓ − L)·e − (k_φΔφ/ℓ)·e⊥,
+        H = ∇∇U = Ka·e eᵀ + (Ka(ℓ − L)/ℓ + k_φ/ℓ²)·e⊥e⊥ᵀ − (k_φΔφ/ℓ²)(e e⊥ᵀ + e⊥eᵀ).
+
+    At rest (ℓ = L, Δφ = 0) H is the paper's 2×2 stiffness K of eq 20–21 (Ka along the rod,
+    Kp across it), so rod and ``linear`` agree for small deflections. The same formula as
+    :meth:`gecko_agents.model.Model.spring_force`.
+
+    Parameters
+    ----------
+    x, y : tip position relative to the root [µm] (y up, the rest tip at L(cos θ, −sin θ)).
+    Ka : axial stiffness [µN/µm]. k_phi : rotary stiffness [µN·µm/rad]. L : rod length [µm].
+    theta : rest angle below the plate [rad].
+
+    Returns
+    -------
+    (Fx, Fy) [µN] and (H_xx, H_xy, H_yy) [µN/µm].
+    """
+    ell = np.hypot(x, y)
+    ex, ey = x / ell, y / ell
+    dphi = np.remainder(np.arctan2(y, x) + theta + np.pi, 2 * np.pi) - np.pi
+    fa = Ka * (ell - L)
+    ft = k_phi * dphi / ell
+    Fx = -fa * ex + ft * ey
+    Fy = -fa * ey - ft * ex
+    perp = fa / ell + k_phi / (ell * ell)
+    cross = ft / ell
+    Hxx = Ka * ex * ex + perp * ey * ey + 2.0 * cross * ex * ey
+    Hyy = Ka * ey * ey + perp * ex * ex - 2.0 * cross * ex * ey
+    Hxy = Ka * ex * ey - perp * ex * ey + cross * (ey * ey - ex * ex)
+    return (Fx, Fy), (Hxx, Hxy, Hyy)
+
+
+@dataclass(frozen=True)
+class RodSetup:
+    """Constants of the quasi-static ``rod`` seta (see :func:`rod_force`).
+
+    Attributes: R [µm], w [µN/µm], E_star [MPa], Fc [µN], L [µm], theta [rad], Ka [µN/µm],
+    k_phi [µN·µm/rad], k_t (stick spring of the contact [µN/µm], ``inf``: a sticking tip does
+    not move), mu [-], law, lateral (``"coupled"`` or ``"free"``), a_c (end of the JKR stable
+    branch [µm]), a0 (zero-load radius [µm]), Ky (eq 20 [µN/µm]).
+    """
+
+    R: float
+    w: float
+    E_star: float
+    Fc: float
+    L: float
+    theta: float
+    Ka: float
+    k_phi: float
+    k_t: float
+    mu: float
+    law: str
+    lateral: str
+    a_c: float
+    a0: float
+    Ky: float
+    Kxx: float
+    Kxy: float
+
+    @classmethod
+    def from_params(
+        cls,
+        params: SetaArray,
+        lateral: str = "coupled",
+        stiffness_scale: float = 1.0,
+        tangential_stiffness: float = math.inf,
+    ) -> RodSetup:
+        """The rod of ``params`` (Ka, Kp scaled by ``stiffness_scale``), contact and friction."""
+        if not tangential_stiffness > 0:
+            raise ValueError(f"tangential_stiffness = {tangential_stiffness!r} must be > 0")
+        if lateral not in ("coupled", "free"):
+            raise ValueError(f"lateral = {lateral!r} must be 'coupled' or 'free'")
+        if not stiffness_scale > 0:
+            raise ValueError(f"stiffness_scale = {stiffness_scale!r} must be > 0")
+        R, w, Es = params.contact.jkr_args()
+        Ka = params.axial_stiffness * stiffness_scale
+        Kp = params.bending_stiffness * stiffness_scale
+        K = beam.stiffness_matrix(Ka, Kp, params.seta.theta)
+        L = params.seta.L
+        return cls(
+            R,
+            w,
+            Es,
+            params.contact.pull_off_force,
+            L,
+            params.seta.theta,
+            Ka,
+            Kp * L * L,
+            float(tangential_stiffness),
+            params.friction.mu if lateral == "coupled" else 0.0,
+            params.friction.law,
+            lateral,
+            float(jkr.snap_off_radius(R, w, Es)),
+            float(jkr.zero_load_contact_radius(R, w, Es)),
+            float(K[1, 1] - K[0, 1] ** 2 / K[0, 0]),
+            float(K[0, 0]),
+            float(K[0, 1]),
+        )
+
+    def cap(self, P):
+        """Tangential force cap [µN] for normal force(s) P [µN] (as :meth:`Friction.cap`)."""
+        if self.law == "paper":
+            return self.mu * np.maximum(P, 0.0)
+        return self.mu * np.abs(P + 2.0 * self.Fc)
+
+    def dcap(self, P):
+        """d cap / dP [-]."""
+        if self.law == "paper":
+            return self.mu * (P > 0)
+        return self.mu * np.sign(P + 2.0 * self.Fc)
+
+    @property
+    def rest(self) -> tuple[float, float]:
+        """Free tip position relative to the root [µm]."""
+        return self.L * math.cos(self.theta), -self.L * math.sin(self.theta)
+
+
+def _rod_newton(
+    rs: RodSetup, c, x, a, anchor=None, s=None, iters: int = 60, max_jump: float = math.inf
+):
+    """Equilibrium of rod + JKR tip for each seta, by damped Newton on (x, a).
+
+    The tip sits at (x, y) from its root with y = c − δ(a) (c = h + R − Z [µm]: floor height
+    h, plate height Z), the normal force is P(a) (eq 7), the overlap δ(a) (eq 10). Lateral:
+    ``anchor`` given: stick, F_t = −k_t(x − anchor) (``k_t = inf``: x = anchor); else slide in
+    direction ``s`` = ±1 with F_t = s·cap(P). Equations: F_rod(x, y) + (F_t, P) = 0.
+
+    ``max_jump`` [µm]: an equilibrium whose x is farther than this from the start does not
+    count (it lies beyond a snap of the branch the tip was on).
+
+    Returns (x, a, ok): ok where Newton converged to a stable equilibrium (the tangent
+    stiffness of rod + contact + stick spring has positive determinant and trace) on the
+    stable JKR branch (a > a_c). Where the equilibrium has folded away, ok is False.
+    """
+    R, w, Es = rs.R, rs.w, rs.E_star
+    k1, k2 = math.sqrt(8.0 * math.pi * w * Es), math.sqrt(2.0 * math.pi * w / Es)
+    stick = anchor is not None
+    rigid = stick and math.isinf(rs.k_t)
+    x_start = x
+    x, a = x.copy(), a.copy()
+    a_min = rs.a_c * (1.0 + 1e-9)
+    tol = 1e-10 * rs.Fc
+    conv = np.zeros(x.size, dtype=bool)
+    for _ in range(iters):
+        sa = np.sqrt(a)
+        P = (4.0 * Es / (3.0 * R)) * a * a * a - k1 * a * sa
+        dP = (4.0 * Es / R) * a * a - 1.5 * k1 * sa
+        d = a * a / R - k2 * sa
+        dd = 2.0 * a / R - 0.5 * k2 / sa
+        y = c - d
+        (Fx, Fy), (Hxx, Hxy, Hyy) = rod_force(x, y, rs.Ka, rs.k_phi, rs.L, rs.theta)
+        # Residual r(x, a) and Jacobian; dy/da = −δ'(a).
+        if rigid:
+            r1 = rs.Ka * (anchor - x)
+            j11, j12 = -rs.Ka * np.ones_like(x), np.zeros_like(x)
+        elif stick:
+            r1 = Fx - rs.k_t * (x - anchor)
+            j11, j12 = -Hxx - rs.k_t, Hxy * dd
+        else:
+            r1 = Fx + s * rs.cap(P)
+            j11, j12 = -Hxx, Hxy * dd + s * rs.dcap(P) * dP
+        r2 = Fy + P
+        j21, j22 = -Hxy, Hyy * dd + dP
+        det = j11 * j22 - j12 * j21
+        scale = tol + 1e-12 * (np.abs(P) + np.abs(Fx))
+        conv = (np.abs(r1) <= scale) & (np.abs(r2) <= scale)
+        if conv.all():
+            break
+        det = np.where(det == 0.0, 1e-300, det)
+        dx = -(j22 * r1 - j12 * r2) / det
+        da = -(-j21 * r1 + j11 * r2) / det
+        # Damping: keep steps to a fraction of the rod length and of the contact radius.
+        lim = np.minimum(
+            1.0,
+            np.minimum(
+                0.1 * rs.L / np.maximum(np.abs(dx), 1e-300),
+                0.3 * a / np.maximum(np.abs(da), 1e-300),
+            ),
+        )
+        lim = np.where(conv, 0.0, lim)
+        x = x + lim * dx
+        a = np.maximum(a + lim * da, a_min)
+    # Stability of the converged equilibrium: K_tot = H + contact (+ stick spring) in (x, y).
+    sa = np.sqrt(a)
+    P = (4.0 * Es / (3.0 * R)) * a * a * a - k1 * a * sa
+    dP = (4.0 * Es / R) * a * a - 1.5 * k1 * sa
+    dd = 2.0 * a / R - 0.5 * k2 / sa
+    y = c - (a * a / R - k2 * sa)
+    _, (Hxx, Hxy, Hyy) = rod_force(x, y, rs.Ka, rs.k_phi, rs.L, rs.theta)
+    kc = dP / np.maximum(dd, 1e-300)  # dP/dδ
+    if rigid:
+        ok = Hyy + kc > 0
+    else:
+        kxx = Hxx + (rs.k_t if stick else 0.0)
+        kxy = Hxy + (0.0 if stick else s * rs.dcap(P) * kc)
+        ok = (kxx * (Hyy + kc) - kxy * Hxy > 0) & (kxx + Hyy + kc > 0)
+    ok &= conv & (a > a_min) & np.isfinite(x)
+    # An equilibrium far from the last one is the far side of a snap (e.g. the rod swinging
+    # through upright): the branch the tip was on has folded; dynamically the tip lets go.
+    ok &= np.abs(x - x_start) <= max_jump
+    return x, a, ok
+
+
+class _RodState(_State):
+    """:class:`_State` plus the rod tip abscissa x [µm] (from the root), contact radius a [µm]
+    and tangential contact force ft [µN] of each seta's last equilibrium."""
+
+    def __init__(self, n):
+        super().__init__(n)
+        self.x = np.zeros(n)
+        self.a = np.zeros(n)
+        self.ft = np.zeros(n)
+
+    def copy(self):
+        c = _RodState(0)
+        for k in ("state", "sigma", "u", "x", "a", "ft"):
+            setattr(c, k, getattr(self, k).copy())
+        return c
+
+
+def _rod_step(rs: RodSetup, st: _RodState, Z: float, h: np.ndarray):
+    """Equilibrate every rod seta at plate height Z; update ``st`` in place.
+
+    As :func:`_step`, with the large-rotation rod instead of the linear spring: a free tip
+    jumps in where it touches (δ ≥ 0) and anchors there; an attached tip first tries to stick
+    at its anchor (F_t = −k_t(x − anchor), |F_t| ≤ cap), otherwise slides with F_t = ±cap in
+    the direction the stick trial demanded (return mapping, as the agent model); where neither
+    has a stable equilibrium, the spring–contact system has folded and the tip lets go. The
+    overlap recorded for a release is that of the tip's last equilibrium (within one plate step
+    of the fold). ``st.u`` is the anchor relative to the rest tip abscissa [µm].
+
+    Returns (P, F_t, δ, released mask, release overlaps), as :func:`_step`.
+    """
+    n = len(h)
+    x0, y0 = rs.rest
+    c = h + rs.R - Z
+    P = np.zeros(n)
+    Ft = np.zeros(n)
+    delta = c - y0
+    was = st.state != FREE
+    jump = (delta >= 0.0) & ~was
+    if jump.any():
+        st.state[jump] = STICK
+        st.u[jump] = 0.0
+        st.sigma[jump] = 0.0
+        st.x[jump] = x0
+        st.a[jump] = rs.a0
+    att = was | jump
+    released = np.zeros(n, dtype=bool)
+    rel_overlap = np.full(n, np.nan)
+    idx = np.flatnonzero(att)
+    if idx.size == 0:
+        return P, Ft, delta, released, rel_overlap
+    args = (rs.R, rs.w, rs.E_star)
+    ci, xi, ai = c[idx], st.x[idx], st.a[idx]
+    jump_x = 0.1 * rs.L
+    new_x, new_a = xi.copy(), ai.copy()
+    state = np.full(idx.size, FREE, dtype=np.int8)
+    sig = st.sigma[idx].copy()
+    anchor = x0 + st.u[idx]
+    if rs.lateral == "free":
+        todo = np.ones(idx.size, dtype=bool)
+        sig[:] = 1.0
+    else:
+        xs, as_, ok = _rod_newton(rs, ci, xi, ai, anchor=anchor, max_jump=jump_x)
+        Ps = jkr.force_from_radius(as_, *args)
+        if math.isinf(rs.k_t):
+            Fts = -rod_force(
+                xs, ci - jkr.overlap_from_radius(as_, *args), rs.Ka, rs.k_phi, rs.L, rs.theta
+            )[0][0]
+        else:
+            Fts = -rs.k_t * (xs - anchor)
+        stick_ok = ok & (np.abs(Fts) <= rs.cap(Ps) * (1 + 1e-12))
+        new_x[stick_ok], new_a[stick_ok] = xs[stick_ok], as_[stick_ok]
+        state[stick_ok] = STICK
+        todo = ~stick_ok
+        # Slide in the direction the spring demands; where the stick branch has folded, in
+        # the direction of the tangential force at the last equilibrium.
+        sig = np.where(np.where(ok, Fts, st.ft[idx]) >= 0, 1.0, -1.0)
+    if todo.any():
+        t = np.flatnonzero(todo)
+        s = sig[t] if rs.lateral == "coupled" else np.zeros(t.size)
+        xk, ak, okk = _rod_newton(rs, ci[t], xi[t], ai[t], s=s, max_jump=jump_x)
+        new_x[t[okk]], new_a[t[okk]] = xk[okk], ak[okk]
+        state[t[okk]] = SLIP
+        sig[t] = s
+    good = state != FREE
+    j = idx[good]
+    Pj = jkr.force_from_radius(new_a[good], *args)
+    dj = jkr.overlap_from_radius(new_a[good], *args)
+    P[j], delta[j] = Pj, dj
+    slip = state[good] == SLIP
+    capj = rs.cap(Pj)
+    if rs.lateral == "free":
+        Ft[j] = 0.0
+    else:
+        yj = c[j] - dj
+        Ft[j] = -rod_force(new_x[good], yj, rs.Ka, rs.k_phi, rs.L, rs.theta)[0][0]
+    st.state[idx] = state
+    st.x[idx], st.a[idx] = new_x, new_a
+    st.ft[idx] = Ft[idx]
+    st.sigma[idx] = np.where(state == SLIP, sig, 0.0)
+    # Anchor: a sliding tip's anchor trails it by cap/k_t (F_t = −k_t(x − anchor)).
+    trail = 0.0 if math.isinf(rs.k_t) else capj[slip] * sig[good][slip] / rs.k_t
+    st.u[j[slip]] = new_x[good][slip] + trail - x0
+    gone = idx[~good]
+    if gone.size:
+        released[gone] = True
+        rel_overlap[gone] = jkr.overlap_from_radius(ai[~good], *args)
+        st.state[gone] = FREE
+        st.u[gone] = 0.0
+        st.sigma[gone] = 0.0
+        delta[gone] = c[gone] - y0
+    return P, Ft, delta, released, rel_overlap
+
+
+def rod_retract_travel(params: SetaArray, rs: RodSetup, heights, Z_from: float) -> float:
+    """Plate travel up from Z_from [µm] after which every rod seta has surely let go [µm].
+
+    Back past the start height, plus the swing of the rod to upright, L(1 − sin θ), its axial
+    stretch under Fc and the stick spring's, and a margin of 20|δc|.
+    """
+    stretch = rs.Fc / rs.Ka + (0.0 if math.isinf(rs.k_t) else rs.Fc / rs.k_t)
+    return (
+        plate_start_height(params, heights, 0.0)
+        - Z_from
+        + rs.L * (1.0 - math.sin(rs.theta))
+        + 1.5 * stretch
+        + 20 * abs(params.contact.snap_off_overlap)
+    )
+
+
+def _setup(
+    params: SetaArray, lateral: str, stiffness_scale: float, tangential_stiffness: float
+) -> Branches | RodSetup:
+    """The seta model of ``params.mechanics``: :class:`Branches` (linear) or :class:`RodSetup`."""
+    if params.mechanics == "rod":
+        return RodSetup.from_params(params, lateral, stiffness_scale, tangential_stiffness)
+    return Branches.from_params(params, lateral, stiffness_scale, tangential_stiffness)
 
 
 def plate_start_height(params: SetaArray, heights, gap: float = 0.5) -> float:
     """Plate height at which the highest seta's free tip is ``gap`` [µm] above its floor [µm]."""
-    return float(np.max(heights) + params.contact.R + params.seta.L * np.sin(params.seta.theta)
-                 + gap)
+    return float(
+        np.max(heights) + params.contact.R + params.seta.L * np.sin(params.seta.theta) + gap
+    )
 
 
-def solve(params: SetaArray, heights, plate_y, *, weights=None, lateral: str = "coupled",
-          stiffness_scale: float = 1.0, tangential_stiffness: float = math.inf,
-          record_setae: bool = False, branches: Branches | None = None,
-          stop_when_free_after: int | None = None, sample=None) -> QuasiStaticResult:
+def solve(
+    params: SetaArray,
+    heights,
+    plate_y,
+    *,
+    weights=None,
+    lateral: str = "coupled",
+    stiffness_scale: float = 1.0,
+    tangential_stiffness: float = math.inf,
+    record_setae: bool = False,
+    branches: Branches | None = None,
+    stop_when_free_after: int | None = None,
+    sample=None,
+) -> QuasiStaticResult:
     """Quasi-static history of setae over floor heights along a vertical plate path.
 
     Parameters
@@ -543,7 +961,8 @@ def solve(params: SetaArray, heights, plate_y, *, weights=None, lateral: str = "
     stiffness_scale : multiplies Ka and Kp (large → rigid setae).
     tangential_stiffness : stick spring of the contact [µN/µm] (∞: rigid stick).
     record_setae : keep per-seta force, overlap, state and lateral offset.
-    branches : prebuilt :class:`Branches` (``lateral`` and ``stiffness_scale`` are then unused).
+    branches : prebuilt :class:`Branches` (or :class:`RodSetup` for ``mechanics == "rod"``;
+        ``lateral`` and ``stiffness_scale`` are then unused).
     stop_when_free_after : stop at the first step past this index where no seta is attached.
     sample : the sorted heights of every seta [µm] when ``heights``/``weights`` are block
         means and sizes of consecutive setae of it (``representative_heights(...,
@@ -551,9 +970,15 @@ def solve(params: SetaArray, heights, plate_y, *, weights=None, lateral: str = "
         stick/slide or release boundary inside one (see :class:`_Blocks`), so the blocks
         reproduce the force curve of all the setae to ~1e-9 of its peak instead of
         ~0.7/n_blocks; the result's ``heights``/``weights`` are the final blocks and
-        ``releases`` index the blocks of their step. Not with ``record_setae``.
+        ``releases`` index the blocks of their step. Not with ``record_setae``. With
+        ``mechanics == "rod"`` the blocks are not split (the rod's decision boundaries are not
+        linear in h): plain block means, an error of about 0.7/n_blocks of the peak.
+
+    ``params.mechanics == "rod"`` solves the large-rotation rod of :func:`rod_force` instead of
+    the linear spring (:func:`_rod_step`); the friction and release laws are the same.
     """
-    br = branches or Branches.from_params(params, lateral, stiffness_scale, tangential_stiffness)
+    rod = params.mechanics == "rod"
+    br = branches or _setup(params, lateral, stiffness_scale, tangential_stiffness)
     h = np.asarray(heights, dtype=float)
     w = np.ones_like(h) if weights is None else np.asarray(weights, dtype=float)
     Zs = np.asarray(plate_y, dtype=float)
@@ -563,18 +988,24 @@ def solve(params: SetaArray, heights, plate_y, *, weights=None, lateral: str = "
     if sample is not None:
         if record_setae:
             raise ValueError("record_setae is not available with a sample (blocks split)")
-        blocks = _Blocks(sample, w, h)
-    st = _State(h.size)
+        if not rod:
+            blocks = _Blocks(sample, w, h)
+    st = _RodState(h.size) if rod else _State(h.size)
     out = _Recorder(Zs.size, h.size, record_setae)
     for i, Z in enumerate(Zs):
-        if blocks is None:
+        if rod:
+            P, Ft, d, rel, rel_d = _rod_step(br, st, Z, h)
+        elif blocks is None:
             P, Ft, d, rel, rel_d = _step(br, st, Z, h)
         else:
             P, Ft, d, rel, rel_d = blocks.step(br, st, Z)
             h, w = blocks.h, blocks.w
         out.record(i, P, Ft, d, st, w, rel, rel_d)
-        if stop_when_free_after is not None and i > stop_when_free_after and not np.any(
-                st.state != FREE):
+        if (
+            stop_when_free_after is not None
+            and i > stop_when_free_after
+            and not np.any(st.state != FREE)
+        ):
             return out.result(Zs, w, h, keep=i + 1)
     return out.result(Zs, w, h)
 
@@ -584,8 +1015,14 @@ class _Recorder:
         self.F = np.zeros(n)
         self.T = np.zeros(n)
         self.na = np.zeros(n)
-        self.per = ({k: np.zeros((n, N)) for k in ("force", "overlap", "tip_dx")}
-                    | {"state": np.zeros((n, N), dtype=np.int8)}) if per_seta else {}
+        self.per = (
+            (
+                {k: np.zeros((n, N)) for k in ("force", "overlap", "tip_dx")}
+                | {"state": np.zeros((n, N), dtype=np.int8)}
+            )
+            if per_seta
+            else {}
+        )
         self.releases = []
 
     def record(self, i, P, Ft, d, st, w, rel, rel_d):
@@ -600,8 +1037,16 @@ class _Recorder:
 
     def result(self, Zs, w, h, keep=None):
         sl = slice(None) if keep is None else slice(0, keep)
-        return QuasiStaticResult(Zs[sl], self.F[sl], self.T[sl], self.na[sl], w, h,
-                                 {k: v[sl] for k, v in self.per.items()}, self.releases)
+        return QuasiStaticResult(
+            Zs[sl],
+            self.F[sl],
+            self.T[sl],
+            self.na[sl],
+            w,
+            h,
+            {k: v[sl] for k, v in self.per.items()},
+            self.releases,
+        )
 
 
 def retract_travel(params: SetaArray, br: Branches, heights, Z_from: float) -> float:
@@ -610,16 +1055,29 @@ def retract_travel(params: SetaArray, br: Branches, heights, Z_from: float) -> f
     Back past the start height, plus the stretch of the softest branch holding Fc.
     """
     k_soft = min(br.Ky / (1 + abs(br.Kxy / br.Kxx) * br.mu), br.Kyy)
-    return (plate_start_height(params, heights, 0.0) - Z_from
-            + 1.5 * params.contact.pull_off_force / k_soft
-            + 20 * abs(params.contact.snap_off_overlap))
+    return (
+        plate_start_height(params, heights, 0.0)
+        - Z_from
+        + 1.5 * params.contact.pull_off_force / k_soft
+        + 20 * abs(params.contact.snap_off_overlap)
+    )
 
 
-def press_pull(params: SetaArray, heights, depth: float, *, n_approach: int = 500,
-               n_retract: int = 2000, start_gap: float = 0.5, lateral: str = "coupled",
-               stiffness_scale: float = 1.0, tangential_stiffness: float = math.inf,
-               weights=None,
-               record_setae: bool = False, sample=None) -> QuasiStaticResult:
+def press_pull(
+    params: SetaArray,
+    heights,
+    depth: float,
+    *,
+    n_approach: int = 500,
+    n_retract: int = 2000,
+    start_gap: float = 0.5,
+    lateral: str = "coupled",
+    stiffness_scale: float = 1.0,
+    tangential_stiffness: float = math.inf,
+    weights=None,
+    record_setae: bool = False,
+    sample=None,
+) -> QuasiStaticResult:
     """Displacement control: approach to ``depth`` [µm], then retract.
 
     ``depth`` is measured from the plate height at which a resting tip touches the floor's
@@ -643,26 +1101,47 @@ def press_pull(params: SetaArray, heights, depth: float, *, n_approach: int = 50
     """
     if not depth > 0:
         raise ValueError(f"depth = {depth!r} must be > 0 [µm]")
-    br = Branches.from_params(params, lateral, stiffness_scale, tangential_stiffness)
+    br = _setup(params, lateral, stiffness_scale, tangential_stiffness)
     top = heights if sample is None else sample[-1:]
     Z0 = plate_start_height(params, top, start_gap)
     Zmin = plate_start_height(params, [0.0], 0.0) - depth
     if Zmin >= Z0:
-        raise ValueError(f"depth = {depth!r} µm does not reach the highest floor point "
-                         f"({np.max(top):.3g} µm above the mean plane)")
-    up = retract_travel(params, br, top, Zmin)
-    Zs = np.concatenate([np.linspace(Z0, Zmin, n_approach + 1),
-                         Zmin + up * np.arange(1, n_retract + 1) / n_retract])
-    res = solve(params, heights, Zs, weights=weights, record_setae=record_setae, branches=br,
-                stop_when_free_after=n_approach, sample=sample)
+        raise ValueError(
+            f"depth = {depth!r} µm does not reach the highest floor point "
+            f"({np.max(top):.3g} µm above the mean plane)"
+        )
+    up = (rod_retract_travel if isinstance(br, RodSetup) else retract_travel)(params, br, top, Zmin)
+    Zs = np.concatenate(
+        [np.linspace(Z0, Zmin, n_approach + 1), Zmin + up * np.arange(1, n_retract + 1) / n_retract]
+    )
+    res = solve(
+        params,
+        heights,
+        Zs,
+        weights=weights,
+        record_setae=record_setae,
+        branches=br,
+        stop_when_free_after=n_approach,
+        sample=sample,
+    )
     return res
 
 
-def preload_pull(params: SetaArray, heights, preload: float, *, dz: float | None = None,
-                 weights=None, lateral: str = "coupled", stiffness_scale: float = 1.0,
-                 tangential_stiffness: float = math.inf, record_setae: bool = False,
-                 max_steps: int = 200_000,
-                 retract_steps: int | None = None, sample=None) -> QuasiStaticResult:
+def preload_pull(
+    params: SetaArray,
+    heights,
+    preload: float,
+    *,
+    dz: float | None = None,
+    weights=None,
+    lateral: str = "coupled",
+    stiffness_scale: float = 1.0,
+    tangential_stiffness: float = math.inf,
+    record_setae: bool = False,
+    max_steps: int = 200_000,
+    retract_steps: int | None = None,
+    sample=None,
+) -> QuasiStaticResult:
     """Force control: approach until the total normal force equals ``preload`` [µN], retract.
 
     The turning point is found by bisection on the last approach step (restarting from the
@@ -678,7 +1157,8 @@ def preload_pull(params: SetaArray, heights, preload: float, *, dz: float | None
     """
     if not preload > 0:
         raise ValueError(f"preload = {preload!r} must be > 0 [µN]")
-    br = Branches.from_params(params, lateral, stiffness_scale, tangential_stiffness)
+    br = _setup(params, lateral, stiffness_scale, tangential_stiffness)
+    rod = isinstance(br, RodSetup)
     h = np.asarray(heights, dtype=float)
     w = np.ones_like(h) if weights is None else np.asarray(weights, dtype=float)
     dz = abs(params.contact.snap_off_overlap) / 20 if dz is None else float(dz)
@@ -688,14 +1168,17 @@ def preload_pull(params: SetaArray, heights, preload: float, *, dz: float | None
     if sample is not None:
         if record_setae:
             raise ValueError("record_setae is not available with a sample (blocks split)")
-        blocks = _Blocks(sample, w, h)
+        if not rod:
+            blocks = _Blocks(sample, w, h)
     top = h if sample is None else sample[-1:]
-    st = _State(h.size)
+    st = _RodState(h.size) if rod else _State(h.size)
     Z_start = plate_start_height(params, top, 0.5)
     Z = Z_start
     Zs, results = [], []
 
     def advance(state, blk, Z):
+        if rod:
+            return _rod_step(br, state, Z, h), w
         if blk is None:
             return _step(br, state, Z, h), w
         return blk.step(br, state, Z), blk.w
@@ -729,11 +1212,13 @@ def preload_pull(params: SetaArray, heights, preload: float, *, dz: float | None
         keep(Z, res, st, wk)
         break
     else:
-        raise RuntimeError(f"preload {preload} µN not reached within {max_steps} steps of "
-                           f"{dz} µm; the floor may be out of reach")
+        raise RuntimeError(
+            f"preload {preload} µN not reached within {max_steps} steps of "
+            f"{dz} µm; the floor may be out of reach"
+        )
     # Retract until every seta has let go; a soft seta can stretch by up to ~Fc/Ky first.
     n_up = retract_steps or 4000
-    dz_up = max(dz, retract_travel(params, br, top, Z) / n_up)
+    dz_up = max(dz, (rod_retract_travel if rod else retract_travel)(params, br, top, Z) / n_up)
     for _ in range(n_up):
         Z += dz_up
         res, wk = advance(st, blocks, Z)
@@ -748,8 +1233,14 @@ def preload_pull(params: SetaArray, heights, preload: float, *, dz: float | None
     return rec.result(np.asarray(Zs), w, h)
 
 
-def representative_heights(n_setae: int, sigma: float, rng: np.random.Generator,
-                           n_blocks: int = 20_000, *, return_sample: bool = False):
+def representative_heights(
+    n_setae: int,
+    sigma: float,
+    rng: np.random.Generator,
+    n_blocks: int = 20_000,
+    *,
+    return_sample: bool = False,
+):
     """Draw n_setae Gaussian heights (eq 28), sort, and return block means and weights.
 
     Under a monotone press-and-pull a seta's whole history depends only on its floor height,
