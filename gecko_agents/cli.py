@@ -33,8 +33,15 @@ from pathlib import Path
 
 from . import __version__
 
-__all__ = ["main", "COMMANDS", "EXIT_OK", "EXIT_FAILURE", "EXIT_USAGE", "EXIT_INTERRUPTED",
-           "parameter_table"]
+__all__ = [
+    "main",
+    "COMMANDS",
+    "EXIT_OK",
+    "EXIT_FAILURE",
+    "EXIT_USAGE",
+    "EXIT_INTERRUPTED",
+    "parameter_table",
+]
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 PROG = "gecko-agents"
@@ -51,16 +58,33 @@ def _err(message: str) -> None:
 # run ---------------------------------------------------------------------------------------------
 def _add_run(p: argparse.ArgumentParser) -> None:
     p.add_argument("runfile", type=Path, help="run file (TOML; see examples/)")
-    p.add_argument("--out", type=Path, default=None,
-                   help="run directory to write (default runs/<run file name>; an older run "
-                        "directory there is replaced once the new one is complete)")
-    p.add_argument("--quick", action="store_true",
-                   help="the file's [quick] variant: a tiny run for a first look and the tests")
+    p.add_argument(
+        "--out",
+        type=Path,
+        default=None,
+        help="run directory to write (default runs/<run file name>; an older run "
+        "directory there is replaced once the new one is complete)",
+    )
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="the file's [quick] variant: a tiny run for a first look and the tests",
+    )
     kind = p.add_mutually_exclusive_group()
-    kind.add_argument("--gif", dest="animation", action="store_const", const="gif",
-                      help="also write detachment.gif (records every seta)")
-    kind.add_argument("--mp4", dest="animation", action="store_const", const="mp4",
-                      help="also write detachment.mp4 (needs pip install -e '.[video]')")
+    kind.add_argument(
+        "--gif",
+        dest="animation",
+        action="store_const",
+        const="gif",
+        help="also write detachment.gif (records every seta)",
+    )
+    kind.add_argument(
+        "--mp4",
+        dest="animation",
+        action="store_const",
+        const="mp4",
+        help="also write detachment.mp4 (needs pip install -e '.[video]')",
+    )
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
 
 
@@ -78,31 +102,44 @@ def _cmd_run(args, extra) -> int:
     spec = runfile.load_run(args.runfile, quick=args.quick)
     out = args.out if args.out is not None else _default_run_dir(args.runfile)
     seg = ", ".join(type(s).__name__ for s in spec.protocol)
-    print(f"{spec.path}{' (quick)' if spec.quick else ''}: {spec.preset}"
-          f"{' + ' + str(len(spec.overrides)) + ' overrides' if spec.overrides else ''}, "
-          f"{spec.params.mechanics} setae, protocol {seg}")
+    print(
+        f"{spec.path}{' (quick)' if spec.quick else ''}: {spec.preset}"
+        f"{' + ' + str(len(spec.overrides)) + ' overrides' if spec.overrides else ''}, "
+        f"{spec.params.mechanics} setae, protocol {seg}"
+    )
     if spec.description:
         print(f"  {spec.description}")
     argv = [str(args.runfile)] + (["--quick"] if args.quick else [])
     t0 = time.perf_counter()
     try:
-        out, history = runfile.execute_run(spec, out, animation=args.animation,
-                                           progress=not args.no_progress, argv=argv)
+        out, history = runfile.execute_run(
+            spec, out, animation=args.animation, progress=not args.no_progress, argv=argv
+        )
     except runfile.RunFileError:
         raise
+    except KeyboardInterrupt:
+        _err(
+            f"interrupted: nothing was written to {out} (a run directory already there is "
+            f"untouched); start again with: {PROG} run {' '.join(argv)}"
+        )
+        return EXIT_INTERRUPTED
     except Exception as err:
         _err(f"the run failed ({type(err).__name__}): {err}; nothing was written to {out}")
         return EXIT_FAILURE
     m = history.meta
-    print(f"wrote {out}/ in {time.perf_counter() - t0:.1f} s: {m.get('n_sim')} setae, "
-          f"{m.get('n_steps')} steps of {m.get('dt_us', float('nan')):.3g} µs "
-          f"({m.get('kernel')} kernel); peak pull-off {history.peak_pull_off:.4g} µN")
+    print(
+        f"wrote {out}/ in {time.perf_counter() - t0:.1f} s: {m.get('n_sim')} setae, "
+        f"{m.get('n_steps')} steps of {m.get('dt_us', float('nan')):.3g} µs "
+        f"({m.get('kernel')} kernel); peak pull-off {history.peak_pull_off:.4g} µN"
+    )
     bad = m["run_file"]["invariant_violations"]
     if bad:
         _err(f"the history breaks its invariants: {'; '.join(bad)}")
         return EXIT_FAILURE
-    print(f"re-run it with: {PROG} run {out / runfile.RUN_FILE_NAME}"
-          f"{' --quick' if args.quick else ''}")
+    print(
+        f"re-run it with: {PROG} run {out / runfile.RUN_FILE_NAME}"
+        f"{' --quick' if args.quick else ''}"
+    )
     return EXIT_OK
 
 
@@ -111,17 +148,33 @@ def _add_sweep(p: argparse.ArgumentParser) -> None:
     from .sweep import parse_dask_arg
 
     p.add_argument("sweepfile", type=Path, help="sweep file (TOML; see examples/)")
-    p.add_argument("--out", type=Path, default=None,
-                   help="output directory (default: the file's out_dir, else sweeps/<name>)")
+    p.add_argument(
+        "--out",
+        type=Path,
+        default=None,
+        help="output directory (default: the file's out_dir, else sweeps/<name>)",
+    )
     p.add_argument("--quick", action="store_true", help="the file's [quick] variant")
-    p.add_argument("--dask", type=parse_dask_arg, default=None, metavar="ADDR",
-                   help="'local' (a Dask cluster on this machine) or tcp://host:port (a running "
-                        "scheduler); default: local worker processes")
-    p.add_argument("--workers", type=int, default=None,
-                   help="local worker processes (default: the file's workers, else all cores)")
-    p.add_argument("--resume", action="store_true",
-                   help="continue a sweep whose output directory already holds points: "
-                        "finished points are kept, the others run")
+    p.add_argument(
+        "--dask",
+        type=parse_dask_arg,
+        default=None,
+        metavar="ADDR",
+        help="'local' (a Dask cluster on this machine) or tcp://host:port (a running "
+        "scheduler); default: local worker processes",
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        help="local worker processes (default: the file's workers, else all cores)",
+    )
+    p.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue a sweep whose output directory already holds points: "
+        "finished points are kept, the others run",
+    )
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
 
 
@@ -139,37 +192,55 @@ def _cmd_sweep(args, extra) -> int:
     points_dir = out / "points"
     before = {p.stem for p in points_dir.glob("*.json")} if points_dir.is_dir() else set()
     if before and not args.resume:
-        raise UsageError(f"{out} already holds {len(before)} point file(s) of a sweep; add "
-                         "--resume to continue it (finished points are kept) or choose another "
-                         "--out")
+        raise UsageError(
+            f"{out} already holds {len(before)} point file(s) of a sweep; add "
+            "--resume to continue it (finished points are kept) or choose another "
+            "--out"
+        )
     resume = [PROG, "sweep", str(args.sweepfile), "--resume"]
     resume += ["--out", str(out)] if args.out is not None else []
     resume += ["--quick"] if args.quick else []
     resume += ["--dask", args.dask] if args.dask else []
-    print(f"{spec.path}{' (quick)' if spec.quick else ''}: {spec.point} on {spec.preset}, "
-          f"{spec.n_points} points → {out}/")
+    print(
+        f"{spec.path}{' (quick)' if spec.quick else ''}: {spec.point} on {spec.preset}, "
+        f"{spec.n_points} points → {out}/"
+    )
     out.mkdir(parents=True, exist_ok=True)
     atomic_write_bytes(out / runfile.SWEEP_FILE_NAME, spec.text)
     t0 = time.perf_counter()
     try:
-        rows = sweep.run_sweep(spec.point_fn, spec.base, spec.grid, spec.seeds, out,
-                               fn_kwargs=spec.point_args, dask=args.dask, n_workers=workers,
-                               progress=not args.no_progress)
+        rows = sweep.run_sweep(
+            spec.point_fn,
+            spec.base,
+            spec.grid,
+            spec.seeds,
+            out,
+            fn_kwargs=spec.point_args,
+            dask=args.dask,
+            n_workers=workers,
+            progress=not args.no_progress,
+        )
     except KeyboardInterrupt:
         done = len(list(points_dir.glob("*.json"))) if points_dir.is_dir() else 0
-        _err(f"interrupted: {done} finished point(s) are stored in {points_dir}/; resume with: "
-             + " ".join(resume))
+        _err(
+            f"interrupted: {done} finished point(s) are stored in {points_dir}/; resume with: "
+            + " ".join(resume)
+        )
         return EXIT_INTERRUPTED
     except ImportError as err:
         raise UsageError(str(err)) from None
     reused = sum(r["key"] in before and r["status"] == "ok" for r in rows)
     errors = [r for r in rows if r["status"] != "ok"]
-    print(f"wrote {out / 'sweep.csv'} in {time.perf_counter() - t0:.1f} s: "
-          f"{len(rows) - len(errors)} of {len(rows)} points ok"
-          + (f", {reused} reused from an earlier run" if reused else ""))
+    print(
+        f"wrote {out / 'sweep.csv'} in {time.perf_counter() - t0:.1f} s: "
+        f"{len(rows) - len(errors)} of {len(rows)} points ok"
+        + (f", {reused} reused from an earlier run" if reused else "")
+    )
     if errors:
-        _err(f"{len(errors)} point(s) failed, e.g. seed {errors[0]['seed']}: "
-             f"{errors[0]['error']}; after a fix, re-run with: " + " ".join(resume))
+        _err(
+            f"{len(errors)} point(s) failed, e.g. seed {errors[0]['seed']}: "
+            f"{errors[0]['error']}; after a fix, re-run with: " + " ".join(resume)
+        )
         return EXIT_FAILURE
     return EXIT_OK
 
@@ -189,9 +260,11 @@ def _add_reproduce(p: argparse.ArgumentParser) -> None:
 def _cmd_reproduce(args, extra) -> int:
     script = scenarios_dir() / "reproduce_paper.py"
     if not script.is_file():
-        raise UsageError(f"the paper reproduction needs the repository's scenarios/ folder, "
-                         f"which is not at {scenarios_dir()} (this is an installed copy of the "
-                         f"package): clone the repository and `pip install -e .` there")
+        raise UsageError(
+            f"the paper reproduction needs the repository's scenarios/ folder, "
+            f"which is not at {scenarios_dir()} (this is an installed copy of the "
+            f"package): clone the repository and `pip install -e .` there"
+        )
     if str(script.parent) not in sys.path:
         sys.path.insert(0, str(script.parent))  # scenarios import their shared _common module
     spec = importlib.util.spec_from_file_location("reproduce_paper", script)
@@ -202,8 +275,10 @@ def _cmd_reproduce(args, extra) -> int:
     try:
         module.main(argv)
     except KeyboardInterrupt:
-        _err("interrupted: scenarios that finished keep their outputs (each file is written "
-             f"atomically); run `{PROG} reproduce` again to redo the rest")
+        _err(
+            "interrupted: scenarios that finished keep their outputs (each file is written "
+            f"atomically); run `{PROG} reproduce` again to redo the rest"
+        )
         return EXIT_INTERRUPTED
     return EXIT_OK
 
@@ -212,10 +287,16 @@ def _cmd_reproduce(args, extra) -> int:
 def _add_render(p: argparse.ArgumentParser) -> None:
     p.add_argument("run_dir", type=Path, help="run directory (written by `run` or History.save)")
     kind = p.add_mutually_exclusive_group()
-    kind.add_argument("--gif", dest="fmt", action="store_const", const="gif",
-                      help="animated GIF (default)")
-    kind.add_argument("--mp4", dest="fmt", action="store_const", const="mp4",
-                      help="MP4 video (needs pip install -e '.[video]')")
+    kind.add_argument(
+        "--gif", dest="fmt", action="store_const", const="gif", help="animated GIF (default)"
+    )
+    kind.add_argument(
+        "--mp4",
+        dest="fmt",
+        action="store_const",
+        const="mp4",
+        help="MP4 video (needs pip install -e '.[video]')",
+    )
     p.add_argument("--window", type=int, default=None, help="setae drawn (default 40)")
     p.add_argument("--frames", type=int, default=None, help="frames (default ≤ 300)")
     p.add_argument("--fps", type=float, default=None, help="frames per second (default 20)")
@@ -234,21 +315,28 @@ def _cmd_render(args, extra) -> int:
 # bench -------------------------------------------------------------------------------------------
 def _add_bench(p: argparse.ArgumentParser) -> None:
     p.add_argument("--quick", action="store_true", help="tiny sizes: a smoke run (seconds)")
-    p.add_argument("--no-dask", action="store_true",
-                   help="skip the 1- vs 2-worker Dask sweep throughput")
+    p.add_argument(
+        "--no-dask", action="store_true", help="skip the 1- vs 2-worker Dask sweep throughput"
+    )
 
 
 def _cmd_bench(args, extra) -> int:
     from . import bench
 
-    bench.main((["--quick"] if args.quick else []) + (["--no-dask"] if args.no_dask else [])
-               + list(extra))
+    bench.main(
+        (["--quick"] if args.quick else []) + (["--no-dask"] if args.no_dask else []) + list(extra)
+    )
     return EXIT_OK
 
 
 # params ------------------------------------------------------------------------------------------
-_EXTRA_DOCS = {"mechanics": ("-", "seta model: 'linear' (2×2 beam stiffness) or 'rod' "
-                                  "(rotary bending spring + axial spring)", "eq 20–21")}
+_EXTRA_DOCS = {
+    "mechanics": (
+        "-",
+        "seta model: 'linear' (2×2 beam stiffness) or 'rod' (rotary bending spring + axial spring)",
+        "eq 20–21",
+    )
+}
 _EQ = re.compile(r"\beq ([0-9][0-9–\-, ]*[0-9])")
 
 
@@ -277,7 +365,7 @@ def _split_doc(text: str, group_eq: str = "") -> tuple[str, str, str]:
     """(unit, meaning, equation) from a docstring entry ``… [unit] …``."""
     m = re.search(r"\[([^\]]+)\]", text)
     unit = m.group(1) if m else "-"
-    meaning = (text[:m.start()] + text[m.end():]) if m else text
+    meaning = (text[: m.start()] + text[m.end() :]) if m else text
     meaning = re.sub(r":\w+:`~?([^`]+)`", r"\1", meaning.replace("``", ""))
     meaning = re.sub(r"\s+", " ", meaning).strip().rstrip(".")
     meaning = re.sub(r"^(\w+) : ", r"\1: ", re.sub(r"\s*\(eq [^)]*\)$", "", meaning))
@@ -301,12 +389,18 @@ def parameter_table(params) -> list[tuple[str, str, str, str, str]]:
         group_eq = _EQ.search(first)
         docs = _field_docs(type(sub))
         for g in dataclasses.fields(sub):
-            unit, meaning, eq = _split_doc(docs.get(g.name, ""),
-                                           f"eq {group_eq.group(1)}" if group_eq else "")
+            unit, meaning, eq = _split_doc(
+                docs.get(g.name, ""), f"eq {group_eq.group(1)}" if group_eq else ""
+            )
             rows.append((f"{f.name}.{g.name}", _fmt(getattr(sub, g.name)), unit, meaning, eq))
-    derived = [(params.contact, "contact", ("work_of_adhesion", "E_star", "pull_off_force",
-                                            "snap_off_overlap")),
-               (params, "", ("axial_stiffness", "bending_stiffness", "Ky", "Kx"))]
+    derived = [
+        (
+            params.contact,
+            "contact",
+            ("work_of_adhesion", "E_star", "pull_off_force", "snap_off_overlap"),
+        ),
+        (params, "", ("axial_stiffness", "bending_stiffness", "Ky", "Kx")),
+    ]
     for obj, prefix, names in derived:
         for name in names:
             doc = inspect.getdoc(getattr(type(obj), name)) or ""
@@ -323,8 +417,12 @@ def _fmt(value) -> str:
 
 
 def _add_params(p: argparse.ArgumentParser) -> None:
-    p.add_argument("preset", nargs="?", default=None,
-                   help="preset name (case-insensitive); without it, list the presets")
+    p.add_argument(
+        "preset",
+        nargs="?",
+        default=None,
+        help="preset name (case-insensitive); without it, list the presets",
+    )
 
 
 def _cmd_params(args, extra) -> int:
@@ -343,14 +441,15 @@ def _cmd_params(args, extra) -> int:
         raise UsageError(f"unknown preset {args.preset!r}; allowed: {', '.join(PRESETS)}")
     name = match[0]
     print(f"{name}: {docs.get(name, '').split(chr(10), 1)[0]}")
-    print("Units: µm, µN, µs, ng; MPa = µN/µm², µN/µm = N/m = J/m². Derived quantities in "
-          "parentheses; override a parameter in a run file's [params] by its dotted name.\n")
+    print(
+        "Units: µm, µN, µs, ng; MPa = µN/µm², µN/µm = N/m = J/m². Derived quantities in "
+        "parentheses; override a parameter in a run file's [params] by its dotted name.\n"
+    )
     rows = [("parameter", "value", "unit", "equation", "meaning")]
     rows += [(n, v, u, e, m) for n, v, u, m, e in parameter_table(PRESETS[name])]
     widths = [max(len(r[i]) for r in rows) for i in range(4)]
     for i, row in enumerate(rows):
-        print("  ".join(c.ljust(w) for c, w in zip(row[:4], widths, strict=True)) + "  "
-              + row[4])
+        print("  ".join(c.ljust(w) for c, w in zip(row[:4], widths, strict=True)) + "  " + row[4])
         if i == 0:
             print("  ".join("-" * w for w in widths) + "  " + "-" * 7)
     return EXIT_OK
@@ -375,11 +474,17 @@ def _cmd_calibrate(args, extra) -> int:
     module = _calibrate_module()
     if module is None:
         if "-h" in extra or "--help" in extra:
-            print(f"usage: {PROG} calibrate ...\n\nCalibration is not part of this version of "
-                  f"gecko_agents ({CALIBRATE_MODULE} is missing).")
+            print(
+                f"usage: {PROG} calibrate ...\n\nCalibration is not part of this version of "
+                f"gecko_agents ({CALIBRATE_MODULE} is missing); once it is, every argument "
+                f"is passed to python -m {CALIBRATE_MODULE}.\n\nexample:\n  "
+                f"{COMMANDS['calibrate'].example}"
+            )
             return EXIT_OK
-        raise UsageError(f"calibrate is not available: this version of gecko_agents has no "
-                         f"{CALIBRATE_MODULE} module")
+        raise UsageError(
+            f"calibrate is not available: this version of gecko_agents has no "
+            f"{CALIBRATE_MODULE} module"
+        )
     code = module.main(list(extra))
     return code if isinstance(code, int) else EXIT_OK
 
@@ -393,55 +498,87 @@ class Command:
     handler: Callable[[argparse.Namespace, list[str]], int]
     help: str
     example: str
-    passthrough: bool = False   # unknown arguments go to the delegate instead of an error
-    own_help: bool = True       # False: --help too goes to the delegate
+    passthrough: bool = False  # unknown arguments go to the delegate instead of an error
+    own_help: bool = True  # False: --help too goes to the delegate
 
 
 COMMANDS: dict[str, Command] = {
-    "run": Command(_add_run, _cmd_run, "run a run file and write its run directory",
-                   "gecko-agents run examples/single_seta_press_pull.toml --quick --gif\n"
-                   "  gecko-agents run runs/single_seta_press_pull/run.toml   # re-run a copy"),
-    "sweep": Command(_add_sweep, _cmd_sweep,
-                     "run a parameter sweep file (resumable; local processes or Dask)",
-                     "gecko-agents sweep examples/sweep_roughness_preload.toml --quick\n"
-                     "  gecko-agents sweep examples/sweep_roughness_preload.toml --resume "
-                     "--dask local"),
-    "reproduce": Command(_add_reproduce, _cmd_reproduce,
-                         "reproduce the paper's figures and write renders/paper_comparison.md",
-                         "gecko-agents reproduce --quick --out /tmp/renders",
-                         passthrough=True),
-    "render": Command(_add_render, _cmd_render,
-                      "draw force_history.png and a detachment animation of a run directory",
-                      "gecko-agents render runs/patch_rough_floor --gif --frames 120"),
-    "bench": Command(_add_bench, _cmd_bench,
-                     "speed of the agent model against bare pymunk, and the 10⁷-seta curve",
-                     "gecko-agents bench --quick --no-dask\n"
-                     "  (other options of python -m gecko_agents.bench, e.g. --sizes 1000 "
-                     "--steps 300, are passed on)", passthrough=True),
-    "params": Command(_add_params, _cmd_params,
-                      "print a parameter preset with units and paper equations",
-                      "gecko-agents params PAPER_ARRAY"),
-    "calibrate": Command(_add_calibrate, _cmd_calibrate,
-                         "fit parameters to measured curves (gecko_agents.calibrate)",
-                         "gecko-agents calibrate --help", passthrough=True, own_help=False),
+    "run": Command(
+        _add_run,
+        _cmd_run,
+        "run a run file and write its run directory",
+        "gecko-agents run examples/single_seta_press_pull.toml --quick --gif\n"
+        "  gecko-agents run runs/single_seta_press_pull/run.toml   # re-run a copy",
+    ),
+    "sweep": Command(
+        _add_sweep,
+        _cmd_sweep,
+        "run a parameter sweep file (resumable; local processes or Dask)",
+        "gecko-agents sweep examples/sweep_roughness_preload.toml --quick\n"
+        "  gecko-agents sweep examples/sweep_roughness_preload.toml --resume "
+        "--dask local",
+    ),
+    "reproduce": Command(
+        _add_reproduce,
+        _cmd_reproduce,
+        "reproduce the paper's figures and write renders/paper_comparison.md",
+        "gecko-agents reproduce --quick --out /tmp/renders",
+        passthrough=True,
+    ),
+    "render": Command(
+        _add_render,
+        _cmd_render,
+        "draw force_history.png and a detachment animation of a run directory",
+        "gecko-agents render runs/patch_rough_floor --gif --frames 120",
+    ),
+    "bench": Command(
+        _add_bench,
+        _cmd_bench,
+        "speed of the agent model against bare pymunk, and the 10⁷-seta curve",
+        "gecko-agents bench --quick --no-dask\n"
+        "  (other options of python -m gecko_agents.bench, e.g. --sizes 1000 "
+        "--steps 300, are passed on)",
+        passthrough=True,
+    ),
+    "params": Command(
+        _add_params,
+        _cmd_params,
+        "print a parameter preset with units and paper equations",
+        "gecko-agents params PAPER_ARRAY",
+    ),
+    "calibrate": Command(
+        _add_calibrate,
+        _cmd_calibrate,
+        "fit parameters to measured curves (gecko_agents.calibrate)",
+        "gecko-agents calibrate --help",
+        passthrough=True,
+        own_help=False,
+    ),
 }
 """Subcommand name → :class:`Command`."""
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog=PROG, formatter_class=argparse.RawDescriptionHelpFormatter,
+        prog=PROG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
         description="Gecko-inspired setae arrays pressed onto and pulled off a rough floor "
-                    "(units µm, µN, µs, ng).",
+        "(units µm, µN, µs, ng).",
         epilog="examples:\n  gecko-agents params PAPER_TABLE1\n"
-               "  gecko-agents run examples/single_seta_press_pull.toml --quick\n\n"
-               "exit codes: 0 success, 1 run failed, 2 usage or input error, 130 interrupted")
+        "  gecko-agents run examples/single_seta_press_pull.toml --quick\n\n"
+        "exit codes: 0 success, 1 run failed, 2 usage or input error, 130 interrupted",
+    )
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for name, cmd in COMMANDS.items():
-        p = sub.add_parser(name, help=cmd.help, description=cmd.help[0].upper() + cmd.help[1:]
-                           + ".", epilog=f"example:\n  {cmd.example}", add_help=cmd.own_help,
-                           formatter_class=argparse.RawDescriptionHelpFormatter)
+        p = sub.add_parser(
+            name,
+            help=cmd.help,
+            description=cmd.help[0].upper() + cmd.help[1:] + ".",
+            epilog=f"example:\n  {cmd.example}",
+            add_help=cmd.own_help,
+            formatter_class=argparse.RawDescriptionHelpFormatter,
+        )
         cmd.add_arguments(p)
         p.set_defaults(_command=name)
     return parser

@@ -96,9 +96,21 @@ from . import protocol as prot
 from .history import History, atomic_write_bytes, invariant_violations
 from .params import SetaArray
 
-__all__ = ["RunFileError", "RunSpec", "SweepSpec", "PRESETS", "SEGMENTS", "PROTOCOL_PRESETS",
-           "preset_docs", "point_functions", "load_run", "load_sweep", "execute_run",
-           "RUN_FILE_NAME", "SWEEP_FILE_NAME"]
+__all__ = [
+    "RunFileError",
+    "RunSpec",
+    "SweepSpec",
+    "PRESETS",
+    "SEGMENTS",
+    "PROTOCOL_PRESETS",
+    "preset_docs",
+    "point_functions",
+    "load_run",
+    "load_sweep",
+    "execute_run",
+    "RUN_FILE_NAME",
+    "SWEEP_FILE_NAME",
+]
 
 RUN_FILE_NAME = "run.toml"
 """Name of the run file's copy inside a run directory."""
@@ -111,8 +123,11 @@ class RunFileError(ValueError):
 
 
 def _discover_presets() -> dict[str, SetaArray]:
-    return {name: value for name, value in vars(params_mod).items()
-            if name.isupper() and isinstance(value, SetaArray)}
+    return {
+        name: value
+        for name, value in vars(params_mod).items()
+        if name.isupper() and isinstance(value, SetaArray)
+    }
 
 
 PRESETS: dict[str, SetaArray] = _discover_presets()
@@ -128,10 +143,15 @@ def preset_docs() -> dict[str, str]:
     out: dict[str, str] = {}
     body = tree.body
     for node, nxt in zip(body, body[1:], strict=False):
-        if (isinstance(node, ast.Assign) and len(node.targets) == 1
-                and isinstance(node.targets[0], ast.Name) and node.targets[0].id in PRESETS
-                and isinstance(nxt, ast.Expr) and isinstance(nxt.value, ast.Constant)
-                and isinstance(nxt.value.value, str)):
+        if (
+            isinstance(node, ast.Assign)
+            and len(node.targets) == 1
+            and isinstance(node.targets[0], ast.Name)
+            and node.targets[0].id in PRESETS
+            and isinstance(nxt, ast.Expr)
+            and isinstance(nxt.value, ast.Constant)
+            and isinstance(nxt.value.value, str)
+        ):
             out[node.targets[0].id] = inspect.cleandoc(nxt.value.value)
     return out
 
@@ -140,25 +160,49 @@ def preset_docs() -> dict[str, str]:
 SEGMENTS: dict[str, tuple[type, dict[str, str]]] = {
     "move": (prot.Move, {"dx_um": "dx", "dy_um": "dy", "speed_um_per_us": "speed"}),
     "press_to": (prot.PressTo, {"depth_um": "depth", "speed_um_per_us": "speed"}),
-    "press": (prot.Press, {"preload_uN": "preload", "speed_um_per_us": "speed",
-                           "band": "band"}),
+    "press": (prot.Press, {"preload_uN": "preload", "speed_um_per_us": "speed", "band": "band"}),
     "hold": (prot.Hold, {"duration_us": "duration"}),
-    "pull_off": (prot.PullOff, {"speed_um_per_us": "speed", "angle_deg": "angle_deg",
-                                "clearance_um": "clearance", "max_travel_um": "max_travel"}),
+    "pull_off": (
+        prot.PullOff,
+        {
+            "speed_um_per_us": "speed",
+            "angle_deg": "angle_deg",
+            "clearance_um": "clearance",
+            "max_travel_um": "max_travel",
+        },
+    ),
 }
 """Segment name → (class of :mod:`gecko_agents.protocol`, run-file key → field)."""
 
 PROTOCOL_PRESETS: dict[str, tuple[object, dict[str, str]]] = {
     "press_pull": (prot.press_pull, {"depth_um": "depth", "speed_um_per_us": "speed"}),
     "preload_pull": (prot.preload_pull, {"preload_uN": "preload", "speed_um_per_us": "speed"}),
-    "drag_pull": (prot.drag_pull, {"preload_uN": "preload", "drag_um": "drag",
-                                   "angle_deg": "angle_deg", "speed_um_per_us": "speed"}),
+    "drag_pull": (
+        prot.drag_pull,
+        {
+            "preload_uN": "preload",
+            "drag_um": "drag",
+            "angle_deg": "angle_deg",
+            "speed_um_per_us": "speed",
+        },
+    ),
 }
 """Preset protocol name → (function of :mod:`gecko_agents.protocol`, run-file key → argument)."""
 
 _MODEL_KEYS = {"n_sim": int, "seed": int, "dt_us": float, "record_setae": bool, "kernel": str}
-_TYPE_NAMES = {int: "an integer", float: "a number", bool: "true or false", str: "a string",
-               dict: "a table", list: "an array"}
+_MODEL_RANGES = {
+    "seed": "an integer ≥ 0",
+    "n_sim": "an integer in [1, 20000]",
+    "dt_us": "a time step > 0 µs (below the stability bound the model states)",
+}
+_TYPE_NAMES = {
+    int: "an integer",
+    float: "a number",
+    bool: "true or false",
+    str: "a string",
+    dict: "a table",
+    list: "an array",
+}
 
 
 # Small checks ----------------------------------------------------------------------------------
@@ -173,10 +217,15 @@ class _Ctx:
         return RunFileError(f"{self.path}: {where}: {message}{self.variant}")
 
     def type_(self, where: str, value, kind: type, what: str = ""):
-        ok = (isinstance(value, bool) if kind is bool
-              else isinstance(value, int) and not isinstance(value, bool) if kind is int
-              else isinstance(value, int | float) and not isinstance(value, bool)
-              if kind is float else isinstance(value, kind))
+        ok = (
+            isinstance(value, bool)
+            if kind is bool
+            else isinstance(value, int) and not isinstance(value, bool)
+            if kind is int
+            else isinstance(value, int | float) and not isinstance(value, bool)
+            if kind is float
+            else isinstance(value, kind)
+        )
         if not ok:
             raise self.error(where, f"{value!r} must be {what or _TYPE_NAMES[kind]}")
         return float(value) if kind is float else value
@@ -184,8 +233,9 @@ class _Ctx:
     def keys(self, where: str, table: dict, allowed) -> None:
         unknown = [k for k in table if k not in allowed]
         if unknown:
-            raise self.error(where, f"unknown key {unknown[0]!r}; allowed keys: "
-                                    f"{', '.join(sorted(allowed))}")
+            raise self.error(
+                where, f"unknown key {unknown[0]!r}; allowed keys: {', '.join(sorted(allowed))}"
+            )
 
 
 def _read_toml(path) -> tuple[Path, bytes, dict]:
@@ -207,7 +257,13 @@ def _read_toml(path) -> tuple[Path, bytes, dict]:
 
 def _preset(ctx: _Ctx, data: dict) -> tuple[str, SetaArray]:
     if "preset" not in data:
-        raise ctx.error("preset", f"missing; name one of {', '.join(PRESETS)}")
+        inside = [k for k, v in data.items() if isinstance(v, dict) and "preset" in v]
+        hint = (
+            f" (preset sits in [{inside[0]}]: top-level keys go above the first [table] header)"
+            if inside
+            else ""
+        )
+        raise ctx.error("preset", f"missing; name one of {', '.join(PRESETS)}{hint}")
     name = ctx.type_("preset", data["preset"], str)
     for key, value in PRESETS.items():
         if key.lower() == name.lower():
@@ -235,8 +291,9 @@ def _override_kind(base: SetaArray, dotted: str):
     return float
 
 
-def _apply_params(ctx: _Ctx, base: SetaArray, overrides: dict, table: str,
-                  quick_keys=()) -> SetaArray:
+def _apply_params(
+    ctx: _Ctx, base: SetaArray, overrides: dict, table: str, quick_keys=()
+) -> SetaArray:
     """``base`` with the overrides applied one by one, so an error names its key."""
     out = base
     for key, value in overrides.items():
@@ -271,8 +328,9 @@ def _culprit(err: Exception, mapping: dict[str, str]) -> str | None:
     return None
 
 
-def _build_call(ctx: _Ctx, where: str, func, mapping: dict[str, str], table: dict,
-                skip: str) -> object:
+def _build_call(
+    ctx: _Ctx, where: str, func, mapping: dict[str, str], table: dict, skip: str
+) -> object:
     ctx.keys(where, table, {skip, *mapping})
     kwargs = {}
     for key, value in table.items():
@@ -296,18 +354,24 @@ def _protocol(ctx: _Ctx, spec, where: str) -> list:
     """Protocol segments from an array of segment tables or one preset table."""
     if isinstance(spec, dict):
         if "preset" not in spec:
-            raise ctx.error(where, "a [protocol] table needs preset = one of "
-                                   f"{', '.join(PROTOCOL_PRESETS)} (or use [[protocol]] "
-                                   "segments)")
+            raise ctx.error(
+                where,
+                "a [protocol] table needs preset = one of "
+                f"{', '.join(PROTOCOL_PRESETS)} (or use [[protocol]] "
+                "segments)",
+            )
         name = ctx.type_(f"{where} preset", spec["preset"], str)
         if name not in PROTOCOL_PRESETS:
-            raise ctx.error(f"{where} preset", f"unknown protocol preset {name!r}; allowed: "
-                                               f"{', '.join(PROTOCOL_PRESETS)}")
+            raise ctx.error(
+                f"{where} preset",
+                f"unknown protocol preset {name!r}; allowed: {', '.join(PROTOCOL_PRESETS)}",
+            )
         func, mapping = PROTOCOL_PRESETS[name]
         return list(_build_call(ctx, f"{where} ({name})", func, mapping, spec, "preset"))
     if not isinstance(spec, list) or not spec:
-        raise ctx.error(where, "must be [[protocol]] segment tables or a [protocol] table with "
-                               "a preset")
+        raise ctx.error(
+            where, "must be [[protocol]] segment tables or a [protocol] table with a preset"
+        )
     segments = []
     for i, seg in enumerate(spec, 1):
         at = f"{where} segment {i}"
@@ -316,8 +380,9 @@ def _protocol(ctx: _Ctx, spec, where: str) -> list:
             raise ctx.error(at, f"missing key 'segment' = one of {', '.join(SEGMENTS)}")
         kind = ctx.type_(f"{at} segment", seg["segment"], str)
         if kind not in SEGMENTS:
-            raise ctx.error(f"{at} segment", f"unknown segment {kind!r}; allowed: "
-                                             f"{', '.join(SEGMENTS)}")
+            raise ctx.error(
+                f"{at} segment", f"unknown segment {kind!r}; allowed: {', '.join(SEGMENTS)}"
+            )
         cls, mapping = SEGMENTS[kind]
         segments.append(_build_call(ctx, f"{at} ({kind})", cls, mapping, seg, "segment"))
     return segments
@@ -380,8 +445,7 @@ _RUN_KEYS = {"description", "preset", "params", "model", "protocol", "quick"}
 _RUN_QUICK_KEYS = {"params", "model", "protocol"}
 
 
-def _run_variant(ctx: _Ctx, data: dict, quick: dict | None, path: Path, raw: bytes
-                 ) -> RunSpec:
+def _run_variant(ctx: _Ctx, data: dict, quick: dict | None, path: Path, raw: bytes) -> RunSpec:
     """One variant of a run file; ``quick`` is the [quick] table it was merged with, if any."""
     quick_t = quick or {}
     name, base = _preset(ctx, data)
@@ -394,20 +458,32 @@ def _run_variant(ctx: _Ctx, data: dict, quick: dict | None, path: Path, raw: byt
     for key, value in model_t.items():
         where = f"[{'quick.' if key in in_quick else ''}model] {key}"
         model[{"dt_us": "dt"}.get(key, key)] = ctx.type_(where, value, _MODEL_KEYS[key])
-        if key == "seed" and value < 0:
-            raise ctx.error(where, f"{value} must be an integer ≥ 0")
+        bad = {
+            "seed": lambda v: v < 0,
+            "n_sim": lambda v: v < 1,
+            "dt_us": lambda v: not 0 < v < float("inf"),
+        }.get(key, lambda v: False)
+        if bad(value):
+            raise ctx.error(where, f"{value} must be {_MODEL_RANGES[key]}")
     if "protocol" not in data:
-        raise ctx.error("[protocol]", "missing: give [[protocol]] segments or a [protocol] "
-                                      "preset")
-    segments = _protocol(ctx, data["protocol"], "[quick.protocol]" if "protocol" in quick_t
-                         else "[protocol]")
+        raise ctx.error("[protocol]", "missing: give [[protocol]] segments or a [protocol] preset")
+    segments = _protocol(
+        ctx, data["protocol"], "[quick.protocol]" if "protocol" in quick_t else "[protocol]"
+    )
     description = ctx.type_("description", data.get("description", ""), str)
-    resolved = {"preset": name, "params": overrides, "model": model_t,
-                "protocol": data["protocol"]}
-    return RunSpec(path=path, text=raw, quick=quick is not None, preset=name,
-                   overrides=dict(overrides),
-                   params=params, model=model, protocol=segments, description=description,
-                   resolved=resolved)
+    resolved = {"preset": name, "params": overrides, "model": model_t, "protocol": data["protocol"]}
+    return RunSpec(
+        path=path,
+        text=raw,
+        quick=quick is not None,
+        preset=name,
+        overrides=dict(overrides),
+        params=params,
+        model=model,
+        protocol=segments,
+        description=description,
+        resolved=resolved,
+    )
 
 
 def load_run(path, *, quick: bool = False) -> RunSpec:
@@ -428,8 +504,9 @@ def load_run(path, *, quick: bool = False) -> RunSpec:
     full = _run_variant(ctx, {k: v for k, v in data.items() if k != "quick"}, None, path, raw)
     ctx.variant = " (in the --quick variant)"
     if "quick" in data:
-        fast = _run_variant(ctx, _merge(ctx, data, quick_t, ("params", "model")), quick_t,
-                            path, raw)
+        fast = _run_variant(
+            ctx, _merge(ctx, data, quick_t, ("params", "model")), quick_t, path, raw
+        )
     else:
         n = min(full.model.get("n_sim", full.params.array.count), 3)
         fast = dataclasses.replace(full, quick=True, model={**full.model, "n_sim": n})
@@ -441,8 +518,11 @@ def point_functions() -> dict[str, object]:
     """Point functions a sweep file may name: the ``*_point`` functions of gecko_agents.sweep."""
     from . import sweep
 
-    return {name: getattr(sweep, name) for name in sweep.__all__
-            if name.endswith("_point") and callable(getattr(sweep, name))}
+    return {
+        name: getattr(sweep, name)
+        for name in sweep.__all__
+        if name.endswith("_point") and callable(getattr(sweep, name))
+    }
 
 
 @dataclass(frozen=True)
@@ -477,8 +557,18 @@ class SweepSpec:
     description: str = ""
 
 
-_SWEEP_KEYS = {"description", "preset", "params", "point", "point_args", "grid", "seeds",
-               "out_dir", "workers", "quick"}
+_SWEEP_KEYS = {
+    "description",
+    "preset",
+    "params",
+    "point",
+    "point_args",
+    "grid",
+    "seeds",
+    "out_dir",
+    "workers",
+    "quick",
+}
 _SWEEP_QUICK_KEYS = {"params", "point_args", "grid", "seeds", "workers"}
 
 
@@ -493,8 +583,7 @@ def _sweep_variant(ctx: _Ctx, data: dict, quick: bool, path: Path, raw: bytes) -
         raise ctx.error("point", f"missing; name one of {', '.join(fns)}")
     point = ctx.type_("point", data["point"], str)
     if point not in fns:
-        raise ctx.error("point", f"unknown point function {point!r}; allowed: "
-                                 f"{', '.join(fns)}")
+        raise ctx.error("point", f"unknown point function {point!r}; allowed: {', '.join(fns)}")
     fn = fns[point]
     point_args = _table(ctx, data, "point_args")
     grid = _table(ctx, data, "grid")
@@ -502,35 +591,47 @@ def _sweep_variant(ctx: _Ctx, data: dict, quick: bool, path: Path, raw: bytes) -
     kwargs = [n for n in list(sig.parameters)[2:]]
     for key in point_args:
         if key not in kwargs:
-            raise ctx.error(f"[point_args] {key}", f"is not an argument of {point}; allowed: "
-                                                   f"{', '.join(kwargs)}")
+            raise ctx.error(
+                f"[point_args] {key}",
+                f"is not an argument of {point}; allowed: {', '.join(kwargs)}",
+            )
     for key, values in grid.items():
         if isinstance(values, list) and values and isinstance(values[0], dict):
             raise ctx.error(f"[grid] {key!r}", "must be a list of values")
-        if key.startswith(sweep.FN_PREFIX) and key[len(sweep.FN_PREFIX):] not in kwargs:
-            raise ctx.error(f"[grid] {key!r}", f"{key[len(sweep.FN_PREFIX):]!r} is not an "
-                                               f"argument of {point}; allowed: "
-                                               f"{', '.join(kwargs)}")
+        if key.startswith(sweep.FN_PREFIX) and key[len(sweep.FN_PREFIX) :] not in kwargs:
+            raise ctx.error(
+                f"[grid] {key!r}",
+                f"{key[len(sweep.FN_PREFIX) :]!r} is not an "
+                f"argument of {point}; allowed: "
+                f"{', '.join(kwargs)}",
+            )
         if not key.startswith(sweep.FN_PREFIX):
             kind = _override_kind(base, key)
             if kind is None:
-                raise ctx.error(f"[grid] {key!r}", "is not a parameter (see `gecko-agents "
-                                                   "params`) nor fn.<argument>")
+                raise ctx.error(
+                    f"[grid] {key!r}",
+                    "is not a parameter (see `gecko-agents params`) nor fn.<argument>",
+                )
             ctx.type_(f"[grid] {key!r}", values, list, "a list of values")
             for v in values:
                 ctx.type_(f"[grid] {key!r}", v, kind)
-    given = set(point_args) | {k[len(sweep.FN_PREFIX):] for k in grid
-                               if k.startswith(sweep.FN_PREFIX)}
+    given = set(point_args) | {
+        k[len(sweep.FN_PREFIX) :] for k in grid if k.startswith(sweep.FN_PREFIX)
+    }
     for pname, p in list(sig.parameters.items())[2:]:
         if p.default is inspect.Parameter.empty and pname not in given:
-            raise ctx.error("[point_args]", f"{point} needs {pname!r}: give it in [point_args] "
-                                            f"or sweep it as \"fn.{pname}\" in [grid]")
+            raise ctx.error(
+                "[point_args]",
+                f"{point} needs {pname!r}: give it in [point_args] "
+                f'or sweep it as "fn.{pname}" in [grid]',
+            )
     seeds = ctx.type_("seeds", data.get("seeds", [0]), list, "an array of integers ≥ 0")
     try:
         points = sweep.expand_grid(base, grid, seeds)
     except (ValueError, TypeError) as err:
-        raise ctx.error("[grid]" if "grid" in str(err) or "point" in str(err) else "seeds",
-                        str(err)) from None
+        raise ctx.error(
+            "[grid]" if "grid" in str(err) or "point" in str(err) else "seeds", str(err)
+        ) from None
     out_dir = Path(ctx.type_("out_dir", data.get("out_dir", f"sweeps/{path.stem}"), str))
     workers = data.get("workers")
     if workers is not None:
@@ -538,11 +639,23 @@ def _sweep_variant(ctx: _Ctx, data: dict, quick: bool, path: Path, raw: bytes) -
         if workers < 1:
             raise ctx.error("workers", f"{workers} must be an integer ≥ 1")
     description = ctx.type_("description", data.get("description", ""), str)
-    return SweepSpec(path=path, text=raw, quick=quick, preset=name, overrides=dict(overrides),
-                     base=base, point=point, point_fn=f"{fn.__module__}:{fn.__qualname__}",
-                     point_args=dict(point_args), grid=dict(grid), seeds=list(seeds),
-                     out_dir=out_dir, workers=workers, n_points=len(points),
-                     description=description)
+    return SweepSpec(
+        path=path,
+        text=raw,
+        quick=quick,
+        preset=name,
+        overrides=dict(overrides),
+        base=base,
+        point=point,
+        point_fn=f"{fn.__module__}:{fn.__qualname__}",
+        point_args=dict(point_args),
+        grid=dict(grid),
+        seeds=list(seeds),
+        out_dir=out_dir,
+        workers=workers,
+        n_points=len(points),
+        description=description,
+    )
 
 
 def load_sweep(path, *, quick: bool = False) -> SweepSpec:
@@ -557,11 +670,11 @@ def load_sweep(path, *, quick: bool = False) -> SweepSpec:
     ctx.keys("top level", data, _SWEEP_KEYS)
     quick_t = _table(ctx, data, "quick")
     ctx.keys("[quick]", quick_t, _SWEEP_QUICK_KEYS)
-    full = _sweep_variant(ctx, {k: v for k, v in data.items() if k != "quick"}, False, path,
-                          raw)
+    full = _sweep_variant(ctx, {k: v for k, v in data.items() if k != "quick"}, False, path, raw)
     ctx.variant = " (in the --quick variant)"
-    fast = _sweep_variant(ctx, _merge(ctx, data, quick_t, ("params", "point_args", "grid")),
-                          True, path, raw)
+    fast = _sweep_variant(
+        ctx, _merge(ctx, data, quick_t, ("params", "point_args", "grid")), True, path, raw
+    )
     return fast if quick else full
 
 
@@ -570,8 +683,14 @@ def _staging_dir(out: Path) -> Path:
     return out.parent / f".{out.name}.partial-{os.getpid()}"
 
 
-def execute_run(spec: RunSpec, out, *, animation: str | None = None, progress: bool = True,
-                argv: list[str] | None = None) -> tuple[Path, History]:
+def execute_run(
+    spec: RunSpec,
+    out,
+    *,
+    animation: str | None = None,
+    progress: bool = True,
+    argv: list[str] | None = None,
+) -> tuple[Path, History]:
     """Run a checked run file and write its run directory ``out``.
 
     The directory holds ``history.csv``, ``metadata.json`` and ``setae.npz``
@@ -587,10 +706,12 @@ def execute_run(spec: RunSpec, out, *, animation: str | None = None, progress: b
     the run raises (nothing is written then).
     """
     out = Path(out)
-    if out.exists() and not (out.is_dir() and ((out / RUN_FILE_NAME).is_file()
-                                               or not any(out.iterdir()))):
-        raise RunFileError(f"{out}: exists and is not a run directory (no {RUN_FILE_NAME}); "
-                           "choose another --out")
+    if out.exists() and not (
+        out.is_dir() and ((out / RUN_FILE_NAME).is_file() or not any(out.iterdir()))
+    ):
+        raise RunFileError(
+            f"{out}: exists and is not a run directory (no {RUN_FILE_NAME}); choose another --out"
+        )
     if animation not in (None, "gif", "mp4"):
         raise ValueError(f"animation = {animation!r} must be None, 'gif' or 'mp4'")
     kwargs = dict(spec.model)
@@ -603,10 +724,14 @@ def execute_run(spec: RunSpec, out, *, animation: str | None = None, progress: b
     try:
         history = model.run(spec.protocol, progress=progress)
         history.meta["run_file"] = {
-            "file": str(spec.path), "copy": RUN_FILE_NAME, "quick": spec.quick,
-            "description": spec.description, "resolved": spec.resolved,
+            "file": str(spec.path),
+            "copy": RUN_FILE_NAME,
+            "quick": spec.quick,
+            "description": spec.description,
+            "resolved": spec.resolved,
             "command": "gecko-agents run " + " ".join(argv or [str(spec.path)]),
-            "invariant_violations": invariant_violations(history)}
+            "invariant_violations": invariant_violations(history),
+        }
         history.save(stage)
         atomic_write_bytes(stage / RUN_FILE_NAME, spec.text)
         from . import render
