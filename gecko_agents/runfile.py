@@ -83,6 +83,7 @@ from __future__ import annotations
 
 import ast
 import dataclasses
+import importlib.util
 import inspect
 import os
 import re
@@ -680,7 +681,22 @@ def load_sweep(path, *, quick: bool = False) -> SweepSpec:
 
 # Running -----------------------------------------------------------------------------------------
 def _staging_dir(out: Path) -> Path:
+    """This process's hidden sibling of ``out``; removes those left by killed processes."""
+    for left in out.parent.glob(f".{out.name}.partial-*"):
+        pid = left.name.rsplit("-", 1)[-1]
+        if pid.isdigit() and int(pid) != os.getpid() and not _alive(int(pid)):
+            shutil.rmtree(left, ignore_errors=True)
     return out.parent / f".{out.name}.partial-{os.getpid()}"
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # exists but belongs to someone else
+        return True
+    return True
 
 
 def execute_run(
@@ -714,6 +730,11 @@ def execute_run(
         )
     if animation not in (None, "gif", "mp4"):
         raise ValueError(f"animation = {animation!r} must be None, 'gif' or 'mp4'")
+    if animation == "mp4" and importlib.util.find_spec("imageio_ffmpeg") is None:
+        raise RunFileError(
+            "--mp4 needs the ffmpeg binary from imageio-ffmpeg: pip install -e '.[video]' "
+            "(or use --gif)"
+        )
     kwargs = dict(spec.model)
     if animation:
         kwargs["record_setae"] = True

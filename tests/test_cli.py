@@ -316,3 +316,25 @@ def test_to_dataframe(tmp_path):
     assert list(df.columns) == list(history.SCALAR_COLUMNS) and len(df) == len(h)
     assert df["force_normal_uN"].min() == pytest.approx(-h.peak_pull_off)
     assert df.attrs["seed"] == 1
+
+
+def test_staging_dirs_of_killed_runs_are_cleared(tmp_path):
+    src = tmp_path / "study.toml"
+    src.write_text(GOOD)
+    left = tmp_path / ".out.partial-999999999"  # no such process
+    left.mkdir()
+    (left / "history.csv").write_text("half")
+    assert cli.main(["run", str(src), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out", "study.toml"]
+
+
+def test_mp4_without_ffmpeg_refused_before_stepping(tmp_path, monkeypatch, capsys):
+    import importlib.util
+
+    if importlib.util.find_spec("imageio_ffmpeg") is not None:
+        pytest.skip("imageio-ffmpeg is installed")
+    src = tmp_path / "study.toml"
+    src.write_text(GOOD)
+    _no_stepping(monkeypatch)
+    assert cli.main(["run", str(src), "--mp4", "--out", str(tmp_path / "out")]) == 2
+    assert "video" in capsys.readouterr().err
