@@ -261,8 +261,7 @@ class Model:
         self.z_touch = self.R + self.L * math.sin(self.theta)   # plate height: tip on h = 0
         touch_x = self.root_dx + self.L * math.cos(self.theta)
         margin = 50.0 + 3 * self.L
-        prof = floor.make_profile(p.floor.sigma, p.floor.correlation_length, n, p.array.pitch,
-                                  touch_x, margin, self.rng)
+        prof = floor.for_array(p.floor, touch_x, p.array.pitch, margin, self.rng)
         self.profile = prof
         self.pads = prof.pad_heights is not None
         start_gap = 0.5
@@ -696,7 +695,8 @@ class Model:
             # Return mapping: slide the anchor so the stick spring holds exactly the cap.
             self._anchor[0, ti] = qx[i] - xi_new * n_y
             self._anchor[1, ti] = qy[i] + xi_new * n_x
-            self._diss_step += float(np.sum(0.5 * self.k_t * (xi * xi - xi_new * xi_new)))
+            # Coulomb work of the slip: the anchor slides |ξ − ξ_new| against the cap.
+            self._diss_step += float(np.sum(cap * np.abs(xi - xi_new)))
             dn = -self.c_n * vn
             dt_ = np.where(sl, 0.0, -self.c_t * vt)
             ft = np.where(sl, -self.k_t * xi_new, trial) + dt_
@@ -818,7 +818,8 @@ class Model:
         dtg = vta * -self.c_t
         if any_sl:
             xi_new = np.where(sl, np.copysign(cap / k_t, xi), xi)
-            self._diss_step += 0.5 * k_t * float(np.sum((xi * xi - xi_new * xi_new)[sl]))
+            # Coulomb work of the slip: the anchor slides |ξ − ξ_new| against the cap.
+            self._diss_step += float(np.sum((cap * np.abs(xi - xi_new))[sl]))
             dtg[sl] = 0.0
             ft = np.where(sl, -k_t * xi_new, trial)
             ft += dtg
@@ -1422,7 +1423,7 @@ def _pads_kernel(data, rows, out, prm, h, cand, attached, slip, S, ext, pad_c, r
                 dtg = vx * -ct
                 if abs(trial) > cap:
                     xin = math.copysign(cap / kt, xi)
-                    diss += 0.5 * kt * (xi * xi - xin * xin)
+                    diss += cap * abs(xi - xin)   # Coulomb work of the slip
                     dtg = 0.0
                     ft = -kt * xin + dtg
                     sl = True

@@ -1,24 +1,30 @@
 """Fig 11a: maximum pull-off of the paper's 10⁷-seta array vs preload (σ = 1 µm).
 
-Two estimates of the same curve:
+Three estimates of the same curve:
 
-* **quasi-static, full array** — the paper's own method (eq 22–27, linear beam setae, stick/slip
-  friction): force-controlled press to the preload, then pull off, for all 10⁷ setae through
+* **quasi-static, full array, the paper's method** — eq 22–27 as the paper writes them: linear
+  beam setae, stick/slip with the paper's friction cap μ·max(P, 0) (eq 27), so a tip in tension
+  slides freely; force-controlled press to the preload, then pull off, for all 10⁷ setae through
   1000 weighted representative floor heights (< 0.2 % from 20 000 blocks; metadata.json holds a
   check). One sweep point = one preload × floor seed (``gecko_agents.sweep``: the preload is the
   grid's ``fn.preload_uN`` axis, the floor seed the sweep's seed).
-* **agent model, patch** — the pymunk model on a 16-seta patch with large-rotation ``rod``
+* **quasi-static, adhesive friction** — the same with this package's default cap μ|P + 2Fc|
+  (a contact in tension still holds shear): every touched tip stays stuck, so the seta's normal
+  stiffness is Ka·sin²θ + Kp·cos²θ instead of eq 20's Ky (45× stiffer), a preload is reached
+  with less plate travel and fewer setae touch; one floor seed.
+* **agent model, patch** — the pymunk model (adhesive friction) on a 16-seta patch with
+  large-rotation ``rod``
   setae (the paper's linear seta must stretch Fc/Ky ≈ 370 µm, 19 seta lengths, before its tip
   lets go: unphysical and ~5 min of simulated pulling per run), pressed to its share of the
   preload (preload × 16 / 10⁷) and scaled back × 10⁷ / 16, over a few floor seeds.
 
-Also the same quasi-static curve with the work of adhesion that Fig 5 implies
+Also the paper's-method curve with the work of adhesion that Fig 5 implies
 (w = 0.080 J/m², NOTES.md). Units: preload and pull-off in N (1 N = 10⁶ µN) on the plots and
 in the summary table; the sweep tables keep the package's µN.
 
-Outputs (``renders/fig11a_preload/``): ``sweep.csv`` + ``points/`` (quasi-static sweep),
-``alt_w0.080/`` and ``agent/`` (their sweeps), ``pull_off_vs_preload.csv`` (summary),
-``fig11a_preload.png``, ``metadata.json``.
+Outputs (``renders/fig11a_preload/``): ``sweep.csv`` + ``points/`` (the paper's method),
+``adhesive_friction/``, ``alt_w0.080/`` and ``agent/`` (their sweeps),
+``pull_off_vs_preload.csv`` (summary), ``fig11a_preload.png``, ``metadata.json``.
 """
 
 from __future__ import annotations
@@ -234,7 +240,8 @@ def main(argv=None) -> dict:
     t_start = time.perf_counter()
     cfg = config(args.quick)
     scale = FULL_COUNT / cfg["count"] / UN_PER_N      # µN on the simulated array → N on 10⁷
-    base = PAPER_ARRAY.replace(**{"array.count": cfg["count"]})
+    adhesive = PAPER_ARRAY.replace(**{"array.count": cfg["count"]})
+    base = adhesive.replace(**{"friction.law": "paper"})      # the paper's method (eq 27)
     alt = base.replace(**{"contact.w": W_ALT})
     ideal_N = FULL_COUNT * base.contact.pull_off_force / UN_PER_N
     ideal_alt_N = FULL_COUNT * alt.contact.pull_off_force / UN_PER_N
@@ -244,6 +251,11 @@ def main(argv=None) -> dict:
     qs_rows = quasistatic_sweep(base, {"floor.seed": cfg["floor_seeds"]}, cfg["preloads_N"],
                                 cfg, out, args, "quasi-static")
     times["quasistatic_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    adh_rows = quasistatic_sweep(adhesive, {"floor.seed": cfg["floor_seeds"][:1]},
+                                 cfg["preloads_N"], cfg, out / "adhesive_friction", args,
+                                 "adhesive friction")
+    times["adhesive_friction_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     alt_rows = quasistatic_sweep(alt, {"floor.seed": cfg["floor_seeds"][:1]},
                                  cfg["alt_preloads_N"], cfg, out / f"alt_w{W_ALT:.3f}", args,
@@ -258,17 +270,22 @@ def main(argv=None) -> dict:
     times["block_check_s"] = time.perf_counter() - t0
     times["point_compute_s"] = {
         "quasistatic": compute_seconds(out, qs_rows),
+        "adhesive_friction": compute_seconds(out / "adhesive_friction", adh_rows),
         "alternative": compute_seconds(out / f"alt_w{W_ALT:.3f}", alt_rows),
         "agent": compute_seconds(out / "agent", ag_rows)}
 
     qs = summarize(qs_rows, "pull_off_uN", scale)[None]
     frac = summarize(qs_rows, "attached_fraction", 1.0)[None]["mean"]
+    ad = summarize(adh_rows, "pull_off_uN", scale)[None]
     al = summarize(alt_rows, "pull_off_uN", scale)[None]
     ag = summarize(ag_rows, "pull_off_array_uN", 1 / UN_PER_N)[None]
     m, m_alt, m_ag = curve_metrics(qs), curve_metrics(al), curve_metrics(ag)
+    m_ad = curve_metrics(ad)
 
     table = []
-    for name, s in (("quasi-static", qs), (f"quasi-static w={W_ALT}", al),
+    for name, s in (("quasi-static paper's method", qs),
+                    ("quasi-static adhesive friction", ad),
+                    (f"quasi-static paper's method w={W_ALT}", al),
                     (f"agent rod patch n_sim={cfg['agent']['n_sim']}", ag)):
         for i, P in enumerate(s["preload_N"]):
             table.append({"series": name, "preload_N": P, "pull_off_mean_N": s["mean"][i],
@@ -283,10 +300,14 @@ def main(argv=None) -> dict:
             else f"{cfg['count']:.0e} setae × {FULL_COUNT // cfg['count']}")
     curves = [
         {"x": qs["preload_N"], "y": qs["mean"], "style": {"marker": "o", "ms": 3.5},
-         "label": f"quasi-static, {size}, w = {base.contact.work_of_adhesion:.4f} J/m² "
-                  f"({n_fl} floor{'s' * (n_fl > 1)})"},
+         "label": f"paper's method (eq 22–27, friction μ·max(P, 0)), quasi-static, {size}, "
+                  f"w = {base.contact.work_of_adhesion:.4f} J/m² ({n_fl} floor"
+                  f"{'s' * (n_fl > 1)})"},
+        {"x": ad["preload_N"], "y": ad["mean"], "style": {"ls": "-", "marker": "^", "ms": 3,
+                                                           "color": "#9467bd"},
+         "label": "adhesive friction μ|P + 2Fc| (this package's default), quasi-static"},
         {"x": al["preload_N"], "y": al["mean"], "style": {"ls": "--", "marker": "s", "ms": 3},
-         "label": f"quasi-static, w = {W_ALT:.3f} J/m² (Fig 5 reading)"},
+         "label": f"paper's method, w = {W_ALT:.3f} J/m² (Fig 5 reading)"},
         {"x": xs, "y": [ideal_N] * 2, "style": {"ls": ":", "color": "#7f7f7f"},
          "label": f"N·Fc = {ideal_N:.1f} N (equal sharing)"},
         {"x": xs, "y": [PAPER_SATURATION_N] * 2, "style": {"ls": "-.", "color": "black"},
@@ -308,7 +329,7 @@ def main(argv=None) -> dict:
         ax.errorbar(ag["preload_N"], ag["mean"], yerr=[ag["mean"] - ag["min"],
                                                        ag["max"] - ag["mean"]],
                     fmt="D", color="#2ca02c", ms=5, capsize=3,
-                    label=f"agent model, {cfg['agent']['n_sim']} rod setae × "
+                    label=f"agent model (adhesive friction), {cfg['agent']['n_sim']} rod setae × "
                           f"{FULL_COUNT / cfg['agent']['n_sim']:,.0f} (mean, range of "
                           f"{n_ag} floor{'s' * (n_ag > 1)})")
         ax.set_ylim(0, 1.12 * max(ideal_N, float(np.max(ag["max"]))))
@@ -328,19 +349,24 @@ def main(argv=None) -> dict:
     claims = [
         claim("Fig 11a", "pull-off saturates at ≈ 2.3 N above ≈ 1 N preload",
               f"{PAPER_SATURATION_N} N above {PAPER_ONSET_N:g} N preload",
-              f"quasi-static: saturation {m['saturation_N']:.1f} N "
+              f"paper's method (quasi-static, eq 22–27): saturation {m['saturation_N']:.1f} N "
               f"(= {m['saturation_N'] / ideal_N:.2f} N·Fc), 90 % of it at {fmt_p90(m)} "
-              f"preload; agent rod patch: {ag_last}",
+              f"preload",
               verdict1,
               f"With w = 2√(γ1γ2) = {w:.4f} J/m² every tip holds Fc = {fc:.2f} µN and the very "
               f"soft setae share the load almost equally, so the saturated array holds close to "
               f"N·Fc = {ideal_N:.1f} N, {m['saturation_N'] / PAPER_SATURATION_N:.0f}× the "
-              f"paper's level.",
+              f"paper's level. With adhesive friction μ|P + 2Fc| a touched tip stays stuck, "
+              f"its normal stiffness becomes Ka·sin²θ + Kp·cos²θ (45× eq 20's Ky), so a preload "
+              f"is reached with less travel and fewer setae touch: 90 % only at "
+              f"{fmt_p90(m_ad)}.",
               f"w = {W_ALT:.3f} J/m²: saturation {m_alt['saturation_N']:.1f} N "
-              f"(N·Fc = {ideal_alt_N:.1f} N), 90 % at {fmt_p90(m_alt)} preload"),
+              f"(N·Fc = {ideal_alt_N:.1f} N), 90 % at {fmt_p90(m_alt)} preload; adhesive "
+              f"friction: saturation {m_ad['saturation_N']:.1f} N, 90 % at {fmt_p90(m_ad)}; "
+              f"agent rod patch (adhesive friction): {ag_last}"),
         claim("Fig 11a, conclusion 3", "pull-off rises with preload, then saturates",
               "rises fast, then stable (≈ 2.3 N) above ≈ 1 N",
-              f"quasi-static: {m['first_N']:.1f} N at {m['first_preload_N']:.2g} N → "
+              f"paper's method: {m['first_N']:.1f} N at {m['first_preload_N']:.2g} N → "
               f"{m['saturation_N']:.1f} N at {m['last_preload_N']:.2g} N preload (last step "
               f"{m['last_step_change']:+.1%}); setae attached {frac[0]:.0%} → {frac[-1]:.0%}; "
               f"agent: {m_ag['first_N']:.1f} → {m_ag['saturation_N']:.1f} N",
@@ -351,7 +377,8 @@ def main(argv=None) -> dict:
               f"setae attached and the curve starts at "
               f"{m['first_N'] / m['saturation_N']:.0%} of saturation instead of near zero.",
               f"w = {W_ALT:.3f} J/m²: {m_alt['first_N']:.1f} N → {m_alt['saturation_N']:.1f} N "
-              f"(last step {m_alt['last_step_change']:+.1%})"),
+              f"(last step {m_alt['last_step_change']:+.1%}); adhesive friction: "
+              f"{m_ad['first_N']:.1f} → {m_ad['saturation_N']:.1f} N"),
     ]
 
     runtime = time.perf_counter() - t_start
@@ -360,6 +387,7 @@ def main(argv=None) -> dict:
         "preload_90_exact": m["preload_90_exact"], "ideal_N": ideal_N,
         "quasistatic": {k: v.tolist() for k, v in qs.items()},
         "attached_fraction": frac.tolist(),
+        "adhesive_friction": {**m_ad, "curve": {k: v.tolist() for k, v in ad.items()}},
         "alternative": {"w": W_ALT, "ideal_N": ideal_alt_N, **m_alt,
                         "curve": {k: v.tolist() for k, v in al.items()}},
         "agent": {**m_ag, "curve": {k: v.tolist() for k, v in ag.items()}},
@@ -368,7 +396,8 @@ def main(argv=None) -> dict:
     }
     write_json(out / "metadata.json", {
         "scenario": NAME, "quick": args.quick, "dask": args.dask,
-        "params": base.to_dict(), "alternative_params": alt.to_dict(),
+        "params": base.to_dict(), "adhesive_friction_params": adhesive.to_dict(),
+        "alternative_params": alt.to_dict(),
         "agent_params": PAPER_ARRAY.replace(**{"mechanics": "rod"}).to_dict(),
         "simulated_count": cfg["count"], "scaled_to_count": FULL_COUNT,
         "preloads_N": cfg["preloads_N"], "alternative_preloads_N": cfg["alt_preloads_N"],
@@ -382,8 +411,9 @@ def main(argv=None) -> dict:
     })
     if args.animate:
         animate_patch(PAPER_ARRAY, cfg, out)
-    print(f"{NAME}: saturation {m['saturation_N']:.2f} N (N·Fc {ideal_N:.2f} N), 90 % at "
-          f"{fmt_p90(m)}; w={W_ALT}: {m_alt['saturation_N']:.2f} N; agent {ag_last}; "
+    print(f"{NAME}: paper's method: saturation {m['saturation_N']:.2f} N (N·Fc {ideal_N:.2f} N), "
+          f"90 % at {fmt_p90(m)}; adhesive friction: 90 % at {fmt_p90(m_ad)}; "
+          f"w={W_ALT}: {m_alt['saturation_N']:.2f} N; agent {ag_last}; "
           f"{runtime:.0f} s → {out}")
     return result
 

@@ -1,13 +1,16 @@
 """Fig 11b: maximum pull-off of the 10⁷-seta array vs preload for σ = 0.5, 1, 1.5 µm.
 
-The quasi-static full-array curve of ``fig11a_preload`` (same solver, blocks, preloads and
-sweep layout: one point = one σ × preload × floor seed, the preload being the grid's
-``fn.preload_uN`` axis) for three RMS floor heights, plus the agent model's 16-seta ``rod`` patch at
-one preload (1 N) for each σ, and the quasi-static curve at a few preloads with
-w = 0.080 J/m² (the Fig 5 reading, NOTES.md).
+The quasi-static full-array curve of ``fig11a_preload`` by the paper's method (eq 22–27 with
+the friction cap μ·max(P, 0) of eq 27; same solver, blocks, preloads and sweep layout: one
+point = one σ × preload × floor seed, the preload being the grid's ``fn.preload_uN`` axis) for
+three RMS floor heights; as labelled alternatives, the same at a few preloads with this
+package's adhesive friction μ|P + 2Fc| and with w = 0.080 J/m² (the Fig 5 reading,
+NOTES.md); and the agent model's 16-seta ``rod`` patch (adhesive friction) at one preload
+(1 N) for each σ.
 
-Outputs (``renders/fig11b_roughness/``): ``sweep.csv`` + ``points/``, ``alt_w0.080/``,
-``agent/``, ``pull_off_vs_preload.csv``, ``fig11b_roughness.png``, ``metadata.json``.
+Outputs (``renders/fig11b_roughness/``): ``sweep.csv`` + ``points/``, ``adhesive_friction/``,
+``alt_w0.080/``, ``agent/``, ``pull_off_vs_preload.csv``, ``fig11b_roughness.png``,
+``metadata.json``.
 """
 
 from __future__ import annotations
@@ -67,7 +70,8 @@ def main(argv=None) -> dict:
     cfg = config(args.quick)
     full = f11a.FULL_COUNT
     scale = full / cfg["count"] / f11a.UN_PER_N
-    base = PAPER_ARRAY.replace(**{"array.count": cfg["count"]})
+    adhesive = PAPER_ARRAY.replace(**{"array.count": cfg["count"]})
+    base = adhesive.replace(**{"friction.law": "paper"})      # the paper's method (eq 27)
     alt = base.replace(**{"contact.w": f11a.W_ALT})
     ideal_N = full * base.contact.pull_off_force / f11a.UN_PER_N
     times = {}
@@ -77,6 +81,11 @@ def main(argv=None) -> dict:
     qs_rows = f11a.quasistatic_sweep(base, grid, cfg["preloads_N"], cfg, out, args,
                                      "quasi-static")
     times["quasistatic_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    adh_rows = f11a.quasistatic_sweep(adhesive, {"floor.sigma": SIGMAS, "floor.seed": [0]},
+                                      cfg["alt_preloads_N"], cfg, out / "adhesive_friction",
+                                      args, "adhesive friction")
+    times["adhesive_friction_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     alt_rows = f11a.quasistatic_sweep(alt, {"floor.sigma": SIGMAS, "floor.seed": [0]},
                                       cfg["alt_preloads_N"], cfg, out / f"alt_w{f11a.W_ALT:.3f}",
@@ -89,27 +98,33 @@ def main(argv=None) -> dict:
     times["agent_s"] = time.perf_counter() - t0
     times["point_compute_s"] = {
         "quasistatic": f11a.compute_seconds(out, qs_rows),
+        "adhesive_friction": f11a.compute_seconds(out / "adhesive_friction", adh_rows),
         "alternative": f11a.compute_seconds(out / f"alt_w{f11a.W_ALT:.3f}", alt_rows),
         "agent": f11a.compute_seconds(out / "agent", ag_rows)}
 
     qs = f11a.summarize(qs_rows, "pull_off_uN", scale, "floor.sigma")
     frac = f11a.summarize(qs_rows, "attached_fraction", 1.0, "floor.sigma")
     al = f11a.summarize(alt_rows, "pull_off_uN", scale, "floor.sigma")
+    ad = f11a.summarize(adh_rows, "pull_off_uN", scale, "floor.sigma")
     ag = f11a.summarize(ag_rows, "pull_off_array_uN", 1 / f11a.UN_PER_N, "floor.sigma")
     metrics = {s: f11a.curve_metrics(qs[s]) for s in SIGMAS}
     sat = [metrics[s]["saturation_N"] for s in SIGMAS]
     at_ref = [value_at(qs[s], AGENT_PRELOAD_N) for s in SIGMAS]
     alt_ref = [value_at(al[s], AGENT_PRELOAD_N) for s in SIGMAS]
+    adh_ref = [value_at(ad[s], AGENT_PRELOAD_N) for s in SIGMAS]
     ag_ref = [value_at(ag[s], AGENT_PRELOAD_N) for s in SIGMAS]
     # (frac's preload axis is in µN on the simulated array: index it through qs's)
     frac_ref = [float(frac[s]["mean"][nearest(qs[s]["preload_N"], AGENT_PRELOAD_N)])
                 for s in SIGMAS]
     n_dec, n_pre = decreasing_count([qs[s] for s in SIGMAS])
     n_dec_alt, n_pre_alt = decreasing_count([al[s] for s in SIGMAS])
+    n_dec_adh, n_pre_adh = decreasing_count([ad[s] for s in SIGMAS])
     sat_decreasing = bool(np.all(np.diff(sat) < 0))
 
     table = []
-    for name, curves in (("quasi-static", qs), (f"quasi-static w={f11a.W_ALT}", al),
+    for name, curves in (("quasi-static paper's method", qs),
+                         ("quasi-static adhesive friction", ad),
+                         (f"quasi-static paper's method w={f11a.W_ALT}", al),
                          (f"agent rod patch n_sim={cfg['agent']['n_sim']}", ag)):
         for sigma, s in curves.items():
             for i, P in enumerate(s["preload_N"]):
@@ -126,8 +141,13 @@ def main(argv=None) -> dict:
             else f"{cfg['count']:.0e} setae × {full // cfg['count']}")
     curves = [{"x": qs[s]["preload_N"], "y": qs[s]["mean"], "style": {"marker": "o", "ms": 3.5,
                                                                        "color": c},
-               "label": f"σ = {s:g} µm: quasi-static, {size} ({n_fl} floor{'s' * (n_fl > 1)})"}
+               "label": f"σ = {s:g} µm: paper's method (quasi-static, μ·max(P, 0)), {size} "
+                        f"({n_fl} floor{'s' * (n_fl > 1)})"}
               for s, c in zip(SIGMAS, COLOURS, strict=True)]
+    curves += [{"x": ad[s]["preload_N"], "y": ad[s]["mean"],
+                "style": {"ls": "--", "marker": "^", "ms": 3, "color": c, "alpha": 0.7},
+                "label": f"σ = {s:g} µm: adhesive friction μ|P + 2Fc|, quasi-static"}
+               for s, c in zip(SIGMAS, COLOURS, strict=True)]
     curves += [
         {"x": xs, "y": [ideal_N] * 2, "style": {"ls": ":", "color": "#7f7f7f"},
          "label": f"N·Fc = {ideal_N:.1f} N (equal sharing)"},
@@ -149,7 +169,8 @@ def main(argv=None) -> dict:
             ax.errorbar(a["preload_N"] * 1.07 ** (k - 1), a["mean"],
                         yerr=[a["mean"] - a["min"], a["max"] - a["mean"]], fmt="D", color=c,
                         mec="black", mew=0.6, ms=5, capsize=3,
-                        label=f"σ = {s:g} µm: agent, {cfg['agent']['n_sim']} rod setae × "
+                        label=f"σ = {s:g} µm: agent (adhesive friction), "
+                              f"{cfg['agent']['n_sim']} rod setae × "
                               f"{full / cfg['agent']['n_sim']:,.0f} ({n_ag} floor"
                               f"{'s' * (n_ag > 1)})")
         ax.set_ylim(0, 1.12 * ideal_N)
@@ -162,7 +183,7 @@ def main(argv=None) -> dict:
     claims = [claim(
         "Fig 11b, conclusion 4", "pull-off decreases with floor roughness (smoother is better)",
         f"peak pull-off higher for smaller σ at every preload (σ = {sig} µm)",
-        f"quasi-static, σ = {sig} µm: {slash(at_ref)} N at {AGENT_PRELOAD_N:g} N preload, "
+        f"paper's method, σ = {sig} µm: {slash(at_ref)} N at {AGENT_PRELOAD_N:g} N preload, "
         f"saturation {slash(sat)} N; decreasing with σ at {n_dec}/{n_pre} preloads; agent rod "
         f"patch at {AGENT_PRELOAD_N:g} N: {slash(ag_ref)} N",
         "trend reproduced" if n_dec == n_pre else "not reproducible from the stated parameters",
@@ -171,7 +192,9 @@ def main(argv=None) -> dict:
         f"the pull-off approaches N·Fc for every σ (saturation levels differ by only "
         f"{spread:.1%}).",
         f"w = {f11a.W_ALT:.3f} J/m²: {slash(alt_ref)} N at {AGENT_PRELOAD_N:g} N preload; "
-        f"decreasing with σ at {n_dec_alt}/{n_pre_alt} preloads")]
+        f"decreasing with σ at {n_dec_alt}/{n_pre_alt} preloads; adhesive friction: "
+        f"{slash(adh_ref)} N at {AGENT_PRELOAD_N:g} N, decreasing with σ at "
+        f"{n_dec_adh}/{n_pre_adh} preloads")]
 
     runtime = time.perf_counter() - t_start
     result = {
@@ -184,6 +207,10 @@ def main(argv=None) -> dict:
         "quasistatic": {str(s): {k: v.tolist() for k, v in qs[s].items()} for s in SIGMAS},
         "attached_fraction": {str(s): frac[s]["mean"].tolist() for s in SIGMAS},
         "attached_fraction_at_1N": frac_ref,
+        "adhesive_friction": {"pull_off_at_1N_N": adh_ref,
+                              "decreasing_at_preloads": [n_dec_adh, n_pre_adh],
+                              "curves": {str(s): {k: v.tolist() for k, v in ad[s].items()}
+                                         for s in SIGMAS}},
         "alternative": {"w": f11a.W_ALT, "pull_off_at_1N_N": alt_ref,
                         "decreasing_at_preloads": [n_dec_alt, n_pre_alt],
                         "curves": {str(s): {k: v.tolist() for k, v in al[s].items()}
@@ -194,7 +221,8 @@ def main(argv=None) -> dict:
     }
     write_json(out / "metadata.json", {
         "scenario": NAME, "quick": args.quick, "dask": args.dask,
-        "params": base.to_dict(), "alternative_params": alt.to_dict(),
+        "params": base.to_dict(), "adhesive_friction_params": adhesive.to_dict(),
+        "alternative_params": alt.to_dict(),
         "agent_params": PAPER_ARRAY.replace(**{"mechanics": "rod"}).to_dict(),
         "sigmas_um": SIGMAS, "simulated_count": cfg["count"], "scaled_to_count": full,
         "preloads_N": cfg["preloads_N"], "alternative_preloads_N": cfg["alt_preloads_N"],

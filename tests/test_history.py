@@ -73,6 +73,10 @@ def test_invariant_checks_catch_violations():
     h.setae["state"] = np.ones_like(h.setae["state"])
     h.setae["force_normal_uN"] = np.full((n, 3), -0.1 * Fc)
     h.setae["overlap_um"] = np.zeros((n, 3))
+    for c in ("energy_elastic_pJ", "energy_kinetic_pJ", "energy_dissipated_pJ"):
+        h.scalars[c] = np.abs(h.scalars[c])
+    h.scalars["work_plate_pJ"] = (h["energy_elastic_pJ"] + h["energy_kinetic_pJ"]
+                                  + h["energy_dissipated_pJ"])
     assert hist.invariant_violations(h) == []
     h.scalars["force_normal_uN"][2] = -1.5 * Fc
     h.scalars["energy_kinetic_pJ"][1] = np.nan
@@ -81,3 +85,16 @@ def test_invariant_checks_catch_violations():
     v = hist.invariant_violations(h)
     assert any("non-finite" in s for s in v) and any("n_attached·Fc" in s for s in v)
     assert any("δc" in s for s in v) and any("no tip is attached" in s for s in v)
+
+
+def test_energy_balance_check_catches_a_missing_term():
+    h = _toy()
+    for c in ("energy_elastic_pJ", "energy_kinetic_pJ", "energy_dissipated_pJ"):
+        h.scalars[c] = np.linspace(0.0, 1.0, len(h))
+    h.scalars["work_plate_pJ"] = 3.0 * np.linspace(0.0, 1.0, len(h))
+    assert hist.energy_balance_error(h) == 0.0
+    h.scalars["energy_dissipated_pJ"] = 1.1 * h["energy_dissipated_pJ"]   # over-booked 10 %
+    assert hist.energy_balance_error(h) == pytest.approx(0.1 / 3.0)
+    assert any("energy balance" in s for s in hist.invariant_violations(h))
+    assert not any("energy balance" in s
+                   for s in hist.invariant_violations(h, energy_rtol=None))

@@ -1,0 +1,23 @@
+"""Every history an agent run produces in the test suite passes the force-history invariants
+(energy balance included), whatever the test itself asserts."""
+
+import pytest
+
+from gecko_agents import history
+from gecko_agents.model import Model
+
+_run = Model.run
+
+
+def _checked_run(self, *args, **kwargs):
+    h = _run(self, *args, **kwargs)
+    if not self.external_force.any():   # probing forces do work the plate does not see
+        bad = history.invariant_violations(h)
+        assert bad == [], f"invariants violated: {bad}"
+    return h
+
+
+@pytest.fixture(autouse=True)
+def _invariants_on_every_history(monkeypatch):
+    monkeypatch.setattr(Model, "run", _checked_run)
+
