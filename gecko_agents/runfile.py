@@ -616,6 +616,10 @@ def _sweep_variant(ctx: _Ctx, data: dict, quick: bool, path: Path, raw: bytes) -
             ctx.type_(f"[grid] {key!r}", values, list, "a list of values")
             for v in values:
                 ctx.type_(f"[grid] {key!r}", v, kind)
+                try:
+                    base.replace(**{key: v})
+                except (ValueError, TypeError) as err:
+                    raise ctx.error(f"[grid] {key!r}", str(err)) from None
     given = set(point_args) | {
         k[len(sweep.FN_PREFIX) :] for k in grid if k.startswith(sweep.FN_PREFIX)
     }
