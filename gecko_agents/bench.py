@@ -18,7 +18,8 @@ Run ``python -m gecko_agents.bench`` (``--quick`` for a seconds-long smoke run).
   are split at jump-in / stick-slide / release boundaries; heights drawn inside the timing),
   for 2000 and 20 000 blocks, and for 20 000 plain block means;
 * the throughput of a sweep of CPU-bound points on a Dask LocalCluster with 2 workers
-  relative to 1 (skip with ``--no-dask``).
+  relative to 1 (:func:`gecko_agents.sweep_bench.benchmark_dask_scaling`; skip with
+  ``--no-dask``).
 
 The last line is always ``agent/pymunk ratio at N=<largest N>: X.XX``.
 """
@@ -50,7 +51,7 @@ def pressed_model(n: int, depth: float = 0.3, settle: int = 200, **kw) -> Model:
     m = Model(p, **kw)
     plate_y = m.z_touch - depth
     m.plate.position = (0.0, plate_y)
-    rest = m._root_offset + m.L * m.axis + np.array([0.0, plate_y])
+    rest = np.column_stack([m.world.rest_dx, m.world.rest_dy + plate_y])
     for body, xy in zip(m.tips, rest, strict=True):
         body.position = (float(xy[0]), float(xy[1]))
         body.velocity = (0.0, 0.0)
@@ -151,7 +152,7 @@ def main(argv=None) -> dict:
                   f"ms/step)  agent/pymunk {ra[k] / rp:.2f}")
     if not args.no_dask and not args.quick:
         try:
-            from .sweep import benchmark_dask_scaling
+            from .sweep_bench import benchmark_dask_scaling
             d = benchmark_dask_scaling(n_points=8, work_s=0.5)
         except ImportError as err:
             print(f"sweep on Dask: skipped ({err})")

@@ -24,6 +24,16 @@ method on every platform), serially in this process (``n_workers=1``), or on Das
 (``dask="local"`` or ``dask="tcp://host:port"``; ``pip install -e '.[dask]'``). Workers import
 ``point_fn`` by name, so it must be a top-level function of an importable module; a script
 that runs a sweep in local processes needs the usual ``if __name__ == "__main__":`` guard.
+
+This module is the engine only: point functions live with the studies that use them. A point
+function may live in a plain module on ``sys.path`` rather than in the package, e.g. a
+scenario's shared module ``scenarios/_preload.py`` (name ``"_preload:quasistatic_preload_point"``):
+local worker processes and a Dask LocalCluster start with this process's ``sys.path``, and for a
+remote scheduler such a file module is sent to the workers (``Client.upload_file``). The cheap
+test and benchmark points are in :mod:`gecko_agents.sweep_bench`.
+
+Command line: ``gecko-agents sweep SWEEPFILE.toml`` (``python -m gecko_agents.sweep`` is the
+same command).
 """
 
 from __future__ import annotations
@@ -37,7 +47,7 @@ import itertools
 import json
 import multiprocessing
 import os
-import tempfile
+import sys
 import time
 import traceback
 from collections.abc import Callable, Sequence
@@ -52,8 +62,16 @@ import numpy as np
 from .history import atomic_write_bytes, versions
 from .params import SetaArray
 
-__all__ = ["SweepPoint", "expand_grid", "point_key", "run_sweep", "parse_dask_arg",
-           "DaskArgError", "analytic_point", "cpu_bound_point", "benchmark_dask_scaling"]
+__all__ = [
+    "SweepPoint",
+    "expand_grid",
+    "point_key",
+    "run_sweep",
+    "parse_dask_arg",
+    "DaskArgError",
+    "import_distributed",
+    "main",
+]
 
 _DASK_HINT = "install it with: pip install -e '.[dask]'"
 FN_PREFIX = "fn."
@@ -87,8 +105,9 @@ def _canonical_json(obj) -> str:
     return json.dumps(obj, sort_keys=True, separators=(",", ":"), allow_nan=True)
 
 
-def expand_grid(base: SetaArray, grid: dict[str, Sequence], seeds: Sequence[int]
-                ) -> list[SweepPoint]:
+def expand_grid(
+    base: SetaArray, grid: dict[str, Sequence], seeds: Sequence[int]
+) -> list[SweepPoint]:
     """Every point of ``grid`` × ``seeds``, each with its validated parameter set.
 
     Order: :func:`itertools.product` over the grid's values in the dict's order (the first name
@@ -105,8 +124,9 @@ def expand_grid(base: SetaArray, grid: dict[str, Sequence], seeds: Sequence[int]
     if not isinstance(base, SetaArray):
         raise TypeError(f"base must be a SetaArray, got {type(base).__name__}")
     if not isinstance(grid, dict):
-        raise TypeError(f"grid must be a dict of parameter name → list of values, got "
-                        f"{type(grid).__name__}")
+        raise TypeError(
+            f"grid must be a dict of parameter name → list of values, got {type(grid).__name__}"
+        )
     values: dict[str, list] = {}
     for name, vals in grid.items():
         if isinstance(vals, np.ndarray) and vals.ndim == 1:
@@ -120,14 +140,17 @@ def expand_grid(base: SetaArray, grid: dict[str, Sequence], seeds: Sequence[int]
         if repeated:
             raise ValueError(f"sweep grid[{name!r}] repeats the value(s) {repeated}")
         if name.startswith(FN_PREFIX):
-            if not name[len(FN_PREFIX):].isidentifier():
-                raise ValueError(f"sweep grid[{name!r}]: {name[len(FN_PREFIX):]!r} is not a "
-                                 "keyword argument name")
+            if not name[len(FN_PREFIX) :].isidentifier():
+                raise ValueError(
+                    f"sweep grid[{name!r}]: {name[len(FN_PREFIX) :]!r} is not a "
+                    "keyword argument name"
+                )
             try:
                 _canonical_json(vals)
             except TypeError as err:
-                raise ValueError(f"sweep grid[{name!r}] values must be JSON-serialisable: "
-                                 f"{err}") from err
+                raise ValueError(
+                    f"sweep grid[{name!r}] values must be JSON-serialisable: {err}"
+                ) from err
             values[name] = vals
             continue
         try:
@@ -149,17 +172,20 @@ def expand_grid(base: SetaArray, grid: dict[str, Sequence], seeds: Sequence[int]
     seen: dict[str, dict] = {}
     for combo in itertools.product(*values.values()):
         overrides = dict(zip(values, combo, strict=True))
-        fn_over = {k[len(FN_PREFIX):]: v for k, v in overrides.items() if k.startswith(FN_PREFIX)}
+        fn_over = {k[len(FN_PREFIX) :]: v for k, v in overrides.items() if k.startswith(FN_PREFIX)}
         try:
-            params = base.replace(**{k: v for k, v in overrides.items()
-                                     if not k.startswith(FN_PREFIX)})
+            params = base.replace(
+                **{k: v for k, v in overrides.items() if not k.startswith(FN_PREFIX)}
+            )
         except (ValueError, TypeError) as err:
             raise ValueError(f"sweep point {overrides}: {err}") from err
         for seed in seeds:
             ident = _canonical_json([params.to_dict(), fn_over, seed])
             if ident in seen:
-                raise ValueError(f"sweep points {seen[ident]} and {overrides} have identical "
-                                 f"parameters (seed {seed})")
+                raise ValueError(
+                    f"sweep points {seen[ident]} and {overrides} have identical "
+                    f"parameters (seed {seed})"
+                )
             seen[ident] = overrides
             points.append(SweepPoint(overrides, seed, params, fn_over))
     return points
@@ -167,8 +193,9 @@ def expand_grid(base: SetaArray, grid: dict[str, Sequence], seeds: Sequence[int]
 
 def point_key(fn_name: str, fn_kwargs: dict, params: SetaArray, seed: int) -> str:
     """16 hex digits of the sha256 of the canonical JSON of (fn_name, fn_kwargs, params, seed)."""
-    text = _canonical_json({"point_fn": fn_name, "fn_kwargs": fn_kwargs,
-                            "params": params.to_dict(), "seed": seed})
+    text = _canonical_json(
+        {"point_fn": fn_name, "fn_kwargs": fn_kwargs, "params": params.to_dict(), "seed": seed}
+    )
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -197,15 +224,18 @@ def _resolve_point_fn(point_fn) -> tuple[Callable, str]:
     except ValueError:
         found = None
     if found is not point_fn:
-        raise ValueError(f"point_fn {point_fn!r} must be a top-level function of an importable "
-                         f"module (workers import it by name), not a lambda or local function")
+        raise ValueError(
+            f"point_fn {point_fn!r} must be a top-level function of an importable "
+            f"module (workers import it by name), not a lambda or local function"
+        )
     return point_fn, name
 
 
 def _check_result(result, reserved: set[str]) -> dict:
     if not isinstance(result, dict):
-        raise TypeError(f"point_fn returned {type(result).__name__}, expected a dict of "
-                        f"result name → number")
+        raise TypeError(
+            f"point_fn returned {type(result).__name__}, expected a dict of result name → number"
+        )
     row = {}
     for name, value in result.items():
         value = _plain(value)
@@ -219,34 +249,54 @@ def _check_result(result, reserved: set[str]) -> dict:
     return row
 
 
-def _run_point(fn: Callable, fn_name: str, fn_kwargs: dict, point: SweepPoint, key: str
-               ) -> dict:
+def _run_point(fn: Callable, fn_name: str, fn_kwargs: dict, point: SweepPoint, key: str) -> dict:
     """Run one point (in a worker) and return its record; a raising point_fn gives "error"."""
     t0 = time.perf_counter()
-    record = {"key": key, "point_fn": fn_name, "fn_kwargs": fn_kwargs,
-              "overrides": point.overrides, "seed": point.seed,
-              "params": point.params.to_dict(), "status": "ok", "result": {}, "error": None,
-              "traceback": None}
+    record = {
+        "key": key,
+        "point_fn": fn_name,
+        "fn_kwargs": fn_kwargs,
+        "overrides": point.overrides,
+        "seed": point.seed,
+        "params": point.params.to_dict(),
+        "status": "ok",
+        "result": {},
+        "error": None,
+        "traceback": None,
+    }
     try:
         result = fn(point.params, point.seed, **(fn_kwargs | point.fn_overrides))
-        record["result"] = _check_result(result, {"key", "seed", "status", "error",
-                                                  *point.overrides})
+        record["result"] = _check_result(
+            result, {"key", "seed", "status", "error", *point.overrides}
+        )
     except Exception as err:
-        record.update(status="error", error=f"{type(err).__name__}: {err}",
-                      traceback=traceback.format_exc())
+        record.update(
+            status="error", error=f"{type(err).__name__}: {err}", traceback=traceback.format_exc()
+        )
     record["elapsed_s"] = time.perf_counter() - t0
     record["versions"] = versions()
     return record
 
 
-def _failed_record(fn_name: str, fn_kwargs: dict, point: SweepPoint, key: str,
-                   err: BaseException) -> dict:
+def _failed_record(
+    fn_name: str, fn_kwargs: dict, point: SweepPoint, key: str, err: BaseException
+) -> dict:
     """Record for a point whose worker died or whose task could not be sent."""
     tb = "".join(traceback.format_exception(err))
-    return {"key": key, "point_fn": fn_name, "fn_kwargs": fn_kwargs,
-            "overrides": point.overrides, "seed": point.seed, "params": point.params.to_dict(),
-            "status": "error", "result": {}, "error": f"{type(err).__name__}: {err}",
-            "traceback": tb, "elapsed_s": None, "versions": versions()}
+    return {
+        "key": key,
+        "point_fn": fn_name,
+        "fn_kwargs": fn_kwargs,
+        "overrides": point.overrides,
+        "seed": point.seed,
+        "params": point.params.to_dict(),
+        "status": "error",
+        "result": {},
+        "error": f"{type(err).__name__}: {err}",
+        "traceback": tb,
+        "elapsed_s": None,
+        "versions": versions(),
+    }
 
 
 def _read_record(path: Path, key: str) -> dict | None:
@@ -257,12 +307,12 @@ def _read_record(path: Path, key: str) -> dict | None:
     return record if isinstance(record, dict) and record.get("key") == key else None
 
 
-def _import_distributed():
+def import_distributed():
+    """The ``distributed`` module, or an ImportError saying how to install it."""
     try:
         import distributed
     except ImportError as err:
-        raise ImportError(f"running a sweep on Dask needs dask.distributed; {_DASK_HINT}"
-                          ) from err
+        raise ImportError(f"running a sweep on Dask needs dask.distributed; {_DASK_HINT}") from err
     return distributed
 
 
@@ -287,16 +337,32 @@ def parse_dask_arg(s: str | None) -> str | None:
     except ValueError:
         port = None
         parts = None
-    if (parts is None or parts.scheme != "tcp" or not parts.hostname or port is None
-            or parts.path not in ("", "/")):
-        raise DaskArgError(f"--dask {s!r} must be 'local' (a LocalCluster on this machine) or "
-                           f"'tcp://host:port' (the address of a running dask scheduler)")
+    if (
+        parts is None
+        or parts.scheme != "tcp"
+        or not parts.hostname
+        or port is None
+        or parts.path not in ("", "/")
+    ):
+        raise DaskArgError(
+            f"--dask {s!r} must be 'local' (a LocalCluster on this machine) or "
+            f"'tcp://host:port' (the address of a running dask scheduler)"
+        )
     return s
 
 
-def run_sweep(point_fn, base: SetaArray, grid: dict[str, Sequence], seeds: Sequence[int],
-              out_dir, *, fn_kwargs: dict | None = None, dask: str | None = None,
-              n_workers: int | None = None, progress: bool = True) -> list[dict]:
+def run_sweep(
+    point_fn,
+    base: SetaArray,
+    grid: dict[str, Sequence],
+    seeds: Sequence[int],
+    out_dir,
+    *,
+    fn_kwargs: dict | None = None,
+    dask: str | None = None,
+    n_workers: int | None = None,
+    progress: bool = True,
+) -> list[dict]:
     """Run every point of ``grid`` × ``seeds`` that is not already stored, then write sweep.csv.
 
     Parameters
@@ -332,31 +398,41 @@ def run_sweep(point_fn, base: SetaArray, grid: dict[str, Sequence], seeds: Seque
     try:
         _canonical_json(fn_kwargs)
     except TypeError as err:
-        raise ValueError(f"fn_kwargs must be JSON-serialisable (they are part of each point's "
-                         f"key): {err}") from err
+        raise ValueError(
+            f"fn_kwargs must be JSON-serialisable (they are part of each point's key): {err}"
+        ) from err
     dask = parse_dask_arg(dask)
-    if n_workers is not None and (isinstance(n_workers, bool) or not isinstance(n_workers, int)
-                                  or n_workers < 1):
+    if n_workers is not None and (
+        isinstance(n_workers, bool) or not isinstance(n_workers, int) or n_workers < 1
+    ):
         raise ValueError(f"n_workers = {n_workers!r} must be an integer ≥ 1")
     if dask is not None and dask != "local" and n_workers is not None:
-        raise ValueError(f"n_workers cannot be set with dask={dask!r}: the scheduler's own "
-                         f"workers run the points")
+        raise ValueError(
+            f"n_workers cannot be set with dask={dask!r}: the scheduler's own "
+            f"workers run the points"
+        )
     if dask is not None:
-        _import_distributed()
+        import_distributed()
     n_workers = n_workers or os.cpu_count() or 1
 
     out = Path(out_dir)
     point_dir = out / "points"
     keys = [point_key(fn_name, fn_kwargs | p.fn_overrides, p.params, p.seed) for p in points]
-    done = {k for k in keys
-            if (_read_record(point_dir / f"{k}.json", k) or {}).get("status") == "ok"}
+    done = {
+        k for k in keys if (_read_record(point_dir / f"{k}.json", k) or {}).get("status") == "ok"
+    }
     todo = [(p, k) for p, k in zip(points, keys, strict=True) if k not in done]
     point_dir.mkdir(parents=True, exist_ok=True)
 
     from tqdm.auto import tqdm
 
-    bar = tqdm(total=len(points), initial=len(points) - len(todo), disable=not progress,
-               desc="sweep", unit="point")
+    bar = tqdm(
+        total=len(points),
+        initial=len(points) - len(todo),
+        disable=not progress,
+        desc="sweep",
+        unit="point",
+    )
     n_errors = 0
 
     def finish(record: dict) -> None:
@@ -378,8 +454,9 @@ def run_sweep(point_fn, base: SetaArray, grid: dict[str, Sequence], seeds: Seque
             ctx = multiprocessing.get_context("spawn")
             pool = ProcessPoolExecutor(max_workers=min(n_workers, len(todo)), mp_context=ctx)
             try:
-                futures = {pool.submit(_run_point, fn, fn_name, fn_kwargs, p, k): (p, k)
-                           for p, k in todo}
+                futures = {
+                    pool.submit(_run_point, fn, fn_name, fn_kwargs, p, k): (p, k) for p, k in todo
+                }
                 for fut in futures_as_completed(futures):
                     finish(_collect(fut, fn_name, fn_kwargs, *futures[fut]))
             finally:
@@ -399,17 +476,27 @@ def _collect(fut, fn_name: str, fn_kwargs: dict, point: SweepPoint, key: str) ->
 
 
 def _run_dask(address: str, n_workers: int, todo, fn, fn_name, fn_kwargs, finish) -> None:
-    distributed = _import_distributed()
+    distributed = import_distributed()
     cluster = None
     if address == "local":
-        cluster = distributed.LocalCluster(n_workers=min(n_workers, len(todo)),
-                                           threads_per_worker=1, processes=True,
-                                           host="127.0.0.1", dashboard_address=None)
+        cluster = distributed.LocalCluster(
+            n_workers=min(n_workers, len(todo)),
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=None,
+        )
         address = cluster
     try:
         with distributed.Client(address) as client:
-            futures = {client.submit(_run_point, fn, fn_name, fn_kwargs, p, k, pure=False,
-                                     key=f"sweep-point-{k}"): (p, k) for p, k in todo}
+            if cluster is None:
+                _ship_file_module(client, fn)
+            futures = {
+                client.submit(
+                    _run_point, fn, fn_name, fn_kwargs, p, k, pure=False, key=f"sweep-point-{k}"
+                ): (p, k)
+                for p, k in todo
+            }
             for fut in distributed.as_completed(futures):
                 finish(_collect(fut, fn_name, fn_kwargs, *futures[fut]))
     finally:
@@ -417,8 +504,26 @@ def _run_dask(address: str, n_workers: int, todo, fn, fn_name, fn_kwargs, finish
             cluster.close()
 
 
-def _write_table(path: Path, points: list[SweepPoint], keys: list[str], names: list[str],
-                 point_dir: Path) -> list[dict]:
+def _ship_file_module(client, fn) -> None:
+    """Send ``fn``'s module to a remote scheduler's workers if it is a plain file module.
+
+    A point function from a module outside any package (e.g. ``scenarios/_preload.py``) is
+    importable here only because its folder is on ``sys.path``; workers started elsewhere get
+    the file with :meth:`distributed.Client.upload_file`. Package modules (gecko_agents itself)
+    must be installed on the workers.
+    """
+    module = sys.modules.get(getattr(fn, "__module__", "") or "")
+    path = getattr(module, "__file__", None)
+    if module is None or path is None or "." in module.__name__ or module.__name__ == "__main__":
+        return
+    if getattr(module, "__package__", "") or Path(path).name == "__init__.py":
+        return
+    client.upload_file(path)
+
+
+def _write_table(
+    path: Path, points: list[SweepPoint], keys: list[str], names: list[str], point_dir: Path
+) -> list[dict]:
     """Gather the point files of this sweep into ``sweep.csv``; return its rows as dicts."""
     records = [_read_record(point_dir / f"{k}.json", k) for k in keys]
     fields: list[str] = []
@@ -452,164 +557,47 @@ def _cell(value) -> str:
     return str(value)
 
 
-# Point functions -------------------------------------------------------------------------------
-
-def analytic_point(params: SetaArray, seed: int) -> dict[str, float]:
-    """A cheap closed-form result row (for tests and demos); the seed draws the floor.
-
-    Returns
-    -------
-    ``pull_off_single_uN`` JKR pull-off of one tip Fc [µN]; ``snap_off_overlap_um`` δc [µm]
-    (< 0); ``pull_off_ideal_array_uN`` N·Fc, all setae letting go together [µN];
-    ``mean_floor_height_um`` mean of 1000 floor heights drawn with
-    ``numpy.random.default_rng(seed)`` and σ = ``params.floor.sigma`` [µm].
-    """
-    from .floor import seta_heights
-
-    fc = params.contact.pull_off_force
-    heights = seta_heights(1000, params.floor.sigma, np.random.default_rng(seed))
-    return {"pull_off_single_uN": fc,
-            "snap_off_overlap_um": params.contact.snap_off_overlap,
-            "pull_off_ideal_array_uN": params.array.count * fc,
-            "mean_floor_height_um": float(np.mean(heights))}
-
-
-def cpu_bound_point(params: SetaArray, seed: int, *, repeats: int = 300,
-                    n_overlaps: int = 10_000) -> dict[str, float]:
-    """A CPU-bound point for benchmarks: ``repeats`` JKR force curves of ``n_overlaps`` overlaps.
-
-    Each repeat evaluates :func:`gecko_agents.jkr.force_from_overlap` on overlaps drawn
-    uniformly in [δc, 1 µm] with ``numpy.random.default_rng(seed)`` (≈ 1.5 ms per repeat for
-    10⁴ overlaps on one core; arrays that small stay in cache, so the work is arithmetic, not
-    memory traffic). Returns the mean force [µN] and the most tensile force [µN].
-    """
-    from . import jkr
-
-    rng = np.random.default_rng(seed)
-    args = params.contact.jkr_args()
-    lo = params.contact.snap_off_overlap
-    total, lowest = 0.0, np.inf
-    for _ in range(int(repeats)):
-        force = jkr.force_from_overlap(rng.uniform(lo, 1.0, int(n_overlaps)), *args)
-        total += float(force.mean())
-        lowest = min(lowest, float(force.min()))
-    return {"mean_force_uN": total / max(int(repeats), 1), "min_force_uN": lowest}
-
-
-def _warm_up() -> None:
-    importlib.import_module("gecko_agents.sweep")
-
-
-def benchmark_dask_scaling(n_points: int = 8, work_s: float = 0.5,
-                           base: SetaArray | None = None) -> dict[str, float]:
-    """Wall time of one sweep of CPU-bound points on a Dask LocalCluster of 1, then 2 workers.
-
-    The amount of work is fixed, not timed: one repeat of :func:`cpu_bound_point` is timed here
-    and ``repeats`` chosen so that a point takes about ``work_s`` [s] on an idle core. Each
-    cluster is started and its workers have imported gecko_agents before the clock starts; the
-    sweep writes into a temporary directory that is removed afterwards.
-
-    Returns
-    -------
-    ``{"t1_s": wall time with 1 worker [s], "t2_s": with 2 workers [s],
-    "speedup": t1_s / t2_s, "repeats": repeats per point}``.
-    """
-    distributed = _import_distributed()
-    from .params import PAPER_TABLE1
-
-    base = PAPER_TABLE1 if base is None else base
-    cpu_bound_point(base, 0, repeats=3)  # warm up (first calls are slower)
-    t0 = time.perf_counter()
-    cpu_bound_point(base, 0, repeats=30)
-    repeats = max(1, round(work_s / ((time.perf_counter() - t0) / 30)))
-    seeds = list(range(n_points))
-    times = {}
-    with tempfile.TemporaryDirectory(prefix="gecko_sweep_bench_") as tmp:
-        for n in (1, 2):
-            with (distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                           host="127.0.0.1", dashboard_address=None) as cluster,
-                  distributed.Client(cluster) as client):
-                client.run(_warm_up)
-                t0 = time.perf_counter()
-                run_sweep(cpu_bound_point, base, {}, seeds, Path(tmp) / f"workers_{n}",
-                          fn_kwargs={"repeats": repeats}, dask=cluster.scheduler_address,
-                          progress=False)
-                times[n] = time.perf_counter() - t0
-    return {"t1_s": times[1], "t2_s": times[2], "speedup": times[1] / times[2],
-            "repeats": repeats}
-
-
-# Preload sweeps (paper Fig 11) -----------------------------------------------------------------
+# Point functions named by sweep files ----------------------------------------------------------
 #
-# The preload is a protocol quantity: sweep it with the grid name "fn.preload_uN". The seed
-# draws the floor.
-
-def quasistatic_preload_point(params: SetaArray, seed: int, *, preload_uN: float,
-                              n_blocks: int = 1000, retract_steps: int | None = None,
-                              lateral: str = "coupled") -> dict[str, float]:
-    """Force-controlled press and pull-off of the whole array with the quasi-static solver.
-
-    The ``params.array.count`` floor heights (σ = ``params.floor.sigma``, drawn with
-    ``numpy.random.default_rng(seed)``) are reduced to ``n_blocks`` weighted
-    representative heights (:func:`gecko_agents.quasistatic.representative_heights`; 1000
-    blocks reproduce 20 000 to < 0.2 % for the paper's array) and pressed until the total
-    normal force is ``preload_uN`` [µN] (:func:`gecko_agents.quasistatic.preload_pull`), then pulled
-    off in up to ``retract_steps`` plate steps (default 4000; for the paper's array 2000 changes
-    the pull-off by < 0.05 %, 500 by < 0.3 %).
-
-    Returns
-    -------
-    ``preload_uN`` compressive force reached [µN]; ``pull_off_uN`` maximum tensile force [µN];
-    ``pull_off_per_seta_uN`` the same per seta of the array [µN]; ``pull_off_over_ideal``
-    pull-off / (N·Fc) [-]; ``attached_fraction`` largest fraction of setae attached [-].
-    """
-    from . import quasistatic
-
-    n = params.array.count
-    rng = np.random.default_rng(seed)
-    heights, weights = quasistatic.representative_heights(n, params.floor.sigma, rng, n_blocks)
-    res = quasistatic.preload_pull(params, heights, float(preload_uN), weights=weights,
-                                   lateral=lateral, retract_steps=retract_steps)
-    return {"preload_uN": res.preload, "pull_off_uN": res.pull_off,
-            "pull_off_per_seta_uN": res.pull_off / n,
-            "pull_off_over_ideal": res.pull_off / (n * params.contact.pull_off_force),
-            "attached_fraction": float(res.n_attached.max()) / n}
+# gecko_agents.runfile.point_functions lists the ``*_point`` names of this module's __all__, so
+# sweep files (examples/*.toml) name these. They live elsewhere and are imported on first use;
+# this table is the only trace of them here. The preload points are the Fig 11 study's, in
+# scenarios/_preload.py, so they are offered only from a source checkout that has that file.
+_POINT_HOMES = {
+    "analytic_point": "gecko_agents.sweep_bench",
+    "cpu_bound_point": "gecko_agents.sweep_bench",
+    "quasistatic_preload_point": "_preload",
+    "agent_preload_point": "_preload",
+}
+_SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
+__all__ += [
+    name
+    for name, home in _POINT_HOMES.items()
+    if home.startswith("gecko_agents.") or (_SCENARIOS / f"{home}.py").is_file()
+]
 
 
-def agent_preload_point(params: SetaArray, seed: int, *, preload_uN: float, n_sim: int = 16,
-                        speed: float = 0.02) -> dict[str, float]:
-    """Force-controlled press and pull-off of an ``n_sim``-seta patch with the agent model.
-
-    ``preload_uN`` is the preload on the whole array of ``params.array.count`` setae [µN]; the
-    patch gets its share, ``preload_uN · n_sim / count``, and its pull-off is scaled back by
-    ``count / n_sim``. The patch's floor is drawn from ``seed``. Protocol:
-    :class:`~gecko_agents.protocol.Press` to the patch preload at ``speed`` [µm/µs], then a
-    vertical :class:`~gecko_agents.protocol.PullOff` at the same speed.
-
-    Returns
-    -------
-    ``preload_patch_uN`` target on the patch [µN]; ``preload_held_uN`` force at the deepest
-    plate position [µN] (a small patch cannot hit a preload finer than one contact's jump-in);
-    ``pull_off_patch_uN`` peak tensile force of the patch [µN]; ``pull_off_array_uN`` that ×
-    count / n_sim [µN]; ``pull_off_per_seta_uN`` [µN]; ``attached_fraction`` largest fraction
-    of the patch attached [-]; ``n_steps`` time steps; ``max_kinetic_to_elastic`` peak kinetic
-    / peak elastic energy (quasi-static if ≪ 1).
-    """
-    from .model import Model
-    from .protocol import Press, PullOff
-
-    count = params.array.count
-    target = preload_uN * n_sim / count
-    model = Model(params, n_sim=n_sim, seed=seed)
-    hist = model.run([Press(target, speed), PullOff(speed)], progress=False)
-    y = hist["plate_y_um"]
-    held = float(hist["force_normal_uN"][np.flatnonzero(y <= y.min())[-1]])
-    peak = hist.peak_pull_off
-    return {"preload_patch_uN": target, "preload_held_uN": held, "pull_off_patch_uN": peak,
-            "pull_off_array_uN": peak * count / n_sim, "pull_off_per_seta_uN": peak / n_sim,
-            "attached_fraction": float(hist["n_attached"].max()) / n_sim,
-            "n_steps": int(hist.meta["n_steps"]),
-            "max_kinetic_to_elastic": float(hist.meta["max_kinetic_to_elastic"])}
+def __getattr__(name: str):
+    home = _POINT_HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    if not home.startswith("gecko_agents."):
+        if not (_SCENARIOS / f"{home}.py").is_file():
+            raise AttributeError(
+                f"{name} lives in scenarios/{home}.py, which is not next to "
+                f"this installation ({_SCENARIOS}); use a source checkout"
+            )
+        if str(_SCENARIOS) not in sys.path:
+            sys.path.append(str(_SCENARIOS))
+    return getattr(importlib.import_module(home), name)
 
 
-__all__ += ["quasistatic_preload_point", "agent_preload_point"]
+def main(argv=None) -> int:
+    """``gecko-agents sweep`` (same arguments; ``--help`` lists them)."""
+    from .cli import main as cli_main
+
+    return cli_main(["sweep", *(sys.argv[1:] if argv is None else argv)])
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,16 +1,26 @@
-"""Every scenario in --quick mode: it runs, writes its files, and its histories are sound."""
+"""Every scenario in --quick mode: it runs, writes its files, and its histories are sound.
 
+Scenarios are found by glob: every ``scenarios/*.py`` whose name does not start with ``_``
+(shared modules). ``reproduce_paper`` runs all the paper-figure scenarios and has its own test.
+Outputs differ between scenarios; each one must write a figure (PNG), ``metadata.json`` and at
+least one CSV table into its ``--out`` folder and nothing elsewhere. Also here: the sweep points
+of the shared scenario module ``_preload`` (Fig 11a/11b).
+"""
+
+import json
 import runpy
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from gecko_agents import history as hist
+from gecko_agents import sweep
 
 SCEN = Path(__file__).resolve().parents[1] / "scenarios"
-NAMES = ["fig5_jkr_tip", "fig6_modulus", "fig7_surface_energy", "fig8_single_seta",
-         "fig10_array_pulloff", "fig11a_preload", "fig11b_roughness", "directional_adhesion"]
+AGGREGATE = "reproduce_paper"
+NAMES = sorted(p.stem for p in SCEN.glob("*.py") if not p.name.startswith("_"))
 
 
 @pytest.fixture(autouse=True)
@@ -23,19 +33,36 @@ def _run(name, out):
     return mod["main"](["--quick", "--out", str(out), "--no-progress"])
 
 
+def test_discovery_finds_the_paper_figures():
+    for name in (
+        "fig5_jkr_tip",
+        "fig8_single_seta",
+        "fig10_array_pulloff",
+        "fig11a_preload",
+        "fig11b_roughness",
+        AGGREGATE,
+    ):
+        assert name in NAMES
+    assert not any(n.startswith("_") for n in NAMES)
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", [n for n in NAMES if n != AGGREGATE])
 def test_scenario_quick(name, tmp_path):
     out = tmp_path / name
     res = _run(name, out)
     assert isinstance(res, dict)
     files = list(out.rglob("*"))
     assert any(f.suffix == ".png" for f in files), f"{name} wrote no figure"
-    assert (out / "metadata.json").is_file()
-    assert any(f.name in ("sweep.csv",) for f in files) or name == "fig5_jkr_tip"
+    assert (out / "metadata.json").is_file(), f"{name} wrote no metadata.json"
+    json.loads((out / "metadata.json").read_text())
+    assert any(f.suffix == ".csv" for f in files), f"{name} wrote no table"
     for claim in res.get("claims", []):
-        assert claim["verdict"] in ("reproduced", "trend reproduced",
-                                    "not reproducible from the stated parameters")
+        assert claim["verdict"] in (
+            "reproduced",
+            "trend reproduced",
+            "not reproducible from the stated parameters",
+        )
         assert claim["ours"]
     # Agent runs: each saved history loads back and passes the invariants on every record.
     for meta in out.rglob("metadata.json"):
@@ -43,15 +70,87 @@ def test_scenario_quick(name, tmp_path):
             h = hist.load(meta.parent)
             assert hist.invariant_violations(h) == [], meta.parent
     # Nothing was written outside the output folder.
+    assert sorted(p.name for p in tmp_path.iterdir()) == [name]
     assert not any(p.name.endswith(".tmp") for p in files)
 
 
 @pytest.mark.slow
 def test_reproduce_paper_quick_writes_the_report(tmp_path, monkeypatch):
     monkeypatch.setattr(sys, "argv", ["reproduce_paper.py"])
-    res = _run("reproduce_paper", tmp_path)
+    res = _run(AGGREGATE, tmp_path)
     report = (tmp_path / "paper_comparison.md").read_text()
     assert "| figure | claim | paper | ours | alternative | verdict | reason |" in report
     assert len(res["claims"]) >= 10
     for fig in ("Fig 5", "Fig 6", "Fig 7", "Fig 8", "Fig 10", "Fig 11"):
         assert fig in report
+
+
+# Sweep points of scenarios/_preload.py (Fig 11) ---------------------------------------------
+
+
+def test_preload_points_are_importable_by_name():
+    import _preload
+
+    for name in ("quasistatic_preload_point", "agent_preload_point"):
+        fn = getattr(_preload, name)
+        assert sweep._resolve_point_fn(fn) == (fn, f"_preload:{name}")
+        assert sweep._resolve_point_fn(f"_preload:{name}")[0] is fn
+        assert getattr(sweep, name) is fn  # the name sweep files use (gecko-agents sweep)
+
+
+def test_quasistatic_preload_point_blocks_of_one_are_brute_force(tmp_path):
+    import _preload
+
+    from gecko_agents import quasistatic
+    from gecko_agents.params import PAPER_ARRAY
+
+    p = PAPER_ARRAY.replace(**{"array.count": 300})
+    row = _preload.quasistatic_preload_point(p, 5, preload_uN=30.0, n_blocks=300)
+    heights = p.floor.sigma * np.random.default_rng(5).standard_normal(300)
+    brute = quasistatic.preload_pull(p, heights, 30.0)
+    assert row["preload_uN"] == pytest.approx(30.0, rel=1e-8)
+    assert row["pull_off_uN"] == pytest.approx(brute.pull_off, rel=1e-9)
+    assert row["pull_off_per_seta_uN"] == pytest.approx(brute.pull_off / 300)
+    assert 0 < row["pull_off_over_ideal"] <= 1
+    assert row["attached_fraction"] == brute.n_attached.max() / 300
+    # the seed draws the floor; a larger preload attaches more setae
+    other = _preload.quasistatic_preload_point(p, 6, preload_uN=30.0, n_blocks=300)
+    assert other["pull_off_uN"] != row["pull_off_uN"]
+    more = _preload.quasistatic_preload_point(p, 5, preload_uN=300.0, n_blocks=300)
+    assert more["attached_fraction"] > row["attached_fraction"]
+    assert more["pull_off_uN"] > row["pull_off_uN"]
+    with pytest.raises(ValueError, match="preload"):
+        _preload.quasistatic_preload_point(p, 5, preload_uN=0.0)
+    # through run_sweep, the preload as an "fn." axis of the grid
+    rows = sweep.run_sweep(
+        _preload.quasistatic_preload_point,
+        p,
+        {"fn.preload_uN": [30.0, 300.0]},
+        [5],
+        tmp_path,
+        fn_kwargs={"n_blocks": 300},
+        n_workers=1,
+        progress=False,
+    )
+    assert [r["fn.preload_uN"] for r in rows] == [30.0, 300.0]
+    assert rows[0]["pull_off_uN"] == row["pull_off_uN"]
+    assert rows[1]["pull_off_uN"] == more["pull_off_uN"]
+    assert rows[0]["key"] != rows[1]["key"]
+
+
+def test_agent_preload_point_holds_its_share_of_the_preload():
+    import _preload
+
+    from gecko_agents.params import PAPER_ARRAY
+
+    p = PAPER_ARRAY.replace(**{"mechanics": "rod", "array.count": 1000, "floor.sigma": 0.2})
+    row = _preload.agent_preload_point(p, 3, preload_uN=200.0, n_sim=2, speed=0.05)
+    fc = p.contact.pull_off_force
+    assert row["preload_patch_uN"] == pytest.approx(200 * 2 / 1000)
+    assert row["preload_held_uN"] >= 0.99 * row["preload_patch_uN"]
+    assert 0 < row["pull_off_patch_uN"] <= 2 * fc * 1.01
+    assert row["pull_off_array_uN"] == pytest.approx(row["pull_off_patch_uN"] * 500)
+    assert row["pull_off_per_seta_uN"] == pytest.approx(row["pull_off_patch_uN"] / 2)
+    assert 0 < row["attached_fraction"] <= 1 and row["n_steps"] > 0
+    with pytest.raises(ValueError, match="n_sim"):
+        _preload.agent_preload_point(p, 3, preload_uN=200.0, n_sim=0)

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gecko_agents import sweep
+from gecko_agents import sweep, sweep_bench
 from gecko_agents.params import PAPER_TABLE1
 
 HERE = Path(__file__).resolve().parent
@@ -28,7 +28,7 @@ def counted_point(params, seed, *, counter):
         f.write(f"{params.floor.sigma} {params.contact.R} {seed}\n")
     if params.floor.sigma > ROUGH_SIGMA:
         raise ValueError(f"floor sigma {params.floor.sigma} µm is too rough for this point")
-    return sweep.analytic_point(params, seed)
+    return sweep_bench.analytic_point(params, seed)
 
 
 def calls(counter: Path) -> list[str]:
@@ -50,6 +50,7 @@ def workers_find_tests(monkeypatch):
 
 # expand_grid --------------------------------------------------------------------------------
 
+
 def test_expand_grid_product_and_order():
     grid = {"floor.sigma": [0.0, 0.5], "seta.theta_deg": [30.0, 45.0, 60.0]}
     points = sweep.expand_grid(PAPER_TABLE1, grid, [7, 3])
@@ -66,8 +67,10 @@ def test_expand_grid_product_and_order():
 
 def test_expand_grid_empty_grid_and_numpy_values():
     points = sweep.expand_grid(PAPER_TABLE1, {}, [0, 1])
-    assert [(p.overrides, p.seed, p.params) for p in points] == [({}, 0, PAPER_TABLE1),
-                                                                 ({}, 1, PAPER_TABLE1)]
+    assert [(p.overrides, p.seed, p.params) for p in points] == [
+        ({}, 0, PAPER_TABLE1),
+        ({}, 1, PAPER_TABLE1),
+    ]
     points = sweep.expand_grid(PAPER_TABLE1, {"array.count": np.arange(1, 4)}, np.array([5]))
     assert [p.params.array.count for p in points] == [1, 2, 3]
     assert all(type(p.overrides["array.count"]) is int and type(p.seed) is int for p in points)
@@ -96,42 +99,75 @@ def test_bad_specs_refused_before_anything_runs(tmp_path, grid, seeds, match):
     counter = tmp_path / "calls.txt"
     out = tmp_path / "out"
     if match is None:
-        sweep.run_sweep("test_sweep:counted_point", PAPER_TABLE1, grid, seeds, out,
-                        fn_kwargs={"counter": str(counter)}, n_workers=1, progress=False)
+        sweep.run_sweep(
+            "test_sweep:counted_point",
+            PAPER_TABLE1,
+            grid,
+            seeds,
+            out,
+            fn_kwargs={"counter": str(counter)},
+            n_workers=1,
+            progress=False,
+        )
         assert (out / "sweep.csv").exists() and len(calls(counter)) == 2
         return
     with pytest.raises(ValueError, match=match):
         sweep.expand_grid(PAPER_TABLE1, grid, seeds)
     with pytest.raises(ValueError, match=match):
-        sweep.run_sweep("test_sweep:counted_point", PAPER_TABLE1, grid, seeds, out,
-                        fn_kwargs={"counter": str(counter)}, n_workers=1, progress=False)
+        sweep.run_sweep(
+            "test_sweep:counted_point",
+            PAPER_TABLE1,
+            grid,
+            seeds,
+            out,
+            fn_kwargs={"counter": str(counter)},
+            n_workers=1,
+            progress=False,
+        )
     assert not out.exists() and not counter.exists()
 
 
-@pytest.mark.parametrize("kwargs,match", [
-    ({"point_fn": "gecko_agents.sweep.analytic_point"}, "'module:function'"),
-    ({"point_fn": "gecko_agents.sweep:no_such_point"}, "cannot be imported"),
-    ({"point_fn": "no_such_module:f"}, "cannot be imported"),
-    ({"point_fn": lambda params, seed: {}}, "top-level function"),
-    ({"fn_kwargs": {"counter": object()}}, "JSON-serialisable"),
-    ({"n_workers": 0}, "n_workers = 0"),
-    ({"dask": "localhost:8786"}, "'tcp://host:port'"),
-    ({"dask": "tcp://127.0.0.1:8786", "n_workers": 2}, "n_workers cannot be set"),
-])
+@pytest.mark.parametrize(
+    "kwargs,match",
+    [
+        ({"point_fn": "gecko_agents.sweep_bench.analytic_point"}, "'module:function'"),
+        ({"point_fn": "gecko_agents.sweep:no_such_point"}, "cannot be imported"),
+        ({"point_fn": "no_such_module:f"}, "cannot be imported"),
+        ({"point_fn": lambda params, seed: {}}, "top-level function"),
+        ({"fn_kwargs": {"counter": object()}}, "JSON-serialisable"),
+        ({"n_workers": 0}, "n_workers = 0"),
+        ({"dask": "localhost:8786"}, "'tcp://host:port'"),
+        ({"dask": "tcp://127.0.0.1:8786", "n_workers": 2}, "n_workers cannot be set"),
+    ],
+)
 def test_bad_run_arguments_refused_before_anything_runs(tmp_path, kwargs, match):
-    args = {"point_fn": sweep.analytic_point, "fn_kwargs": None} | kwargs
+    args = {"point_fn": sweep_bench.analytic_point, "fn_kwargs": None} | kwargs
     out = tmp_path / "out"
     with pytest.raises(ValueError, match=match):
-        sweep.run_sweep(args.pop("point_fn"), PAPER_TABLE1, {"floor.sigma": [0.5]}, [0], out,
-                        progress=False, **args)
+        sweep.run_sweep(
+            args.pop("point_fn"),
+            PAPER_TABLE1,
+            {"floor.sigma": [0.5]},
+            [0],
+            out,
+            progress=False,
+            **args,
+        )
     assert not out.exists()
 
 
 def test_missing_dask_is_a_clear_error(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "distributed", None)
     with pytest.raises(ImportError, match=r"pip install -e '.\[dask\]'"):
-        sweep.run_sweep(sweep.analytic_point, PAPER_TABLE1, {}, [0], tmp_path / "out",
-                        dask="local", progress=False)
+        sweep.run_sweep(
+            sweep_bench.analytic_point,
+            PAPER_TABLE1,
+            {},
+            [0],
+            tmp_path / "out",
+            dask="local",
+            progress=False,
+        )
     assert not (tmp_path / "out").exists()
 
 
@@ -151,27 +187,31 @@ def test_parse_dask_arg():
 
 # keys and the analytic point ----------------------------------------------------------------
 
+
 def test_point_key_depends_on_everything_that_defines_the_run():
     p = PAPER_TABLE1
     k = sweep.point_key("m:f", {"a": 1}, p, 0)
     assert k == sweep.point_key("m:f", {"a": 1}, PAPER_TABLE1.replace(), 0)
     assert len(k) == 16 and int(k, 16) >= 0
-    others = [sweep.point_key("m:g", {"a": 1}, p, 0), sweep.point_key("m:f", {"a": 2}, p, 0),
-              sweep.point_key("m:f", {"a": 1}, p.replace(**{"floor.sigma": 0.1}), 0),
-              sweep.point_key("m:f", {"a": 1}, p, 1)]
+    others = [
+        sweep.point_key("m:g", {"a": 1}, p, 0),
+        sweep.point_key("m:f", {"a": 2}, p, 0),
+        sweep.point_key("m:f", {"a": 1}, p.replace(**{"floor.sigma": 0.1}), 0),
+        sweep.point_key("m:f", {"a": 1}, p, 1),
+    ]
     assert len({k, *others}) == 5
 
 
 def test_analytic_point_matches_params_and_depends_on_seed():
     p = PAPER_TABLE1.replace(**{"floor.sigma": 0.5, "array.count": 100})
-    row = sweep.analytic_point(p, 3)
+    row = sweep_bench.analytic_point(p, 3)
     w = p.contact.work_of_adhesion
     assert row["pull_off_single_uN"] == pytest.approx(1.5 * np.pi * 4.0 * w)
     assert row["snap_off_overlap_um"] == p.contact.snap_off_overlap < 0
     assert row["pull_off_ideal_array_uN"] == pytest.approx(100 * row["pull_off_single_uN"])
     assert abs(row["mean_floor_height_um"]) < 4 * 0.5 / np.sqrt(1000)
-    assert row == sweep.analytic_point(p, 3)
-    assert row["mean_floor_height_um"] != sweep.analytic_point(p, 4)["mean_floor_height_um"]
+    assert row == sweep_bench.analytic_point(p, 3)
+    assert row["mean_floor_height_um"] != sweep_bench.analytic_point(p, 4)["mean_floor_height_um"]
 
 
 # running ------------------------------------------------------------------------------------
@@ -181,8 +221,16 @@ SEEDS = [0, 1]
 
 
 def _sweep(out, counter, **kwargs):
-    return sweep.run_sweep("test_sweep:counted_point", PAPER_TABLE1, GRID, SEEDS, out,
-                           fn_kwargs={"counter": str(counter)}, progress=False, **kwargs)
+    return sweep.run_sweep(
+        "test_sweep:counted_point",
+        PAPER_TABLE1,
+        GRID,
+        SEEDS,
+        out,
+        fn_kwargs={"counter": str(counter)},
+        progress=False,
+        **kwargs,
+    )
 
 
 def test_failing_point_is_recorded_and_the_others_complete(tmp_path):
@@ -190,9 +238,18 @@ def test_failing_point_is_recorded_and_the_others_complete(tmp_path):
     rows = _sweep(tmp_path / "out", counter, n_workers=1)
     assert len(rows) == 12 and len(calls(counter)) == 12
     table = read_csv(tmp_path / "out" / "sweep.csv")
-    assert list(table[0]) == ["key", "seed", "floor.sigma", "contact.R", "pull_off_single_uN",
-                              "snap_off_overlap_um", "pull_off_ideal_array_uN",
-                              "mean_floor_height_um", "status", "error"]
+    assert list(table[0]) == [
+        "key",
+        "seed",
+        "floor.sigma",
+        "contact.R",
+        "pull_off_single_uN",
+        "snap_off_overlap_um",
+        "pull_off_ideal_array_uN",
+        "mean_floor_height_um",
+        "status",
+        "error",
+    ]
     assert [r["key"] for r in table] == [r["key"] for r in rows]
     for r, row in zip(table, rows, strict=True):
         if float(r["floor.sigma"]) > ROUGH_SIGMA:
@@ -204,9 +261,12 @@ def test_failing_point_is_recorded_and_the_others_complete(tmp_path):
         else:
             assert r["status"] == "ok" and r["error"] == ""
             assert float(r["mean_floor_height_um"]) == row["mean_floor_height_um"]
-            want = sweep.analytic_point(PAPER_TABLE1.replace(**{"floor.sigma": row["floor.sigma"],
-                                                                "contact.R": row["contact.R"]}),
-                                        row["seed"])
+            want = sweep_bench.analytic_point(
+                PAPER_TABLE1.replace(
+                    **{"floor.sigma": row["floor.sigma"], "contact.R": row["contact.R"]}
+                ),
+                row["seed"],
+            )
             assert {k: row[k] for k in want} == want
     # the failed points, and only they, are retried on the next run
     _sweep(tmp_path / "out", counter, n_workers=1)
@@ -214,16 +274,26 @@ def test_failing_point_is_recorded_and_the_others_complete(tmp_path):
 
 
 def test_point_file_contents(tmp_path):
-    sweep.run_sweep(sweep.analytic_point, PAPER_TABLE1, {"floor.sigma": [0.5]}, [4],
-                    tmp_path, n_workers=1, progress=False)
+    sweep.run_sweep(
+        sweep_bench.analytic_point,
+        PAPER_TABLE1,
+        {"floor.sigma": [0.5]},
+        [4],
+        tmp_path,
+        n_workers=1,
+        progress=False,
+    )
     (path,) = (tmp_path / "points").glob("*.json")
     record = json.loads(path.read_text())
     p = PAPER_TABLE1.replace(**{"floor.sigma": 0.5})
-    assert path.stem == record["key"] == sweep.point_key("gecko_agents.sweep:analytic_point", {},
-                                                         p, 4)
+    assert (
+        path.stem
+        == record["key"]
+        == sweep.point_key("gecko_agents.sweep_bench:analytic_point", {}, p, 4)
+    )
     assert record["overrides"] == {"floor.sigma": 0.5} and record["seed"] == 4
     assert record["params"] == p.to_dict() and record["status"] == "ok"
-    assert record["result"] == sweep.analytic_point(p, 4)
+    assert record["result"] == sweep_bench.analytic_point(p, 4)
     assert record["elapsed_s"] >= 0 and record["versions"]["numpy"] == np.__version__
     assert record["error"] is None and record["traceback"] is None
 
@@ -231,9 +301,16 @@ def test_point_file_contents(tmp_path):
 def test_interrupted_sweep_resumes_without_recomputing(tmp_path):
     out, counter = tmp_path / "out", tmp_path / "calls.txt"
     # "interrupted": only part of the grid has run ...
-    sweep.run_sweep("test_sweep:counted_point", PAPER_TABLE1,
-                    {"floor.sigma": [0.0, 0.5], "contact.R": [4.0]}, SEEDS, out,
-                    fn_kwargs={"counter": str(counter)}, n_workers=1, progress=False)
+    sweep.run_sweep(
+        "test_sweep:counted_point",
+        PAPER_TABLE1,
+        {"floor.sigma": [0.0, 0.5], "contact.R": [4.0]},
+        SEEDS,
+        out,
+        fn_kwargs={"counter": str(counter)},
+        n_workers=1,
+        progress=False,
+    )
     assert calls(counter) == ["0.0 4.0 0", "0.0 4.0 1", "0.5 4.0 0", "0.5 4.0 1"]
     # ... and one finished point file was lost as well
     lost = PAPER_TABLE1.replace(**{"floor.sigma": 0.5})
@@ -241,9 +318,17 @@ def test_interrupted_sweep_resumes_without_recomputing(tmp_path):
     (out / "points" / f"{lost_key}.json").unlink()
     # the full sweep, in worker processes, runs only what is missing
     rows = _sweep(out, counter, n_workers=2)
-    assert sorted(calls(counter)[4:]) == ["0.0 8.0 0", "0.0 8.0 1", "0.5 4.0 1", "0.5 8.0 0",
-                                         "0.5 8.0 1", "2.0 4.0 0", "2.0 4.0 1", "2.0 8.0 0",
-                                         "2.0 8.0 1"]
+    assert sorted(calls(counter)[4:]) == [
+        "0.0 8.0 0",
+        "0.0 8.0 1",
+        "0.5 4.0 1",
+        "0.5 8.0 0",
+        "0.5 8.0 1",
+        "2.0 4.0 0",
+        "2.0 4.0 1",
+        "2.0 8.0 0",
+        "2.0 8.0 1",
+    ]
     assert [r["status"] for r in rows] == ["ok"] * 8 + ["error"] * 4
     # and gives the same table as an uninterrupted run
     n = len(calls(counter))
@@ -253,8 +338,7 @@ def test_interrupted_sweep_resumes_without_recomputing(tmp_path):
     assert table == (tmp_path / "reference" / "sweep.csv").read_text()
     # running it again retries the failed points only
     _sweep(out, counter, n_workers=2)
-    assert sorted(calls(counter)[n + 12:]) == ["2.0 4.0 0", "2.0 4.0 1", "2.0 8.0 0",
-                                              "2.0 8.0 1"]
+    assert sorted(calls(counter)[n + 12 :]) == ["2.0 4.0 0", "2.0 4.0 1", "2.0 8.0 0", "2.0 8.0 1"]
     assert (out / "sweep.csv").read_text() == table
 
 
@@ -269,48 +353,18 @@ def test_dask_local_cluster_gives_the_same_table_as_processes(tmp_path):
     assert (tmp_path / "dask" / "sweep.csv").read_text() == table
     assert table.count(",ok,") == 8 and table.count(",error,") == 4
     # the same points, whoever ran them
-    assert (sorted(p.name for p in (tmp_path / "dask" / "points").iterdir())
-            == sorted(p.name for p in (tmp_path / "processes" / "points").iterdir()))
+    assert sorted(p.name for p in (tmp_path / "dask" / "points").iterdir()) == sorted(
+        p.name for p in (tmp_path / "processes" / "points").iterdir()
+    )
 
 
-# preload point functions (paper Fig 11) -----------------------------------------------------
-
-def test_quasistatic_preload_point_blocks_of_one_are_brute_force(tmp_path):
-    from gecko_agents import quasistatic
-    from gecko_agents.params import PAPER_ARRAY
-
-    p = PAPER_ARRAY.replace(**{"array.count": 300})
-    row = sweep.quasistatic_preload_point(p, 5, preload_uN=30.0, n_blocks=300)
-    heights = p.floor.sigma * np.random.default_rng(5).standard_normal(300)
-    brute = quasistatic.preload_pull(p, heights, 30.0)
-    assert row["preload_uN"] == pytest.approx(30.0, rel=1e-8)
-    assert row["pull_off_uN"] == pytest.approx(brute.pull_off, rel=1e-9)
-    assert row["pull_off_per_seta_uN"] == pytest.approx(brute.pull_off / 300)
-    assert 0 < row["pull_off_over_ideal"] <= 1
-    assert row["attached_fraction"] == brute.n_attached.max() / 300
-    # the seed draws the floor; a larger preload attaches more setae
-    other = sweep.quasistatic_preload_point(p, 6, preload_uN=30.0, n_blocks=300)
-    assert other["pull_off_uN"] != row["pull_off_uN"]
-    more = sweep.quasistatic_preload_point(p, 5, preload_uN=300.0, n_blocks=300)
-    assert more["attached_fraction"] > row["attached_fraction"]
-    assert more["pull_off_uN"] > row["pull_off_uN"]
-    with pytest.raises(ValueError, match="preload"):
-        sweep.quasistatic_preload_point(p, 5, preload_uN=0.0)
-    # through run_sweep, the preload as an "fn." axis of the grid
-    rows = sweep.run_sweep(sweep.quasistatic_preload_point, p, {"fn.preload_uN": [30.0, 300.0]},
-                           [5], tmp_path, fn_kwargs={"n_blocks": 300}, n_workers=1,
-                           progress=False)
-    assert [r["fn.preload_uN"] for r in rows] == [30.0, 300.0]
-    assert rows[0]["pull_off_uN"] == row["pull_off_uN"]
-    assert rows[1]["pull_off_uN"] == more["pull_off_uN"]
-    assert rows[0]["key"] != rows[1]["key"]
+# grid axes that are point-function arguments ------------------------------------------------
 
 
 def test_fn_axis_validation():
     from gecko_agents.params import PAPER_ARRAY
 
-    pts = sweep.expand_grid(PAPER_ARRAY, {"floor.sigma": [0.5, 1.0], "fn.preload_uN": [1.0]},
-                            [0])
+    pts = sweep.expand_grid(PAPER_ARRAY, {"floor.sigma": [0.5, 1.0], "fn.preload_uN": [1.0]}, [0])
     assert [p.fn_overrides for p in pts] == [{"preload_uN": 1.0}] * 2
     assert pts[0].params.floor.sigma == 0.5
     with pytest.raises(ValueError, match="keyword argument name"):
@@ -319,17 +373,18 @@ def test_fn_axis_validation():
         sweep.expand_grid(PAPER_ARRAY, {"fn.preload_uN": []}, [0])
 
 
-def test_agent_preload_point_holds_its_share_of_the_preload():
-    from gecko_agents.params import PAPER_ARRAY
+# the module's command line and the point names sweep files use ---------------------------------
 
-    p = PAPER_ARRAY.replace(**{"mechanics": "rod", "array.count": 1000, "floor.sigma": 0.2})
-    row = sweep.agent_preload_point(p, 3, preload_uN=200.0, n_sim=2, speed=0.05)
-    fc = p.contact.pull_off_force
-    assert row["preload_patch_uN"] == pytest.approx(200 * 2 / 1000)
-    assert row["preload_held_uN"] >= 0.99 * row["preload_patch_uN"]
-    assert 0 < row["pull_off_patch_uN"] <= 2 * fc * 1.01
-    assert row["pull_off_array_uN"] == pytest.approx(row["pull_off_patch_uN"] * 500)
-    assert row["pull_off_per_seta_uN"] == pytest.approx(row["pull_off_patch_uN"] / 2)
-    assert 0 < row["attached_fraction"] <= 1 and row["n_steps"] > 0
-    with pytest.raises(ValueError, match="n_sim"):
-        sweep.agent_preload_point(p, 3, preload_uN=200.0, n_sim=0)
+
+def test_module_main_is_the_sweep_subcommand(capsys):
+    assert sweep.main(["--help"]) == 0
+    assert "gecko-agents sweep" in capsys.readouterr().out
+    assert sweep.main([]) == 2  # the sweep file is required: an error, not silence
+
+
+def test_point_names_of_sweep_files_resolve_to_their_homes():
+    for name in ("analytic_point", "cpu_bound_point"):
+        assert name in sweep.__all__
+        assert getattr(sweep, name) is getattr(sweep_bench, name)
+    with pytest.raises(AttributeError, match="no_such_point"):
+        sweep.no_such_point  # noqa: B018
