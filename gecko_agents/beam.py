@@ -2,7 +2,8 @@
 
 Plain vectorized functions, valid in any consistent unit set (µm, MPa → µN/µm in gecko_agents).
 ``r`` is the rod **radius** (the paper's text says diameter, its formulas need the radius:
-NOTES.md). θ is the angle between the seta and the backing plate, in radians.
+docs/physics.md, "Typos and readings"). θ is the angle between the seta and the backing plate,
+in radians.
 
 The seta axis points from root to tip along n = (cos θ, −sin θ) (x along the plate, y up).
 Ka acts along n, Kp across it; the tip's 2×2 stiffness is K = Ka·n nᵀ + Kp·t tᵀ.
@@ -15,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["axial_stiffness", "bending_stiffness", "longitudinal_stiffness",
-           "transverse_stiffness", "stiffness_matrix", "deflection_ratio"]
+           "transverse_stiffness", "stiffness_matrix", "deflection_ratio", "rest_tip_offset"]
 
 
 def axial_stiffness(r, L, E):
@@ -78,7 +79,8 @@ def deflection_ratio(force, Ka, Kp, theta, L, direction=(0.0, 1.0)):
 
     ``|K⁻¹·F| / L`` for a force of magnitude ``force`` along ``direction`` (default: normal to
     the plate). The linear beam model (eq 16–21) is a small-deflection theory: values above
-    ~0.1 mean it is outside its validity (NOTES.md: the paper's seta needs 9–27 L to hold Fc).
+    ~0.1 mean it is outside its validity (docs/physics.md, "Seta mechanics": the paper's seta
+    needs 9–27 L to hold Fc).
 
     Parameters
     ----------
@@ -90,3 +92,23 @@ def deflection_ratio(force, Ka, Kp, theta, L, direction=(0.0, 1.0)):
     K = stiffness_matrix(Ka, Kp, theta)
     disp = np.linalg.solve(K, d) * np.asarray(force, dtype=float)[..., None]
     return np.linalg.norm(disp, axis=-1) / L
+
+
+def rest_tip_offset(L, theta):
+    """Resting tip position relative to the seta's root: (L cos θ, −L sin θ) [length].
+
+    The unloaded seta is the straight rod of eq 16–21 leaning from its root on the backing
+    plate towards +x and down to the floor, at the angle θ to the plate (x along the plate,
+    y up): the rest direction n = (cos θ, −sin θ) of :func:`stiffness_matrix`. ``L = 1`` gives
+    n itself. A resting tip of radius R touches the floor's mean plane y = 0 when the plate is
+    at height R + L sin θ (the touch-down height of the pressing displacement d).
+
+    Parameters
+    ----------
+    L : seta length [length]. theta : seta angle to the plate [rad]. Arrays broadcast.
+
+    Returns
+    -------
+    (dx, dy) : the offsets along x (> 0) and y (< 0 for 0 < θ < π) [length].
+    """
+    return L * np.cos(theta), -L * np.sin(theta)

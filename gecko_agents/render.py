@@ -1,6 +1,10 @@
 """Figures and animations drawn from a recorded :class:`~gecko_agents.history.History` only.
 
-Units on every axis: µm, µN, µs. The floor's mean plane is y = 0, y points up.
+Units on every axis: µm, µN, µs. The floor's mean plane is y = 0, y points up. Force curves
+are drawn against the pressing displacement d = (touch-down height) − (plate height) [µm],
+positive when the plate is pressed towards the floor past the height at which a resting tip
+touches the mean plane, negative when pulled away beyond it; forces are positive in
+compression, negative in tension (docs/physics.md, "Sign conventions").
 
 * :func:`animate` — side view of the array (plate, setae, tips coloured by contact state, floor,
   all to scale) next to the force–displacement curve, written as a GIF (Pillow) or MP4 (ffmpeg
@@ -20,7 +24,6 @@ backend, no global state, and nothing here imports pymunk.
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import secrets
 import sys
@@ -39,23 +42,62 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
 from PIL import Image
 
+from .beam import rest_tip_offset
 from .history import STATE_SLIP, STATE_STICK, History, load
 
-__all__ = ["STYLE_RC", "STATE_COLOURS", "FIGSIZE", "DPI", "PNG_DPI", "Frame", "animate",
-           "render_frame", "frame_records", "window_range", "plot_history",
-           "plot_force_curves", "annotate_points", "apply_style", "save_figure", "main"]
+__all__ = [
+    "STYLE_RC",
+    "STATE_COLOURS",
+    "FIGSIZE",
+    "DPI",
+    "PNG_DPI",
+    "Frame",
+    "animate",
+    "render_frame",
+    "frame_records",
+    "window_range",
+    "plot_history",
+    "plot_force_curves",
+    "annotate_points",
+    "apply_style",
+    "save_figure",
+    "touchdown_height",
+    "pressing_displacement",
+    "PRESSING_LABEL",
+    "main",
+]
 
 # Look ------------------------------------------------------------------------------------------
 STYLE_RC = {
-    "font.size": 10, "axes.titlesize": 11, "axes.labelsize": 10, "xtick.labelsize": 9,
-    "ytick.labelsize": 9, "legend.fontsize": 9, "legend.framealpha": 0.9, "lines.linewidth": 1.6,
-    "axes.prop_cycle": mpl.cycler(color=["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
-                                         "#9467bd", "#8c564b", "#17becf", "#7f7f7f"]),
+    "font.size": 10,
+    "axes.titlesize": 11,
+    "axes.labelsize": 10,
+    "xtick.labelsize": 9,
+    "ytick.labelsize": 9,
+    "legend.fontsize": 9,
+    "legend.framealpha": 0.9,
+    "lines.linewidth": 1.6,
+    "axes.prop_cycle": mpl.cycler(
+        color=[
+            "#1f77b4",
+            "#d62728",
+            "#2ca02c",
+            "#ff7f0e",
+            "#9467bd",
+            "#8c564b",
+            "#17becf",
+            "#7f7f7f",
+        ]
+    ),
 }
 """rc settings every figure here is drawn under (``matplotlib.rc_context(STYLE_RC)``)."""
 
-STATE_COLOURS = {"free": "#9e9e9e", "compressed": "#1f77b4", "tension": "#d62728",
-                 "sliding": "#ff7f0e"}
+STATE_COLOURS = {
+    "free": "#9e9e9e",
+    "compressed": "#1f77b4",
+    "tension": "#d62728",
+    "sliding": "#ff7f0e",
+}
 """Tip colours: free (grey), attached & compressed (blue), attached in tension (red), sliding."""
 
 APPROACH_COLOUR, RETRACT_COLOUR = "#1f77b4", "#d62728"
@@ -127,14 +169,49 @@ def annotate_points(ax: Axes, points) -> None:
     """
     for i, (x, y, label) in enumerate(points):
         ax.plot([x], [y], "o", color="black", markersize=4, zorder=5)
-        ax.annotate(label, (x, y), xytext=(8, 10 if i % 2 == 0 else -14),
-                    textcoords="offset points", fontsize=9,
-                    arrowprops={"arrowstyle": "-", "color": "#555555", "lw": 0.6})
+        ax.annotate(
+            label,
+            (x, y),
+            xytext=(8, 10 if i % 2 == 0 else -14),
+            textcoords="offset points",
+            fontsize=9,
+            arrowprops={"arrowstyle": "-", "color": "#555555", "lw": 0.6},
+        )
 
 
-def plot_force_curves(curves, path=None, xlabel: str = "plate displacement [µm]",
-                      ylabel: str = "contact force [µN]", title: str = "",
-                      points=None) -> Figure:
+PRESSING_LABEL = "pressing displacement d [µm] (> 0 pressed)"
+"""x-axis label of every force–displacement plot (docs/physics.md, "Sign conventions")."""
+
+
+def touchdown_height(params) -> float:
+    """Plate height [µm] at which a resting tip touches the floor's mean plane y = 0.
+
+    R + L sin θ: the plate carries the seta roots, the resting tip centre sits at
+    :func:`gecko_agents.beam.rest_tip_offset` from its root, and the tip (radius R) touches
+    y = 0 when its centre is at y = R.
+    """
+    dy = rest_tip_offset(params.seta.L, params.seta.theta)[1]
+    return float(params.contact.R - dy)
+
+
+def pressing_displacement(history: History, plate_y=None) -> np.ndarray:
+    """Pressing displacement d = :func:`touchdown_height` − plate height [µm].
+
+    Positive when the plate is pressed towards the floor past mean-plane touch-down, negative
+    when it is pulled away beyond it. ``plate_y`` [µm] defaults to ``history["plate_y_um"]``.
+    """
+    y = history["plate_y_um"] if plate_y is None else plate_y
+    return touchdown_height(history.params) - np.asarray(y, dtype=float)
+
+
+def plot_force_curves(
+    curves,
+    path=None,
+    xlabel: str = PRESSING_LABEL,
+    ylabel: str = "contact force [µN]",
+    title: str = "",
+    points=None,
+) -> Figure:
     """A multi-curve panel for the paper-figure scenarios.
 
     Parameters
@@ -153,8 +230,9 @@ def plot_force_curves(curves, path=None, xlabel: str = "plate displacement [µm]
         fig = _new_figure((6.4, 4.4))
         ax = apply_style(fig.add_subplot())
         for c in curves:
-            ax.plot(np.asarray(c["x"]), np.asarray(c["y"]), label=c.get("label"),
-                    **c.get("style", {}))
+            ax.plot(
+                np.asarray(c["x"]), np.asarray(c["y"]), label=c.get("label"), **c.get("style", {})
+            )
         if points:
             annotate_points(ax, points)
         ax.set(xlabel=xlabel, ylabel=ylabel, title=title)
@@ -188,7 +266,7 @@ def _direction_runs(y: np.ndarray) -> list[tuple[int, int, bool]]:
 
 
 def _snap_offs(history: History) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Detachment events as (plate displacement [µm], total force [µN], seta index).
+    """Detachment events as (pressing displacement d [µm], total force [µN], seta index).
 
     The force is the total contact force of the last record at or before the event, so the
     mark sits on the plotted curve (``detachments['force_uN']`` is the one seta's force).
@@ -196,49 +274,78 @@ def _snap_offs(history: History) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     det = history.detachments
     if not det or len(np.atleast_1d(det.get("plate_y_um", []))) == 0:
         return np.empty(0), np.empty(0), np.empty(0, int)
-    y0 = history["plate_y_um"][0]
     t = np.asarray(history["time_us"])
     k = np.clip(np.searchsorted(t, np.asarray(det["time_us"]), side="right") - 1, 0, len(t) - 1)
     seta = np.asarray(det.get("seta", np.full(len(k), -1)), dtype=int)
-    return np.asarray(det["plate_y_um"]) - y0, history["force_normal_uN"][k], seta
+    d = pressing_displacement(history, np.asarray(det["plate_y_um"], dtype=float))
+    return d, history["force_normal_uN"][k], seta
 
 
 def _draw_force_curve(ax: Axes, history: History, annotate: bool) -> None:
-    """Force vs plate displacement, approach and retract coloured apart."""
+    """Force vs pressing displacement d, approach and retract coloured apart."""
     y = np.asarray(history["plate_y_um"], dtype=float)
-    x = y - y[0]
+    x = pressing_displacement(history, y)
     f = np.asarray(history["force_normal_uN"], dtype=float)
     labelled = set()
     for first, last, down in _direction_runs(y):
         name = "approach" if down else "retract"
-        ax.plot(x[first:last + 1], f[first:last + 1],
-                color=APPROACH_COLOUR if down else RETRACT_COLOUR,
-                label=None if name in labelled else name)
+        ax.plot(
+            x[first : last + 1],
+            f[first : last + 1],
+            color=APPROACH_COLOUR if down else RETRACT_COLOUR,
+            label=None if name in labelled else name,
+        )
         labelled.add(name)
     ax.axhline(0.0, color="#888888", linewidth=0.6, zorder=1)
-    ax.set(xlabel="plate displacement [µm]", ylabel="contact force [µN]")
+    ax.set(xlabel=PRESSING_LABEL, ylabel="contact force [µN]")
     if not annotate:
         return
     k = int(np.argmin(f))
     if f[k] < 0:
-        ax.plot([x[k]], [f[k]], "v", color="black", markersize=7, zorder=5,
-                label=f"pull-off {_num(f[k], '.3g')} µN")
-        ax.annotate(f"pull-off {_num(f[k], '.3g')} µN\nat {_num(x[k], '+.3g')} µm", (x[k], f[k]),
-                    xytext=(12, 14), textcoords="offset points", fontsize=9, va="bottom",
-                    bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none",
-                          "alpha": 0.8})
+        ax.plot(
+            [x[k]],
+            [f[k]],
+            "v",
+            color="black",
+            markersize=7,
+            zorder=5,
+            label=f"pull-off {_num(f[k], '.3g')} µN",
+        )
+        ax.annotate(
+            f"pull-off {_num(f[k], '.3g')} µN\nat {_num(x[k], '+.3g')} µm",
+            (x[k], f[k]),
+            xytext=(12, 14),
+            textcoords="offset points",
+            fontsize=9,
+            va="bottom",
+            bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.8},
+        )
     sx, sf, seta = _snap_offs(history)
     if len(sx):
-        ax.plot(sx, sf, "x", color="#2ca02c", markersize=7, mew=1.8, zorder=6,
-                label=f"snap-off ({len(sx)})")
+        ax.plot(
+            sx,
+            sf,
+            "x",
+            color="#2ca02c",
+            markersize=7,
+            mew=1.8,
+            zorder=6,
+            label=f"snap-off ({len(sx)})",
+        )
         if len(sx) <= 5:  # more labels than that would bury the curve
             for xi, fi, s in zip(sx, sf, seta, strict=True):
-                ax.annotate(f"seta {s}" if s >= 0 else "snap-off", (xi, fi), xytext=(6, 6),
-                            textcoords="offset points", fontsize=8, color="#2ca02c")
+                ax.annotate(
+                    f"seta {s}" if s >= 0 else "snap-off",
+                    (xi, fi),
+                    xytext=(6, 6),
+                    textcoords="offset points",
+                    fontsize=8,
+                    color="#2ca02c",
+                )
 
 
 def plot_history(history: History, path=None, ax: Axes | None = None) -> Figure:
-    """Total contact force vs plate displacement, approach and retract in different colours.
+    """Total contact force vs pressing displacement, approach and retract in different colours.
 
     Parameters
     ----------
@@ -247,9 +354,10 @@ def plot_history(history: History, path=None, ax: Axes | None = None) -> Figure:
     path : optional PNG path, saved atomically at :data:`PNG_DPI`.
     ax : draw into these axes instead of a new figure.
 
-    The x axis is ``plate_y_um - plate_y_um[0]`` [µm] (negative = pressed towards the floor);
-    the most negative force (pull-off) and the detachment events (snap-offs, placed on the
-    curve at the last record before each event) are marked. Returns the Figure.
+    The x axis is the pressing displacement d = :func:`touchdown_height` − ``plate_y_um`` [µm]
+    (> 0 pressed past touch-down, < 0 pulled away beyond it); the most negative force
+    (pull-off) and the detachment events (snap-offs, placed on the curve at the last record
+    before each event) are marked. Returns the Figure.
     """
     with mpl.rc_context(STYLE_RC):
         if ax is None:
@@ -259,8 +367,10 @@ def plot_history(history: History, path=None, ax: Axes | None = None) -> Figure:
             fig = ax.figure
         apply_style(ax)
         _draw_force_curve(ax, history, annotate=True)
-        ax.set_title(f"N = {history.params.array.count} setae, {history.params.mechanics} "
-                     f"mechanics, {len(history)} records")
+        ax.set_title(
+            f"N = {history.params.array.count} setae, {history.params.mechanics} "
+            f"mechanics, {len(history)} records"
+        )
         ax.legend(loc="best")
     if path is not None:
         save_figure(fig, path)
@@ -316,7 +426,7 @@ class Frame:
     ----------
     figure : the figure (Agg canvas), ``FIGSIZE`` × dpi pixels.
     side_ax : side view, data units µm, aspect 1.
-    force_ax : force [µN] vs plate displacement [µm].
+    force_ax : force [µN] vs pressing displacement d [µm].
     record : index of the drawn record.
     shown : indices of the setae drawn.
     window_text : e.g. ``"setae 480–519 of 1000 shown"``; empty when all setae are drawn.
@@ -346,8 +456,10 @@ class _Scene:
 
     def __init__(self, history: History, window: int, dpi: float):
         if not history.setae:
-            raise ValueError("this run was recorded without per-seta data, so there is nothing "
-                             "to animate; re-run it with record_setae=True")
+            raise ValueError(
+                "this run was recorded without per-seta data, so there is nothing "
+                "to animate; re-run it with record_setae=True"
+            )
         for key in ("root_dx_um", "root_dy_um"):
             if key not in history.geometry:
                 raise ValueError(f"history.geometry lacks {key!r}; cannot place the setae")
@@ -358,8 +470,11 @@ class _Scene:
         n_setae = np.asarray(history.setae["tip_x_um"]).shape[1]
         self.shown = window_range(n_setae, window)
         sel = slice(self.shown.start, self.shown.stop)
-        self.window_text = (f"setae {self.shown.start}–{self.shown.stop - 1} of {n_setae} shown"
-                            if len(self.shown) < n_setae else "")
+        self.window_text = (
+            f"setae {self.shown.start}–{self.shown.stop - 1} of {n_setae} shown"
+            if len(self.shown) < n_setae
+            else ""
+        )
         g = history.geometry
         self.root_dx = np.asarray(g["root_dx_um"], dtype=float)[sel]
         self.root_dy = np.asarray(g["root_dy_um"], dtype=float)[sel]
@@ -370,24 +485,30 @@ class _Scene:
         self.state = np.asarray(s["state"])[:, sel]
         self.plate_x = np.asarray(history["plate_x_um"], dtype=float)
         self.plate_y = np.asarray(history["plate_y_um"], dtype=float)
-        self.disp = self.plate_y - self.plate_y[0]
+        self.disp = pressing_displacement(history, self.plate_y)
         self.time = np.asarray(history["time_us"], dtype=float)
         self.plate_h = 0.15 * self.L  # drawn plate thickness [µm], a visual choice
-        self.pitch = (float(np.median(np.diff(np.sort(self.root_dx))))
-                      if len(self.root_dx) > 1 else 2.0 * self.R)
+        self.pitch = (
+            float(np.median(np.diff(np.sort(self.root_dx))))
+            if len(self.root_dx) > 1
+            else 2.0 * self.R
+        )
         with mpl.rc_context(STYLE_RC):
             self._build(dpi)
 
     def _limits(self):
         """Fixed side-view limits covering every record, so the picture does not jump."""
         root_x = self.plate_x[:, None] + self.root_dx[None, :]
-        xs = [root_x.min() - self.pitch / 2, root_x.max() + self.pitch / 2,
-              self.tip_x.min() - self.R, self.tip_x.max() + self.R]
+        xs = [
+            root_x.min() - self.pitch / 2,
+            root_x.max() + self.pitch / 2,
+            self.tip_x.min() - self.R,
+            self.tip_x.max() + self.R,
+        ]
         xlo, xhi = min(xs), max(xs)
         floor_y = self._floor(xlo, xhi)[1]
         ylo = min(self.tip_y.min() - self.R, floor_y.min())
-        yhi = max(self.plate_y.max() + self.root_dy.max() + self.plate_h,
-                  self.tip_y.max() + self.R)
+        yhi = max(self.plate_y.max() + self.root_dy.max() + self.plate_h, self.tip_y.max() + self.R)
         mx, my = 0.04 * (xhi - xlo), 0.06 * (yhi - ylo)
         return (xlo - mx, xhi + mx), (ylo - my - 0.1 * self.R, yhi + my)
 
@@ -424,29 +545,46 @@ class _Scene:
         # Rod linewidth to scale (diameter 2r), but never thinner than a hairline.
         px_per_um = side.transData.transform((1.0, 0.0))[0] - side.transData.transform((0, 0))[0]
         lw = max(0.6, 2.0 * self.h.params.seta.r * px_per_um * 72.0 / dpi)
-        self.rods = LineCollection([], colors="#5a5a5a", linewidths=lw, capstyle="butt",
-                                   zorder=4)
+        self.rods = LineCollection([], colors="#5a5a5a", linewidths=lw, capstyle="butt", zorder=4)
         side.add_collection(self.rods)
         n = len(self.shown)
-        self.tips = EllipseCollection(np.full(n, 2 * self.R), np.full(n, 2 * self.R),
-                                      np.zeros(n), units="xy", offsets=np.zeros((n, 2)),
-                                      offset_transform=side.transData, edgecolors="#333333",
-                                      linewidths=0.5, zorder=5)
+        self.tips = EllipseCollection(
+            np.full(n, 2 * self.R),
+            np.full(n, 2 * self.R),
+            np.zeros(n),
+            units="xy",
+            offsets=np.zeros((n, 2)),
+            offset_transform=side.transData,
+            edgecolors="#333333",
+            linewidths=0.5,
+            zorder=5,
+        )
         side.add_collection(self.tips)
-        handles = [Line2D([], [], ls="", marker="o", markersize=8, color=c, mec="#333333",
-                          label=name) for name, c in (
-            ("free", STATE_COLOURS["free"]), ("attached, compressed", STATE_COLOURS[
-                "compressed"]), ("attached, tension", STATE_COLOURS["tension"]),
-            ("sliding", STATE_COLOURS["sliding"]))]
-        fig.legend(handles=handles, loc="lower left", bbox_to_anchor=(0.06, 0.0), ncol=4,
-                   frameon=False, fontsize=9)
+        handles = [
+            Line2D([], [], ls="", marker="o", markersize=8, color=c, mec="#333333", label=name)
+            for name, c in (
+                ("free", STATE_COLOURS["free"]),
+                ("attached, compressed", STATE_COLOURS["compressed"]),
+                ("attached, tension", STATE_COLOURS["tension"]),
+                ("sliding", STATE_COLOURS["sliding"]),
+            )
+        ]
+        fig.legend(
+            handles=handles,
+            loc="lower left",
+            bbox_to_anchor=(0.06, 0.0),
+            ncol=4,
+            frameon=False,
+            fontsize=9,
+        )
         apply_style(force)
         _draw_force_curve(force, self.h, annotate=False)
         force.legend(loc="lower left", fontsize=8)
         (self.marker,) = force.plot([], [], "o", color="black", markersize=6, zorder=6)
         self.caption = fig.text(0.06, 0.93, "", fontsize=11, ha="left", va="baseline")
-        fig.text(0.06, 0.88, self.window_text, fontsize=9, color="#555555", ha="left",
-                 va="baseline")
+        fig.text(
+            0.06, 0.88, self.window_text, fontsize=9, color="#555555", ha="left", va="baseline"
+        )
         self.side, self.force_ax = side, force
         # What changes from frame to frame, in drawing (zorder) order; the rest is drawn once.
         self.moving = [self.plate, self.rods, self.tips, self.marker, self.caption]
@@ -480,14 +618,17 @@ class _Scene:
             return np.stack([root, tip], axis=1)
         # Cantilever with a tip load: leaves the root along the rest direction e_a, transverse
         # deflection w(ξ) = w_tip (3ξ² − ξ³)/2, axial stretch spread evenly along the rod.
-        e_a = np.array([math.cos(self.theta), -math.sin(self.theta)])
+        e_a = np.array(rest_tip_offset(1.0, self.theta))
         e_t = np.array([-e_a[1], e_a[0]])
         d = tip - root
         a, t = d @ e_a, d @ e_t
         xi = np.linspace(0.0, 1.0, _CURVE_POINTS)
         shape = (3 * xi**2 - xi**3) / 2
-        return (root[:, None, :] + (a[:, None] * xi)[..., None] * e_a
-                + (t[:, None] * shape)[..., None] * e_t)
+        return (
+            root[:, None, :]
+            + (a[:, None] * xi)[..., None] * e_a
+            + (t[:, None] * shape)[..., None] * e_t
+        )
 
     def draw(self, k: int) -> None:
         """Move every artist to record ``k``."""
@@ -498,9 +639,11 @@ class _Scene:
         self.tips.set_offsets(np.stack([self.tip_x[k], self.tip_y[k]], -1))
         self.tips.set_facecolor(_tip_colours(self.state[k], self.force[k]))
         self.marker.set_data([self.disp[k]], [self.h["force_normal_uN"][k]])
-        self.caption.set_text(f"t = {_num(self.time[k], '.2f')} µs    plate displacement = "
-                              f"{_num(self.disp[k], '+.3f')} µm    "
-                              f"(record {k + 1} of {len(self.time)})")
+        self.caption.set_text(
+            f"t = {_num(self.time[k], '.2f')} µs    pressing displacement d = "
+            f"{_num(self.disp[k], '+.3f')} µm    "
+            f"(record {k + 1} of {len(self.time)})"
+        )
 
 
 def render_frame(history: History, k: int, *, window: int = 40, dpi: float = DPI) -> Frame:
@@ -539,16 +682,26 @@ def _mp4_writer(fps: float) -> tuple[FFMpegWriter, str]:
     try:
         import imageio_ffmpeg
     except ImportError as err:
-        raise RuntimeError("MP4 output needs the ffmpeg binary from imageio-ffmpeg: "
-                           "pip install -e '.[video]' (or write a .gif)") from err
+        raise RuntimeError(
+            "MP4 output needs the ffmpeg binary from imageio-ffmpeg: "
+            "pip install -e '.[video]' (or write a .gif)"
+        ) from err
     # With codec "h264" matplotlib rounds the frame to even pixels and asks for yuv420p, so
     # the file plays everywhere.
     writer = FFMpegWriter(fps=fps, codec="h264")
     return writer, imageio_ffmpeg.get_ffmpeg_exe()
 
 
-def animate(history: History, path, *, window: int = 40, frames: int | None = None,
-            fps: float = 20, fmt: str | None = None, dpi: float = DPI) -> Path:
+def animate(
+    history: History,
+    path,
+    *,
+    window: int = 40,
+    frames: int | None = None,
+    fps: float = 20,
+    fmt: str | None = None,
+    dpi: float = DPI,
+) -> Path:
     """Animate a run: the array seen from the side next to its force–displacement curve.
 
     Parameters
@@ -603,14 +756,21 @@ def main(argv=None) -> int:
     """``python -m gecko_agents.render RUN_DIR [--gif|--mp4] [--window N] [--frames N]
     [--fps N]``: render a saved run into RUN_DIR/detachment.gif (or .mp4) and
     RUN_DIR/force_history.png. Returns the exit code (2 on a missing or corrupt run)."""
-    parser = argparse.ArgumentParser(prog="python -m gecko_agents.render",
-                                     description="Render a saved gecko_agents run.")
+    parser = argparse.ArgumentParser(
+        prog="python -m gecko_agents.render", description="Render a saved gecko_agents run."
+    )
     parser.add_argument("run_dir", type=Path, help="directory written by History.save")
     kind = parser.add_mutually_exclusive_group()
-    kind.add_argument("--gif", dest="fmt", action="store_const", const="gif",
-                      help="animated GIF (default)")
-    kind.add_argument("--mp4", dest="fmt", action="store_const", const="mp4",
-                      help="MP4 video (needs pip install -e '.[video]')")
+    kind.add_argument(
+        "--gif", dest="fmt", action="store_const", const="gif", help="animated GIF (default)"
+    )
+    kind.add_argument(
+        "--mp4",
+        dest="fmt",
+        action="store_const",
+        const="mp4",
+        help="MP4 video (needs pip install -e '.[video]')",
+    )
     parser.add_argument("--window", type=int, default=40, help="setae drawn (default 40)")
     parser.add_argument("--frames", type=int, default=None, help="frames (default ≤ 300)")
     parser.add_argument("--fps", type=float, default=20, help="frames per second (default 20)")
@@ -621,8 +781,13 @@ def main(argv=None) -> int:
         png = args.run_dir / "force_history.png"
         plot_history(history, png)
         print(f"wrote {png}")
-        movie = animate(history, args.run_dir / f"detachment.{args.fmt or 'gif'}",
-                        window=args.window, frames=args.frames, fps=args.fps)
+        movie = animate(
+            history,
+            args.run_dir / f"detachment.{args.fmt or 'gif'}",
+            window=args.window,
+            frames=args.frames,
+            fps=args.fps,
+        )
         print(f"wrote {movie}")
         print(f"rendered in {time.perf_counter() - start:.1f} s")
     except (FileNotFoundError, ValueError, RuntimeError) as err:

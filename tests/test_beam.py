@@ -8,7 +8,8 @@ from gecko_agents.params import PAPER_TABLE1
 
 
 def test_table1_values_from_notes():
-    # NOTES.md: Ka = 0.499 N/m, Kp = 2.11e-3 N/m, Ky = 2.81e-3 (30°), 8.32e-3 (60°).
+    # docs/physics.md, "Seta mechanics": Ka = 0.499 N/m, Kp = 2.11e-3 N/m,
+    # Ky = 2.81e-3 (30°), 8.32e-3 (60°).
     Ka = beam.axial_stiffness(1.5, 20.0, 1.413)
     Kp = beam.bending_stiffness(1.5, 20.0, 1.413)
     assert_allclose(Ka, 0.499, rtol=2e-3)
@@ -55,7 +56,8 @@ def test_matrix_inverse_diagonal_gives_eq20_eq21():
 
 
 def test_deflection_ratio_matches_notes():
-    # NOTES.md: holding Fc = 1.5 µN needs Fc/Ky = 540 µm at 30° (27 L) and 180 µm at 60° (9 L).
+    # docs/physics.md, "Seta mechanics": holding Fc = 1.5 µN needs Fc/Ky = 540 µm at 30°
+    # (27 L) and 180 µm at 60° (9 L).
     p = PAPER_TABLE1
     Ka, Kp, L = p.axial_stiffness, p.bending_stiffness, p.seta.L
     r30 = beam.deflection_ratio(1.5, Ka, Kp, np.radians(30), L)
@@ -64,3 +66,16 @@ def test_deflection_ratio_matches_notes():
     assert r30 >= 1.5 / beam.longitudinal_stiffness(Ka, Kp, np.radians(30)) / L
     assert 25 < r30 < 60 and 8 < r60 < 20
     assert beam.deflection_ratio(1e-5, Ka, Kp, np.radians(60), L) < 1e-3
+
+
+def test_rest_tip_offset_is_the_rest_direction_of_the_stiffness_matrix():
+    L, theta = 20.0, np.deg2rad(30.0)
+    dx, dy = beam.rest_tip_offset(L, theta)
+    assert_allclose([dx, dy], [L * np.sqrt(3) / 2, -L / 2], rtol=1e-15)
+    # Ka acts along the rest direction: K·n = Ka·n for Kp = 0.
+    n = np.array(beam.rest_tip_offset(1.0, theta))
+    assert_allclose(beam.stiffness_matrix(2.0, 0.0, theta) @ n, 2.0 * n, rtol=1e-15)
+    # vectorized over angles; the tip leans towards +x and down for 0 < θ < 90°
+    dx, dy = beam.rest_tip_offset(L, np.deg2rad([10.0, 60.0, 89.0]))
+    assert np.all(dx > 0) and np.all(dy < 0)
+    assert_allclose(np.hypot(dx, dy), L, rtol=1e-15)

@@ -198,7 +198,7 @@ def test_bad_format_and_missing_ffmpeg(toy, tmp_path, monkeypatch):
 def test_plot_history_labels_legend_and_marks(toy, tmp_path):
     fig = render.plot_history(toy, tmp_path / "f.png")
     ax = fig.axes[0]
-    assert ax.get_xlabel() == "plate displacement [µm]"
+    assert ax.get_xlabel() == "pressing displacement d [µm] (> 0 pressed)"
     assert ax.get_ylabel() == "contact force [µN]"
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert {"approach", "retract"} <= set(labels)
@@ -262,3 +262,25 @@ def test_cli_renders_a_saved_run(tmp_path, capsys):
     with Image.open(gif) as im:
         assert im.n_frames == 3
     assert png.is_file()
+
+
+def test_one_sign_convention_for_displacement_in_plots_and_animation(toy):
+    """d = touch-down height − plate height: > 0 pressed, < 0 pulled away (docs/physics.md)."""
+    p = toy.params
+    z_touch = p.contact.R + p.seta.L * np.sin(p.seta.theta)  # tip on y = 0 at rest (14 µm)
+    assert render.touchdown_height(p) == pytest.approx(z_touch, rel=1e-12)
+    d = render.pressing_displacement(toy)
+    assert_d = z_touch - toy["plate_y_um"]
+    assert np.allclose(d, assert_d, rtol=0, atol=1e-12)
+    assert d[DEEPEST] == pytest.approx(1.0) and d[-1] == pytest.approx(-11.0)
+    # the force curve's x data and the animation's marker use the same d
+    fig = render.plot_history(toy)
+    xs = np.concatenate([line.get_xdata() for line in fig.axes[0].get_lines()
+                         if line.get_label() in ("approach", "retract")])
+    assert xs.max() == pytest.approx(d.max()) and xs.min() == pytest.approx(d.min())
+    frame = render.render_frame(toy, DEEPEST)
+    marker = frame.force_ax.get_lines()[-1]
+    assert marker.get_xdata()[0] == pytest.approx(d[DEEPEST])
+    assert frame.force_ax.get_xlabel() == render.PRESSING_LABEL
+    caption = [t.get_text() for t in frame.figure.texts if "pressing displacement" in t.get_text()]
+    assert caption and "+1.000 µm" in caption[0]
