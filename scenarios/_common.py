@@ -25,15 +25,36 @@ from gecko_agents import jkr  # noqa: E402
 from gecko_agents.history import atomic_write_bytes, versions  # noqa: E402
 
 VERDICTS = ("reproduced", "trend reproduced", "not reproducible from the stated parameters")
+GREY = "#7f7f7f"
+"""Colour of reference curves (the parts of eq 7/10 no tip reaches, N·Fc lines)."""
+PAPER_DELTA_S_COEF = -0.21
+"""The paper's separation overlap δs = −0.21 a0²/R (section 2.1; docs/physics.md, "Snap-off")."""
+
+
+def num(x: float, spec: str = ".2f") -> str:
+    """``format(x, spec)`` with a typographic minus."""
+    return format(x, spec).replace("-", "\u2212")
+
+
+def rel_off(ours: float, paper: float) -> str:
+    """Relative distance from the paper's number, e.g. ``"6.4 %"``."""
+    return f"{100 * abs(ours - paper) / abs(paper):.1f} %"
+
+
+def off_paper(ours: float, paper: float) -> str:
+    """How far ``ours`` is from the paper's number, e.g. ``"0.7 % off the paper's value"``."""
+    return f"{rel_off(ours, paper)} off the paper's value"
 
 
 def parse_args(doc: str, argv=None, extra=None) -> argparse.Namespace:
     """Parse the common options; ``extra(parser)`` may add scenario-specific ones."""
     parser = argparse.ArgumentParser(description=(doc or "").strip().splitlines()[0])
-    parser.add_argument("--quick", action="store_true",
-                        help="small and fast (seconds): for tests and a first look")
-    parser.add_argument("--out", type=Path, default=None,
-                        help="output folder (default renders/<scenario>/)")
+    parser.add_argument(
+        "--quick", action="store_true", help="small and fast (seconds): for tests and a first look"
+    )
+    parser.add_argument(
+        "--out", type=Path, default=None, help="output folder (default renders/<scenario>/)"
+    )
     parser.add_argument("--no-progress", action="store_true", help="hide progress bars")
     if extra is not None:
         extra(parser)
@@ -67,13 +88,27 @@ def write_json(path: Path, data: dict) -> Path:
     return Path(path)
 
 
-def claim(figure: str, claim: str, paper: str, ours: str, verdict: str, reason: str,
-          alternative: str = "—") -> dict:
+def claim(
+    figure: str,
+    claim: str,
+    paper: str,
+    ours: str,
+    verdict: str,
+    reason: str,
+    alternative: str = "—",
+) -> dict:
     """One row of renders/paper_comparison.md. ``ours``/``alternative`` are computed strings."""
     if verdict not in VERDICTS:
         raise ValueError(f"verdict {verdict!r} must be one of {VERDICTS}")
-    return {"figure": figure, "claim": claim, "paper": paper, "ours": ours,
-            "alternative": alternative, "verdict": verdict, "reason": reason}
+    return {
+        "figure": figure,
+        "claim": claim,
+        "paper": paper,
+        "ours": ours,
+        "alternative": alternative,
+        "verdict": verdict,
+        "reason": reason,
+    }
 
 
 def jkr_curves(contact, n: int, P_max: float) -> dict:
@@ -85,7 +120,11 @@ def jkr_curves(contact, n: int, P_max: float) -> dict:
     a_max = float(jkr.contact_radius_from_force(P_max, R, w, E))
     a_st = np.linspace(a_D, a_max, n)
     a_un = np.linspace(0.0, a_D, max(n // 4, 20))
-    return {"a_st": a_st, "P_st": jkr.force_from_radius(a_st, R, w, E),
-            "d_st": jkr.overlap_from_radius(a_st, R, w, E),
-            "a_un": a_un, "P_un": jkr.force_from_radius(a_un, R, w, E),
-            "d_un": jkr.overlap_from_radius(a_un, R, w, E)}
+    return {
+        "a_st": a_st,
+        "P_st": jkr.force_from_radius(a_st, R, w, E),
+        "d_st": jkr.overlap_from_radius(a_st, R, w, E),
+        "a_un": a_un,
+        "P_un": jkr.force_from_radius(a_un, R, w, E),
+        "d_un": jkr.overlap_from_radius(a_un, R, w, E),
+    }

@@ -19,7 +19,17 @@ from __future__ import annotations
 
 import matplotlib as mpl
 import numpy as np
-from _common import claim, output_dir, parse_args, write_json, write_table
+from _common import (
+    GREY,
+    PAPER_DELTA_S_COEF,
+    claim,
+    num,
+    off_paper,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 from scipy.optimize import brentq
 
 from gecko_agents import jkr
@@ -40,14 +50,11 @@ PAPER_A = (0.0, -1.35)
 PAPER_C_FORCE, PAPER_C_RADIUS = -1.5, 1.24  # maximum adhesion [µN] at a [µm]
 PAPER_D = (-0.8, -0.75)
 PAPER_E = (-0.8, 0.0)
-PAPER_DELTA_S_COEF = -0.21  # δs = −0.21 a0²/R (section 2.1)
 
 READINGS = {
     "stated_w": (PAPER_TABLE1, "stated w = 2√(γ1γ2)"),
     "fig5_reading": (PAPER_FIG5_READING, "Fig 5 reading w = 0.080 J/m²"),
 }
-
-GREY = "#7f7f7f"
 
 
 def key_points(contact) -> dict:
@@ -70,9 +77,16 @@ def key_points(contact) -> dict:
         "E": (None, d_D, 0.0),
     }
     return {
-        "R": R, "w": w, "E_star": E, "Fc": Fc, "a0": a0, "points": pts,
-        "delta_s": delta_s, "P_at_delta_s": float(jkr.force_from_overlap(delta_s, R, w, E)),
-        "delta_c_over_a0sq_R": d_D * R / a0**2, "delta_C_over_a0sq_R": d_C * R / a0**2,
+        "R": R,
+        "w": w,
+        "E_star": E,
+        "Fc": Fc,
+        "a0": a0,
+        "points": pts,
+        "delta_s": delta_s,
+        "P_at_delta_s": float(jkr.force_from_overlap(delta_s, R, w, E)),
+        "delta_c_over_a0sq_R": d_D * R / a0**2,
+        "delta_C_over_a0sq_R": d_C * R / a0**2,
         "a_C_over_a0": a_C / a0,
     }
 
@@ -92,13 +106,24 @@ def curves_for(contact, n: int, kp: dict, d_min: float) -> tuple[list, list]:
     d_st = jkr.overlap_from_radius(a_st, R, w, E)
 
     panel_a = [
-        {"x": a_st, "y": P_st, "label": "eq 7, reachable branch (a ≥ a_D)",
-         "style": {"color": "k"}},
-        {"x": a_unst, "y": P_unst, "label": "eq 7, a < a_D (never reached)",
-         "style": {"color": GREY, "ls": ":"}},
-        {"x": [PAPER_C_RADIUS], "y": [PAPER_C_FORCE],
-         "label": f"paper's C ({PAPER_C_RADIUS:g} µm, {_n(PAPER_C_FORCE, 'g')} µN)",
-         "style": {"ls": "", "marker": "s", "mfc": "none", "color": GREY, "markersize": 8}},
+        {
+            "x": a_st,
+            "y": P_st,
+            "label": "eq 7, reachable branch (a ≥ a_D)",
+            "style": {"color": "k"},
+        },
+        {
+            "x": a_unst,
+            "y": P_unst,
+            "label": "eq 7, a < a_D (never reached)",
+            "style": {"color": GREY, "ls": ":"},
+        },
+        {
+            "x": [PAPER_C_RADIUS],
+            "y": [PAPER_C_FORCE],
+            "label": f"paper's C ({PAPER_C_RADIUS:g} µm, {num(PAPER_C_FORCE, 'g')} µN)",
+            "style": {"ls": "", "marker": "s", "mfc": "none", "color": GREY, "markersize": 8},
+        },
     ]
 
     d_A, P_A = pts["A"][1:]
@@ -106,32 +131,33 @@ def curves_for(contact, n: int, kp: dict, d_min: float) -> tuple[list, list]:
     on_branch_from_A = a_st >= pts["A"][0]
     panel_b = [
         # Approach: free (P = 0) up to O, jump O → A, then along the branch into compression.
-        {"x": np.concatenate([[d_min, 0.0, d_A], d_st[on_branch_from_A]]),
-         "y": np.concatenate([[0.0, 0.0, P_A], P_st[on_branch_from_A]]),
-         "label": "approach: O → A jump, A → B → compression",
-         "style": {"color": APPROACH_COLOUR, "lw": 4.5, "alpha": 0.45, "solid_capstyle": "butt"}},
+        {
+            "x": np.concatenate([[d_min, 0.0, d_A], d_st[on_branch_from_A]]),
+            "y": np.concatenate([[0.0, 0.0, P_A], P_st[on_branch_from_A]]),
+            "label": "approach: O → A jump, A → B → compression",
+            "style": {"color": APPROACH_COLOUR, "lw": 4.5, "alpha": 0.45, "solid_capstyle": "butt"},
+        },
         # Retract: back along the stable branch to D, jump D → E, free again.
-        {"x": np.concatenate([d_st[::-1], [d_D, d_D, d_min]]),
-         "y": np.concatenate([P_st[::-1], [P_D, 0.0, 0.0]]),
-         "label": "retract: B → A → C → D, jump D → E",
-         "style": {"color": RETRACT_COLOUR, "lw": 1.5}},
-        {"x": d_unst, "y": P_unst, "label": "eq 10, a < a_D (never reached)",
-         "style": {"color": GREY, "ls": ":"}},
-        {"x": [PAPER_A[0], PAPER_D[0], PAPER_E[0]], "y": [PAPER_A[1], PAPER_D[1], PAPER_E[1]],
-         "label": "paper's A, D, E as printed",
-         "style": {"ls": "", "marker": "s", "mfc": "none", "color": GREY, "markersize": 8}},
+        {
+            "x": np.concatenate([d_st[::-1], [d_D, d_D, d_min]]),
+            "y": np.concatenate([P_st[::-1], [P_D, 0.0, 0.0]]),
+            "label": "retract: B → A → C → D, jump D → E",
+            "style": {"color": RETRACT_COLOUR, "lw": 1.5},
+        },
+        {
+            "x": d_unst,
+            "y": P_unst,
+            "label": "eq 10, a < a_D (never reached)",
+            "style": {"color": GREY, "ls": ":"},
+        },
+        {
+            "x": [PAPER_A[0], PAPER_D[0], PAPER_E[0]],
+            "y": [PAPER_A[1], PAPER_D[1], PAPER_E[1]],
+            "label": "paper's A, D, E as printed",
+            "style": {"ls": "", "marker": "s", "mfc": "none", "color": GREY, "markersize": 8},
+        },
     ]
     return panel_a, panel_b
-
-
-def _n(x: float, spec: str = ".2f") -> str:
-    """``format(x, spec)`` with a typographic minus."""
-    return format(x, spec).replace("-", "\u2212")
-
-
-def _vs(ours: float, paper: float) -> str:
-    """How far ``ours`` is from the paper's number, e.g. ``"0.7 % off the paper's value"``."""
-    return f"{100 * abs(ours - paper) / abs(paper):.1f} % off the paper's value"
 
 
 def draw(key: str, contact, title: str, kp: dict, n: int, out, d_min: float) -> list:
@@ -140,16 +166,22 @@ def draw(key: str, contact, title: str, kp: dict, n: int, out, d_min: float) -> 
     pts = kp["points"]
     paths = []
     for panel, curves, names, col, xlabel, xname in (
-            ("a", panel_a, "ABCD", 0, "contact radius a [µm]", "a"),
-            ("b", panel_b, "OABCDE", 1, "contact depth (overlap) δ [µm]", "δ")):
+        ("a", panel_a, "ABCD", 0, "contact radius a [µm]", "a"),
+        ("b", panel_b, "OABCDE", 1, "contact depth (overlap) δ [µm]", "δ"),
+    ):
         fig = plot_force_curves(
-            curves, None, xlabel=xlabel, ylabel="contact force P [µN]",
+            curves,
+            None,
+            xlabel=xlabel,
+            ylabel="contact force P [µN]",
             title=f"Fig 5{panel}: R = {kp['R']:g} µm, E* = {kp['E_star']:.3f} MPa, "
-                  f"w = {kp['w']:.4f} J/m²\n({title})",
-            points=[(pts[k][col], pts[k][2], k) for k in names])
+            f"w = {kp['w']:.4f} J/m²\n({title})",
+            points=[(pts[k][col], pts[k][2], k) for k in names],
+        )
         ax = fig.axes[0]
-        table = "\n".join(f"{k}: {xname} = {_n(pts[k][col])} µm, P = {_n(pts[k][2])} µN"
-                          for k in names)
+        table = "\n".join(
+            f"{k}: {xname} = {num(pts[k][col])} µm, P = {num(pts[k][2])} µN" for k in names
+        )
         with mpl.rc_context(STYLE_RC):
             ax.axhline(0.0, color="#888888", lw=0.6, zorder=1)
             ax.axvline(0.0, color="#888888", lw=0.6, zorder=1)
@@ -168,10 +200,18 @@ def build_claims(kp: dict, alt: dict, alt_contact) -> list[dict]:
     R, w_alt, _ = alt_contact.jkr_args()
     # What the paper's C radius would need (E* at w = 0.080) and its D overlap would need (w at
     # the stated E*): solved numerically with the package's own functions.
-    E_needed = brentq(lambda E: float(jkr.contact_radius_from_force(-alt["Fc"], R, w_alt, E))
-                      - PAPER_C_RADIUS, 1e-3, 1e3, xtol=1e-12)
-    w_for_D = brentq(lambda w: float(jkr.snap_off_overlap(R, w, kp["E_star"])) - PAPER_D[0],
-                     1e-4, 10.0, xtol=1e-12)
+    E_needed = brentq(
+        lambda E: float(jkr.contact_radius_from_force(-alt["Fc"], R, w_alt, E)) - PAPER_C_RADIUS,
+        1e-3,
+        1e3,
+        xtol=1e-12,
+    )
+    w_for_D = brentq(
+        lambda w: float(jkr.snap_off_overlap(R, w, kp["E_star"])) - PAPER_D[0],
+        1e-4,
+        10.0,
+        xtol=1e-12,
+    )
     P_for_D = float(jkr.force_from_overlap(PAPER_D[0], R, w_for_D, kp["E_star"]))
 
     def a_C_of_w(w):  # load-controlled pull-off radius at the stated E*
@@ -179,60 +219,77 @@ def build_claims(kp: dict, alt: dict, alt_contact) -> list[dict]:
 
     w_for_C = brentq(lambda w: a_C_of_w(w) - PAPER_C_RADIUS, 1e-4, 10.0, xtol=1e-14)
     gamma2 = alt_contact.gamma2
-    g1_for_C = brentq(lambda g: float(jkr.work_of_adhesion(g, gamma2)) - w_for_C, 1e-8, 10.0,
-                      xtol=1e-14)
-    w_s, w_a = _n(kp["w"], ".3f"), _n(alt["w"], ".3f")
+    g1_for_C = brentq(
+        lambda g: float(jkr.work_of_adhesion(g, gamma2)) - w_for_C, 1e-8, 10.0, xtol=1e-14
+    )
+    w_s, w_a = num(kp["w"], ".3f"), num(alt["w"], ".3f")
     return [
-        claim("Fig 5b", "point A: the approach jumps in at zero overlap to (0, −1.35 µN)",
-              "A = (0, −1.35 µN)",
-              f"A = (0, {_n(s['A'][2], '.3f')} µN) = −(8/9)Fc at w = {w_s} J/m²",
-              "not reproducible from the stated parameters",
-              f"w = 2√(γ1γ2) = {w_s} J/m² doubles every adhesive force, and −1.35 µN is "
-              f"−(8/9)Fc only for w ≈ {w_a} J/m².",
-              f"A = (0, {_n(a['A'][2], '.3f')} µN) at w = {w_a} J/m² "
-              f"({_vs(a['A'][2], PAPER_A[1])})"),
-        claim("Fig 5a", "point C: maximum adhesion force −1.5 µN",
-              "−1.5 µN",
-              f"−Fc = −1.5πRw = {_n(-kp['Fc'], '.3f')} µN",
-              "not reproducible from the stated parameters",
-              f"The stated γ1, γ2 give Fc = {_n(kp['Fc'], '.2f')} µN; −1.5 µN at R = "
-              f"{kp['R']:g} µm needs w = {w_a} J/m² (= {_n(alt['w'] / alt_contact.gamma1, '.2f')}"
-              " γ1).",
-              f"−Fc = {_n(-alt['Fc'], '.3f')} µN at w = {w_a} J/m² "
-              f"({_vs(-alt['Fc'], PAPER_C_FORCE)})"),
-        claim("Fig 5a", "point C: contact radius 1.24 µm at maximum adhesion",
-              "a = 1.24 µm",
-              f"a = {_n(s['C'][0], '.3f')} µm (= {_n(kp['a_C_over_a0'], '.3f')} a0, "
-              f"a0 = {_n(kp['a0'], '.3f')} µm)",
-              "not reproducible from the stated parameters",
-              f"JKR puts the load-controlled pull-off at a = 0.63 a0 for any w, and neither "
-              f"reading gives 1.24 µm: at w = {w_a} J/m² it would need "
-              f"E* = {_n(E_needed, '.2f')} MPa instead of {_n(alt['E_star'], '.3f')} MPa.",
-              f"a = {_n(a['C'][0], '.3f')} µm at w = {w_a} J/m² "
-              f"({_vs(a['C'][0], PAPER_C_RADIUS)}); 1.24 µm at the stated E* needs "
-              f"w = {_n(w_for_C, '.4f')} J/m², i.e. γ1 = {1e3 * g1_for_C:.2f} mJ/m² with "
-              f"γ2 = {1e3 * gamma2:g} mJ/m², whose Fc is {_n(jkr.pull_off_force(R, w_for_C))} µN"),
-        claim("Fig 5b", "point D (−0.8, −0.75) ends the contact; jump D → E (−0.8, 0)",
-              "D = (−0.8 µm, −0.75 µN), E = (−0.8 µm, 0)",
-              f"D = (δc, −(5/9)Fc) = ({_n(s['D'][1], '.3f')} µm, {_n(s['D'][2], '.3f')} µN); "
-              f"the paper's own δs = −0.21a0²/R = {_n(kp['delta_s'], '.3f')} µm "
-              f"(P there {_n(kp['P_at_delta_s'], '.3f')} µN)",
-              "not reproducible from the stated parameters",
-              f"The branch ends at δc, so no contact exists at δ = −0.8 µm for either reading; "
-              f"δc = −0.8 µm would need w = {_n(w_for_D, '.3f')} J/m² (then P(δc) = "
-              f"{_n(P_for_D, '.2f')} µN), and the printed ratio D/C = "
-              f"{_n(PAPER_D[1] / PAPER_C_FORCE, '.2f')} is not JKR's 5/9 = {_n(5 / 9, '.3f')}.",
-              f"w = {w_a}: D = ({_n(a['D'][1], '.3f')} µm, {_n(a['D'][2], '.3f')} µN), "
-              f"δs = {_n(alt['delta_s'], '.3f')} µm (P there {_n(alt['P_at_delta_s'], '.3f')} µN)"),
-        claim("Sec 2.1", "separation displacement δs = −0.21 a0²/R",
-              "δs = −0.21 a0²/R",
-              f"displacement control δc = {_n(kp['delta_c_over_a0sq_R'], '.3f')} a0²/R; "
-              f"load control δ(C) = {_n(kp['delta_C_over_a0sq_R'], '.3f')} a0²/R",
-              "not reproducible from the stated parameters",
-              "The coefficient −0.21 matches neither JKR end of contact (both coefficients are "
-              "the same for every R, w and E*); it lies between them.",
-              f"w = {w_a}: {_n(alt['delta_c_over_a0sq_R'], '.3f')} and "
-              f"{_n(alt['delta_C_over_a0sq_R'], '.3f')} a0²/R"),
+        claim(
+            "Fig 5b",
+            "point A: the approach jumps in at zero overlap to (0, −1.35 µN)",
+            "A = (0, −1.35 µN)",
+            f"A = (0, {num(s['A'][2], '.3f')} µN) = −(8/9)Fc at w = {w_s} J/m²",
+            "not reproducible from the stated parameters",
+            f"w = 2√(γ1γ2) = {w_s} J/m² doubles every adhesive force, and −1.35 µN is "
+            f"−(8/9)Fc only for w ≈ {w_a} J/m².",
+            f"A = (0, {num(a['A'][2], '.3f')} µN) at w = {w_a} J/m² "
+            f"({off_paper(a['A'][2], PAPER_A[1])})",
+        ),
+        claim(
+            "Fig 5a",
+            "point C: maximum adhesion force −1.5 µN",
+            "−1.5 µN",
+            f"−Fc = −1.5πRw = {num(-kp['Fc'], '.3f')} µN",
+            "not reproducible from the stated parameters",
+            f"The stated γ1, γ2 give Fc = {num(kp['Fc'], '.2f')} µN; −1.5 µN at R = "
+            f"{kp['R']:g} µm needs w = {w_a} J/m² (= {num(alt['w'] / alt_contact.gamma1, '.2f')}"
+            " γ1).",
+            f"−Fc = {num(-alt['Fc'], '.3f')} µN at w = {w_a} J/m² "
+            f"({off_paper(-alt['Fc'], PAPER_C_FORCE)})",
+        ),
+        claim(
+            "Fig 5a",
+            "point C: contact radius 1.24 µm at maximum adhesion",
+            "a = 1.24 µm",
+            f"a = {num(s['C'][0], '.3f')} µm (= {num(kp['a_C_over_a0'], '.3f')} a0, "
+            f"a0 = {num(kp['a0'], '.3f')} µm)",
+            "not reproducible from the stated parameters",
+            f"JKR puts the load-controlled pull-off at a = 0.63 a0 for any w, and neither "
+            f"reading gives 1.24 µm: at w = {w_a} J/m² it would need "
+            f"E* = {num(E_needed, '.2f')} MPa instead of {num(alt['E_star'], '.3f')} MPa.",
+            f"a = {num(a['C'][0], '.3f')} µm at w = {w_a} J/m² "
+            f"({off_paper(a['C'][0], PAPER_C_RADIUS)}); 1.24 µm at the stated E* needs "
+            f"w = {num(w_for_C, '.4f')} J/m², i.e. γ1 = {1e3 * g1_for_C:.2f} mJ/m² with "
+            f"γ2 = {1e3 * gamma2:g} mJ/m², whose Fc is {num(jkr.pull_off_force(R, w_for_C))} µN",
+        ),
+        claim(
+            "Fig 5b",
+            "point D (−0.8, −0.75) ends the contact; jump D → E (−0.8, 0)",
+            "D = (−0.8 µm, −0.75 µN), E = (−0.8 µm, 0)",
+            f"D = (δc, −(5/9)Fc) = ({num(s['D'][1], '.3f')} µm, {num(s['D'][2], '.3f')} µN); "
+            f"the paper's own δs = −0.21a0²/R = {num(kp['delta_s'], '.3f')} µm "
+            f"(P there {num(kp['P_at_delta_s'], '.3f')} µN)",
+            "not reproducible from the stated parameters",
+            f"The branch ends at δc, so no contact exists at δ = −0.8 µm for either reading; "
+            f"δc = −0.8 µm would need w = {num(w_for_D, '.3f')} J/m² (then P(δc) = "
+            f"{num(P_for_D, '.2f')} µN), and the printed ratio D/C = "
+            f"{num(PAPER_D[1] / PAPER_C_FORCE, '.2f')} is not JKR's 5/9 = {num(5 / 9, '.3f')}.",
+            f"w = {w_a}: D = ({num(a['D'][1], '.3f')} µm, {num(a['D'][2], '.3f')} µN), "
+            f"δs = {num(alt['delta_s'], '.3f')} µm "
+            f"(P there {num(alt['P_at_delta_s'], '.3f')} µN)",
+        ),
+        claim(
+            "Sec 2.1",
+            "separation displacement δs = −0.21 a0²/R",
+            "δs = −0.21 a0²/R",
+            f"displacement control δc = {num(kp['delta_c_over_a0sq_R'], '.3f')} a0²/R; "
+            f"load control δ(C) = {num(kp['delta_C_over_a0sq_R'], '.3f')} a0²/R",
+            "not reproducible from the stated parameters",
+            "The coefficient −0.21 matches neither JKR end of contact (both coefficients are "
+            "the same for every R, w and E*); it lies between them.",
+            f"w = {w_a}: {num(alt['delta_c_over_a0sq_R'], '.3f')} and "
+            f"{num(alt['delta_C_over_a0sq_R'], '.3f')} a0²/R",
+        ),
     ]
 
 
@@ -251,12 +308,28 @@ def main(argv=None) -> dict:
     rows = []
     for key, kp in kps.items():
         for name, (a, d, P) in kp["points"].items():
-            rows.append({"reading": key, "w_J_m2": kp["w"], "E_star_MPa": kp["E_star"],
-                         "point": name, "contact_radius_um": a, "overlap_um": d,
-                         "force_uN": P})
-        rows.append({"reading": key, "w_J_m2": kp["w"], "E_star_MPa": kp["E_star"],
-                     "point": "paper_delta_s", "contact_radius_um": None,
-                     "overlap_um": kp["delta_s"], "force_uN": kp["P_at_delta_s"]})
+            rows.append(
+                {
+                    "reading": key,
+                    "w_J_m2": kp["w"],
+                    "E_star_MPa": kp["E_star"],
+                    "point": name,
+                    "contact_radius_um": a,
+                    "overlap_um": d,
+                    "force_uN": P,
+                }
+            )
+        rows.append(
+            {
+                "reading": key,
+                "w_J_m2": kp["w"],
+                "E_star_MPa": kp["E_star"],
+                "point": "paper_delta_s",
+                "contact_radius_um": None,
+                "overlap_um": kp["delta_s"],
+                "force_uN": kp["P_at_delta_s"],
+            }
+        )
     write_table(out / "points.csv", rows)
 
     stated, alt = kps["stated_w"], kps["fig5_reading"]
@@ -264,27 +337,48 @@ def main(argv=None) -> dict:
     write_table(out / "claims.csv", claims)
 
     def summary(kp):
-        return {"w_J_m2": kp["w"], "E_star_MPa": kp["E_star"], "Fc_uN": kp["Fc"],
-                "a0_um": kp["a0"], "delta_s_paper_um": kp["delta_s"],
-                "points": {k: {"contact_radius_um": v[0], "overlap_um": v[1], "force_uN": v[2]}
-                           for k, v in kp["points"].items()}}
+        return {
+            "w_J_m2": kp["w"],
+            "E_star_MPa": kp["E_star"],
+            "Fc_uN": kp["Fc"],
+            "a0_um": kp["a0"],
+            "delta_s_paper_um": kp["delta_s"],
+            "points": {
+                k: {"contact_radius_um": v[0], "overlap_um": v[1], "force_uN": v[2]}
+                for k, v in kp["points"].items()
+            },
+        }
 
     results = {key: summary(kp) for key, kp in kps.items()}
-    write_json(out / "metadata.json", {
-        "scenario": NAME, "quick": args.quick, "curve_points": n,
-        "params": {key: p.to_dict() for key, (p, _) in READINGS.items()},
-        "results": results, "claims": claims,
-        "figures": [f.name for f in figures]})
-    return {"claims": claims, "out": str(out), **results,
-            "Fc_uN": stated["Fc"], "Fc_fig5_reading_uN": alt["Fc"],
-            "point_A_uN": stated["points"]["A"][2],
-            "point_A_fig5_reading_uN": alt["points"]["A"][2],
-            "delta_c_um": stated["points"]["D"][1],
-            "delta_c_fig5_reading_um": alt["points"]["D"][1]}
+    write_json(
+        out / "metadata.json",
+        {
+            "scenario": NAME,
+            "quick": args.quick,
+            "curve_points": n,
+            "params": {key: p.to_dict() for key, (p, _) in READINGS.items()},
+            "results": results,
+            "claims": claims,
+            "figures": [f.name for f in figures],
+        },
+    )
+    return {
+        "claims": claims,
+        "out": str(out),
+        **results,
+        "Fc_uN": stated["Fc"],
+        "Fc_fig5_reading_uN": alt["Fc"],
+        "point_A_uN": stated["points"]["A"][2],
+        "point_A_fig5_reading_uN": alt["points"]["A"][2],
+        "delta_c_um": stated["points"]["D"][1],
+        "delta_c_fig5_reading_um": alt["points"]["D"][1],
+    }
 
 
 if __name__ == "__main__":
     res = main()
     for row in res["claims"]:
-        print(f"[{row['figure']}] {row['claim']}\n  paper: {row['paper']}\n  ours:  {row['ours']}"
-              f"\n  alt:   {row['alternative']}\n  -> {row['verdict']}: {row['reason']}")
+        print(
+            f"[{row['figure']}] {row['claim']}\n  paper: {row['paper']}\n  ours:  {row['ours']}"
+            f"\n  alt:   {row['alternative']}\n  -> {row['verdict']}: {row['reason']}"
+        )
