@@ -238,7 +238,8 @@ def hertz_contact_radius(P, R, E_star):
 
 
 def hertz_overlap(P, R, E_star):
-    """Hertz overlap δ_h = a_h²/R (eq 2, corrected per NOTES.md) [length]."""
+    """Hertz overlap δ_h = a_h²/R [length] (eq 2, corrected: docs/physics.md, "Typos and
+    readings")."""
     return np.square(hertz_contact_radius(P, R, E_star)) / R
 
 

@@ -1,9 +1,10 @@
 """Run every paper-figure scenario and write renders/paper_comparison.md, claim by claim.
 
 Each scenario computes its own numbers and its rows of the comparison (paper's value, ours with
-the paper's stated parameters, ours under the alternative readings of NOTES.md, a verdict and
-its reason); this script runs them in order, adds the rows for the paper's conclusions that
-need a small computation of their own, and writes the table. No number in the report is typed
+the paper's stated parameters, ours under the alternative readings of docs/physics.md
+("Typos and readings"), a verdict and its reason); this script runs them in order, adds the
+rows for the paper's conclusions that need a small computation of their own, and writes the
+table. No number in the report is typed
 in: every "ours" entry is formatted from a result of this run.
 """
 
@@ -21,9 +22,16 @@ from gecko_agents import quasistatic as qs
 from gecko_agents.history import atomic_write_bytes, versions
 from gecko_agents.params import PAPER_ARRAY
 
-SCENARIOS = ("fig5_jkr_tip", "fig6_modulus", "fig7_surface_energy", "fig8_single_seta",
-             "fig10_array_pulloff", "fig11a_preload", "fig11b_roughness",
-             "directional_adhesion")
+SCENARIOS = (
+    "fig5_jkr_tip",
+    "fig6_modulus",
+    "fig7_surface_energy",
+    "fig8_single_seta",
+    "fig10_array_pulloff",
+    "fig11a_preload",
+    "fig11b_roughness",
+    "directional_adhesion",
+)
 
 
 def conclusion_rows(quick: bool) -> list[dict]:
@@ -39,45 +47,68 @@ def conclusion_rows(quick: bool) -> list[dict]:
     base = pull()
     soft_floor = pull(**{"contact.E2": 5_500.0, "contact.nu2": 0.45})
     weak_floor = pull(**{"contact.gamma2": 0.085})
-    return [claim(
-        "Conclusion (4)", "the floor's modulus and Poisson's ratio have little effect on "
-        "adhesion; its surface energy increases it", "qualitative",
-        f"floor E2 55 → 5.5 GPa and ν2 0.25 → 0.45: pull-off ×{soft_floor / base:.4f}; "
-        f"floor γ2 170 → 85 mJ/m²: ×{weak_floor / base:.3f} (w ∝ √γ2)",
-        "reproduced", "E* is set by the soft polyurethane (E2 ≫ E1) and Fc = 1.5πRw does not "
-        "depend on E*, while w = 2√(γ1γ2) grows with γ2.")]
+    return [
+        claim(
+            "Conclusion (4)",
+            "the floor's modulus and Poisson's ratio have little effect on "
+            "adhesion; its surface energy increases it",
+            "qualitative",
+            f"floor E2 55 → 5.5 GPa and ν2 0.25 → 0.45: pull-off ×{soft_floor / base:.4f}; "
+            f"floor γ2 170 → 85 mJ/m²: ×{weak_floor / base:.3f} (w ∝ √γ2)",
+            "reproduced",
+            "E* is set by the soft polyurethane (E2 ≫ E1) and Fc = 1.5πRw does not "
+            "depend on E*, while w = 2√(γ1γ2) grows with γ2.",
+        )
+    ]
 
 
 def conclusion1_row() -> dict:
-    return claim("Conclusion (1)", "simulation and experiment differ by 15.9 % on average",
-                 "15.9 % (Fig 11a: 7.81 %)", "no experimental data in the paper's text",
-                 "not reproducible from the stated parameters",
-                 "The experiments of Fig 11 are given only as that percentage, so there is "
-                 "nothing to compare with.")
+    return claim(
+        "Conclusion (1)",
+        "simulation and experiment differ by 15.9 % on average",
+        "15.9 % (Fig 11a: 7.81 %)",
+        "no experimental data in the paper's text",
+        "not reproducible from the stated parameters",
+        "The experiments of Fig 11 are given only as that percentage, so there is "
+        "nothing to compare with.",
+    )
 
 
 def markdown(rows: list[dict], timings: dict, quick: bool) -> str:
-    lines = ["# Paper comparison", "",
-             "Written by `python scenarios/reproduce_paper.py"
-             + (" --quick" if quick else "") + "`; every number under *ours* and *alternative* "
-             "was computed in that run. *Ours* uses the paper's stated parameters "
-             "(w = 2√(γ1γ2) = 0.1649 J/m², Table 1 and section 3.3.2); *alternative* uses the "
-             "readings in the paper's NOTES where they matter (mainly w = 0.080 J/m², which "
-             "Fig 5 implies).", ""]
+    lines = [
+        "# Paper comparison",
+        "",
+        "Written by `python scenarios/reproduce_paper.py"
+        + (" --quick" if quick else "")
+        + "`; every number under *ours* and *alternative* "
+        "was computed in that run. *Ours* uses the paper's stated parameters "
+        "(w = 2√(γ1γ2) = 0.1649 J/m², Table 1 and section 3.3.2); *alternative* uses the "
+        'readings of `docs/physics.md` ("Typos and readings") where they matter '
+        "(mainly w = 0.080 J/m², which Fig 5 implies).",
+        "",
+    ]
     if quick:
         lines += ["**Quick run: small arrays and few seeds; numbers are indicative only.**", ""]
-    lines += ["| figure | claim | paper | ours | alternative | verdict | reason |",
-              "|---|---|---|---|---|---|---|"]
+    lines += [
+        "| figure | claim | paper | ours | alternative | verdict | reason |",
+        "|---|---|---|---|---|---|---|",
+    ]
     for r in rows:
-        cells = [str(r[k]).replace("|", "\\|").replace("\n", " ")
-                 for k in ("figure", "claim", "paper", "ours", "alternative", "verdict",
-                           "reason")]
+        cells = [
+            str(r[k]).replace("|", "\\|").replace("\n", " ")
+            for k in ("figure", "claim", "paper", "ours", "alternative", "verdict", "reason")
+        ]
         lines.append("| " + " | ".join(cells) + " |")
     counts = {v: sum(r["verdict"] == v for r in rows) for v in {r["verdict"] for r in rows}}
-    lines += ["", "Verdicts: " + ", ".join(f"{v}: {n}" for v, n in sorted(counts.items())), "",
-              "Wall time per scenario [s]: " + ", ".join(f"{k} {v:.0f}"
-                                                        for k, v in timings.items()),
-              "", "Versions: " + ", ".join(f"{k} {v}" for k, v in versions().items()), ""]
+    lines += [
+        "",
+        "Verdicts: " + ", ".join(f"{v}: {n}" for v, n in sorted(counts.items())),
+        "",
+        "Wall time per scenario [s]: " + ", ".join(f"{k} {v:.0f}" for k, v in timings.items()),
+        "",
+        "Versions: " + ", ".join(f"{k} {v}" for k, v in versions().items()),
+        "",
+    ]
     return "\n".join(lines)
 
 
@@ -105,8 +136,9 @@ def main(argv=None) -> dict:
     timings["conclusions"] = time.perf_counter() - t0
     report = markdown(rows, timings, args.quick)
     atomic_write_bytes(base / "paper_comparison.md", report.encode())
-    write_json(base / "paper_comparison.json", {"rows": rows, "timings_s": timings,
-                                                "quick": args.quick})
+    write_json(
+        base / "paper_comparison.json", {"rows": rows, "timings_s": timings, "quick": args.quick}
+    )
     total = time.perf_counter() - t_all
     print(f"wrote {base / 'paper_comparison.md'} ({len(rows)} claims) in {total:.0f} s")
     return {"claims": rows, "timings": timings, "total_s": total, "results": results}

@@ -45,7 +45,7 @@ def test_special_points():
     assert_allclose(jkr.force_from_overlap(dc, R, W, ES), -5 / 9 * FC, rtol=1e-9)
     # Jump-in at zero overlap: P = −8/9 Fc.
     assert_allclose(jkr.force_from_overlap(0.0, R, W, ES), -8 / 9 * FC, rtol=1e-10)
-    # δc = −0.275 a0²/R (NOTES.md).
+    # δc = −0.275 a0²/R (docs/physics.md, "JKR contact of a sphere tip").
     assert_allclose(dc * R / a0**2, -0.75 * (np.pi**2 * W**2 * R / ES**2) ** (1 / 3) * R / a0**2)
     assert abs(dc * R / a0**2 + 0.275) < 0.001
 
