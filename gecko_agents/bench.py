@@ -91,8 +91,13 @@ def pymunk_rate(m: Model, steps: int) -> float:
     return m.n * steps / (time.perf_counter() - t)
 
 
-def quasistatic_time(n_setae: int = 10**7, n_positions: int = 1000, n_blocks: int = 2000,
-                     seed: int = 0, split: bool = True) -> tuple[float, float, int]:
+def quasistatic_time(
+    n_setae: int = 10**7,
+    n_positions: int = 1000,
+    n_blocks: int = 2000,
+    seed: int = 0,
+    split: bool = True,
+) -> tuple[float, float, int]:
     """Wall time [s] of the quasi-static press-and-pull of ``n_setae`` setae (PAPER_ARRAY,
     σ = 1 µm, 1 µm deep) over ``n_positions`` plate positions, including drawing and sorting
     the heights; the pull-off force [µN]; the positions solved before every seta let go.
@@ -101,46 +106,65 @@ def quasistatic_time(n_setae: int = 10**7, n_positions: int = 1000, n_blocks: in
     boundaries (:func:`gecko_agents.quasistatic.solve`); else plain block means."""
     t = time.perf_counter()
     rng = np.random.default_rng(seed)
-    h, w, sample = qs.representative_heights(n_setae, PAPER_ARRAY.floor.sigma, rng, n_blocks,
-                                             return_sample=True)
+    h, w, sample = qs.representative_heights(
+        n_setae, PAPER_ARRAY.floor.sigma, rng, n_blocks, return_sample=True
+    )
     n_app = n_positions // 3
-    r = qs.press_pull(PAPER_ARRAY, h, 1.0, weights=w, n_approach=n_app,
-                      n_retract=n_positions - n_app, sample=sample if split else None)
+    r = qs.press_pull(
+        PAPER_ARRAY,
+        h,
+        1.0,
+        weights=w,
+        n_approach=n_app,
+        n_retract=n_positions - n_app,
+        sample=sample if split else None,
+    )
     return time.perf_counter() - t, r.pull_off, r.plate_y.size
 
 
 def main(argv=None) -> dict:
     """Run the benchmark and print its table; returns the numbers."""
     ap = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
-    ap.add_argument("--sizes", type=int, nargs="+", default=[1_000, 10_000],
-                    help="array sizes N to step")
+    ap.add_argument(
+        "--sizes", type=int, nargs="+", default=[1_000, 10_000], help="array sizes N to step"
+    )
     ap.add_argument("--steps", type=int, default=300, help="time steps per timed repeat")
     ap.add_argument("--repeats", type=int, default=3, help="repeats (the best one counts)")
-    ap.add_argument("--qs-setae", type=int, default=10**7,
-                    help="setae of the quasi-static curve (0: skip it)")
+    ap.add_argument(
+        "--qs-setae", type=int, default=10**7, help="setae of the quasi-static curve (0: skip it)"
+    )
     ap.add_argument("--quick", action="store_true", help="tiny sizes: a smoke run")
-    ap.add_argument("--no-dask", action="store_true",
-                    help="skip the 1- vs 2-worker Dask sweep throughput")
+    ap.add_argument(
+        "--no-dask", action="store_true", help="skip the 1- vs 2-worker Dask sweep throughput"
+    )
     args = ap.parse_args(argv)
     if args.quick:
         args.sizes, args.steps, args.repeats, args.qs_setae = [50, 200], 40, 2, 10**5
     default = Model(PAPER_ARRAY, n_sim=max(args.sizes)).kernel
     kernels = ["numpy"] + (["numba"] if numba_available() else [])
-    out = {"sizes": args.sizes, "kernels": kernels, "default_kernel": default,
-           "agent": {}, "pymunk": {}, "ratio": {}}
+    out = {
+        "sizes": args.sizes,
+        "kernels": kernels,
+        "default_kernel": default,
+        "agent": {},
+        "pymunk": {},
+        "ratio": {},
+    }
     if args.qs_setae:
         for n_blocks, split in ((2000, True), (20_000, True), (20_000, False)):
             t_qs, pull, n_pos = quasistatic_time(args.qs_setae, n_blocks=n_blocks, split=split)
             out.setdefault("quasistatic_s", t_qs)
-            print(f"quasi-static press-and-pull of {args.qs_setae:.0e} setae, 1000 plate "
-                  f"positions ({n_pos} before all let go), {n_blocks} blocks"
-                  f"{' split at boundaries' if split else ' (plain means)'}, heights "
-                  f"included: {t_qs:.2f} s, pull-off {pull:.7g} µN")
+            print(
+                f"quasi-static press-and-pull of {args.qs_setae:.0e} setae, 1000 plate "
+                f"positions ({n_pos} before all let go), {n_blocks} blocks"
+                f"{' split at boundaries' if split else ' (plain means)'}, heights "
+                f"included: {t_qs:.2f} s, pull-off {pull:.7g} µN"
+            )
     for n in args.sizes:
         bare = pressed_model(n)
         agents = {k: pressed_model(n, kernel=k) for k in kernels}
         rp, ra = 0.0, dict.fromkeys(kernels, 0.0)
-        for _ in range(args.repeats):       # interleaved, best of each
+        for _ in range(args.repeats):  # interleaved, best of each
             rp = max(rp, pymunk_rate(bare, args.steps))
             for k, m in agents.items():
                 ra[k] = max(ra[k], agent_rate(m, args.steps))
@@ -148,19 +172,24 @@ def main(argv=None) -> dict:
         print(f"N={n:>6}: pymunk        {rp:10.4g} seta-steps/s ({n / rp * 1e3:.3g} ms/step)")
         for k in kernels:
             out["agent"][(n, k)], out["ratio"][(n, k)] = ra[k], ra[k] / rp
-            print(f"          agent[{k}] {ra[k]:10.4g} seta-steps/s ({n / ra[k] * 1e3:.3g} "
-                  f"ms/step)  agent/pymunk {ra[k] / rp:.2f}")
+            print(
+                f"          agent[{k}] {ra[k]:10.4g} seta-steps/s ({n / ra[k] * 1e3:.3g} "
+                f"ms/step)  agent/pymunk {ra[k] / rp:.2f}"
+            )
     if not args.no_dask and not args.quick:
         try:
             from .sweep_bench import benchmark_dask_scaling
+
             d = benchmark_dask_scaling(n_points=8, work_s=0.5)
         except ImportError as err:
             print(f"sweep on Dask: skipped ({err})")
         else:
             out["dask_speedup"] = d["speedup"]
-            print(f"sweep on Dask, 8 CPU-bound points: 1 worker {d['t1_s']:.2f} s, 2 workers "
-                  f"{d['t2_s']:.2f} s; 2-worker/1-worker throughput {d['speedup']:.2f} "
-                  f"({os.cpu_count()} cores)")
+            print(
+                f"sweep on Dask, 8 CPU-bound points: 1 worker {d['t1_s']:.2f} s, 2 workers "
+                f"{d['t2_s']:.2f} s; 2-worker/1-worker throughput {d['speedup']:.2f} "
+                f"({os.cpu_count()} cores)"
+            )
     big = max(args.sizes)
     ratio = out["ratio"][(big, default)]
     print(f"agent/pymunk ratio at N={big}: {ratio:.2f}")

@@ -20,8 +20,8 @@ from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render import plot_force_curves, save_figure
 
-PRELOAD_PER_SETA = 1.0   # µN
-DRAG = 4.0               # µm
+PRELOAD_PER_SETA = 1.0  # µN
+DRAG = 4.0  # µm
 
 
 def peak_force(h) -> tuple[float, float]:
@@ -33,8 +33,13 @@ def peak_force(h) -> tuple[float, float]:
 
 
 def main(argv=None) -> dict:
-    args = parse_args(__doc__, argv, extra=lambda p: p.add_argument(
-        "--animate", action="store_true", help="also write detachment.gif (drag along, 60°)"))
+    args = parse_args(
+        __doc__,
+        argv,
+        extra=lambda p: p.add_argument(
+            "--animate", action="store_true", help="also write detachment.gif (drag along, 60°)"
+        ),
+    )
     out = output_dir("directional_adhesion", args)
     quick = args.quick
     params = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.5})
@@ -54,35 +59,65 @@ def main(argv=None) -> dict:
                 h = m.run(prot, progress=not args.no_progress)
             if record:
                 from gecko_agents.render import animate
+
                 h.save(out / "animated_run")
                 animate(h, out / "detachment.gif")
             normal, total = peak_force(h)
-            rows.append({"drag_um": drag, "pull_angle_deg": ang, "n_sim": n_sim,
-                         "peak_normal_pull_off_uN_per_seta": normal / n_sim,
-                         "peak_total_pull_uN_per_seta": total / n_sim,
-                         "n_detachments": len(h.detachments["seta"])})
+            rows.append(
+                {
+                    "drag_um": drag,
+                    "pull_angle_deg": ang,
+                    "n_sim": n_sim,
+                    "peak_normal_pull_off_uN_per_seta": normal / n_sim,
+                    "peak_total_pull_uN_per_seta": total / n_sim,
+                    "n_detachments": len(h.detachments["seta"]),
+                }
+            )
     write_table(out / "sweep.csv", rows)
     curves = []
     for drag in drags:
         sel = [r for r in rows if r["drag_um"] == drag]
-        label = {drag_len: f"dragged +{drag_len:g} µm (along the tilt)", 0.0: "no drag",
-                 -drag_len: f"dragged −{drag_len:g} µm (against the tilt)"}[drag]
-        curves.append({"x": [r["pull_angle_deg"] for r in sel],
-                       "y": [r["peak_total_pull_uN_per_seta"] for r in sel],
-                       "label": label, "style": {"marker": "o"}})
-    fig = plot_force_curves(curves, None, xlabel="pull angle from +x [°] (90 = straight up)",
-                            ylabel="peak pull-off per seta [µN]",
-                            title="Directional adhesion: drag then pull (rod setae, θ = 60°)")
+        label = {
+            drag_len: f"dragged +{drag_len:g} µm (along the tilt)",
+            0.0: "no drag",
+            -drag_len: f"dragged −{drag_len:g} µm (against the tilt)",
+        }[drag]
+        curves.append(
+            {
+                "x": [r["pull_angle_deg"] for r in sel],
+                "y": [r["peak_total_pull_uN_per_seta"] for r in sel],
+                "label": label,
+                "style": {"marker": "o"},
+            }
+        )
+    fig = plot_force_curves(
+        curves,
+        None,
+        xlabel="pull angle from +x [°] (90 = straight up)",
+        ylabel="peak pull-off per seta [µN]",
+        title="Directional adhesion: drag then pull (rod setae, θ = 60°)",
+    )
     fig.axes[0].axhline(params.contact.pull_off_force, color="0.5", ls=":", label="Fc")
     fig.axes[0].legend(fontsize=8)
     save_figure(fig, out / "directional_adhesion.png")
     along = [r["peak_total_pull_uN_per_seta"] for r in rows if r["drag_um"] > 0]
     against = [r["peak_total_pull_uN_per_seta"] for r in rows if r["drag_um"] < 0]
-    results = {"mean_pull_along_uN": float(np.mean(along)),
-               "mean_pull_against_uN": float(np.mean(against)), "claims": []}
-    write_json(out / "metadata.json", {"params": params.to_dict(), "n_sim": n_sim,
-                                       "preload_per_seta_uN": PRELOAD_PER_SETA, "drag_um": drag_len,
-                                       "speed_um_per_us": speed, "results": results})
+    results = {
+        "mean_pull_along_uN": float(np.mean(along)),
+        "mean_pull_against_uN": float(np.mean(against)),
+        "claims": [],
+    }
+    write_json(
+        out / "metadata.json",
+        {
+            "params": params.to_dict(),
+            "n_sim": n_sim,
+            "preload_per_seta_uN": PRELOAD_PER_SETA,
+            "drag_um": drag_len,
+            "speed_um_per_us": speed,
+            "results": results,
+        },
+    )
     return results
 
 

@@ -36,8 +36,9 @@ def test_limits_and_symmetry():
     assert_allclose(beam.longitudinal_stiffness(Ka, Kp, eps), Kp, rtol=1e-9)
     assert_allclose(beam.transverse_stiffness(Ka, Kp, eps), Ka, rtol=1e-9)
     th = np.radians(np.linspace(1, 89, 89))
-    assert_allclose(beam.longitudinal_stiffness(Ka, Kp, th),
-                    beam.transverse_stiffness(Ka, Kp, np.pi / 2 - th))
+    assert_allclose(
+        beam.longitudinal_stiffness(Ka, Kp, th), beam.transverse_stiffness(Ka, Kp, np.pi / 2 - th)
+    )
     # Ky lies between Kp and Ka and grows with θ.
     ky = beam.longitudinal_stiffness(Ka, Kp, th)
     assert np.all(np.diff(ky) > 0) and np.all((ky > Kp) & (ky < Ka))

@@ -73,8 +73,9 @@ def test_force_from_overlap_accuracy_on_whole_branch():
     assert err[~near].max() < 1e-9
     assert err[near].max() < 1e-7
     # Along the branch P falls from −5/9 Fc at δc to −Fc at the load-control point, then rises.
-    d_lc = jkr.overlap_from_radius(0.25 ** (1 / 3) * jkr.zero_load_contact_radius(R, W, ES),
-                                   R, W, ES)
+    d_lc = jkr.overlap_from_radius(
+        0.25 ** (1 / 3) * jkr.zero_load_contact_radius(R, W, ES), R, W, ES
+    )
     x = np.linspace(jkr.snap_off_overlap(R, W, ES), d_lc, 1001)
     assert np.all(np.diff(jkr.force_from_overlap(x, R, W, ES)) < 0)
     assert_allclose(jkr.force_from_overlap(d_lc, R, W, ES), -FC, rtol=1e-9)
@@ -101,8 +102,11 @@ def test_scaling_laws():
     assert_allclose(jkr.snap_off_overlap(R, W, 8 * ES), dc / 4)  # ∝ E*^(-2/3)
     assert_allclose(jkr.snap_off_overlap(8 * R, W, ES), dc * 2)  # ∝ R^(1/3)
     # At fixed load, a ∝ E*^(-1/3).
-    assert_allclose(jkr.contact_radius_from_force(1.0, R, W, 8 * ES),
-                    jkr.contact_radius_from_force(1.0, R, 8 * W / 8, ES) / 2, rtol=0.2)
+    assert_allclose(
+        jkr.contact_radius_from_force(1.0, R, W, 8 * ES),
+        jkr.contact_radius_from_force(1.0, R, 8 * W / 8, ES) / 2,
+        rtol=0.2,
+    )
     a1 = jkr.zero_load_contact_radius(R, W, ES)
     assert_allclose(jkr.zero_load_contact_radius(R, W, 1000 * ES), a1 / 10)
 
@@ -110,12 +114,18 @@ def test_scaling_laws():
 def test_dimensionless_forms_match_dimensional():
     a = np.linspace(0.05, 5, 100)
     a_s = jkr.dimensionless_radius(a, R, W, ES)
-    assert_allclose(jkr.dimensionless_force_from_radius(a_s),
-                    jkr.dimensionless_force(jkr.force_from_radius(a, R, W, ES), R, W), rtol=1e-10,
-                    atol=1e-12)
-    assert_allclose(jkr.dimensionless_overlap_from_radius(a_s),
-                    jkr.dimensionless_overlap(jkr.overlap_from_radius(a, R, W, ES), R, W, ES),
-                    rtol=1e-10, atol=1e-12)
+    assert_allclose(
+        jkr.dimensionless_force_from_radius(a_s),
+        jkr.dimensionless_force(jkr.force_from_radius(a, R, W, ES), R, W),
+        rtol=1e-10,
+        atol=1e-12,
+    )
+    assert_allclose(
+        jkr.dimensionless_overlap_from_radius(a_s),
+        jkr.dimensionless_overlap(jkr.overlap_from_radius(a, R, W, ES), R, W, ES),
+        rtol=1e-10,
+        atol=1e-12,
+    )
     # Dimensionless pull-off is −1.5 (eq 11 with Fc = 1.5πRw).
     assert_allclose(jkr.dimensionless_force(-FC, R, W), -1.5)
 

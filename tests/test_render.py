@@ -25,8 +25,9 @@ def _toy(N=5, pitch=30.0, mechanics="linear"):
     """
     p = PAPER_TABLE1.replace(**{"array.count": N, "array.pitch": pitch, "mechanics": mechanics})
     L, th, R = p.seta.L, p.seta.theta, p.contact.R
-    plate_y = np.concatenate([np.linspace(20.0, 13.0, DEEPEST + 1),
-                              np.linspace(13.0, 25.0, N_REC - DEEPEST)[1:]])
+    plate_y = np.concatenate(
+        [np.linspace(20.0, 13.0, DEEPEST + 1), np.linspace(13.0, 25.0, N_REC - DEEPEST)[1:]]
+    )
     t = np.arange(N_REC) * 0.5
     root_dx = (np.arange(N) - (N - 1) / 2) * pitch
     tip_x = np.tile(root_dx + L * np.cos(th), (N_REC, 1))
@@ -42,27 +43,46 @@ def _toy(N=5, pitch=30.0, mechanics="linear"):
     state[held, TENSION_SETA] = hist.STATE_STICK
     force[held, TENSION_SETA] = -1.2
     tip_x[held, TENSION_SETA] += 1.5  # dragged a little sideways
-    state[DEEPEST - 2:DEEPEST + 2, SLIDE_SETA] = hist.STATE_SLIP
+    state[DEEPEST - 2 : DEEPEST + 2, SLIDE_SETA] = hist.STATE_SLIP
     force_total = force.sum(axis=1)
     scalars = {
-        "time_us": t, "plate_x_um": np.zeros(N_REC), "plate_y_um": plate_y,
-        "force_normal_uN": force_total, "force_tangential_uN": 0.1 * force_total,
-        "plate_force_x_uN": -0.1 * force_total, "plate_force_y_uN": force_total,
+        "time_us": t,
+        "plate_x_um": np.zeros(N_REC),
+        "plate_y_um": plate_y,
+        "force_normal_uN": force_total,
+        "force_tangential_uN": 0.1 * force_total,
+        "plate_force_x_uN": -0.1 * force_total,
+        "plate_force_y_uN": force_total,
         "n_attached": (state > 0).sum(axis=1).astype(float),
         "n_sliding": (state == hist.STATE_SLIP).sum(axis=1).astype(float),
-        "energy_elastic_pJ": np.abs(force_total), "energy_kinetic_pJ": np.zeros(N_REC),
-        "energy_dissipated_pJ": np.linspace(0, 1, N_REC), "work_plate_pJ": np.zeros(N_REC),
+        "energy_elastic_pJ": np.abs(force_total),
+        "energy_kinetic_pJ": np.zeros(N_REC),
+        "energy_dissipated_pJ": np.linspace(0, 1, N_REC),
+        "work_plate_pJ": np.zeros(N_REC),
     }
-    setae = {"tip_x_um": tip_x, "tip_y_um": tip_y, "force_normal_uN": force,
-             "force_tangential_uN": 0.1 * force, "overlap_um": overlap,
-             "state": state.astype(np.int8)}
+    setae = {
+        "tip_x_um": tip_x,
+        "tip_y_um": tip_y,
+        "force_normal_uN": force,
+        "force_tangential_uN": 0.1 * force,
+        "overlap_um": overlap,
+        "state": state.astype(np.int8),
+    }
     floor_x = np.linspace(-200.0, 200.0, 81)
-    geometry = {"root_dx_um": root_dx, "root_dy_um": np.zeros(N), "floor_x_um": floor_x,
-                "floor_y_um": 0.3 * np.sin(floor_x / 7.0)}
+    geometry = {
+        "root_dx_um": root_dx,
+        "root_dy_um": np.zeros(N),
+        "floor_x_um": floor_x,
+        "floor_y_um": 0.3 * np.sin(floor_x / 7.0),
+    }
     k = DETACH_RECORD
-    det = {"seta": np.array([TENSION_SETA]), "time_us": np.array([t[k] - 0.25]),
-           "plate_y_um": np.array([plate_y[k - 1]]), "overlap_um": np.array([-0.1]),
-           "force_uN": np.array([-1.2])}
+    det = {
+        "seta": np.array([TENSION_SETA]),
+        "time_us": np.array([t[k] - 0.25]),
+        "plate_y_um": np.array([plate_y[k - 1]]),
+        "overlap_um": np.array([-0.1]),
+        "force_uN": np.array([-1.2]),
+    }
     assert all(c in scalars for c in hist.SCALAR_COLUMNS)
     assert all(f in setae for f in hist.PER_SETA_FIELDS)
     return hist.History(p, 0, scalars, setae, geometry, det, {"dt_us": 0.5})
@@ -90,11 +110,11 @@ def _gif_frames(path):
 def _colour_at(rgb, rc, half=2):
     """Median colour of a small square around pixel (row, col)."""
     r, c = rc
-    return np.median(rgb[r - half:r + half + 1, c - half:c + half + 1].reshape(-1, 3), axis=0)
+    return np.median(rgb[r - half : r + half + 1, c - half : c + half + 1].reshape(-1, 3), axis=0)
 
 
 def _is(colour, hex_code, tol=40):
-    target = np.array([int(hex_code[i:i + 2], 16) for i in (1, 3, 5)])
+    target = np.array([int(hex_code[i : i + 2], 16) for i in (1, 3, 5)])
     return np.all(np.abs(colour - target) <= tol)
 
 
@@ -124,18 +144,24 @@ def test_side_view_changes_while_the_plate_moves(toy, gif):
         assert np.any(a[rows, cols] != b[rows, cols])
 
 
-@pytest.mark.parametrize(("k", "seta", "colour"), [
-    (TENSION_RECORD, TENSION_SETA, "tension"),
-    (TENSION_RECORD, 0, "free"),
-    (DEEPEST, 0, "compressed"),
-    (DEEPEST, SLIDE_SETA, "sliding"),
-    (0, SLIDE_SETA, "free"),
-])
+@pytest.mark.parametrize(
+    ("k", "seta", "colour"),
+    [
+        (TENSION_RECORD, TENSION_SETA, "tension"),
+        (TENSION_RECORD, 0, "free"),
+        (DEEPEST, 0, "compressed"),
+        (DEEPEST, SLIDE_SETA, "sliding"),
+        (0, SLIDE_SETA, "free"),
+    ],
+)
 def test_tip_colour_at_the_tip(toy, k, seta, colour):
     frame = render.render_frame(toy, k)
     rgb = frame.rgb()
-    assert rgb.shape == (round(render.FIGSIZE[1] * render.DPI),
-                         round(render.FIGSIZE[0] * render.DPI), 3)
+    assert rgb.shape == (
+        round(render.FIGSIZE[1] * render.DPI),
+        round(render.FIGSIZE[0] * render.DPI),
+        3,
+    )
     rc = frame.pixel(toy.setae["tip_x_um"][k, seta], toy.setae["tip_y_um"][k, seta])
     assert _is(_colour_at(rgb, rc), render.STATE_COLOURS[colour])
 
@@ -144,8 +170,10 @@ def test_gif_frame_shows_the_tension_colour_at_the_tip(toy, gif):
     frame = render.render_frame(toy, TENSION_RECORD, dpi=60)
     rgb = _gif_frames(gif)[TENSION_RECORD]
     x, y = toy.setae["tip_x_um"][TENSION_RECORD], toy.setae["tip_y_um"][TENSION_RECORD]
-    assert _is(_colour_at(rgb, frame.pixel(x[TENSION_SETA], y[TENSION_SETA]), 1),
-               render.STATE_COLOURS["tension"])
+    assert _is(
+        _colour_at(rgb, frame.pixel(x[TENSION_SETA], y[TENSION_SETA]), 1),
+        render.STATE_COLOURS["tension"],
+    )
     assert _is(_colour_at(rgb, frame.pixel(x[1], y[1]), 1), render.STATE_COLOURS["free"])
 
 
@@ -215,10 +243,13 @@ def test_approach_and_retract_split_where_the_plate_turns():
 
 def test_plot_force_curves_and_annotations(tmp_path):
     x = np.linspace(-1, 1, 20)
-    curves = [{"x": x, "y": x**2, "label": "a"},
-              {"x": x, "y": -x, "label": "b", "style": {"ls": "--", "color": "k"}}]
-    fig = render.plot_force_curves(curves, tmp_path / "c.png", "overlap δ [µm]",
-                                   "force P [µN]", "two curves")
+    curves = [
+        {"x": x, "y": x**2, "label": "a"},
+        {"x": x, "y": -x, "label": "b", "style": {"ls": "--", "color": "k"}},
+    ]
+    fig = render.plot_force_curves(
+        curves, tmp_path / "c.png", "overlap δ [µm]", "force P [µN]", "two curves"
+    )
     ax = fig.axes[0]
     render.annotate_points(ax, [(0.0, 0.0, "origin"), (1.0, -1.0, "end")])
     assert ax.get_xlabel() == "overlap δ [µm]" and ax.get_title() == "two curves"
@@ -227,15 +258,20 @@ def test_plot_force_curves_and_annotations(tmp_path):
 
 
 def _cli(*args):
-    return subprocess.run([sys.executable, "-m", "gecko_agents.render", *map(str, args)],
-                          capture_output=True, text=True, timeout=60)
+    return subprocess.run(
+        [sys.executable, "-m", "gecko_agents.render", *map(str, args)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
 
 
 def test_render_imports_no_pymunk_and_no_pyplot():
-    code = ("import sys, gecko_agents.render; "
-            "print('pymunk' in sys.modules, 'matplotlib.pyplot' in sys.modules)")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True)
+    code = (
+        "import sys, gecko_agents.render; "
+        "print('pymunk' in sys.modules, 'matplotlib.pyplot' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]
 
 
@@ -275,8 +311,13 @@ def test_one_sign_convention_for_displacement_in_plots_and_animation(toy):
     assert d[DEEPEST] == pytest.approx(1.0) and d[-1] == pytest.approx(-11.0)
     # the force curve's x data and the animation's marker use the same d
     fig = render.plot_history(toy)
-    xs = np.concatenate([line.get_xdata() for line in fig.axes[0].get_lines()
-                         if line.get_label() in ("approach", "retract")])
+    xs = np.concatenate(
+        [
+            line.get_xdata()
+            for line in fig.axes[0].get_lines()
+            if line.get_label() in ("approach", "retract")
+        ]
+    )
     assert xs.max() == pytest.approx(d.max()) and xs.min() == pytest.approx(d.min())
     frame = render.render_frame(toy, DEEPEST)
     marker = frame.force_ax.get_lines()[-1]
