@@ -1,0 +1,769 @@
+"""Fit model parameters to measured data: bounded least squares with honest uncertainties.
+
+``fit(data, free, base=PAPER_ARRAY, forward="quasistatic", seed=0)`` adjusts the parameters
+named in ``free`` (dotted names as in :meth:`SetaArray.replace`, e.g. ``contact.w``,
+``floor.sigma``, plus ``seta.stiffness_scale``, a factor on the seta's Ka and Kp) within their
+bounds so the model reproduces the data, and reports what the data determine and what not.
+
+Data (a CSV path or a table: a mapping of column name → values, a pandas DataFrame or a list
+of row dicts) use the package's column names with units, one of
+
+* ``preload_uN, pull_off_uN[, pull_off_err_uN][, sigma_um]`` — pull-off force against preload
+  (force control, :func:`quasistatic.preload_pull`), optionally at a floor roughness σ per row;
+* ``displacement_um, force_uN[, force_err_uN]`` — the normal force (positive compressive) on the
+  retract leg of a press-and-pull (:func:`quasistatic.press_pull`, pressed to the deepest
+  displacement given or 0.5 µm), against the plate height above the touch-down of the floor's
+  mean plane (positive up);
+* ``pull_off_uN, release_um[, pull_off_err_uN][, release_err_um]`` — a snap-off: the peak
+  tension of a press-and-pull to 0.5 µm and the plate travel above touch-down at which the last
+  tip let go.
+
+Other units are converted (N, mN, µN/uN, nN; m, mm, µm/um, nm); other non-numeric columns
+(``source``, ``note``) are carried along. Without an uncertainty column every point has unit
+weight and the parameter covariance is scaled by the reduced χ² (the scatter estimates the
+noise); with one, residuals are divided by it and the covariance is (JᵀJ)⁻¹ (Jacobian J of the
+weighted residuals at the optimum, ``scipy.optimize.least_squares``).
+
+Identifiability: a parameter is flagged (``identifiable[name] = False``, with the reason in
+``result.notes``) when the data hardly move the model along it (Jacobian column below 1e-6 of
+the largest), its standard error exceeds a quarter of its bound interval, or its correlation
+with another free parameter exceeds 0.95 in magnitude.
+
+Units: µm, µN (see :mod:`gecko_agents.params`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import hashlib
+import io
+import json
+import math
+import re
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from . import quasistatic as qs
+from .history import atomic_write_bytes, versions
+from .params import PAPER_ARRAY, PAPER_FIG5_READING, PAPER_TABLE1, SetaArray
+
+__all__ = ["fit", "load_data", "FitResult", "Forward", "PSEUDO_PARAMETERS", "main"]
+
+PSEUDO_PARAMETERS = ("seta.stiffness_scale",)
+"""Free parameters that are not fields of :class:`SetaArray`: ``seta.stiffness_scale``
+multiplies the seta's axial and bending stiffness (Ka, Kp of eq 17, 19) and nothing else."""
+
+_UNITS = {
+    "uN": ("force", 1.0),
+    "µN": ("force", 1.0),
+    "N": ("force", 1e6),
+    "mN": ("force", 1e3),
+    "nN": ("force", 1e-3),
+    "um": ("length", 1.0),
+    "µm": ("length", 1.0),
+    "nm": ("length", 1e-3),
+    "mm": ("length", 1e3),
+    "m": ("length", 1e6),
+}
+_QUANTITIES = {  # quantity → dimension
+    "pull_off_err": "force",
+    "pull_off": "force",
+    "preload": "force",
+    "force_err": "force",
+    "force": "force",
+    "displacement": "length",
+    "sigma": "length",
+    "release_err": "length",
+    "release": "length",
+}
+_KINDS = {
+    "preload": (("preload", "pull_off"), ("pull_off_err", "sigma")),
+    "curve": (("displacement", "force"), ("force_err",)),
+    "snapoff": (("pull_off", "release"), ("pull_off_err", "release_err")),
+}
+_COL = re.compile(r"^(" + "|".join(sorted(_QUANTITIES, key=len, reverse=True)) + r")_(\S+)$")
+
+
+# ------------------------------------------------------------------------------- data
+@dataclass
+class Data:
+    """A validated data set in µm and µN.
+
+    kind : ``"preload"``, ``"curve"`` or ``"snapoff"``.
+    columns : quantity → float array (n,) in µN / µm.
+    err_given : whether measurement uncertainties were stated.
+    digest : sha256 of the table as read (the CSV bytes, or the canonical CSV of a table).
+    extra : non-numeric columns carried along.
+    """
+
+    kind: str
+    columns: dict
+    err_given: bool
+    digest: str
+    source: str
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def n(self) -> int:
+        return len(next(iter(self.columns.values())))
+
+    def observed(self) -> tuple[np.ndarray, np.ndarray]:
+        """Observed values (n_residuals,) and their uncertainties (ones if none stated)."""
+        c = self.columns
+        if self.kind == "preload":
+            y, e = c["pull_off"], c.get("pull_off_err")
+        elif self.kind == "curve":
+            y, e = c["force"], c.get("force_err")
+        else:
+            y = np.concatenate([c["pull_off"], c["release"]])
+            e = None
+            if self.err_given:
+                e = np.concatenate(
+                    [
+                        c.get("pull_off_err", np.full(self.n, np.nan)),
+                        c.get("release_err", np.full(self.n, np.nan)),
+                    ]
+                )
+                if np.any(np.isnan(e)):
+                    raise ValueError(
+                        "a snap-off table needs both pull_off_err_uN and release_err_um, or neither"
+                    )
+        return y, (np.ones_like(y) if e is None else e)
+
+
+def _read_table(data) -> tuple[dict, str, str]:
+    """Columns as lists of strings or numbers, the digest and a description of the source."""
+    if isinstance(data, str | Path):
+        path = Path(data)
+        if not path.is_file():
+            raise ValueError(f"data = {str(path)!r}: no such file")
+        raw = path.read_bytes()
+        rows = list(csv.DictReader(io.StringIO(raw.decode("utf-8-sig"))))
+        if not rows:
+            raise ValueError(f"data file {str(path)!r} has no rows")
+        cols = {k.strip(): [r[k] for r in rows] for k in rows[0]}
+        return cols, hashlib.sha256(raw).hexdigest(), str(path)
+    if hasattr(data, "to_dict") and hasattr(data, "columns"):  # pandas DataFrame
+        cols = {str(k): list(v) for k, v in data.to_dict(orient="list").items()}
+    elif isinstance(data, dict):
+        cols = {str(k): list(np.atleast_1d(v)) for k, v in data.items()}
+    elif isinstance(data, list | tuple) and data and isinstance(data[0], dict):
+        cols = {k: [r.get(k) for r in data] for k in data[0]}
+    else:
+        raise ValueError(
+            f"data must be a CSV path or a table (dict of columns, DataFrame or "
+            f"list of row dicts), got {type(data).__name__}"
+        )
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(list(cols))
+    for row in zip(*cols.values(), strict=True):
+        w.writerow([repr(float(v)) if isinstance(v, int | float) else str(v) for v in row])
+    return cols, hashlib.sha256(buf.getvalue().encode()).hexdigest(), "table"
+
+
+def load_data(data) -> Data:
+    """Read and validate a data set; raises ValueError naming the problem."""
+    cols, digest, source = _read_table(data)
+    found, extra = {}, {}
+    for name, values in cols.items():
+        m = _COL.match(name)
+        if m is None:
+            extra[name] = values
+            continue
+        q, unit = m.group(1), m.group(2)
+        if unit not in _UNITS:
+            raise ValueError(
+                f"column {name!r}: unknown unit {unit!r} (known: {', '.join(sorted(_UNITS))})"
+            )
+        dim, factor = _UNITS[unit]
+        if dim != _QUANTITIES[q]:
+            raise ValueError(f"column {name!r}: {q} is a {_QUANTITIES[q]}, {unit!r} is a {dim}")
+        if q in found:
+            raise ValueError(f"column {name!r}: {q} given twice")
+        try:
+            arr = np.array([float(v) for v in values], dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"column {name!r} holds a non-number: {exc}") from None
+        bad = np.flatnonzero(~np.isfinite(arr))
+        if bad.size:
+            raise ValueError(
+                f"column {name!r} has NaN or infinite values in rows {(bad + 1).tolist()}"
+            )
+        found[q] = arr * factor
+    kind = None
+    for k, (need, _) in _KINDS.items():
+        if all(q in found for q in need):
+            kind = k
+            break
+    if kind is None:
+        wanted = " or ".join("(" + ", ".join(need) + ")" for need, _ in _KINDS.values())
+        raise ValueError(
+            f"data columns {sorted(cols)} lack the required columns: need {wanted} "
+            "with units, e.g. preload_uN, pull_off_uN"
+        )
+    need, optional = _KINDS[kind]
+    unused = set(found) - set(need) - set(optional)
+    if unused:
+        raise ValueError(
+            f"columns {sorted(unused)} do not belong to a {kind} data set "
+            f"({', '.join(need + optional)})"
+        )
+    errs = [q for q in optional if q.endswith("_err") and q in found]
+    for q in errs:
+        if np.any(found[q] <= 0):
+            raise ValueError(f"column {q}: uncertainties must be > 0")
+    if kind == "preload" and np.any(found["preload"] <= 0):
+        raise ValueError("column preload: preloads must be > 0 µN")
+    if "sigma" in found and np.any(found["sigma"] < 0):
+        raise ValueError("column sigma: roughness must be ≥ 0 µm")
+    return Data(kind, found, bool(errs), digest, source, extra)
+
+
+# ------------------------------------------------------------------------------- forward
+@dataclass
+class Forward:
+    """How the model is evaluated.
+
+    kind : ``"quasistatic"`` (default; :mod:`quasistatic` on representative heights) or
+        ``"agent"`` (the pymunk model on an ``n_sim`` patch, scaled to the array; slow, for a
+        final check of a fitted point).
+    n_blocks : representative heights per array (:func:`quasistatic.representative_heights`).
+        With ``linear`` mechanics the blocks are split exactly where a seta's history changes
+        (the curve of every seta); with ``rod`` they are plain block means and the pull-off
+        errs by about 0.7/n_blocks of itself.
+    retract_steps : plate steps of each retract.
+    n_sim : agent patch size.
+    """
+
+    kind: str = "quasistatic"
+    n_blocks: int = 64
+    retract_steps: int = 400
+    n_sim: int = 20
+
+    def __post_init__(self):
+        if self.kind not in ("quasistatic", "agent"):
+            raise ValueError(f"forward = {self.kind!r} must be 'quasistatic' or 'agent'")
+        for name, lo in (("n_blocks", 1), ("retract_steps", 10), ("n_sim", 1)):
+            v = getattr(self, name)
+            if not isinstance(v, int) or v < lo:
+                raise ValueError(f"Forward.{name} = {v!r} must be an integer ≥ {lo}")
+
+
+def _apply(base: SetaArray, names, values) -> tuple[SetaArray, float]:
+    """Parameters with the free values set, and the seta stiffness scale."""
+    scale, over = 1.0, {}
+    for n, v in zip(names, values, strict=True):
+        if n == "seta.stiffness_scale":
+            scale = float(v)
+        else:
+            over[n] = float(v)
+    return base.replace(**over), scale
+
+
+def _heights(p: SetaArray, sigma: float, seed: int, n_blocks: int):
+    """Block heights, weights and (linear mechanics: the blocks are split exactly) the sample."""
+    if p.array.count == 1 or sigma == 0:
+        return np.zeros(1), np.array([float(p.array.count)]), None
+    rng = np.random.default_rng(seed)
+    h, w, sample = qs.representative_heights(
+        p.array.count, sigma, rng, n_blocks, return_sample=True
+    )
+    return h, w, (sample if p.mechanics == "linear" else None)
+
+
+def predict(
+    data: Data,
+    params: SetaArray,
+    *,
+    stiffness_scale: float = 1.0,
+    seed: int = 0,
+    forward: Forward = Forward(),
+) -> np.ndarray:
+    """Model values for every observation of ``data`` (as :meth:`Data.observed`) [µN / µm].
+
+    Floor heights of an array come from ``numpy.random.default_rng(seed)`` (the same draw for
+    every parameter set, so the fit sees a smooth model); a row's ``sigma_um`` overrides
+    ``params.floor.sigma``.
+    """
+    c = data.columns
+    if forward.kind == "agent":
+        return _predict_agent(data, params, stiffness_scale, seed, forward)
+    z_touch = params.contact.R + params.seta.L * math.sin(params.seta.theta)
+    if data.kind == "preload":
+        out = np.empty(data.n)
+        sig = c.get("sigma", np.full(data.n, params.floor.sigma))
+        cache = {}
+        for i in range(data.n):
+            s = float(sig[i])
+            if s not in cache:
+                cache[s] = _heights(params, s, seed, forward.n_blocks)
+            h, w, sample = cache[s]
+            r = qs.preload_pull(
+                params,
+                h,
+                float(c["preload"][i]),
+                weights=w,
+                sample=sample,
+                stiffness_scale=stiffness_scale,
+                retract_steps=forward.retract_steps,
+            )
+            out[i] = r.pull_off
+        return out
+    h, w, sample = _heights(params, params.floor.sigma, seed, forward.n_blocks)
+    depth = 0.5
+    if data.kind == "curve":
+        depth = max(0.5, -float(np.min(c["displacement"])))
+    r = qs.press_pull(
+        params,
+        h,
+        depth,
+        weights=w,
+        sample=sample,
+        stiffness_scale=stiffness_scale,
+        n_retract=forward.retract_steps * 2,
+    )
+    if data.kind == "curve":
+        t = r.turn_index
+        z = r.plate_y[t:] - z_touch
+        return np.interp(
+            c["displacement"], z, r.force_normal[t:], left=r.force_normal[t], right=0.0
+        )
+    last = max((i for i, _, _ in r.releases), default=len(r.plate_y) - 1)
+    return np.array([r.pull_off, r.plate_y[last] - z_touch])
+
+
+def _predict_agent(data, params, scale, seed, forward):
+    from . import protocol
+    from .model import Model
+
+    if scale != 1.0:
+        raise ValueError("seta.stiffness_scale is available with forward='quasistatic' only")
+    if data.kind != "preload":
+        raise ValueError("forward='agent' covers pull-off-vs-preload data")
+    n = min(forward.n_sim, params.array.count)
+    k = params.array.count / n
+    out = np.empty(data.n)
+    for i in range(data.n):
+        p = params
+        if "sigma" in data.columns:
+            p = p.replace(**{"floor.sigma": float(data.columns["sigma"][i])})
+        h = Model(p, n_sim=n, seed=seed).run(
+            protocol.preload_pull(float(data.columns["preload"][i]) / k), progress=False
+        )
+        out[i] = h.peak_pull_off * k
+    return out
+
+
+# ------------------------------------------------------------------------------- fit
+@dataclass
+class FitResult:
+    """Outcome of :func:`fit`.
+
+    values, stderr : fitted value and one standard error per free parameter (dicts by name).
+    correlation : (k, k) correlation matrix in the order of ``names``.
+    cost : ½ Σ (weighted residual)² at the optimum (scipy's convention).
+    identifiable : name → bool (see the module docstring); ``notes`` says why not.
+    """
+
+    names: list
+    values: dict
+    stderr: dict
+    correlation: np.ndarray
+    cost: float
+    identifiable: dict
+    notes: dict
+    bounds: dict
+    observed: np.ndarray
+    uncertainty: np.ndarray
+    model: np.ndarray
+    data: Data
+    record: dict
+
+    @property
+    def residuals(self) -> np.ndarray:
+        """(model − observed) / uncertainty at the optimum."""
+        return (self.model - self.observed) / self.uncertainty
+
+    def save(self, out) -> Path:
+        """Write ``fit.json``, ``fit.png`` and ``residuals.png`` into directory ``out``."""
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        atomic_write_bytes(out / "fit.json", json.dumps(self.record, indent=2).encode())
+        self._plots(out)
+        return out
+
+    def _plots(self, out: Path):
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        d, c = self.data, self.data.columns
+        x = {"preload": c.get("preload"), "curve": c.get("displacement")}.get(d.kind)
+        label = {"preload": "preload [µN]", "curve": "plate above touch-down [µm]"}.get(d.kind)
+        if x is None:
+            x, label = np.arange(self.observed.size), "observation"
+        else:
+            x = np.tile(x, self.observed.size // x.size)
+        fig, ax = plt.subplots(figsize=(5.5, 3.8))
+        ax.errorbar(
+            x, self.observed, yerr=self.uncertainty if d.err_given else None, fmt="o", label="data"
+        )
+        ax.plot(x, self.model, "s", mfc="none", label="model at the fit")
+        ax.set_xlabel(label)
+        ax.set_ylabel(
+            {"preload": "pull-off [µN]", "curve": "normal force [µN]"}.get(
+                d.kind, "value [µN or µm]"
+            )
+        )
+        ax.set_title(
+            ", ".join(f"{n} = {self.values[n]:.3g} ± {self.stderr[n]:.2g}" for n in self.names),
+            fontsize=8,
+        )
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(out / "fit.png", dpi=120)
+        plt.close(fig)
+        fig, ax = plt.subplots(figsize=(5.5, 3.0))
+        ax.axhline(0.0, color="grey", lw=0.8)
+        ax.plot(x, self.residuals, "o")
+        ax.set_xlabel(label)
+        ax.set_ylabel("(model − data)/σ" if d.err_given else "model − data")
+        fig.tight_layout()
+        fig.savefig(out / "residuals.png", dpi=120)
+        plt.close(fig)
+
+
+def _base_value(base: SetaArray, name: str) -> float:
+    if name == "seta.stiffness_scale":
+        return 1.0
+    part, _, attr = name.partition(".")
+    if name == "contact.w":
+        return base.contact.work_of_adhesion
+    return float(getattr(getattr(base, part), attr) if attr else getattr(base, part))
+
+
+def _check_free(base: SetaArray, free) -> tuple[list, np.ndarray, np.ndarray]:
+    if not isinstance(free, dict) or not free:
+        raise ValueError("free must map at least one dotted parameter name to (low, high)")
+    names, lo, hi = [], [], []
+    for name, b in free.items():
+        if name not in PSEUDO_PARAMETERS:
+            try:
+                if "." not in name:
+                    raise ValueError(name)
+                base.replace(**{name: _base_value(base, name)})
+            except (ValueError, AttributeError, TypeError):
+                raise ValueError(
+                    f"unknown parameter name {name!r} in free (dotted names of "
+                    f"SetaArray fields, e.g. 'contact.w', or one of "
+                    f"{PSEUDO_PARAMETERS})"
+                ) from None
+        try:
+            low, high = (float(v) for v in b)
+        except (TypeError, ValueError):
+            raise ValueError(f"free[{name!r}] = {b!r} must be a (low, high) pair") from None
+        if not (math.isfinite(low) and math.isfinite(high) and low < high):
+            raise ValueError(f"free[{name!r}] = ({low}, {high}): need finite low < high")
+        start = _base_value(base, name)
+        if not low <= start <= high:
+            raise ValueError(
+                f"bounds of {name!r} ({low}, {high}) exclude its start value "
+                f"{start} in the base parameters; widen them or set the base"
+            )
+        for v in (low, high):  # both ends must be valid parameter values
+            try:
+                _apply(base, [name], [v])
+            except ValueError as exc:
+                raise ValueError(f"bound {v} of {name!r} is not allowed: {exc}") from None
+        names.append(name)
+        lo.append(low)
+        hi.append(high)
+    return names, np.array(lo), np.array(hi)
+
+
+def _starts(k: int, n_starts: int) -> list[np.ndarray]:
+    """Starts in the unit box: all-low and all-high corners (2 % inside), the centre, then
+    alternating corners."""
+    pts = [np.full(k, 0.02), np.full(k, 0.98), np.full(k, 0.5)]
+    for i in range(max(0, n_starts - 3)):
+        pts.append(
+            np.array([0.02 if (i >> j) & 1 == 0 else 0.98 for j in range(k)])
+            if k > 1
+            else np.array([0.25 + 0.5 * (i % 2)])
+        )
+    return pts[:n_starts]
+
+
+def fit(
+    data,
+    free: dict,
+    *,
+    base: SetaArray = PAPER_ARRAY,
+    forward="quasistatic",
+    seed: int = 0,
+    n_starts: int = 3,
+    n_blocks: int | None = None,
+    retract_steps: int | None = None,
+    diff_step: float = 0.02,
+    max_nfev: int = 40,
+) -> FitResult:
+    """Fit the parameters named in ``free`` to ``data``.
+
+    Parameters
+    ----------
+    data : CSV path or table (see the module docstring).
+    free : dotted parameter name → (low, high) bounds in the parameter's unit (µm, µN/µm, MPa,
+        …). The base value must lie inside.
+    base : parameters of everything not free (its ``mechanics`` is the forward model's).
+    forward : ``"quasistatic"``, ``"agent"`` or a :class:`Forward`.
+    seed : seed of the floor heights' generator (one draw reused for every evaluation).
+    n_starts : bounded least-squares starts (at the low and high corners of the bounds, the
+        centre, …); the best is kept, all are recorded.
+    n_blocks, retract_steps : override the :class:`Forward` accuracy settings.
+    diff_step : finite-difference step of the Jacobian as a fraction of each bound interval.
+    max_nfev : model evaluations per start (scipy's ``max_nfev``).
+
+    Returns
+    -------
+    :class:`FitResult`.
+    """
+    t0 = time.perf_counter()
+    if not isinstance(base, SetaArray):
+        raise ValueError(f"base must be a SetaArray, got {type(base).__name__}")
+    fw = forward if isinstance(forward, Forward) else Forward(kind=forward)
+    if n_blocks is not None or retract_steps is not None:
+        fw = Forward(fw.kind, n_blocks or fw.n_blocks, retract_steps or fw.retract_steps, fw.n_sim)
+    if not isinstance(n_starts, int) or n_starts < 1:
+        raise ValueError(f"n_starts = {n_starts!r} must be an integer ≥ 1")
+    d = load_data(data)
+    names, lo, hi = _check_free(base, free)
+    y, err = d.observed()
+    span = hi - lo
+    cache: dict = {}
+
+    def model(u):
+        key = tuple(np.round(u, 12))
+        if key not in cache:
+            p, scale = _apply(base, names, lo + span * np.asarray(u))
+            cache[key] = predict(d, p, stiffness_scale=scale, seed=seed, forward=fw)
+        return cache[key]
+
+    def resid(u):
+        return (model(u) - y) / err
+
+    runs = []
+    for u0 in _starts(len(names), n_starts):
+        r = least_squares(
+            resid,
+            u0,
+            bounds=(0.0, 1.0),
+            diff_step=diff_step,
+            x_scale=1.0,
+            max_nfev=max_nfev,
+            method="trf",
+        )
+        runs.append(r)
+    best = min(runs, key=lambda r: r.cost)
+    J = best.jac / span[None, :]  # d(weighted residual)/d(parameter)
+    dof = max(y.size - len(names), 1)
+    chi2 = float(2 * best.cost)
+    s2 = 1.0 if d.err_given else chi2 / dof
+    JtJ = J.T @ J
+    colnorm = np.sqrt(np.diag(JtJ))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cov = np.linalg.pinv(JtJ, rcond=1e-12) * s2
+        se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+        corr = cov / np.outer(se, se)
+    flat = colnorm < 1e-6 * max(colnorm.max(), 1e-300)
+    se = np.where(flat, np.inf, se)
+    corr = np.where(np.isfinite(corr), corr, np.nan)
+    np.fill_diagonal(corr, 1.0)
+    values = lo + span * best.x
+    ident, notes = {}, {}
+    for i, n in enumerate(names):
+        why = []
+        if flat[i]:
+            why.append("the data do not depend on it (flat direction of the fit)")
+        elif se[i] > 0.25 * span[i]:
+            why.append(
+                f"its standard error {se[i]:.3g} exceeds a quarter of its bound "
+                f"interval {span[i]:.3g}"
+            )
+        others = [
+            names[j]
+            for j in range(len(names))
+            if j != i and np.isfinite(corr[i, j]) and abs(corr[i, j]) > 0.95
+        ]
+        if others:
+            why.append(f"correlation above 0.95 with {', '.join(others)}")
+        ident[n] = not why
+        if why:
+            notes[n] = "; ".join(why)
+    fitted, scale = _apply(base, names, values)
+    model_best = model(best.x)
+    record = {
+        "data": {
+            "source": d.source,
+            "sha256": d.digest,
+            "kind": d.kind,
+            "n": d.n,
+            "uncertainties_stated": d.err_given,
+        },
+        "free": {
+            n: {
+                "low": float(lo[i]),
+                "high": float(hi[i]),
+                "start": _base_value(base, n),
+                "value": float(values[i]),
+                "stderr": float(se[i]),
+                "identifiable": ident[n],
+                "note": notes.get(n, ""),
+            }
+            for i, n in enumerate(names)
+        },
+        "correlation": [[None if not np.isfinite(v) else float(v) for v in row] for row in corr],
+        "cost": float(best.cost),
+        "chi2": chi2,
+        "dof": dof,
+        "covariance_scale": s2,
+        "observed": y.tolist(),
+        "uncertainty": err.tolist(),
+        "model": model_best.tolist(),
+        "starts": [
+            {
+                "start": (lo + span * u0).tolist(),
+                "value": (lo + span * r.x).tolist(),
+                "cost": float(r.cost),
+                "nfev": int(r.nfev),
+                "status": int(r.status),
+            }
+            for u0, r in zip(_starts(len(names), n_starts), runs, strict=True)
+        ],
+        "forward": {
+            "kind": fw.kind,
+            "n_blocks": fw.n_blocks,
+            "retract_steps": fw.retract_steps,
+            "n_sim": fw.n_sim,
+            "seed": seed,
+            "mechanics": base.mechanics,
+            "seta_stiffness_scale": scale,
+        },
+        "base_params": base.to_dict(),
+        "fitted_params": fitted.to_dict(),
+        "model_evaluations": len(cache),
+        "wall_time_s": time.perf_counter() - t0,
+        "versions": versions(),
+    }
+    return FitResult(
+        names,
+        dict(zip(names, values.tolist(), strict=True)),
+        dict(zip(names, se.tolist(), strict=True)),
+        corr,
+        float(best.cost),
+        ident,
+        notes,
+        {n: (float(lo[i]), float(hi[i])) for i, n in enumerate(names)},
+        y,
+        err,
+        model_best,
+        d,
+        record,
+    )
+
+
+# ------------------------------------------------------------------------------- CLI
+_BASES = {
+    "paper_array": PAPER_ARRAY,
+    "paper_table1": PAPER_TABLE1,
+    "paper_fig5_reading": PAPER_FIG5_READING,
+}
+
+
+def _parse_free(text: str) -> tuple[str, tuple[float, float]]:
+    m = re.fullmatch(r"\s*([\w.]+)\s*=\s*([^:]+):(.+)", text)
+    if not m:
+        raise argparse.ArgumentTypeError(
+            f"--free {text!r}: expected NAME=LOW:HIGH, e.g. contact.w=0.01:0.2"
+        )
+    try:
+        return m.group(1), (float(m.group(2)), float(m.group(3)))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--free {text!r}: LOW and HIGH must be numbers") from None
+
+
+def _parse_set(text: str) -> tuple[str, object]:
+    name, eq, value = text.partition("=")
+    if not eq:
+        raise argparse.ArgumentTypeError(f"--set {text!r}: expected NAME=VALUE")
+    try:
+        return name.strip(), float(value) if name.strip() != "mechanics" else value.strip()
+    except ValueError:
+        return name.strip(), value.strip()
+
+
+def main(argv=None) -> int:
+    """``python -m gecko_agents.calibrate DATA.csv --free contact.w=0.01:0.2 ...``
+
+    Exit status 0 on success, 2 on a usage or input error (message on stderr).
+    """
+    ap = argparse.ArgumentParser(
+        prog="python -m gecko_agents.calibrate",
+        description="Fit free parameters to a measured data set.",
+    )
+    ap.add_argument("data", help="CSV with unit-suffixed columns, e.g. preload_uN,pull_off_uN")
+    ap.add_argument(
+        "--free",
+        type=_parse_free,
+        action="append",
+        required=True,
+        metavar="NAME=LOW:HIGH",
+        help="a free parameter and its bounds (repeat)",
+    )
+    ap.add_argument("--base", choices=sorted(_BASES), default="paper_array")
+    ap.add_argument(
+        "--set",
+        type=_parse_set,
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="override a base parameter (repeat)",
+    )
+    ap.add_argument("--forward", choices=("quasistatic", "agent"), default="quasistatic")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--starts", type=int, default=3)
+    ap.add_argument("--blocks", type=int, default=None)
+    ap.add_argument("--out", default=None, help="directory for fit.json and the plots")
+    args = ap.parse_args(argv)
+    try:
+        base = _BASES[args.base].replace(**dict(args.set))
+        res = fit(
+            args.data,
+            dict(args.free),
+            base=base,
+            forward=args.forward,
+            seed=args.seed,
+            n_starts=args.starts,
+            n_blocks=args.blocks,
+        )
+    except ValueError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    for n in res.names:
+        flag = "" if res.identifiable[n] else f"   NOT DETERMINED: {res.notes[n]}"
+        print(f"{n} = {res.values[n]:.6g} ± {res.stderr[n]:.3g}{flag}")
+    print(f"cost = {res.cost:.6g}")
+    if args.out:
+        print(f"written to {res.save(args.out)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
