@@ -284,15 +284,16 @@ def predict(
     *,
     stiffness_scale: float = 1.0,
     seed: int = 0,
-    forward: Forward = Forward(),
+    forward: Forward | None = None,
 ) -> np.ndarray:
-    """Model values for every observation of ``data`` (as :meth:`Data.observed`) [µN / µm].
+    """Model values for each observation of ``data`` (as :meth:`Data.observed`) [µN, µm].
 
     Floor heights of an array come from ``numpy.random.default_rng(seed)`` (the same draw for
     every parameter set, so the fit sees a smooth model); a row's ``sigma_um`` overrides
     ``params.floor.sigma``.
     """
     c = data.columns
+    forward = forward or Forward()
     if forward.kind == "agent":
         return _predict_agent(data, params, stiffness_scale, seed, forward)
     z_touch = params.contact.R + params.seta.L * math.sin(params.seta.theta)
