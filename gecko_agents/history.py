@@ -28,23 +28,48 @@ import numpy as np
 
 from .params import SetaArray
 
-__all__ = ["History", "SCALAR_COLUMNS", "PER_SETA_FIELDS", "STATE_FREE", "STATE_STICK",
-           "STATE_SLIP", "load", "versions", "atomic_write_bytes", "invariant_violations",
-           "energy_balance_error", "ENERGY_RTOL"]
+__all__ = [
+    "History",
+    "SCALAR_COLUMNS",
+    "PER_SETA_FIELDS",
+    "STATE_FREE",
+    "STATE_STICK",
+    "STATE_SLIP",
+    "load",
+    "versions",
+    "atomic_write_bytes",
+    "invariant_violations",
+    "energy_balance_error",
+    "ENERGY_RTOL",
+]
 
 STATE_FREE, STATE_STICK, STATE_SLIP = 0, 1, 2
 
 SCALAR_COLUMNS = (
-    "time_us", "plate_x_um", "plate_y_um",
-    "force_normal_uN", "force_tangential_uN",
-    "plate_force_x_uN", "plate_force_y_uN",
-    "n_attached", "n_sliding",
-    "energy_elastic_pJ", "energy_kinetic_pJ", "energy_dissipated_pJ", "work_plate_pJ",
+    "time_us",
+    "plate_x_um",
+    "plate_y_um",
+    "force_normal_uN",
+    "force_tangential_uN",
+    "plate_force_x_uN",
+    "plate_force_y_uN",
+    "n_attached",
+    "n_sliding",
+    "energy_elastic_pJ",
+    "energy_kinetic_pJ",
+    "energy_dissipated_pJ",
+    "work_plate_pJ",
 )
 """Columns of ``history.csv``; every name carries its unit."""
 
-PER_SETA_FIELDS = ("tip_x_um", "tip_y_um", "force_normal_uN", "force_tangential_uN",
-                   "overlap_um", "state")
+PER_SETA_FIELDS = (
+    "tip_x_um",
+    "tip_y_um",
+    "force_normal_uN",
+    "force_tangential_uN",
+    "overlap_um",
+    "state",
+)
 """Per-seta arrays of shape (n_records, N) in ``setae.npz`` (optional)."""
 
 
@@ -132,16 +157,21 @@ class History:
         try:
             import pandas as pd
         except ImportError as err:
-            raise ImportError("History.to_dataframe needs pandas: "
-                              "pip install 'gecko_agents[pandas]'") from err
+            raise ImportError(
+                "History.to_dataframe needs pandas: pip install 'gecko_agents[pandas]'"
+            ) from err
         df = pd.DataFrame({c: np.asarray(self.scalars[c]) for c in SCALAR_COLUMNS})
         df.attrs = json.loads(json.dumps(self.metadata(), default=_json_default))
         return df
 
     def metadata(self) -> dict:
         """Everything needed to reproduce the run: parameters, seed, meta, versions."""
-        meta = {"params": self.params.to_dict(), "seed": int(self.seed),
-                "n_records": len(self), "columns": list(SCALAR_COLUMNS)}
+        meta = {
+            "params": self.params.to_dict(),
+            "seed": int(self.seed),
+            "n_records": len(self),
+            "columns": list(SCALAR_COLUMNS),
+        }
         meta.update(self.meta)
         meta.setdefault("versions", versions())
         return meta
@@ -200,16 +230,18 @@ def load(directory) -> History:
         params = SetaArray.from_dict(meta.pop("params"))
         seed = meta.pop("seed")
     except (json.JSONDecodeError, KeyError, TypeError) as err:
-        raise ValueError(f"{d / 'metadata.json'} is not a gecko_agents metadata file: "
-                         f"{err}") from err
+        raise ValueError(
+            f"{d / 'metadata.json'} is not a gecko_agents metadata file: {err}"
+        ) from err
     try:
         table = np.loadtxt(d / "history.csv", delimiter=",", skiprows=1, ndmin=2)
         header = (d / "history.csv").read_text().split("\n", 1)[0].split(",")
     except ValueError as err:
         raise ValueError(f"{d / 'history.csv'} is corrupt: {err}") from err
     if header != list(SCALAR_COLUMNS) or table.shape[1] != len(SCALAR_COLUMNS):
-        raise ValueError(f"{d / 'history.csv'} has columns {header}, expected "
-                         f"{list(SCALAR_COLUMNS)}")
+        raise ValueError(
+            f"{d / 'history.csv'} has columns {header}, expected {list(SCALAR_COLUMNS)}"
+        )
     scalars = {c: table[:, i] for i, c in enumerate(SCALAR_COLUMNS)}
     setae: dict = {}
     geometry: dict = {}
@@ -219,14 +251,22 @@ def load(directory) -> History:
             with np.load(d / "setae.npz") as z:
                 for key in z.files:
                     group, _, name = key.partition("__")
-                    {"setae": setae, "geometry": geometry,
-                     "detachments": detachments}[group][name] = z[key]
+                    {"setae": setae, "geometry": geometry, "detachments": detachments}[group][
+                        name
+                    ] = z[key]
         except (OSError, ValueError, KeyError) as err:
             raise ValueError(f"{d / 'setae.npz'} is corrupt: {err}") from err
     for k in ("n_records", "columns"):
         meta.pop(k, None)
-    return History(params=params, seed=seed, scalars=scalars, setae=setae, geometry=geometry,
-                   detachments=detachments, meta=meta)
+    return History(
+        params=params,
+        seed=seed,
+        scalars=scalars,
+        setae=setae,
+        geometry=geometry,
+        detachments=detachments,
+        meta=meta,
+    )
 
 
 ENERGY_RTOL = 0.02
@@ -264,15 +304,18 @@ def energy_balance_error(h: History) -> float:
     # Changes since the first record: a run may start from a loaded state (a second run() of
     # the same model, or a model set up pressed), whose stored energy no plate work paid for.
     err = float(np.max(np.abs((W - W[0]) - (booked - booked[0]))))
-    scale = max(float(np.max(np.abs(h[c]), initial=0.0))
-                for c in ("work_plate_pJ", "energy_elastic_pJ", "energy_dissipated_pJ"))
+    scale = max(
+        float(np.max(np.abs(h[c]), initial=0.0))
+        for c in ("work_plate_pJ", "energy_elastic_pJ", "energy_dissipated_pJ")
+    )
     if scale == 0.0:
         return 0.0 if err == 0.0 else np.inf
     return err / scale
 
 
-def invariant_violations(h: History, rtol: float = 1e-9,
-                         energy_rtol: float | None = ENERGY_RTOL) -> list[str]:
+def invariant_violations(
+    h: History, rtol: float = 1e-9, energy_rtol: float | None = ENERGY_RTOL
+) -> list[str]:
     """Force-history invariants that every recorded step must satisfy; [] when all hold.
 
     Parameters
@@ -312,8 +355,10 @@ def invariant_violations(h: History, rtol: float = 1e-9,
     if energy_rtol is not None and len(h):
         err = energy_balance_error(h)
         if not err <= energy_rtol:
-            out.append(f"energy balance off by {err:.3g} of the run's energy scale "
-                       f"(tolerance {energy_rtol:g})")
+            out.append(
+                f"energy balance off by {err:.3g} of the run's energy scale "
+                f"(tolerance {energy_rtol:g})"
+            )
     if len(h) and n_att[-1] == 0 and fn[-1] != 0:
         out.append("force is not zero after full detachment")
     return out

@@ -33,12 +33,23 @@ from dataclasses import dataclass, field
 from . import beam, jkr
 
 MECHANICS = ("linear", "rod")
+TIPS = ("sphere", "hertz")
+"""Tip contact laws (:data:`gecko_agents.contact.TIP_LAWS`): the adhesive JKR sphere of the
+paper, or a Hertz sphere without adhesion."""
 FRICTION_LAWS = ("adhesive", "paper")
 FLOOR_KINDS = ("gaussian", "self_affine")
 
 
-def _check(obj: object, name: str, lo: float, hi: float = math.inf, *, lo_open: bool = True,
-           hi_open: bool = True, integer: bool = False) -> None:
+def _check(
+    obj: object,
+    name: str,
+    lo: float,
+    hi: float = math.inf,
+    *,
+    lo_open: bool = True,
+    hi_open: bool = True,
+    integer: bool = False,
+) -> None:
     """Raise ValueError unless ``getattr(obj, name)`` is a finite number in the interval."""
     value = getattr(obj, name)
     kind = type(obj).__name__
@@ -208,15 +219,21 @@ class Floor:
         if self.rms_slope is not None:
             _check(self, "rms_slope", 0.0)
             if self.kind != "self_affine":
-                raise ValueError(f"Floor.rms_slope = {self.rms_slope!r} applies to "
-                                 "kind='self_affine' only; use None")
+                raise ValueError(
+                    f"Floor.rms_slope = {self.rms_slope!r} applies to "
+                    "kind='self_affine' only; use None"
+                )
             if self.sigma != 0:
-                raise ValueError(f"Floor.rms_slope = {self.rms_slope!r} and Floor.sigma = "
-                                 f"{self.sigma!r}: give one of RMS height or RMS slope (set "
-                                 "sigma = 0 to use rms_slope)")
+                raise ValueError(
+                    f"Floor.rms_slope = {self.rms_slope!r} and Floor.sigma = "
+                    f"{self.sigma!r}: give one of RMS height or RMS slope (set "
+                    "sigma = 0 to use rms_slope)"
+                )
         if self.kind == "self_affine" and self.correlation_length != 0:
-            raise ValueError(f"Floor.correlation_length = {self.correlation_length!r} applies "
-                             "to kind='gaussian' only; it must be 0 for kind='self_affine'")
+            raise ValueError(
+                f"Floor.correlation_length = {self.correlation_length!r} applies "
+                "to kind='gaussian' only; it must be 0 for kind='self_affine'"
+            )
 
 
 @dataclass(frozen=True)
@@ -252,7 +269,9 @@ class SetaArray:
     """Everything that defines a simulated array.
 
     ``mechanics`` is ``"linear"`` (the paper's 2×2 beam stiffness, eq 20–21) or ``"rod"``
-    (large rotation: a rigid rod on a rotary bending spring plus an axial spring).
+    (large rotation: a rigid rod on a rotary bending spring plus an axial spring). ``tip`` is
+    the tip's contact law, one of :data:`TIPS` (:mod:`gecko_agents.contact`): ``"sphere"``
+    (JKR, eq 1–15; the default) or ``"hertz"`` (the same sphere without adhesion).
     """
 
     contact: Contact = field(default_factory=Contact)
@@ -261,10 +280,13 @@ class SetaArray:
     floor: Floor = field(default_factory=Floor)
     friction: Friction = field(default_factory=Friction)
     mechanics: str = "linear"
+    tip: str = "sphere"
 
     def __post_init__(self):
         if self.mechanics not in MECHANICS:
             raise ValueError(f"SetaArray.mechanics = {self.mechanics!r} must be one of {MECHANICS}")
+        if self.tip not in TIPS:
+            raise ValueError(f"SetaArray.tip = {self.tip!r} must be one of {TIPS}")
 
     # Derived quantities used throughout ---------------------------------------------------
     @property
@@ -280,14 +302,18 @@ class SetaArray:
     @property
     def Ky(self) -> float:
         """Longitudinal (normal) stiffness Ky [µN/µm] (eq 20)."""
-        return float(beam.longitudinal_stiffness(self.axial_stiffness, self.bending_stiffness,
-                                                 self.seta.theta))
+        return float(
+            beam.longitudinal_stiffness(
+                self.axial_stiffness, self.bending_stiffness, self.seta.theta
+            )
+        )
 
     @property
     def Kx(self) -> float:
         """Transverse stiffness Kx [µN/µm] (eq 21)."""
-        return float(beam.transverse_stiffness(self.axial_stiffness, self.bending_stiffness,
-                                               self.seta.theta))
+        return float(
+            beam.transverse_stiffness(self.axial_stiffness, self.bending_stiffness, self.seta.theta)
+        )
 
     def replace(self, **overrides) -> SetaArray:
         """A copy with dotted overrides, e.g. ``replace(**{"floor.sigma": 0.5})``."""
@@ -317,9 +343,15 @@ class SetaArray:
     @classmethod
     def from_dict(cls, d: dict) -> SetaArray:
         """Inverse of :meth:`to_dict`."""
-        return cls(contact=Contact(**d["contact"]), seta=Seta(**d["seta"]),
-                   array=Array(**d["array"]), floor=Floor(**d["floor"]),
-                   friction=Friction(**d["friction"]), mechanics=d["mechanics"])
+        return cls(
+            contact=Contact(**d["contact"]),
+            seta=Seta(**d["seta"]),
+            array=Array(**d["array"]),
+            floor=Floor(**d["floor"]),
+            friction=Friction(**d["friction"]),
+            mechanics=d["mechanics"],
+            tip=d.get("tip", "sphere"),
+        )
 
 
 PAPER_TABLE1 = SetaArray(

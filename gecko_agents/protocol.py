@@ -2,24 +2,91 @@
 
 Units: µm, µs, µN; speeds in µm/µs (1 µm/µs = 1 m/s; the default 5e-3 µm/µs is 5 mm/s).
 Every segment validates itself on construction and raises ``ValueError`` naming the field.
+
+Each segment knows how it drives the plate: :meth:`Segment.velocity` gives the plate velocity
+for the next step (or ``None`` when the segment is over), :meth:`Segment.estimated_duration`
+an estimate of its length [µs] for progress bars, and :meth:`Segment.target` where it ends, if
+it ends at a fixed point (the model may skip free travel towards it). They ask the model only what a
+:class:`Plate` offers.
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
+from typing import Protocol
 
 from .params import _check
 
-__all__ = ["Move", "PressTo", "Press", "Hold", "PullOff", "press_pull", "preload_pull",
-           "drag_pull", "DEFAULT_SPEED"]
+__all__ = [
+    "Segment",
+    "Plate",
+    "Move",
+    "PressTo",
+    "Press",
+    "Hold",
+    "PullOff",
+    "press_pull",
+    "preload_pull",
+    "drag_pull",
+    "DEFAULT_SPEED",
+]
 
 DEFAULT_SPEED = 5e-3
 """Plate speed [µm/µs] at which the force history of the paper's seta is quasi-static."""
 
 
+class Plate(Protocol):
+    """What a segment may ask of the model driving the plate (all read-only)."""
+
+    dt: float  # time step [µs]
+    time: float  # simulated time [µs]
+    plate_position: tuple  # (x, y) [µm]
+    z_touch: float  # plate height at which a resting tip touches h = 0 [µm]
+    plate_start: float  # plate height at the start of a run [µm]
+    settle_time: float  # slowest period of a free seta [µs]
+    pull_travel: float  # plate travel a pull-off typically needs [µm]
+
+    def normal_force(self) -> float: ...  # total normal contact force [µN]
+
+    def n_attached(self) -> int: ...
+
+
+class Segment:
+    """A piece of a protocol. Subclasses are frozen dataclasses validated on construction."""
+
+    skips_free_travel = False  # whether travel with every tip free may be skipped
+
+    def velocity(self, plate: Plate, state: dict):
+        """Plate velocity (vx, vy) [µm/µs] for the next step, or None when the segment is
+        over. ``state`` starts as {"start": plate position, "t0": time} and is the segment's
+        own scratch space."""
+        raise NotImplementedError
+
+    def estimated_duration(self, plate: Plate) -> float:
+        """Estimated duration [µs] (for progress bars)."""
+        raise NotImplementedError
+
+    def target(self, plate: Plate, state: dict):
+        """Fixed end point (x, y) [µm] of the plate, or None."""
+        return None
+
+
+def _towards(plate: Plate, target, speed: float):
+    """Velocity to move the plate to ``target`` at ``speed``, landing on it exactly."""
+    px, py = plate.plate_position
+    rx, ry = target[0] - px, target[1] - py
+    dist = math.hypot(rx, ry)
+    if dist <= 1e-12:
+        return None
+    if dist < speed * plate.dt:
+        return rx / plate.dt, ry / plate.dt
+    return rx / dist * speed, ry / dist * speed
+
+
 @dataclass(frozen=True)
-class Move:
+class Move(Segment):
     """Move the plate by (dx, dy) [µm] at ``speed`` [µm/µs]."""
 
     dx: float = 0.0
@@ -33,9 +100,20 @@ class Move:
         if self.dx == 0 and self.dy == 0:
             raise ValueError("Move needs a non-zero displacement (dx, dy)")
 
+    skips_free_travel = True
+
+    def target(self, plate, state):
+        return state["start"][0] + self.dx, state["start"][1] + self.dy
+
+    def velocity(self, plate, state):
+        return _towards(plate, self.target(plate, state), self.speed)
+
+    def estimated_duration(self, plate):
+        return math.hypot(self.dx, self.dy) / self.speed
+
 
 @dataclass(frozen=True)
-class PressTo:
+class PressTo(Segment):
     """Move straight down until the plate is ``depth`` [µm] below the height at which a resting
     tip touches the floor's mean plane (the same reference as the quasi-static solver)."""
 
@@ -46,9 +124,20 @@ class PressTo:
         _check(self, "depth", -math.inf, math.inf)
         _check(self, "speed", 0.0)
 
+    skips_free_travel = True
+
+    def target(self, plate, state):
+        return state["start"][0], plate.z_touch - self.depth
+
+    def velocity(self, plate, state):
+        return _towards(plate, self.target(plate, state), self.speed)
+
+    def estimated_duration(self, plate):
+        return max(plate.plate_start - (plate.z_touch - self.depth), 0.0) / self.speed
+
 
 @dataclass(frozen=True)
-class Press:
+class Press(Segment):
     """Force control: move down until the total normal contact force reaches ``preload`` [µN].
 
     A velocity servo on the force averaged over the seta's slowest period (a fresh contact's
@@ -65,9 +154,27 @@ class Press:
         _check(self, "speed", 0.0)
         _check(self, "band", 0.0, 1.0, hi_open=False)
 
+    skips_free_travel = True
+
+    def velocity(self, plate, state):
+        # Servo on the force averaged over the seta's slowest period: a fresh contact's
+        # ring-down can push the instantaneous force past the target before the static force
+        # gets there.
+        force = plate.normal_force()
+        avg = state.setdefault("force_avg", force)
+        avg += (force - avg) * min(1.0, plate.dt / plate.settle_time)
+        state["force_avg"] = avg
+        if avg >= self.preload:
+            return None
+        frac = (self.preload - avg) / (self.band * self.preload)
+        return 0.0, -self.speed * min(1.0, max(frac, 0.02))
+
+    def estimated_duration(self, plate):
+        return 2.0 / self.speed
+
 
 @dataclass(frozen=True)
-class Hold:
+class Hold(Segment):
     """Keep the plate still for ``duration`` [µs]."""
 
     duration: float
@@ -75,9 +182,17 @@ class Hold:
     def __post_init__(self):
         _check(self, "duration", 0.0)
 
+    def velocity(self, plate, state):
+        if plate.time - state["t0"] < self.duration - 1e-9 * plate.dt:
+            return 0.0, 0.0
+        return None
+
+    def estimated_duration(self, plate):
+        return self.duration
+
 
 @dataclass(frozen=True)
-class PullOff:
+class PullOff(Segment):
     """Move away at ``speed`` [µm/µs] along ``angle_deg`` (90 = straight up, measured from +x,
     the direction the setae lean towards) until every tip has let go and the plate has moved a
     further ``clearance`` [µm]; gives up after ``max_travel`` [µm] (None: no limit)."""
@@ -94,6 +209,33 @@ class PullOff:
         if self.max_travel is not None:
             _check(self, "max_travel", 0.0)
 
+    def velocity(self, plate, state):
+        px, py = plate.plate_position
+        sx, sy = state["start"]
+        travel = math.hypot(px - sx, py - sy)
+        n_attached = plate.n_attached()
+        if self.max_travel is not None and travel >= self.max_travel:
+            if n_attached:
+                warnings.warn(
+                    f"PullOff stopped at max_travel = {self.max_travel} µm with "
+                    f"{n_attached} setae still attached",
+                    stacklevel=4,
+                )
+            return None
+        if not n_attached:
+            free = state.get("all_free")
+            if free is None:
+                state["all_free"] = (px, py)
+            elif math.hypot(px - free[0], py - free[1]) >= self.clearance:
+                return None
+        else:
+            state["all_free"] = None
+        ang = math.radians(self.angle_deg)
+        return self.speed * math.cos(ang), self.speed * math.sin(ang)
+
+    def estimated_duration(self, plate):
+        return plate.pull_travel / self.speed
+
 
 def press_pull(depth: float, speed: float = DEFAULT_SPEED) -> list:
     """Displacement control: press to ``depth`` [µm] (see :class:`PressTo`), then pull off."""
@@ -105,8 +247,9 @@ def preload_pull(preload: float, speed: float = DEFAULT_SPEED) -> list:
     return [Press(preload, speed), PullOff(speed)]
 
 
-def drag_pull(preload: float, drag: float, angle_deg: float = 90.0,
-              speed: float = DEFAULT_SPEED) -> list:
+def drag_pull(
+    preload: float, drag: float, angle_deg: float = 90.0, speed: float = DEFAULT_SPEED
+) -> list:
     """Press to ``preload`` [µN], drag sideways by ``drag`` [µm] (positive = along the seta
     tilt, towards +x), then pull off along ``angle_deg`` [degrees from +x]."""
     steps = [Press(preload, speed)]

@@ -11,7 +11,7 @@ _run = Model.run
 
 def _checked_run(self, *args, **kwargs):
     h = _run(self, *args, **kwargs)
-    if not self.external_force.any():   # probing forces do work the plate does not see
+    if not self.external_force.any():  # probing forces do work the plate does not see
         bad = history.invariant_violations(h)
         assert bad == [], f"invariants violated: {bad}"
     return h
@@ -20,4 +20,3 @@ def _checked_run(self, *args, **kwargs):
 @pytest.fixture(autouse=True)
 def _invariants_on_every_history(monkeypatch):
     monkeypatch.setattr(Model, "run", _checked_run)
-

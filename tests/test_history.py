@@ -12,10 +12,19 @@ def _toy(n=5, N=3):
     scalars = {c: rng.normal(size=n) for c in hist.SCALAR_COLUMNS}
     setae = {f: rng.normal(size=(n, N)) for f in hist.PER_SETA_FIELDS}
     setae["state"] = rng.integers(0, 3, size=(n, N)).astype(np.int8)
-    geometry = {"root_dx_um": np.arange(N) * 4.0, "root_dy_um": np.zeros(N),
-                "floor_x_um": np.array([-50.0, 50.0]), "floor_y_um": np.zeros(2)}
-    det = {"seta": np.array([1]), "time_us": np.array([3.0]), "plate_y_um": np.array([2.0]),
-           "overlap_um": np.array([-0.2]), "force_uN": np.array([-1.0])}
+    geometry = {
+        "root_dx_um": np.arange(N) * 4.0,
+        "root_dy_um": np.zeros(N),
+        "floor_x_um": np.array([-50.0, 50.0]),
+        "floor_y_um": np.zeros(2),
+    }
+    det = {
+        "seta": np.array([1]),
+        "time_us": np.array([3.0]),
+        "plate_y_um": np.array([2.0]),
+        "overlap_um": np.array([-0.2]),
+        "force_uN": np.array([-1.0]),
+    }
     return hist.History(PAPER_TABLE1, 42, scalars, setae, geometry, det, {"dt_us": 0.1})
 
 
@@ -75,8 +84,9 @@ def test_invariant_checks_catch_violations():
     h.setae["overlap_um"] = np.zeros((n, 3))
     for c in ("energy_elastic_pJ", "energy_kinetic_pJ", "energy_dissipated_pJ"):
         h.scalars[c] = np.abs(h.scalars[c])
-    h.scalars["work_plate_pJ"] = (h["energy_elastic_pJ"] + h["energy_kinetic_pJ"]
-                                  + h["energy_dissipated_pJ"])
+    h.scalars["work_plate_pJ"] = (
+        h["energy_elastic_pJ"] + h["energy_kinetic_pJ"] + h["energy_dissipated_pJ"]
+    )
     assert hist.invariant_violations(h) == []
     h.scalars["force_normal_uN"][2] = -1.5 * Fc
     h.scalars["energy_kinetic_pJ"][1] = np.nan
@@ -93,8 +103,7 @@ def test_energy_balance_check_catches_a_missing_term():
         h.scalars[c] = np.linspace(0.0, 1.0, len(h))
     h.scalars["work_plate_pJ"] = 3.0 * np.linspace(0.0, 1.0, len(h))
     assert hist.energy_balance_error(h) == 0.0
-    h.scalars["energy_dissipated_pJ"] = 1.1 * h["energy_dissipated_pJ"]   # over-booked 10 %
+    h.scalars["energy_dissipated_pJ"] = 1.1 * h["energy_dissipated_pJ"]  # over-booked 10 %
     assert hist.energy_balance_error(h) == pytest.approx(0.1 / 3.0)
     assert any("energy balance" in s for s in hist.invariant_violations(h))
-    assert not any("energy balance" in s
-                   for s in hist.invariant_violations(h, energy_rtol=None))
+    assert not any("energy balance" in s for s in hist.invariant_violations(h, energy_rtol=None))

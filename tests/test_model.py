@@ -37,7 +37,7 @@ def _static_stiffness(params, direction, force):
     for i in range(4_000):
         _, _, _, x = m.step((0.0, 0.0))
         if i == 0:
-            x0 = x[0] - m._vel_now[0] * m.dt
+            x0 = x[0] - m.state.velocity()[0] * m.dt
     u = x[0] - x0
     return force / np.dot(u, direction), u
 
@@ -45,7 +45,7 @@ def _static_stiffness(params, direction, force):
 @pytest.mark.parametrize("mechanics", ["linear", "rod"])
 def test_static_stiffness_matches_eq20_eq21(mechanics):
     p = PAPER_TABLE1.replace(**{"seta.L": 5.0, "mechanics": mechanics})
-    F = 1e-3 * p.Ky * p.seta.L          # deflection ~0.1 % of L: small-deflection regime
+    F = 1e-3 * p.Ky * p.seta.L  # deflection ~0.1 % of L: small-deflection regime
     ky, _ = _static_stiffness(p, (0.0, 1.0), F)
     kx, _ = _static_stiffness(p, (1.0, 0.0), F)
     assert_allclose(ky, p.Ky, rtol=0.01)
@@ -54,12 +54,12 @@ def test_static_stiffness_matches_eq20_eq21(mechanics):
 
 def test_linear_stays_linear_and_rod_stiffens_at_large_deflection():
     p = PAPER_TABLE1.replace(**{"seta.L": 5.0})
-    F = 0.3 * p.Ky * p.seta.L           # 30 % of L under the linear law
+    F = 0.3 * p.Ky * p.seta.L  # 30 % of L under the linear law
     with pytest.warns(UserWarning, match="small deflection"):
         ky_lin, _ = _static_stiffness(p, (0.0, 1.0), F)
     ky_rod, _ = _static_stiffness(p.replace(mechanics="rod"), (0.0, 1.0), F)
     assert_allclose(ky_lin, p.Ky, rtol=0.01)
-    assert abs(ky_rod / p.Ky - 1) > 0.05   # geometry changes the stiffness at large rotation
+    assert abs(ky_rod / p.Ky - 1) > 0.05  # geometry changes the stiffness at large rotation
 
 
 def test_single_seta_flat_floor_pull_off_matches_quasistatic():
@@ -69,7 +69,7 @@ def test_single_seta_flat_floor_pull_off_matches_quasistatic():
     q = qs.press_pull(p, [0.0], 0.3, n_retract=40_000, tangential_stiffness=m.k_t)
     assert_allclose(h.peak_pull_off, q.pull_off, rtol=0.01)
     # Where it let go: the quasi-static fold of its branch, found by the dynamics.
-    (_, _, d_fold), = q.releases
+    ((_, _, d_fold),) = q.releases
     assert len(h.detachments["seta"]) == 1
     assert h.detachments["overlap_um"][0] < p.contact.snap_off_overlap  # broke past δc …
     assert_allclose(h.detachments["release_overlap_um"][0], d_fold, atol=0.05)  # … left at fold
@@ -159,15 +159,19 @@ def test_same_seed_same_history_and_seed_matters():
         if col != "time_us":
             np.testing.assert_array_equal(a[col], b[col])
     assert not np.array_equal(a["force_normal_uN"], c["force_normal_uN"][: len(a)]) or len(
-        a) != len(c)
+        a
+    ) != len(c)
 
 
 @pytest.mark.parametrize("kernel", ["numpy", "python"])
 def test_reference_callback_path_gives_the_same_history(kernel):
     p = STUBBY.replace(**{"array.count": 3})
-    hs = [Model(p, contact=c, record_every=5, **kw).run(protocol.press_pull(0.3, speed=0.05),
-                                                         progress=False)
-          for c, kw in (("batch", {"kernel": kernel}), ("callback", {}))]
+    hs = [
+        Model(p, contact=c, record_every=5, **kw).run(
+            protocol.press_pull(0.3, speed=0.05), progress=False
+        )
+        for c, kw in (("batch", {"kernel": kernel}), ("callback", {}))
+    ]
     assert len(hs[0]) == len(hs[1])
     for col in ("force_normal_uN", "force_tangential_uN", "plate_force_y_uN", "n_attached"):
         scale = np.abs(hs[0][col]).max() + 1e-300
@@ -213,10 +217,10 @@ def test_pad_windows_follow_sliding_tips():
     x0 = m.root_dx + m.L * math.cos(m.theta)
     h = m.run(protocol.drag_pull(6.0, 25.0, 90.0, speed=0.05), progress=False)
     slid = np.abs(h.setae["tip_x_um"] - x0).max(axis=0)
-    assert np.all(slid > 2 * m._pad_half)
+    assert np.all(slid > 2 * m.world.pad_half)
     assert np.all(np.isfinite(h.detachments["overlap_um"]))
     assert len(h.detachments["seta"]) == 3
-    assert np.all(np.abs(m._pad_c - m._xy[0]) <= m._pad_slack)
+    assert np.all(np.abs(m.world.pad_centre - m.state.xy[0]) <= m.world.pad_slack)
 
 
 def test_fast_approach_skips_free_travel_and_keeps_the_pull_off():
@@ -229,13 +233,14 @@ def test_fast_approach_skips_free_travel_and_keeps_the_pull_off():
         slow = Model(p).run(prot, progress=False, fast_approach=False)
         fast = Model(p).run(prot, progress=False)
     assert slow.meta["skipped_travel_um"] == 0.0
-    assert fast.meta["skipped_travel_um"] > 6.0          # of the 8 µm up and back down
+    assert fast.meta["skipped_travel_um"] > 6.0  # of the 8 µm up and back down
     assert fast.meta["n_steps"] < 0.7 * slow.meta["n_steps"]
     assert abs(fast.peak_pull_off / slow.peak_pull_off - 1) < 0.005
     assert_allclose(fast["time_us"][-1], slow["time_us"][-1], rtol=1e-3)
     # The same setae let go at the same plate heights (to a step of plate travel).
-    assert_allclose(np.sort(fast.detachments["plate_y_um"]),
-                    np.sort(slow.detachments["plate_y_um"]), atol=2e-3)
+    assert_allclose(
+        np.sort(fast.detachments["plate_y_um"]), np.sort(slow.detachments["plate_y_um"]), atol=2e-3
+    )
 
 
 def test_convergence_in_dt_and_speed():
@@ -244,8 +249,11 @@ def test_convergence_in_dt_and_speed():
     peaks = {}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        for name, dt, v in (("base", base.dt, SPEED), ("dt/2", base.dt / 2, SPEED),
-                            ("v/2", base.dt, SPEED / 2)):
+        for name, dt, v in (
+            ("base", base.dt, SPEED),
+            ("dt/2", base.dt / 2, SPEED),
+            ("v/2", base.dt, SPEED / 2),
+        ):
             h = Model(p, dt=dt).run(protocol.press_pull(0.4, speed=v), progress=False)
             peaks[name] = h.peak_pull_off
     assert abs(peaks["dt/2"] / peaks["base"] - 1) < 0.01
@@ -269,13 +277,20 @@ def test_bad_input_and_instability():
         protocol.Move(dy=1.0, speed=-1.0)
     # A run whose kinetic energy runs away stops with an actionable message.
     with pytest.raises(SimulationUnstable, match="reduce dt"):
-        Model(STUBBY, dt=0.99 * bound).run(protocol.press_pull(0.5, speed=0.5),
-                                           progress=False, ke_bound=1e-9)
+        Model(STUBBY, dt=0.99 * bound).run(
+            protocol.press_pull(0.5, speed=0.5), progress=False, ke_bound=1e-9
+        )
 
 
 def test_correlated_floor_runs_and_touches_nearest_point():
-    p = STUBBY.replace(**{"array.count": 6, "floor.correlation_length": 3.0,
-                          "floor.sigma": 0.2, "mechanics": "rod"})
+    p = STUBBY.replace(
+        **{
+            "array.count": 6,
+            "floor.correlation_length": 3.0,
+            "floor.sigma": 0.2,
+            "mechanics": "rod",
+        }
+    )
     m = Model(p, record_setae=True)
     h = m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
     assert h.peak_pull_off > 0 and h["n_attached"][-1] == 0
@@ -294,11 +309,12 @@ def test_press_stops_on_the_static_preload_not_a_transient():
     p = PAPER_ARRAY.replace(**{"mechanics": "rod", "array.count": 16})
     m = Model(p)
     target = 1.6
-    h = m.run([protocol.Press(target, speed=0.02), protocol.Hold(3 * m.settle_time)],
-              progress=False)
-    held = h["force_normal_uN"][-1]          # after the plate has stood still
+    h = m.run(
+        [protocol.Press(target, speed=0.02), protocol.Hold(3 * m.settle_time)], progress=False
+    )
+    held = h["force_normal_uN"][-1]  # after the plate has stood still
     assert held >= 0.9 * target and h["n_attached"][-1] > 1
-    assert held <= 3 * target                # overshoot bounded by a few jump-ins
+    assert held <= 3 * target  # overshoot bounded by a few jump-ins
 
 
 def test_progress_bar_survives_a_run_longer_than_its_estimate(capsys):
@@ -319,7 +335,7 @@ def test_sliding_dissipates_the_coulomb_work(kernel):
     h = m.run([protocol.PressTo(0.3, 0.05), protocol.Move(dx=8.0, speed=0.1)], progress=False)
     Fc = p.contact.pull_off_force
     slide = np.flatnonzero(h.setae["state"][:, 0] == 2)
-    k = slide[slide > slide[0] + 20]                 # past the onset of sliding
+    k = slide[slide > slide[0] + 20]  # past the onset of sliding
     assert k.size > 50 and np.all(np.diff(k) == 1), "the tip must slide steadily"
     x, P = h.setae["tip_x_um"][k, 0], h.setae["force_normal_uN"][k, 0]
     cap = p.friction.mu * np.abs(P + 2 * Fc)
@@ -334,7 +350,7 @@ def test_sliding_linear_patch_balances_energy_within_one_percent():
     # tips slide, pressed 3 µm and pulled at 0.1 µm/µs (it was off by 4.5 %).
     p = PAPER_ARRAY.replace(**{"array.count": 20})
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")   # the linear seta leaves its small-deflection range
+        warnings.simplefilter("ignore")  # the linear seta leaves its small-deflection range
         h = Model(p, n_sim=20, seed=1).run(protocol.press_pull(3.0, 0.1), progress=False)
     assert h["n_sliding"].max() > 10
     W = h["work_plate_pJ"]

@@ -1,0 +1,637 @@
+"""The per-step force computation of the time-stepped model.
+
+Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`); sign conventions in
+:mod:`gecko_agents.contact`.
+
+Every step, all forces are computed at the positions pymunk is about to integrate velocities
+with (x + v·dt): the seta spring (``linear``: −K·u with eq 20–21's 2×2 stiffness; ``rod``: a
+rigid rod on a rotary spring Kp·L² plus an axial spring Ka, :func:`gecko_agents.beam.rod_force`),
+damping relative to the plate, and the contact (the normal force of the tip law,
+:mod:`gecko_agents.contact`; a stick spring with a Coulomb cap tangentially). Two ways:
+
+* :class:`NumpyStep` — vectorized over setae; any floor, and the per-contact reference path;
+* :func:`pad_loop` — pad floors: the same formulas and the same order of operations as one loop
+  over setae, compiled with numba when installed (``kernel="numba"``) or run by the interpreter
+  (``kernel="python"``, the fastest for a handful of setae). Built once per contact law by a
+  factory; both give the numpy path's history to rounding.
+
+Stick/slip (return mapping): the trial stretch ξ of the stick spring k_t is the tip's
+tangential displacement from its anchor; if k_t|ξ| exceeds the cap, the anchor slides so that
+the spring holds exactly the cap, and the slip |ξ − ξ_new| dissipates the Coulomb work
+cap·|ξ − ξ_new|.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from .state import (
+    AC,
+    AX,
+    AY,
+    DELTA,
+    DMPX,
+    DMPY,
+    FDX,
+    FDY,
+    FT,
+    FX,
+    FY,
+    JUMP,
+    PX,
+    PY,
+    UX,
+    UY,
+    VX,
+    VY,
+    XI,
+    X,
+    Y,
+)
+from .state import P as PN
+
+__all__ = ["LoopConstants", "NumpyStep", "pad_loop", "numba_available"]
+
+
+class LoopConstants(NamedTuple):
+    """Fixed scalars of the per-seta loop (units as in :class:`NumpyStep`)."""
+
+    dt: float
+    rod: bool
+    k00: float  # −K[0, 0] … −K[1, 1] [µN/µm] (linear seta)
+    k01: float
+    k10: float
+    k11: float
+    L: float
+    Ka: float
+    k_phi: float  # Kp·L² [pJ/rad²]
+    theta: float
+    c_seta: float
+    R: float
+    detach: float  # δ below which a tip lets go [µm]
+    c_n: float
+    c_t: float
+    k_t: float
+    mu: float
+    paper: bool  # friction cap μ·max(P, 0) (eq 27) instead of μ|P + 2Fc|
+    Fc: float
+    hm: float  # dt / (2m) [µs/ng]
+
+
+class NumpyStep:
+    """Vectorized forces of one step on a :class:`~gecko_agents.state.SetaState`.
+
+    Parameters
+    ----------
+    c : :class:`LoopConstants`. law : the :class:`~gecko_agents.contact.ContactLaw`.
+    state : per-seta state. world : the :class:`~gecko_agents.world.World` (floor geometry).
+    K : the linear seta's 2×2 stiffness [µN/µm]. friction : ``params.friction``.
+    """
+
+    def __init__(self, c: LoopConstants, law, state, world, K, friction):
+        self.c, self.law, self.s, self.world, self.K, self.friction = (
+            c,
+            law,
+            state,
+            world,
+            K,
+            friction,
+        )
+        n = state.n
+        self.tmp = np.zeros((6, n))
+        self.root = np.vstack([world.root_dx, world.root_dy])
+        self.rest = np.vstack([world.rest_dx, world.rest_dy])
+        self.any_contact_damping = False
+        self.diss = 0.0  # energy dissipated in the current step [pJ]
+        self.events = []  # (seta, overlap, force) of the tips that let go this step
+        self.max_u2 = 0.0  # largest |u|² of a linear seta this step [µm²]
+
+    # ------------------------------------------------------------------ seta springs
+    def spring_damp(self, pnx, pny, vpx, vpy):
+        """Seta spring + damping into ``state.F``; returns their sums (the force on the
+        plate's setae) [µN]."""
+        s, c = self.s, self.c
+        x, y = s.xy
+        Fx, Fy = s.F
+        t0, t1 = self.tmp[0], self.tmp[1]
+        if not c.rod:
+            ux, uy = s.u
+            np.subtract(x, pnx, out=ux)
+            ux -= self.world.rest_dx
+            np.subtract(y, pny, out=uy)
+            uy -= self.world.rest_dy
+            K = self.K
+            np.multiply(ux, -K[0, 0], out=Fx)
+            np.multiply(uy, -K[0, 1], out=t0)
+            Fx += t0
+            np.multiply(ux, -K[1, 0], out=Fy)
+            np.multiply(uy, -K[1, 1], out=t0)
+            Fy += t0
+            np.multiply(ux, ux, out=t0)
+            np.multiply(uy, uy, out=t1)
+            t0 += t1
+            self.max_u2 = float(t0.max())
+        else:
+            dx, dy = s.u
+            np.subtract(x, pnx, out=dx)
+            dx -= self.world.root_dx
+            np.subtract(y, pny, out=dy)
+            dy -= self.world.root_dy
+            ell, dphi, t2 = self.tmp[2], self.tmp[3], self.tmp[4]
+            np.multiply(dx, dx, out=ell)
+            np.multiply(dy, dy, out=t0)
+            ell += t0
+            np.sqrt(ell, out=ell)
+            np.arctan2(dy, dx, out=dphi)
+            dphi += c.theta + math.pi
+            np.remainder(dphi, 2 * math.pi, out=dphi)
+            dphi -= math.pi
+            # F = −Ka(ℓ − L)·e − (kφ·Δφ/ℓ)·e⊥, e = d/ℓ, e⊥ = (−e_y, e_x)
+            np.subtract(ell, c.L, out=t0)
+            t0 *= -c.Ka
+            t0 /= ell  # −Ka(ℓ − L)/ℓ
+            np.multiply(dphi, c.k_phi, out=t1)
+            t1 /= ell
+            t1 /= ell  # kφ·Δφ/ℓ²
+            np.multiply(t0, dx, out=Fx)
+            np.multiply(t1, dy, out=t2)
+            Fx += t2
+            np.multiply(t0, dy, out=Fy)
+            np.multiply(t1, dx, out=t2)
+            Fy -= t2
+        vx, vy = s.pv[2], s.pv[3]
+        Fdx, Fdy = s.F_damp_seta
+        np.subtract(vx, vpx, out=Fdx)
+        Fdx *= -c.c_seta
+        np.subtract(vy, vpy, out=Fdy)
+        Fdy *= -c.c_seta
+        Fx += Fdx
+        Fy += Fdy
+        on_plate = (float(Fx.sum()), float(Fy.sum()))
+        if s.external_force.any():
+            s.F += s.external_force.T
+        return on_plate
+
+    # ------------------------------------------------------------------ contact
+    def contact_energy(self, idx):
+        """Energy stored in the contacts of tips ``idx`` [pJ]: tip law + stick spring."""
+        xi = self.s.xi[idx]
+        return self.law.energy(self.s.a[idx]) + 0.5 * self.c.k_t * xi * xi
+
+    def detach(self, lost, gone, delta):
+        """Tips that let go this step: ``lost`` (no candidate floor left, overlap −∞) and
+        ``gone`` (overlap past δ_detach). Books the energy their contacts stored as dissipated."""
+        s = self.s
+        idx = np.concatenate([lost, gone])
+        self.events.extend((int(i), -np.inf, float(s.P[i])) for i in lost)
+        self.events.extend((int(i), float(delta[i]), float(s.P[i])) for i in gone)
+        self.diss += float(np.sum(self.contact_energy(idx)))
+        s.attached[idx] = False
+        s.P[idx] = 0.0
+        s.Ft[idx] = 0.0
+        s.slip[idx] = False
+
+    def lost(self, cand):
+        """Tips that lost every candidate while attached are beyond δ_detach: they let go."""
+        lost = np.flatnonzero(self.s.attached & ~cand)
+        if lost.size:
+            self.detach(lost, lost[:0], self.s.delta)
+
+    def geometry(self, ps, x, y):
+        """Nearest floor point (qx, qy), unit normal (nx, ny) from floor to tip and overlap δ
+        of tip centres (x, y) (each (k,)) against floor segments ``ps`` [µm]."""
+        w, R = self.world, self.c.R
+        if w.pads:  # horizontal pads: the normal is vertical
+            qy = w.h[ps]
+            return x, qy, np.zeros(ps.size), np.ones(ps.size), R - (y - qy)
+        A, B = w.seg_a[ps], w.seg_b[ps]
+        abx, aby = B[:, 0] - A[:, 0], B[:, 1] - A[:, 1]
+        t = ((x - A[:, 0]) * abx + (y - A[:, 1]) * aby) / (abx * abx + aby * aby)
+        t = np.clip(t, 0.0, 1.0)
+        qx, qy = A[:, 0] + t * abx, A[:, 1] + t * aby
+        dx, dy = x - qx, y - qy
+        dist = np.sqrt(dx * dx + dy * dy)
+        inv = 1.0 / np.maximum(dist, 1e-300)
+        return qx, qy, dx * inv, dy * inv, R - dist
+
+    def contact(self, tips, x, y, vx, vy, ps):
+        """Contact of ``tips`` (positions x, y, velocities vx, vy, each (k,)) with segments
+        ``ps``: the general (and reference) form, any floor, one or many tips.
+
+        Updates the attach/detach state, stick anchors and per-seta records of those tips and
+        adds the contact force to ``state.F``; returns it (fx, fy). Tangent t = (n_y, −n_x).
+        """
+        s, c, law = self.s, self.c, self.law
+        qx, qy, nx, ny, delta = self.geometry(ps, x, y)
+        att0 = s.attached[tips]
+        new = ~att0 & (delta >= law.attach_overlap)
+        gone = att0 & (delta < c.detach)
+        att = (att0 | new) & ~gone
+        s.delta[tips] = delta
+        if np.any(gone):
+            self.detach(tips[:0], tips[gone], s.delta)
+        if np.any(new):
+            s.anchor[0, tips[new]] = qx[new]
+            s.anchor[1, tips[new]] = qy[new]
+        k = tips.size
+        fx, fy = np.zeros(k), np.zeros(k)
+        i = np.flatnonzero(att)
+        if i.size:
+            ti = tips[i]
+            n_x, n_y = nx[i], ny[i]
+            a = law.radius(delta[i])
+            Pi = law.force(a)
+            vn = vx[i] * n_x + vy[i] * n_y
+            vt = vx[i] * n_y - vy[i] * n_x
+            ax, ay = s.anchor[0, ti], s.anchor[1, ti]
+            xi = (qx[i] - ax) * n_y - (qy[i] - ay) * n_x
+            cap = self.friction.cap(Pi, c.Fc)
+            trial = -c.k_t * xi
+            sl = np.abs(trial) > cap
+            xi_new = np.where(sl, np.sign(xi) * cap / c.k_t, xi)
+            # Return mapping: slide the anchor so the stick spring holds exactly the cap.
+            s.anchor[0, ti] = qx[i] - xi_new * n_y
+            s.anchor[1, ti] = qy[i] + xi_new * n_x
+            # Coulomb work of the slip: the anchor slides |ξ − ξ_new| against the cap.
+            self.diss += float(np.sum(cap * np.abs(xi - xi_new)))
+            dn = -c.c_n * vn
+            dt_ = np.where(sl, 0.0, -c.c_t * vt)
+            ft = np.where(sl, -c.k_t * xi_new, trial) + dt_
+            fn = Pi + dn
+            fx[i] = fn * n_x + ft * n_y
+            fy[i] = fn * n_y - ft * n_x
+            s.F_damp_contact[0, ti] += dn * n_x + dt_ * n_y
+            s.F_damp_contact[1, ti] += dn * n_y - dt_ * n_x
+            s.P[ti], s.Ft[ti], s.slip[ti] = Pi, ft, sl
+            s.a[ti], s.xi[ti] = a, xi_new
+            # Attachment starts the branch at U = 0: book the difference.
+            jumped = ti[new[i]]
+            if jumped.size:
+                self.diss -= float(np.sum(self.contact_energy(jumped)))
+        s.attached[tips] = att
+        s.F[0, tips] += fx
+        s.F[1, tips] += fy
+        return fx, fy
+
+    def contact_general(self):
+        """Continuous floor: the contact of every tip that has a candidate segment, in bulk."""
+        s = self.s
+        s.F_damp_contact.fill(0.0)
+        self.any_contact_damping = True
+        s.delta.fill(np.nan)
+        pt, ps, dup = self.world.pair_arrays()
+        cand = s.candidate_step
+        cand.fill(False)
+        cand[pt] = True
+        self.lost(cand)
+        if pt.size == 0:
+            return
+        x, y = s.xy
+        if dup:
+            # Several candidate segments: keep each tip's nearest floor point.
+            delta = self.geometry(ps, x[pt], y[pt])[4]
+            order = np.lexsort((-delta, pt))
+            keep = order[np.unique(pt[order], return_index=True)[1]]
+            pt, ps = pt[keep], ps[keep]
+        self.contact(pt, x[pt], y[pt], s.pv[2, pt], s.pv[3, pt], ps)
+
+    def contact_pads(self):
+        """Pad floor, batch path: every tip against its own horizontal pad, in bulk.
+
+        The same physics as :meth:`contact` with n = (0, 1), t = (1, 0), q = (x, h): works on
+        whole rows when every tip is attached and gathers the attached tips otherwise."""
+        s, c, law = self.s, self.c, self.law
+        n = s.n
+        h = self.world.h
+        x, y = s.xy
+        d = s.delta
+        np.subtract(y, h, out=d)
+        np.subtract(c.R, d, out=d)  # δ = R − (y − h)
+        cand = s.candidate_step
+        np.copyto(cand, s.candidate)
+        att = s.attached
+        all_att, all_cand = bool(att.all()), bool(cand.all())
+        lo = d < c.detach
+        gone = lo if all_att else lo & att
+        if all_cand:
+            lost = None
+        else:
+            lost = att & ~cand
+            gone &= cand
+        if gone.any() or (lost is not None and lost.any()):
+            self.detach(
+                np.flatnonzero(lost) if lost is not None else np.zeros(0, np.int64),
+                np.flatnonzero(gone),
+                d,
+            )
+            all_att = False
+        new = None
+        if not all_att:
+            new = d >= law.attach_overlap
+            new &= cand
+            new &= ~att
+            if new.any():
+                att |= new
+                s.anchor[0, new] = x[new]
+                s.anchor[1, new] = h[new]
+            else:
+                new = None
+        n_att = n if all_att else int(np.count_nonzero(att))
+        Fdmp = s.F_damp_contact
+        if n_att == 0:
+            if self.any_contact_damping:
+                Fdmp.fill(0.0)
+                self.any_contact_damping = False
+            return
+        vx, vy = s.pv[2], s.pv[3]
+        if n_att == n:
+            ia = None
+            da, xa, vta, vna, anc = d, x, vx, vy, s.anchor[0]
+        else:
+            ia = np.flatnonzero(att)
+            da, xa, vta, vna, anc = d[ia], x[ia], vx[ia], vy[ia], s.anchor[0, ia]
+        a = law.radius(da)
+        P = law.force(a)
+        xi = xa - anc
+        k_t = c.k_t
+        if c.paper:
+            cap = np.maximum(P, 0.0)
+            cap *= c.mu
+        else:
+            cap = P + 2.0 * c.Fc
+            np.abs(cap, out=cap)
+            cap *= c.mu
+        trial = xi * -k_t
+        sl = np.abs(trial) > cap
+        any_sl = bool(sl.any())
+        dtg = vta * -c.c_t
+        if any_sl:
+            xi_new = np.where(sl, np.copysign(cap / k_t, xi), xi)
+            # Coulomb work of the slip: the anchor slides |ξ − ξ_new| against the cap.
+            self.diss += float(np.sum((cap * np.abs(xi - xi_new))[sl]))
+            dtg[sl] = 0.0
+            ft = np.where(sl, -k_t * xi_new, trial)
+            ft += dtg
+        else:
+            xi_new = xi
+            ft = trial
+            ft += dtg
+        dn = vna * -c.c_n
+        if ia is None:
+            np.subtract(x, xi_new, out=s.anchor[0])
+            s.F[0] += ft
+            s.F[1] += P + dn
+            Fdmp[0], Fdmp[1] = dtg, dn
+            s.P[:], s.Ft[:], s.a[:], s.xi[:] = P, ft, a, xi_new
+            s.slip[:] = sl
+        else:
+            s.anchor[0, ia] = xa - xi_new
+            s.F[0, ia] += ft
+            s.F[1, ia] += P + dn
+            Fdmp.fill(0.0)
+            Fdmp[0, ia], Fdmp[1, ia] = dtg, dn
+            s.P[ia], s.Ft[ia], s.a[ia], s.xi[ia] = P, ft, a, xi_new
+            s.slip[ia] = sl
+        self.any_contact_damping = True
+        if new is not None:  # attachment starts the branch at U = 0: book the difference
+            self.diss -= float(np.sum(self.contact_energy(np.flatnonzero(new))))
+
+    # ------------------------------------------------------------------ after the forces
+    def bookkeeping(self, vpx, vpy):
+        """Damping dissipation and the release bookkeeping, once the forces are known."""
+        s, c = self.s, self.c
+        vm = self.tmp[0:2]
+        np.multiply(s.F, c.hm, out=vm)
+        vm += s.pv[2:4]  # mid-step velocity ½(v + v_next)
+        Fd = s.F_damp_seta
+        # −dt·[Σ Fd·(v_mid − vp) + Σ F_contact_damping·v_mid]. (Products and sums rather than
+        # np.dot/vdot: BLAS threads that spin-wait on a busy machine cost milliseconds.)
+        prod = self.tmp[3:5]
+        if self.any_contact_damping:
+            np.add(Fd, s.F_damp_contact, out=prod)
+            prod *= vm
+        else:
+            np.multiply(Fd, vm, out=prod)
+        sm = float(prod.sum()) - vpx * float(Fd[0].sum()) - vpy * float(Fd[1].sum())
+        self.diss -= sm * c.dt
+        # Release bookkeeping: where a tip began to run away from the plate.
+        # A tip following its branch moves slower than the plate; past the fold it runs away.
+        att = s.attached
+        if not att.any():
+            return
+        v_ref = max(math.hypot(vpx, vpy), 1e-4)
+        s2 = self.tmp[2]
+        vx, vy = s.pv[2], s.pv[3]
+        np.multiply(vx, vx, out=s2)
+        s2 += vy * vy
+        fast = s2 > 4.0 * v_ref * v_ref
+        fast &= att
+        jump = s.jump
+        jn = np.isnan(jump)
+        set_ = fast & jn
+        if set_.any():
+            jump[set_] = s.delta[set_]
+        if not jn.all():
+            slow = s2 < v_ref * v_ref
+            slow &= att
+            jump[slow] = np.nan
+
+
+# ---------------------------------------------------------------------- per-seta loop
+
+
+@functools.cache
+def pad_loop(law_type, compiled: bool):
+    """The pad-floor step of every seta as one loop, for contact laws of class ``law_type``.
+
+    Returns ``loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand,
+    attached, slip, S, ext, pad_c, rest, root, lost_idx, gone_idx, res)``: reads the batch
+    rows ``data`` (x, y, vx, vy; seta i in row ``rows[i]``), writes the forces into ``out`` and
+    the state block ``S`` (rows as :mod:`gecko_agents.state`), the detached tips into
+    ``lost_idx``/``gone_idx`` and into ``res``: plate force (x, y), dissipation, #lost, #gone,
+    max |u|², max pad-window drift. ``c`` is a :class:`LoopConstants`, ``k`` the law's
+    constants. ``compiled``: numba (None if numba is missing) or the interpreter. Built once
+    per law and mode.
+    """
+    radius, force, energy = law_type.radius_scalar, law_type.force_scalar, law_type.energy_scalar
+    if compiled:
+        try:
+            import numba
+        except ImportError:
+            return None
+        jit = numba.njit(cache=True, error_model="numpy")
+        radius, force, energy = jit(radius), jit(force), jit(energy)
+
+    def loop(
+        data,
+        rows,
+        out,
+        c,
+        k,
+        pnx,
+        pny,
+        vpx,
+        vpy,
+        vref,
+        has_ext,
+        h,
+        cand,
+        attached,
+        slip,
+        S,
+        ext,
+        pad_c,
+        rest,
+        root,
+        lost_idx,
+        gone_idx,
+        res,
+    ):
+        n = S.shape[1]
+        dt, rod, L, Ka, kphi, theta = c.dt, c.rod, c.L, c.Ka, c.k_phi, c.theta
+        k00, k01, k10, k11 = c.k00, c.k01, c.k10, c.k11
+        cs, R, dc, cn, ct, kt = c.c_seta, c.R, c.detach, c.c_n, c.c_t, c.k_t
+        mu, paper, Fc, hm = c.mu, c.paper, c.Fc, c.hm
+        fast2, slow2 = 4.0 * vref * vref, vref * vref
+        opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
+        nl = ng = 0
+        # Three passes over blocks of setae: (1) springs, damping, overlaps, contact state
+        # changes; (2) contact radius; (3) contact forces and bookkeeping. The contact radius
+        # is a long chain of dependent sqrt/cbrt/divisions that overlaps between setae only in
+        # a short loop of its own; blocks keep the data of the three passes in cache.
+        for b0 in range(0, n, 128):
+            b1 = min(n, b0 + 128)
+            # Pass 1: springs, damping, overlaps and contact state changes.
+            for i in range(b0, b1):
+                r = rows[i]
+                px, py, vx, vy = data[r, 0], data[r, 1], data[r, 2], data[r, 3]
+                S[PX, i], S[PY, i], S[VX, i], S[VY, i] = px, py, vx, vy
+                x = vx * dt + px
+                y = vy * dt + py
+                S[X, i], S[Y, i] = x, y
+                if rod:
+                    dx = (x - pnx) - root[0, i]
+                    dy = (y - pny) - root[1, i]
+                    ell = math.sqrt(dx * dx + dy * dy)
+                    dphi = math.atan2(dy, dx) + (theta + math.pi)
+                    dphi = dphi % (2.0 * math.pi) - math.pi
+                    t0 = (ell - L) * -Ka / ell
+                    t1 = dphi * kphi / ell / ell
+                    fx = t0 * dx + t1 * dy
+                    fy = t0 * dy - t1 * dx
+                else:
+                    ux = (x - pnx) - rest[0, i]
+                    uy = (y - pny) - rest[1, i]
+                    S[UX, i], S[UY, i] = ux, uy
+                    fx = ux * k00 + uy * k01
+                    fy = ux * k10 + uy * k11
+                    u2 = ux * ux + uy * uy
+                    if u2 > max_u2:
+                        max_u2 = u2
+                fdx = (vx - vpx) * -cs
+                fdy = (vy - vpy) * -cs
+                S[FDX, i], S[FDY, i] = fdx, fdy
+                sfdx += fdx
+                sfdy += fdy
+                fx += fdx
+                fy += fdy
+                opx += fx
+                opy += fy
+                if has_ext:
+                    fx += ext[i, 0]
+                    fy += ext[i, 1]
+                S[FX, i], S[FY, i] = fx, fy
+                # Contact with the tip's own pad: n = (0, 1), t = (1, 0), q = (x, h).
+                d = R - (y - h[i])
+                S[DELTA, i] = d
+                if attached[i]:
+                    gone = False
+                    if not cand[i]:
+                        lost_idx[nl] = i
+                        nl += 1
+                        gone = True
+                    elif d < dc:
+                        gone_idx[ng] = i
+                        ng += 1
+                        gone = True
+                    if gone:  # snap-off: what the contact stored is dissipated
+                        attached[i] = False
+                        xs = S[XI, i]
+                        diss += energy(S[AC, i], k) + 0.5 * kt * xs * xs
+                elif cand[i] and d >= 0.0:
+                    attached[i] = True
+                    S[AX, i], S[AY, i] = x, h[i]
+                    S[XI, i] = np.inf  # marks an attachment for pass 3
+            # Pass 2: contact radius on the law's branch.
+            for i in range(b0, b1):
+                if attached[i]:
+                    S[AC, i] = radius(S[DELTA, i], k)
+            # Pass 3: contact forces, stick/slip, release bookkeeping, dissipation, forces.
+            for i in range(b0, b1):
+                vx, vy, x = S[VX, i], S[VY, i], S[X, i]
+                fx, fy, fdx, fdy = S[FX, i], S[FY, i], S[FDX, i], S[FDY, i]
+                dmpx = dmpy = 0.0
+                if attached[i]:
+                    new = S[XI, i] == np.inf
+                    a = S[AC, i]
+                    P = force(a, k)
+                    xi = x - S[AX, i]
+                    if paper:
+                        cap = (P if P > 0.0 else 0.0) * mu
+                    else:
+                        cap = abs(P + 2.0 * Fc) * mu
+                    trial = xi * -kt
+                    dtg = vx * -ct
+                    if abs(trial) > cap:
+                        xin = math.copysign(cap / kt, xi)
+                        diss += cap * abs(xi - xin)  # Coulomb work of the slip
+                        dtg = 0.0
+                        ft = -kt * xin + dtg
+                        sl = True
+                    else:
+                        xin = xi
+                        ft = trial + dtg
+                        sl = False
+                    S[AX, i] = x - xin
+                    dn = vy * -cn
+                    fx += ft
+                    fy += P + dn
+                    dmpx, dmpy = dtg, dn
+                    S[PN, i], S[FT, i], S[XI, i] = P, ft, xin
+                    slip[i] = sl
+                    if new:  # attachment starts the branch at U = 0
+                        diss -= energy(a, k) + 0.5 * kt * xin * xin
+                    s2 = vx * vx + vy * vy
+                    if s2 > fast2:
+                        if math.isnan(S[JUMP, i]):
+                            S[JUMP, i] = S[DELTA, i]
+                    elif s2 < slow2:
+                        S[JUMP, i] = np.nan
+                S[FX, i], S[FY, i], S[DMPX, i], S[DMPY, i] = fx, fy, dmpx, dmpy
+                r = rows[i]
+                out[r, 0], out[r, 1] = fx, fy
+                vmx = fx * hm + vx
+                vmy = fy * hm + vy
+                dd += (fdx + dmpx) * vmx + (fdy + dmpy) * vmy
+                dr = abs(x - pad_c[i])
+                if dr > drift:
+                    drift = dr
+        res[0], res[1] = opx, opy
+        res[2] = diss - (dd - vpx * sfdx - vpy * sfdy) * dt
+        res[3], res[4], res[5], res[6] = nl, ng, max_u2, drift
+
+    # (A closure is compiled anew in every process, ~2 s: numba cannot cache it on disk.)
+    return numba.njit(error_model="numpy")(loop) if compiled else loop
+
+
+def numba_available() -> bool:
+    """Whether numba is installed (``pip install 'gecko_agents[fast]'``)."""
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return False
+    return True
