@@ -13,10 +13,19 @@ a force acts along y (or x) and the tip is free to move in the other direction.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["axial_stiffness", "bending_stiffness", "longitudinal_stiffness",
-           "transverse_stiffness", "stiffness_matrix", "deflection_ratio", "rest_tip_offset"]
+__all__ = [
+    "axial_stiffness",
+    "bending_stiffness",
+    "longitudinal_stiffness",
+    "transverse_stiffness",
+    "stiffness_matrix",
+    "deflection_ratio",
+    "rest_tip_offset",
+]
 
 
 def axial_stiffness(r, L, E):
@@ -112,3 +121,51 @@ def rest_tip_offset(L, theta):
     (dx, dy) : the offsets along x (> 0) and y (< 0 for 0 < θ < π) [length].
     """
     return L * np.cos(theta), -L * np.sin(theta)
+
+
+def linear_spring_force(u, K):
+    """Force on the tip of a linear seta and its elastic energy (eq 20–21): F = −K·u, E = ½u·K·u.
+
+    Parameters
+    ----------
+    u : tip displacements from rest, shape (N, 2) [length]. K : the 2×2 stiffness of
+    :func:`stiffness_matrix` [force/length].
+
+    Returns
+    -------
+    F (N, 2) [force], energy (N,) [force·length].
+    """
+    # Written out (no BLAS call per record).
+    F = np.column_stack(
+        [-(u[:, 0] * K[0, 0] + u[:, 1] * K[0, 1]), -(u[:, 0] * K[1, 0] + u[:, 1] * K[1, 1])]
+    )
+    energy = -0.5 * (u[:, 0] * F[:, 0] + u[:, 1] * F[:, 1])
+    return F, energy
+
+
+def rod_spring_force(d, L, Ka, k_phi, theta):
+    """Force on the tip of a seta modelled as a rigid rod on a rotary spring plus an axial
+    spring, and its elastic energy (large rotation; docs/physics.md, "Rod mechanics").
+
+    With ℓ = |d| the rod length, Δφ its rotation from rest (angle −θ to +x), e = d/ℓ and
+    e⊥ = (−e_y, e_x): F = −Ka(ℓ − L)·e − (kφ·Δφ/ℓ)·e⊥, E = ½Ka(ℓ − L)² + ½kφ·Δφ². With
+    kφ = Kp·L² this has eq 20–21's stiffness at small deflection.
+
+    Parameters
+    ----------
+    d : root-to-tip vectors, shape (N, 2) [length]. L : rest length [length]. Ka : axial
+    stiffness (eq 17) [force/length]. k_phi : rotary stiffness Kp·L² [force·length/rad²].
+    theta : rest angle to the plate [rad].
+
+    Returns
+    -------
+    F (N, 2) [force], energy (N,) [force·length].
+    """
+    ell = np.hypot(d[:, 0], d[:, 1])
+    e = d / ell[:, None]
+    dphi = np.arctan2(d[:, 1], d[:, 0]) + theta
+    dphi = (dphi + math.pi) % (2 * math.pi) - math.pi
+    e_perp = np.column_stack([-e[:, 1], e[:, 0]])
+    F = (-Ka * (ell - L))[:, None] * e - (k_phi * dphi / ell)[:, None] * e_perp
+    energy = 0.5 * Ka * (ell - L) ** 2 + 0.5 * k_phi * dphi**2
+    return F, energy

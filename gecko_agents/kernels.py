@@ -5,12 +5,14 @@ Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`); sign conventions in
 
 Every step, all forces are computed at the positions pymunk is about to integrate velocities
 with (x + v·dt): the seta spring (``linear``: −K·u with eq 20–21's 2×2 stiffness; ``rod``: a
-rigid rod on a rotary spring Kp·L² plus an axial spring Ka, :func:`gecko_agents.beam.rod_force`),
+rigid rod on a rotary spring Kp·L² plus an axial spring Ka,
+:func:`gecko_agents.beam.rod_spring_force`),
 damping relative to the plate, and the contact (the normal force of the tip law,
 :mod:`gecko_agents.contact`; a stick spring with a Coulomb cap tangentially). Two ways:
 
 * :class:`NumpyStep` — vectorized over setae; any floor, and the per-contact reference path;
-* :func:`pad_loop` — pad floors: the same formulas and the same order of operations as one loop
+* :func:`gecko_agents.loop.pad_loop` — pad floors: the same formulas and the same order of
+  operations as one loop
   over setae, compiled with numba when installed (``kernel="numba"``) or run by the interpreter
   (``kernel="python"``, the fastest for a handful of setae). Built once per contact law by a
   factory; both give the numpy path's history to rounding.
@@ -23,38 +25,12 @@ cap·|ξ − ξ_new|.
 
 from __future__ import annotations
 
-import functools
 import math
 from typing import NamedTuple
 
 import numpy as np
 
-from .state import (
-    AC,
-    AX,
-    AY,
-    DELTA,
-    DMPX,
-    DMPY,
-    FDX,
-    FDY,
-    FT,
-    FX,
-    FY,
-    JUMP,
-    PX,
-    PY,
-    UX,
-    UY,
-    VX,
-    VY,
-    XI,
-    X,
-    Y,
-)
-from .state import P as PN
-
-__all__ = ["LoopConstants", "NumpyStep", "pad_loop", "numba_available"]
+__all__ = ["LoopConstants", "NumpyStep"]
 
 
 class LoopConstants(NamedTuple):
@@ -439,199 +415,3 @@ class NumpyStep:
             slow = s2 < v_ref * v_ref
             slow &= att
             jump[slow] = np.nan
-
-
-# ---------------------------------------------------------------------- per-seta loop
-
-
-@functools.cache
-def pad_loop(law_type, compiled: bool):
-    """The pad-floor step of every seta as one loop, for contact laws of class ``law_type``.
-
-    Returns ``loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand,
-    attached, slip, S, ext, pad_c, rest, root, lost_idx, gone_idx, res)``: reads the batch
-    rows ``data`` (x, y, vx, vy; seta i in row ``rows[i]``), writes the forces into ``out`` and
-    the state block ``S`` (rows as :mod:`gecko_agents.state`), the detached tips into
-    ``lost_idx``/``gone_idx`` and into ``res``: plate force (x, y), dissipation, #lost, #gone,
-    max |u|², max pad-window drift. ``c`` is a :class:`LoopConstants`, ``k`` the law's
-    constants. ``compiled``: numba (None if numba is missing) or the interpreter. Built once
-    per law and mode.
-    """
-    radius, force, energy = law_type.radius_scalar, law_type.force_scalar, law_type.energy_scalar
-    if compiled:
-        try:
-            import numba
-        except ImportError:
-            return None
-        jit = numba.njit(cache=True, error_model="numpy")
-        radius, force, energy = jit(radius), jit(force), jit(energy)
-
-    def loop(
-        data,
-        rows,
-        out,
-        c,
-        k,
-        pnx,
-        pny,
-        vpx,
-        vpy,
-        vref,
-        has_ext,
-        h,
-        cand,
-        attached,
-        slip,
-        S,
-        ext,
-        pad_c,
-        rest,
-        root,
-        lost_idx,
-        gone_idx,
-        res,
-    ):
-        n = S.shape[1]
-        dt, rod, L, Ka, kphi, theta = c.dt, c.rod, c.L, c.Ka, c.k_phi, c.theta
-        k00, k01, k10, k11 = c.k00, c.k01, c.k10, c.k11
-        cs, R, dc, cn, ct, kt = c.c_seta, c.R, c.detach, c.c_n, c.c_t, c.k_t
-        mu, paper, Fc, hm = c.mu, c.paper, c.Fc, c.hm
-        fast2, slow2 = 4.0 * vref * vref, vref * vref
-        opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
-        nl = ng = 0
-        # Three passes over blocks of setae: (1) springs, damping, overlaps, contact state
-        # changes; (2) contact radius; (3) contact forces and bookkeeping. The contact radius
-        # is a long chain of dependent sqrt/cbrt/divisions that overlaps between setae only in
-        # a short loop of its own; blocks keep the data of the three passes in cache.
-        for b0 in range(0, n, 128):
-            b1 = min(n, b0 + 128)
-            # Pass 1: springs, damping, overlaps and contact state changes.
-            for i in range(b0, b1):
-                r = rows[i]
-                px, py, vx, vy = data[r, 0], data[r, 1], data[r, 2], data[r, 3]
-                S[PX, i], S[PY, i], S[VX, i], S[VY, i] = px, py, vx, vy
-                x = vx * dt + px
-                y = vy * dt + py
-                S[X, i], S[Y, i] = x, y
-                if rod:
-                    dx = (x - pnx) - root[0, i]
-                    dy = (y - pny) - root[1, i]
-                    ell = math.sqrt(dx * dx + dy * dy)
-                    dphi = math.atan2(dy, dx) + (theta + math.pi)
-                    dphi = dphi % (2.0 * math.pi) - math.pi
-                    t0 = (ell - L) * -Ka / ell
-                    t1 = dphi * kphi / ell / ell
-                    fx = t0 * dx + t1 * dy
-                    fy = t0 * dy - t1 * dx
-                else:
-                    ux = (x - pnx) - rest[0, i]
-                    uy = (y - pny) - rest[1, i]
-                    S[UX, i], S[UY, i] = ux, uy
-                    fx = ux * k00 + uy * k01
-                    fy = ux * k10 + uy * k11
-                    u2 = ux * ux + uy * uy
-                    if u2 > max_u2:
-                        max_u2 = u2
-                fdx = (vx - vpx) * -cs
-                fdy = (vy - vpy) * -cs
-                S[FDX, i], S[FDY, i] = fdx, fdy
-                sfdx += fdx
-                sfdy += fdy
-                fx += fdx
-                fy += fdy
-                opx += fx
-                opy += fy
-                if has_ext:
-                    fx += ext[i, 0]
-                    fy += ext[i, 1]
-                S[FX, i], S[FY, i] = fx, fy
-                # Contact with the tip's own pad: n = (0, 1), t = (1, 0), q = (x, h).
-                d = R - (y - h[i])
-                S[DELTA, i] = d
-                if attached[i]:
-                    gone = False
-                    if not cand[i]:
-                        lost_idx[nl] = i
-                        nl += 1
-                        gone = True
-                    elif d < dc:
-                        gone_idx[ng] = i
-                        ng += 1
-                        gone = True
-                    if gone:  # snap-off: what the contact stored is dissipated
-                        attached[i] = False
-                        xs = S[XI, i]
-                        diss += energy(S[AC, i], k) + 0.5 * kt * xs * xs
-                elif cand[i] and d >= 0.0:
-                    attached[i] = True
-                    S[AX, i], S[AY, i] = x, h[i]
-                    S[XI, i] = np.inf  # marks an attachment for pass 3
-            # Pass 2: contact radius on the law's branch.
-            for i in range(b0, b1):
-                if attached[i]:
-                    S[AC, i] = radius(S[DELTA, i], k)
-            # Pass 3: contact forces, stick/slip, release bookkeeping, dissipation, forces.
-            for i in range(b0, b1):
-                vx, vy, x = S[VX, i], S[VY, i], S[X, i]
-                fx, fy, fdx, fdy = S[FX, i], S[FY, i], S[FDX, i], S[FDY, i]
-                dmpx = dmpy = 0.0
-                if attached[i]:
-                    new = S[XI, i] == np.inf
-                    a = S[AC, i]
-                    P = force(a, k)
-                    xi = x - S[AX, i]
-                    if paper:
-                        cap = (P if P > 0.0 else 0.0) * mu
-                    else:
-                        cap = abs(P + 2.0 * Fc) * mu
-                    trial = xi * -kt
-                    dtg = vx * -ct
-                    if abs(trial) > cap:
-                        xin = math.copysign(cap / kt, xi)
-                        diss += cap * abs(xi - xin)  # Coulomb work of the slip
-                        dtg = 0.0
-                        ft = -kt * xin + dtg
-                        sl = True
-                    else:
-                        xin = xi
-                        ft = trial + dtg
-                        sl = False
-                    S[AX, i] = x - xin
-                    dn = vy * -cn
-                    fx += ft
-                    fy += P + dn
-                    dmpx, dmpy = dtg, dn
-                    S[PN, i], S[FT, i], S[XI, i] = P, ft, xin
-                    slip[i] = sl
-                    if new:  # attachment starts the branch at U = 0
-                        diss -= energy(a, k) + 0.5 * kt * xin * xin
-                    s2 = vx * vx + vy * vy
-                    if s2 > fast2:
-                        if math.isnan(S[JUMP, i]):
-                            S[JUMP, i] = S[DELTA, i]
-                    elif s2 < slow2:
-                        S[JUMP, i] = np.nan
-                S[FX, i], S[FY, i], S[DMPX, i], S[DMPY, i] = fx, fy, dmpx, dmpy
-                r = rows[i]
-                out[r, 0], out[r, 1] = fx, fy
-                vmx = fx * hm + vx
-                vmy = fy * hm + vy
-                dd += (fdx + dmpx) * vmx + (fdy + dmpy) * vmy
-                dr = abs(x - pad_c[i])
-                if dr > drift:
-                    drift = dr
-        res[0], res[1] = opx, opy
-        res[2] = diss - (dd - vpx * sfdx - vpy * sfdy) * dt
-        res[3], res[4], res[5], res[6] = nl, ng, max_u2, drift
-
-    # (A closure is compiled anew in every process, ~2 s: numba cannot cache it on disk.)
-    return numba.njit(error_model="numpy")(loop) if compiled else loop
-
-
-def numba_available() -> bool:
-    """Whether numba is installed (``pip install 'gecko_agents[fast]'``)."""
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return False
-    return True

@@ -9,7 +9,8 @@ modules:
 * :mod:`gecko_agents.world` — the pymunk space (tips, plate, floor, collision events, batch I/O);
 * :mod:`gecko_agents.state` — per-seta state as named arrays;
 * :mod:`gecko_agents.contact` — the tip law (JKR sphere by default), chosen by ``params.tip``;
-* :mod:`gecko_agents.kernels` — the per-step forces (numpy, or one loop compiled by numba);
+* :mod:`gecko_agents.kernels`, :mod:`gecko_agents.loop` — the per-step forces (numpy, or one
+  loop compiled by numba);
 * :mod:`gecko_agents.protocol` — what the plate does; :mod:`gecko_agents.recorder` — what is
   recorded into a :class:`~gecko_agents.history.History`.
 
@@ -34,12 +35,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import beam, jkr
-from .contact import contact_law, mindlin_stiffness
+from . import beam
+from .contact import contact_law
+from .dynamics import DEFAULT_DAMPING, Damping, seta_mass, tangential_stiffness
 from .floor import Profile
 from .history import History, versions
-from .kernels import LoopConstants, NumpyStep, pad_loop
-from .kernels import numba_available as _numba_installed
+from .kernels import LoopConstants, NumpyStep
+from .loop import numba_available as _numba_installed
+from .loop import pad_loop
 from .params import SetaArray
 from .protocol import DEFAULT_SPEED, Segment
 from .recorder import Recorder
@@ -64,49 +67,48 @@ class SimulationUnstable(RuntimeError):
     """The run blew up (non-finite state or runaway kinetic energy)."""
 
 
-@dataclass(frozen=True)
-class Damping:
-    """Damping ratios [-] (fractions of critical damping c = 2ζ√(k·m)).
-
-    seta : isotropic damping of the tip relative to the plate, on the seta's softest
-        stiffness Ky; 1 = critical, so a free seta follows the plate without ringing and a
-        tip moving with the plate feels none.
-    normal : on the normal contact velocity, on the contact stiffness at zero load (2E*a0).
-    tangential : on the tangential velocity of a sticking tip, on the stick stiffness.
-    """
-
-    seta: float = 1.0
-    normal: float = 0.1
-    tangential: float = 0.5
-
-    def __post_init__(self):
-        for name in ("seta", "normal", "tangential"):
-            v = getattr(self, name)
-            if not (math.isfinite(v) and v >= 0):
-                raise ValueError(f"Damping.{name} = {v!r} must be finite and ≥ 0")
-
-
-def seta_mass(params: SetaArray) -> float:
-    """Tip point mass [ng]: the sphere plus the cantilever rod's effective share 33/140.
-
-    33/140 is Rayleigh's effective mass of a cantilever loaded at its tip (Timoshenko, Vibration
-    Problems in Engineering, §1.10): the rod's kinetic energy when it swings in its first mode.
-    """
-    rho, R = params.seta.density, params.contact.R
-    rod = math.pi * params.seta.r**2 * params.seta.L * rho
-    return 4.0 / 3.0 * math.pi * R**3 * rho + 33.0 / 140.0 * rod
-
-
-def tangential_stiffness(params: SetaArray) -> float:
-    """Stick-spring stiffness of the JKR contact k_t = 8G*·a0 [µN/µm] (Mindlin 1949) at the
-    zero-load radius a0 (:func:`gecko_agents.contact.mindlin_stiffness`)."""
-    c = params.contact
-    return mindlin_stiffness(c, float(jkr.zero_load_contact_radius(*c.jkr_args())))
-
-
 def numba_available() -> bool:
     """Whether the optional numba kernel can be used (``pip install gecko_agents[fast]``)."""
     return _numba_installed()
+
+
+def _checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile) -> int:
+    """Refuse bad Model arguments, naming them; returns the number of setae to simulate."""
+    if not isinstance(params, SetaArray):
+        raise TypeError(f"params must be a SetaArray, got {type(params).__name__}")
+    n = params.array.count if n_sim is None else n_sim
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= 20_000:
+        raise ValueError(
+            f"n_sim = {n!r} must be an integer in [1, 20000]; simulate a patch "
+            "of a large array with n_sim (the quasi-static solver does 10⁷)"
+        )
+    if contact not in ("batch", "callback"):
+        raise ValueError(f"contact = {contact!r} must be 'batch' or 'callback'")
+    if record_every is not None and (not isinstance(record_every, int) or record_every < 1):
+        raise ValueError(f"record_every = {record_every!r} must be an integer ≥ 1")
+    if kernel not in KERNELS:
+        raise ValueError(f"kernel = {kernel!r} must be one of {KERNELS}")
+    if floor_profile is not None and not isinstance(floor_profile, Profile):
+        raise TypeError(
+            f"floor_profile must be a gecko_agents.floor.Profile, got "
+            f"{type(floor_profile).__name__}"
+        )
+    return int(n)
+
+
+@dataclass
+class _Run:
+    """Running totals of one :meth:`Model.run`: plate work and dissipation [pJ], steps, the
+    free travel skipped [µm], and the run's settings."""
+
+    recorder: Recorder
+    ke_bound: float | None
+    max_steps: int
+    fast_approach: bool
+    work: float = 0.0
+    dissipated: float = 0.0
+    skipped: float = 0.0
+    n_steps: int = 0
 
 
 class Model:
@@ -145,32 +147,14 @@ class Model:
         seed: int | None = None,
         dt: float | None = None,
         contact: str = "batch",
-        damping: Damping = Damping(),
+        damping: Damping = DEFAULT_DAMPING,
         record_every: int | None = None,
         record_setae: bool = False,
         verbose: bool = False,
         kernel: str = "auto",
         floor_profile: Profile | None = None,
     ):
-        if not isinstance(params, SetaArray):
-            raise TypeError(f"params must be a SetaArray, got {type(params).__name__}")
-        n = params.array.count if n_sim is None else n_sim
-        if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= 20_000:
-            raise ValueError(
-                f"n_sim = {n!r} must be an integer in [1, 20000]; simulate a patch "
-                "of a large array with n_sim (the quasi-static solver does 10⁷)"
-            )
-        if contact not in ("batch", "callback"):
-            raise ValueError(f"contact = {contact!r} must be 'batch' or 'callback'")
-        if record_every is not None and (not isinstance(record_every, int) or record_every < 1):
-            raise ValueError(f"record_every = {record_every!r} must be an integer ≥ 1")
-        if kernel not in KERNELS:
-            raise ValueError(f"kernel = {kernel!r} must be one of {KERNELS}")
-        if floor_profile is not None and not isinstance(floor_profile, Profile):
-            raise TypeError(
-                f"floor_profile must be a gecko_agents.floor.Profile, got "
-                f"{type(floor_profile).__name__}"
-            )
+        n = _checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
         self.params, self.n, self.contact_path = params, int(n), contact
         self.seed = params.floor.seed if seed is None else int(seed)
         self.rng = np.random.default_rng(self.seed)
@@ -211,28 +195,7 @@ class Model:
             self.rng,
             floor_profile,
         )
-        self._constants = LoopConstants(
-            dt=self.dt,
-            rod=params.mechanics == "rod",
-            k00=-self.K[0, 0],
-            k01=-self.K[0, 1],
-            k10=-self.K[1, 0],
-            k11=-self.K[1, 1],
-            L=self.L,
-            Ka=self.Ka,
-            k_phi=self.k_phi,
-            theta=self.theta,
-            c_seta=self.c_seta,
-            R=params.contact.R,
-            detach=law.detach_overlap,
-            c_n=self.c_n,
-            c_t=self.c_t,
-            k_t=self.k_t,
-            mu=params.friction.mu,
-            paper=params.friction.law == "paper",
-            Fc=self.Fc,
-            hm=0.5 * self.dt / self.mass,
-        )
+        self._constants = self._loop_constants()
         self.physics = NumpyStep(
             self._constants, law, self.state, self.world, self.K, params.friction
         )
@@ -249,6 +212,16 @@ class Model:
         self.reaction = (0.0, 0.0)
         self._work_step = 0.0
         self.reset_state_arrays()
+
+    def _loop_constants(self) -> LoopConstants:
+        p, K = self.params, self.K
+        return LoopConstants(
+            dt=self.dt, rod=p.mechanics == "rod", k00=-K[0, 0], k01=-K[0, 1], k10=-K[1, 0],
+            k11=-K[1, 1], L=self.L, Ka=self.Ka, k_phi=self.k_phi, theta=self.theta,
+            c_seta=self.c_seta, R=p.contact.R, detach=self.law.detach_overlap, c_n=self.c_n,
+            c_t=self.c_t, k_t=self.k_t, mu=p.friction.mu, paper=p.friction.law == "paper",
+            Fc=self.Fc, hm=0.5 * self.dt / self.mass,
+        )  # fmt: skip
 
     def _time_step(self, dt) -> float:
         bound = 2.0 / self.omega_max
@@ -361,20 +334,8 @@ class Model:
         d = x - root
         if self.params.mechanics == "linear":
             u = d - self.L * self.axis
-            K = self.K  # F = −K·u, written out (no BLAS call per record)
-            F = np.column_stack(
-                [-(u[:, 0] * K[0, 0] + u[:, 1] * K[0, 1]), -(u[:, 0] * K[1, 0] + u[:, 1] * K[1, 1])]
-            )
-            energy = -0.5 * (u[:, 0] * F[:, 0] + u[:, 1] * F[:, 1])
-            return F, energy, u
-        ell = np.hypot(d[:, 0], d[:, 1])
-        e = d / ell[:, None]
-        dphi = np.arctan2(d[:, 1], d[:, 0]) + self.theta
-        dphi = (dphi + math.pi) % (2 * math.pi) - math.pi
-        e_perp = np.column_stack([-e[:, 1], e[:, 0]])
-        F = (-self.Ka * (ell - self.L))[:, None] * e - (self.k_phi * dphi / ell)[:, None] * e_perp
-        energy = 0.5 * self.Ka * (ell - self.L) ** 2 + 0.5 * self.k_phi * dphi**2
-        return F, energy, None
+            return (*beam.linear_spring_force(u, self.K), u)
+        return (*beam.rod_spring_force(d, self.L, self.Ka, self.k_phi, self.theta), None)
 
     def spring_energies(self) -> np.ndarray:
         """Elastic energy of every seta [pJ] at the last step's evaluation positions."""
@@ -579,73 +540,58 @@ class Model:
             if not isinstance(seg, Segment):
                 raise TypeError(f"unknown protocol segment {seg!r}")
         self.reset_state_arrays()
-        rec = Recorder(self.record_setae)
-        e_scale = self.n * max(self.Fc, 1e-300) * abs(self.law.detach_overlap)
-        work = dissipated = skipped = 0.0
-        n_steps = 0
-        every = self.record_every
+        run = _Run(Recorder(self.record_setae), ke_bound, max_steps, fast_approach)
         est = sum(seg.estimated_duration(self) for seg in segments)
         # Whole microseconds of simulated time; the total is an estimate and may be exceeded.
-        bar = tqdm(
-            total=max(int(est), 1),
-            unit="µs",
-            disable=not progress,
-            desc=f"gecko_agents (dt = {self.dt:.3g} µs)",
-            mininterval=0.5,
-        )
+        desc = f"gecko_agents (dt = {self.dt:.3g} µs)"
+        bar = tqdm(total=max(int(est), 1), unit="µs", disable=not progress, desc=desc,
+                   mininterval=0.5)  # fmt: skip
         t_wall = time.perf_counter()
         try:
             for seg in segments:
-                state = {"start": self.plate_position, "t0": self.time}
-                may_skip = fast_approach and seg.skips_free_travel
-                while True:
-                    vp = seg.velocity(self, state)
-                    if vp is None:
-                        break
-                    if may_skip and n_steps % every == 0 and not self.state.attached.any():
-                        skipped += self._skip_free_travel(seg, state, vp)
-                    self._advance(vp[0], vp[1])
-                    work += self._work_step
-                    dissipated += self.physics.diss
-                    if self.physics.events:
-                        rec.note_detachments(
-                            self.time, self.plate_position, self._releases(self.physics.events)
-                        )
-                    n_steps += 1
-                    if n_steps % every == 0 or n_steps == 1:
-                        row = rec.record(self, work, dissipated)
-                        bound = ke_bound if ke_bound is not None else 100 * (e_scale + abs(work))
-                        self._check_stable(row, bound)
-                        bar.update(int(self.time) - bar.n)
-                    if n_steps >= max_steps:
-                        raise RuntimeError(f"max_steps = {max_steps} reached in segment {seg}")
+                self._run_segment(seg, run, bar)
         finally:
             bar.close()
-        rec.record(self, work, dissipated)
+        run.recorder.record(self, run.work, run.dissipated)
         meta = {
-            "dt_us": self.dt,
-            "n_steps": n_steps,
-            "record_every": self.record_every,
-            "n_sim": self.n,
-            "scale_to_array": self.params.array.count / self.n,
-            "protocol": [f"{seg!r}" for seg in segments],
-            "contact_path": self.contact_path,
-            "kernel": self.kernel,
-            "tip_law": self.law.name,
-            "skipped_travel_um": skipped,
-            "damping": dataclasses.asdict(self.damping),
-            "mass_ng": self.mass,
+            "dt_us": self.dt, "n_steps": run.n_steps, "record_every": self.record_every,
+            "n_sim": self.n, "scale_to_array": self.params.array.count / self.n,
+            "protocol": [f"{seg!r}" for seg in segments], "contact_path": self.contact_path,
+            "kernel": self.kernel, "tip_law": self.law.name, "skipped_travel_um": run.skipped,
+            "damping": dataclasses.asdict(self.damping), "mass_ng": self.mass,
             "tangential_stiffness_uN_per_um": self.k_t,
-            "wall_time_s": time.perf_counter() - t_wall,
-            "versions": versions(),
-        }
-        geometry = {
-            "root_dx_um": self.world.root_dx,
-            "root_dy_um": self.world.root_dy,
-            "floor_x_um": self.world.profile.x,
-            "floor_y_um": self.world.profile.y,
-        }
-        return rec.history(self.params, self.seed, geometry, meta)
+            "wall_time_s": time.perf_counter() - t_wall, "versions": versions(),
+        }  # fmt: skip
+        w = self.world
+        geometry = {"root_dx_um": w.root_dx, "root_dy_um": w.root_dy,
+                    "floor_x_um": w.profile.x, "floor_y_um": w.profile.y}  # fmt: skip
+        return run.recorder.history(self.params, self.seed, geometry, meta)
+
+    def _run_segment(self, seg: Segment, run: _Run, bar) -> None:
+        """Step through one protocol segment, recording every ``record_every`` steps."""
+        state = {"start": self.plate_position, "t0": self.time}
+        may_skip = run.fast_approach and seg.skips_free_travel
+        every, rec = self.record_every, run.recorder
+        e_scale = self.n * max(self.Fc, 1e-300) * abs(self.law.detach_overlap)
+        while (vp := seg.velocity(self, state)) is not None:
+            if may_skip and run.n_steps % every == 0 and not self.state.attached.any():
+                run.skipped += self._skip_free_travel(seg, state, vp)
+            self._advance(vp[0], vp[1])
+            run.work += self._work_step
+            run.dissipated += self.physics.diss
+            if self.physics.events:
+                releases = self._releases(self.physics.events)
+                rec.note_detachments(self.time, self.plate_position, releases)
+            run.n_steps += 1
+            if run.n_steps % every == 0 or run.n_steps == 1:
+                row = rec.record(self, run.work, run.dissipated)
+                bound = run.ke_bound
+                if bound is None:
+                    bound = 100 * (e_scale + abs(run.work))
+                self._check_stable(row, bound)
+                bar.update(int(self.time) - bar.n)
+            if run.n_steps >= run.max_steps:
+                raise RuntimeError(f"max_steps = {run.max_steps} reached in segment {seg}")
 
     def _releases(self, events):
         """(seta, overlap, release overlap, force) of the tips that let go: the release overlap
@@ -659,46 +605,14 @@ class Model:
         return out
 
     def _skip_free_travel(self, seg, state, vp) -> float:
-        """Move plate and tips rigidly along ``vp`` while nothing can touch; returns the travel.
-
-        Only when no tip is attached and every tip rests relative to the plate: deflection
-        below 1e-3 of the lag v/ω of a seta dragged at the plate speed, relative velocity below
-        1e-3 of the plate speed (a free seta then just follows the plate, wherever it is). The
-        plate stops where the first sensor circle would reach the floor, and a few steps
-        before the segment's target.
-        """
-        vx, vy = vp
-        speed = math.hypot(vx, vy)
-        if speed == 0.0 or self.state.attached.any():
+        """Move plate and tips rigidly along ``vp`` while nothing can touch
+        (:meth:`gecko_agents.world.World.skip_free_travel`); returns the travel [µm]."""
+        if self.state.attached.any():
             return 0.0
-        w = self.world
-        w.read()
-        px, py, tvx, tvy = self.state.pv
-        ppx, ppy = self.plate_position
-        omega = math.sqrt(self.params.Ky / self.mass)
-        tol_u, tol_v = 1e-3 * speed / omega, 1e-3 * speed
-        if (
-            np.abs(px - ppx - w.rest_dx).max() > tol_u
-            or np.abs(py - ppy - w.rest_dy).max() > tol_u
-            or np.abs(tvx - vx).max() > tol_v
-            or np.abs(tvy - vy).max() > tol_v
-        ):
-            return 0.0
-        reach = w.sensor_radius + 2.0 * speed * self.dt
-        if w.pads:
-            gap = float(np.min(py - w.h)) - reach
-        else:
-            gap = float(np.min(py)) - w.floor_top() - reach
-        travel = math.inf if vy >= 0 else gap * speed / -vy
         target = seg.target(self, state)
-        if target is not None:
-            travel = min(
-                travel, math.hypot(target[0] - ppx, target[1] - ppy) - 3.0 * speed * self.dt
-            )
-        if not travel > 20.0 * speed * self.dt:
-            return 0.0
-        w.translate(vx / speed * travel, vy / speed * travel, px, py)
-        self.time += travel / speed
+        omega = math.sqrt(self.params.Ky / self.mass)
+        travel = self.world.skip_free_travel(vp, omega, self.dt, target)
+        self.time += travel / math.hypot(*vp) if travel else 0.0
         return travel
 
     def _check_stable(self, row, bound):
