@@ -30,6 +30,8 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from . import beam, jkr
 
 MECHANICS = ("linear", "rod")
@@ -50,19 +52,53 @@ def _check(
     hi_open: bool = True,
     integer: bool = False,
 ) -> None:
-    """Raise ValueError unless ``getattr(obj, name)`` is a finite number in the interval."""
+    """Raise ValueError unless ``getattr(obj, name)`` is a finite number in the interval.
+
+    numpy scalars are accepted and stored as the Python number they hold (``np.int64(5)`` →
+    ``5``), so parameters stay JSON-serialisable. ``integer=True`` accepts only integers
+    (Python or numpy, not bool): ``5.0`` or ``1e12`` is refused rather than truncated.
+    """
     value = getattr(obj, name)
     kind = type(obj).__name__
     interval = f"{'(' if lo_open else '['}{lo}, {hi}{')' if hi_open else ']'}"
+    if isinstance(value, np.generic) and not isinstance(value, np.bool_):
+        value = value.item()
+        object.__setattr__(obj, name, value)
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise ValueError(f"{kind}.{name} = {value!r} must be a number in {interval}")
-    if integer and int(value) != value:
+    if integer and not isinstance(value, int):
         raise ValueError(f"{kind}.{name} = {value!r} must be an integer in {interval}")
     ok = math.isfinite(value) or (hi == math.inf and value == math.inf and not hi_open)
     below = value < lo or (lo_open and value == lo)
     above = value > hi or (hi_open and value == hi)
     if not ok or below or above:
         raise ValueError(f"{kind}.{name} = {value!r} is outside the allowed range {interval}")
+
+
+# Physical ranges of the parameters ---------------------------------------------------------
+# Wide enough for any material or geometry the model could be asked about, narrow enough that
+# a typo (a modulus in Pa instead of MPa, a count of 1e12) is refused before it divides by
+# zero, takes a time step of 1e-150 µs or allocates terabytes.
+MODULUS_RANGE = (1e-6, 1e7)
+"""Young's moduli [MPa]: 1 Pa (softer than the softest hydrogels, ~10 Pa) to 10 TPa (above
+diamond, 1.2 TPa)."""
+LENGTH_RANGE = (1e-3, 1e5)
+"""Tip radius, seta radius and length, pitch [µm]: 1 nm (below it continuum contact mechanics
+does not apply) to 10 cm (a whole robot foot)."""
+SURFACE_ENERGY_MAX = 10.0
+"""Surface energies γ [J/m² = µN/µm]: polymers 0.02–0.05, metals up to ~3 (tungsten);
+w = 2√(γ1γ2) ≤ 2·SURFACE_ENERGY_MAX."""
+DENSITY_RANGE = (1e-5, 3e-2)
+"""Density [ng/µm³]: 10 kg/m³ (aerogels) to 30 000 kg/m³ (above osmium, 22 590 kg/m³)."""
+COUNT_MAX = 10**9
+"""Setae in the physical array [-]: a tokay gecko has ~6.5·10⁶ (Autumn et al. 2000, Nature
+405:681), the paper's array 10⁷; 10⁹ leaves two decades while keeping the quasi-static solver's
+per-seta arrays (8 bytes each) in memory."""
+ROUGHNESS_MAX = 1e4
+"""RMS height and correlation length of the floor [µm]: up to 1 cm."""
+FRICTION_MAX = 10.0
+"""Friction coefficient [-]: elastomers on clean glass reach ~3–5 (Roberts & Thomas 1975);
+10 leaves margin."""
 
 
 @dataclass(frozen=True)
@@ -90,12 +126,15 @@ class Contact:
     w: float | None = None
 
     def __post_init__(self):
-        for name in ("R", "E1", "E2", "gamma1", "gamma2"):
-            _check(self, name, 0.0)
+        _check(self, "R", *LENGTH_RANGE, lo_open=False, hi_open=False)
+        for name in ("E1", "E2"):
+            _check(self, name, *MODULUS_RANGE, lo_open=False, hi_open=False)
+        for name in ("gamma1", "gamma2"):
+            _check(self, name, 0.0, SURFACE_ENERGY_MAX, hi_open=False)
         for name in ("nu1", "nu2"):
             _check(self, name, 0.0, 0.5, lo_open=False)
         if self.w is not None:
-            _check(self, "w", 0.0)
+            _check(self, "w", 0.0, 2 * SURFACE_ENERGY_MAX, hi_open=False)
 
     @property
     def work_of_adhesion(self) -> float:
@@ -142,10 +181,10 @@ class Seta:
     density: float = 1.2e-3
 
     def __post_init__(self):
-        _check(self, "r", 0.0)
-        _check(self, "L", 0.0)
+        _check(self, "r", *LENGTH_RANGE, lo_open=False, hi_open=False)
+        _check(self, "L", *LENGTH_RANGE, lo_open=False, hi_open=False)
         _check(self, "theta_deg", 0.0, 90.0)
-        _check(self, "density", 0.0)
+        _check(self, "density", *DENSITY_RANGE, lo_open=False, hi_open=False)
 
     @property
     def theta(self) -> float:
@@ -167,8 +206,8 @@ class Array:
     pitch: float = 4.0
 
     def __post_init__(self):
-        _check(self, "count", 1, lo_open=False, integer=True)
-        _check(self, "pitch", 0.0)
+        _check(self, "count", 1, COUNT_MAX, lo_open=False, hi_open=False, integer=True)
+        _check(self, "pitch", *LENGTH_RANGE, lo_open=False, hi_open=False)
 
 
 @dataclass(frozen=True)
@@ -208,14 +247,15 @@ class Floor:
     rms_slope: float | None = None
 
     def __post_init__(self):
-        _check(self, "sigma", 0.0, lo_open=False)
-        _check(self, "correlation_length", 0.0, lo_open=False)
+        _check(self, "sigma", 0.0, ROUGHNESS_MAX, lo_open=False, hi_open=False)
+        _check(self, "correlation_length", 0.0, ROUGHNESS_MAX, lo_open=False, hi_open=False)
         _check(self, "seed", 0, 2**63, lo_open=False, integer=True)
         if self.kind not in FLOOR_KINDS:
             raise ValueError(f"Floor.kind = {self.kind!r} must be one of {FLOOR_KINDS}")
         _check(self, "hurst", 0.0, 1.0)
-        _check(self, "short_cutoff", 0.0)
-        _check(self, "long_cutoff", self.short_cutoff)
+        _check(self, "short_cutoff", LENGTH_RANGE[0], ROUGHNESS_MAX, lo_open=False)
+        # A profile spans a few long cutoffs at λs/4 vertex spacing: cap the ratio at 10⁶.
+        _check(self, "long_cutoff", self.short_cutoff, 1e6 * self.short_cutoff, hi_open=False)
         if self.rms_slope is not None:
             _check(self, "rms_slope", 0.0)
             if self.kind != "self_affine":
@@ -251,7 +291,7 @@ class Friction:
     law: str = "adhesive"
 
     def __post_init__(self):
-        _check(self, "mu", 0.0, lo_open=False)
+        _check(self, "mu", 0.0, FRICTION_MAX, lo_open=False, hi_open=False)
         if self.law not in FRICTION_LAWS:
             raise ValueError(f"Friction.law = {self.law!r} must be one of {FRICTION_LAWS}")
 
@@ -283,6 +323,13 @@ class SetaArray:
     tip: str = "sphere"
 
     def __post_init__(self):
+        for name, cls in _GROUPS.items():
+            value = getattr(self, name)
+            if not isinstance(value, cls):
+                raise ValueError(
+                    f"SetaArray.{name} = {value!r} must be a {cls.__name__}; to change one "
+                    f"of its fields use replace(**{{'{name}.<field>': value}})"
+                )
         if self.mechanics not in MECHANICS:
             raise ValueError(f"SetaArray.mechanics = {self.mechanics!r} must be one of {MECHANICS}")
         if self.tip not in TIPS:
@@ -352,6 +399,27 @@ class SetaArray:
             mechanics=d["mechanics"],
             tip=d.get("tip", "sphere"),
         )
+
+
+_GROUPS = {"contact": Contact, "seta": Seta, "array": Array, "floor": Floor, "friction": Friction}
+
+
+def check_seed(seed, name: str = "seed") -> int:
+    """``seed`` as a Python int, or ValueError naming ``name``.
+
+    Accepts non-negative integers below 2⁶³ (Python or numpy); refuses bool, float (3.7 would
+    silently become 3), strings and negative numbers: a seed is part of what a result means,
+    so it is never coerced.
+    """
+    if isinstance(seed, np.integer):
+        seed = int(seed)
+    if isinstance(seed, bool) or not isinstance(seed, int):
+        raise ValueError(
+            f"{name} = {seed!r} ({type(seed).__name__}) must be a non-negative integer"
+        )
+    if not 0 <= seed < 2**63:
+        raise ValueError(f"{name} = {seed!r} is outside the allowed range [0, 2**63)")
+    return seed
 
 
 PAPER_TABLE1 = SetaArray(
