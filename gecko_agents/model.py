@@ -43,7 +43,7 @@ from .history import History, versions
 from .kernels import LoopConstants, NumpyStep
 from .loop import numba_available as _numba_installed
 from .loop import pad_loop
-from .params import SetaArray
+from .params import SetaArray, check_seed
 from .protocol import DEFAULT_SPEED, Segment
 from .recorder import Recorder
 from .state import SetaState
@@ -119,7 +119,9 @@ class Model:
     params : the array. ``params.array.count`` is the physical array; the model simulates
         ``n_sim`` setae of it (default: all of them, refused above 20 000) in one row at
         ``params.array.pitch`` and reports ``scale = count / n_sim`` in the metadata.
-    seed : seed of the run's single ``numpy.random.Generator`` (default ``params.floor.seed``).
+    seed : seed of the run's single ``numpy.random.Generator`` (default ``params.floor.seed``):
+        an integer ≥ 0 (Python or numpy; bool, float and str are refused, naming ``seed``), or
+        a ``numpy.random.Generator`` from which the seed is drawn (recorded in the history).
     dt : time step [µs]; default 0.75/ω_max from the stiffest spring and the tip mass. A dt at
         or above the stability bound 2/ω_max is refused.
     contact : ``"batch"`` (fast, default) or ``"callback"`` (per-contact reference path).
@@ -156,7 +158,11 @@ class Model:
     ):
         n = _checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
         self.params, self.n, self.contact_path = params, int(n), contact
-        self.seed = params.floor.seed if seed is None else int(seed)
+        if isinstance(seed, np.random.Generator):
+            # Draw the run's seed from the caller's generator: the history records it, so the
+            # run stays reproducible, and successive models from one generator differ.
+            seed = int(seed.integers(2**63))
+        self.seed = params.floor.seed if seed is None else check_seed(seed)
         self.rng = np.random.default_rng(self.seed)
         self.damping = damping
         self.record_setae = record_setae
