@@ -35,6 +35,7 @@ import numpy as np
 from . import beam, jkr
 
 MECHANICS = ("linear", "rod")
+DETACHMENT_RULES = ("fold", "delta_s", "load_control")
 TIPS = ("sphere", "hertz")
 """Tip contact laws (:data:`gecko_agents.contact.TIP_LAWS`): the adhesive JKR sphere of the
 paper, or a Hertz sphere without adhesion."""
@@ -114,6 +115,20 @@ class Contact:
     nu2 : Poisson's ratio of the floor [-], in [0, 0.5).
     gamma1, gamma2 : surface energies of tip and floor [µN/µm = J/m²].
     w : work of adhesion [µN/µm]; ``None`` means the paper's rule w = 2√(γ1γ2) (eq 5 text).
+    crack_speed : reference crack speed v* of the contact edge [µm/µs] (1 µm/µs = 1 m/s);
+        ``inf`` (default) is the elastic JKR contact, exactly. Finite: the contact radius
+        follows crack kinetics, G − w = w·(|ȧ|/v*)^n while the edge opens (Maugis & Barquins
+        1978, J Phys D 11:1989; :class:`gecko_agents.contact.RateJKRSphere`).
+    crack_exponent : n [-] in (0, 1]; 0.5 by default, the exponent of Greenwood & Johnson's
+        (1981, Phil Mag A 43:697) viscoelastic crack theory, inside the 0.1–0.8 that elastomers
+        show (Ciavarella 2021, J Adhes Sci Technol, reviews them).
+    crack_closing_speed : speed at which the contact edge closes while G < w [µm/µs]; ``inf``
+        (default) closes it at once, onto the equilibrium radius.
+    detachment : where an elastic tip lets go: ``"fold"`` (default: past δc, the end of the
+        stable JKR branch; a soft seta leaves at the fold of the spring–contact system, found
+        dynamically), ``"delta_s"`` (the paper's rule: δ < δs = −0.21·a0²/R, eq 8) or
+        ``"load_control"`` (at P = −Fc, δ < −a_lc²/(3R)). Rate-dependent contacts let go
+        when the crack has run through (``"fold"`` only).
     """
 
     R: float = 4.0
@@ -124,8 +139,22 @@ class Contact:
     gamma1: float = 0.040
     gamma2: float = 0.170
     w: float | None = None
+    crack_speed: float = math.inf
+    crack_exponent: float = 0.5
+    crack_closing_speed: float = math.inf
+    detachment: str = "fold"
 
     def __post_init__(self):
+        _check(self, "crack_speed", 0.0, math.inf, hi_open=False)
+        _check(self, "crack_exponent", 0.0, 1.0, hi_open=False)
+        _check(self, "crack_closing_speed", 0.0, math.inf, hi_open=False)
+        if self.detachment not in DETACHMENT_RULES:
+            raise ValueError(f"Contact.detachment = {self.detachment!r} must be one of "
+                             f"{DETACHMENT_RULES}")
+        if self.detachment != "fold" and math.isfinite(self.crack_speed):
+            raise ValueError(f"Contact.detachment = {self.detachment!r} applies to the elastic "
+                             "contact (crack_speed = inf); a rate-dependent contact lets go "
+                             "when its crack has run through: use 'fold'")
         _check(self, "R", *LENGTH_RANGE, lo_open=False, hi_open=False)
         for name in ("E1", "E2"):
             _check(self, name, *MODULUS_RANGE, lo_open=False, hi_open=False)
