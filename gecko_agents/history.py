@@ -11,22 +11,33 @@ Sign conventions (units µm, µN, µs, pJ):
 * ``plate_force_y_uN`` — force the setae exert on the plate, positive up (so it equals the
   contact force in the quasi-static limit);
 * per-seta ``state``: 0 free, 1 attached and sticking, 2 attached and sliding.
+
+Run directory integrity. Every file of a saved run carries the run's identifier
+(:meth:`History.run_id`: a hash of the parameters, seed, protocol, code version and the recorded
+series): ``metadata.json`` as ``"run_id"``, ``setae.npz`` as the array ``run_id`` and
+``history.csv`` as its first line ``# run_id: <id>`` (a comment: ``numpy.loadtxt`` skips it,
+``pandas.read_csv(path, comment="#")`` too). :func:`load` refuses a directory whose files
+disagree, whose table is not the one the identifier was made from, or whose row count is not
+``n_records``: a save interrupted half-way or a truncated file never loads as a result.
 """
 
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import json
 import os
 import platform
 import tempfile
+import zipfile
+import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .params import SetaArray
+from .params import SetaArray, check_seed
 
 __all__ = [
     "History",
@@ -41,7 +52,20 @@ __all__ = [
     "invariant_violations",
     "energy_balance_error",
     "ENERGY_RTOL",
+    "RUN_FILES",
 ]
+
+RUN_FILES = (
+    "history.csv",
+    "setae.npz",
+    "metadata.json",
+    "force_history.png",
+    "detachment.gif",
+    "detachment.mp4",
+)
+"""Files a run directory may hold (the history and what is drawn from it). Saving a different
+run into a directory removes these files of the previous run, so no stale figure or animation
+sits beside the new history."""
 
 STATE_FREE, STATE_STICK, STATE_SLIP = 0, 1, 2
 
@@ -164,8 +188,29 @@ class History:
         df.attrs = json.loads(json.dumps(self.metadata(), default=_json_default))
         return df
 
+    def run_id(self) -> str:
+        """16 hex digits identifying this run: sha256 of the parameters, seed, protocol, code
+        version (``meta["versions"]["gecko_agents"]``) and the recorded scalar series (the
+        same parameters and seed give the same series, so the series only tell apart a model
+        run twice or a history edited after the run)."""
+        meta = self.meta
+        code = (meta.get("versions") or versions()).get("gecko_agents")
+        digest = hashlib.sha256()
+        for c in SCALAR_COLUMNS:
+            digest.update(np.ascontiguousarray(self.scalars[c], dtype=np.float64).tobytes())
+        ident = {
+            "params": self.params.to_dict(),
+            "seed": int(self.seed),
+            "protocol": meta.get("protocol"),
+            "code_version": code,
+            "n_records": len(self),
+            "series_sha256": digest.hexdigest(),
+        }
+        text = json.dumps(ident, sort_keys=True, default=_json_default)
+        return hashlib.sha256(text.encode()).hexdigest()[:16]
+
     def metadata(self) -> dict:
-        """Everything needed to reproduce the run: parameters, seed, meta, versions."""
+        """Everything needed to reproduce the run: parameters, seed, meta, versions, run_id."""
         meta = {
             "params": self.params.to_dict(),
             "seed": int(self.seed),
@@ -174,17 +219,28 @@ class History:
         }
         meta.update(self.meta)
         meta.setdefault("versions", versions())
+        meta["run_id"] = self.run_id()
         return meta
 
     def save(self, directory) -> Path:
         """Write ``history.csv``, ``metadata.json`` and ``setae.npz`` into ``directory``.
 
         Each file is written to a temporary name and renamed, so a killed run never leaves a
-        half-written file under the final name.
+        half-written file under the final name; every file carries :meth:`run_id`, and
+        ``metadata.json`` is written last, so a save interrupted half-way does not load.
+        If ``directory`` holds a different run, its files (:data:`RUN_FILES`, e.g. a
+        ``detachment.gif`` drawn from it) are removed first; other files are left alone.
         """
         d = Path(directory)
+        if d.exists() and not d.is_dir():
+            raise NotADirectoryError(f"{str(d)!r} exists and is not a directory")
         d.mkdir(parents=True, exist_ok=True)
+        run_id = self.run_id()
+        if _saved_run_id(d) != run_id:
+            for name in RUN_FILES:  # metadata.json before the data it describes is replaced
+                (d / name).unlink(missing_ok=True)
         buf = io.StringIO()
+        buf.write(f"# run_id: {run_id}\n")
         writer = csv.writer(buf, lineterminator="\n")
         writer.writerow(SCALAR_COLUMNS)
         cols = [np.asarray(self.scalars[c]) for c in SCALAR_COLUMNS]
@@ -194,12 +250,22 @@ class History:
         arrays = {f"setae__{k}": np.asarray(v) for k, v in self.setae.items()}
         arrays |= {f"geometry__{k}": np.asarray(v) for k, v in self.geometry.items()}
         arrays |= {f"detachments__{k}": np.asarray(v) for k, v in self.detachments.items()}
+        arrays["run_id"] = np.array(run_id)
         npz = io.BytesIO()
         np.savez_compressed(npz, **arrays)
         atomic_write_bytes(d / "setae.npz", npz.getvalue())
         text = json.dumps(self.metadata(), indent=2, default=_json_default)
         atomic_write_bytes(d / "metadata.json", text.encode())
         return d
+
+
+def _saved_run_id(d: Path) -> str | None:
+    """The run_id in ``d/metadata.json``, or None (no file, unreadable, or none recorded)."""
+    try:
+        meta = json.loads((d / "metadata.json").read_text())
+        return meta.get("run_id") if isinstance(meta, dict) else None
+    except (OSError, ValueError):
+        return None
 
 
 def _json_default(obj):
@@ -213,11 +279,12 @@ def _json_default(obj):
 
 
 def load(directory) -> History:
-    """Read a run saved by :meth:`History.save`.
+    """Read a run saved by :meth:`History.save`, checking that its files belong together.
 
     Raises
     ------
-    FileNotFoundError naming the missing file, or ValueError naming the file that is corrupt.
+    FileNotFoundError naming the missing file, or ValueError naming the file that is corrupt,
+    truncated, or from another run (its run_id differs from metadata.json's), and what to do.
     """
     d = Path(directory)
     if not d.is_dir():
@@ -225,48 +292,102 @@ def load(directory) -> History:
     for name in ("history.csv", "metadata.json"):
         if not (d / name).is_file():
             raise FileNotFoundError(f"{name} is missing from run directory {str(d)!r}")
+    meta_path, csv_path, npz_path = d / "metadata.json", d / "history.csv", d / "setae.npz"
     try:
-        meta = json.loads((d / "metadata.json").read_text())
+        meta = json.loads(meta_path.read_text(encoding="utf-8"))
+        if not isinstance(meta, dict):
+            raise TypeError(f"it holds a {type(meta).__name__}, not an object")
         params = SetaArray.from_dict(meta.pop("params"))
-        seed = meta.pop("seed")
-    except (json.JSONDecodeError, KeyError, TypeError) as err:
-        raise ValueError(
-            f"{d / 'metadata.json'} is not a gecko_agents metadata file: {err}"
-        ) from err
+        seed = check_seed(meta.pop("seed"), "seed")
+        n_records = meta.pop("n_records", None)
+        if n_records is not None:
+            n_records = check_seed(n_records, "n_records")
+    except (ValueError, KeyError, TypeError, AttributeError) as err:
+        # UnicodeDecodeError and JSONDecodeError are ValueErrors: a binary or garbled file.
+        raise ValueError(f"{meta_path} is not a gecko_agents metadata file: {err}") from err
+    saved_id = meta.get("run_id")
     try:
-        table = np.loadtxt(d / "history.csv", delimiter=",", skiprows=1, ndmin=2)
-        header = (d / "history.csv").read_text().split("\n", 1)[0].split(",")
+        text = csv_path.read_text(encoding="utf-8")
+        lines = text.split("\n")
+        csv_id = None
+        while lines and lines[0].startswith("#"):
+            key, _, value = lines.pop(0)[1:].partition(":")
+            if key.strip() == "run_id":
+                csv_id = value.strip()
+        header = lines[0].split(",") if lines else []
+        body = "\n".join(lines[1:])
+        table = (
+            np.loadtxt(io.StringIO(body), delimiter=",", ndmin=2)
+            if body.strip()
+            else np.zeros((0, len(SCALAR_COLUMNS)))
+        )
     except ValueError as err:
-        raise ValueError(f"{d / 'history.csv'} is corrupt: {err}") from err
-    if header != list(SCALAR_COLUMNS) or table.shape[1] != len(SCALAR_COLUMNS):
+        raise ValueError(f"{csv_path} is corrupt: {err}") from err
+    if header != list(SCALAR_COLUMNS):
+        raise ValueError(f"{csv_path} has columns {header}, expected {list(SCALAR_COLUMNS)}")
+    if table.shape[1] != len(SCALAR_COLUMNS):
         raise ValueError(
-            f"{d / 'history.csv'} has columns {header}, expected {list(SCALAR_COLUMNS)}"
+            f"{csv_path} has rows of {table.shape[1]} values, expected {len(SCALAR_COLUMNS)}"
+        )
+    if n_records is not None and len(table) != n_records:
+        what = "a header and no data rows" if len(table) == 0 else f"{len(table)} data rows"
+        raise ValueError(
+            f"{csv_path} has {what}, but {meta_path.name} says n_records = {n_records}: the "
+            "file was truncated or the save was interrupted; re-run to regenerate it"
+        )
+    if csv_id != saved_id:
+        raise ValueError(
+            f"{csv_path} belongs to run {csv_id}, but {meta_path.name} to run {saved_id}: "
+            "the directory mixes files of two runs (an interrupted save?); re-run to "
+            "regenerate it"
         )
     scalars = {c: table[:, i] for i, c in enumerate(SCALAR_COLUMNS)}
     setae: dict = {}
     geometry: dict = {}
     detachments: dict = {}
-    if (d / "setae.npz").is_file():
+    if npz_path.is_file():
+        npz_id = None
         try:
-            with np.load(d / "setae.npz") as z:
+            with np.load(npz_path) as z:
                 for key in z.files:
+                    if key == "run_id":
+                        npz_id = str(z[key])
+                        continue
                     group, _, name = key.partition("__")
                     {"setae": setae, "geometry": geometry, "detachments": detachments}[group][
                         name
                     ] = z[key]
-        except (OSError, ValueError, KeyError) as err:
-            raise ValueError(f"{d / 'setae.npz'} is corrupt: {err}") from err
-    for k in ("n_records", "columns"):
-        meta.pop(k, None)
-    return History(
-        params=params,
-        seed=seed,
-        scalars=scalars,
-        setae=setae,
-        geometry=geometry,
-        detachments=detachments,
-        meta=meta,
-    )
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error) as err:
+            raise ValueError(
+                f"{npz_path} is corrupt or truncated ({type(err).__name__}: {err}); "
+                "re-run to regenerate it"
+            ) from err
+        if npz_id != saved_id:
+            raise ValueError(
+                f"{npz_path} belongs to run {npz_id}, but {meta_path.name} to run "
+                f"{saved_id}: the directory mixes files of two runs; re-run to regenerate it"
+            )
+    meta.pop("columns", None)
+    saved_id = meta.pop("run_id", None)
+    try:
+        h = History(
+            params=params,
+            seed=seed,
+            scalars=scalars,
+            setae=setae,
+            geometry=geometry,
+            detachments=detachments,
+            meta=meta,
+        )
+    except ValueError as err:
+        raise ValueError(f"{d}: {err}") from err
+    if saved_id is not None and h.run_id() != saved_id:
+        raise ValueError(
+            f"{csv_path} does not hold the series run {saved_id} recorded (or "
+            f"{meta_path.name}'s parameters, seed or protocol were edited): re-run to "
+            "regenerate it"
+        )
+    return h
 
 
 ENERGY_RTOL = 0.02

@@ -1,5 +1,9 @@
 """History: save/load round trip, atomic writes, clear errors on bad run directories."""
 
+import json
+import shutil
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -107,3 +111,136 @@ def test_energy_balance_check_catches_a_missing_term():
     assert hist.energy_balance_error(h) == pytest.approx(0.1 / 3.0)
     assert any("energy balance" in s for s in hist.invariant_violations(h))
     assert not any("energy balance" in s for s in hist.invariant_violations(h, energy_rtol=None))
+
+
+# Issue 18, defects 1 and 7: run-directory integrity and load errors ------------------------
+
+
+def _two_runs(tmp_path):
+    a, b = _toy(), _toy()
+    b.scalars["force_normal_uN"] = b.scalars["force_normal_uN"] + 1.0
+    a.save(tmp_path / "a")
+    b.save(tmp_path / "b")
+    return tmp_path / "a", tmp_path / "b"
+
+
+def test_every_file_carries_the_run_id(tmp_path):
+    h = _toy()
+    d = h.save(tmp_path / "run")
+    rid = h.run_id()
+    assert len(rid) == 16 and rid == _toy().run_id()  # deterministic
+    assert json.loads((d / "metadata.json").read_text())["run_id"] == rid
+    assert (d / "history.csv").read_text().splitlines()[0] == f"# run_id: {rid}"
+    with np.load(d / "setae.npz") as z:
+        assert str(z["run_id"]) == rid
+    other = _toy()
+    other.seed = 43
+    assert other.run_id() != rid
+
+
+def test_truncated_csv_is_refused(tmp_path):
+    h = _toy(n=39)
+    d = h.save(tmp_path / "run")
+    lines = (d / "history.csv").read_text().splitlines(keepends=True)
+    (d / "history.csv").write_text("".join(lines[:20]))  # cut at a line boundary
+    with pytest.raises(ValueError, match=r"history.csv has 18 data rows.*n_records = 39"):
+        hist.load(d)
+
+
+def test_header_only_csv_says_so(tmp_path):
+    d = _toy().save(tmp_path / "run")
+    lines = (d / "history.csv").read_text().splitlines(keepends=True)
+    (d / "history.csv").write_text("".join(lines[:2]))
+    with pytest.raises(ValueError, match=r"history.csv has a header and no data rows"):
+        hist.load(d)
+
+
+def test_files_of_two_runs_are_refused(tmp_path):
+    a, b = _two_runs(tmp_path)
+    shutil.copy(b / "history.csv", a / "history.csv")  # new data under old metadata
+    with pytest.raises(ValueError, match=r"history.csv belongs to run"):
+        hist.load(a)
+    a, b = _two_runs(tmp_path / "2")
+    shutil.copy(b / "setae.npz", a / "setae.npz")
+    with pytest.raises(ValueError, match=r"setae.npz belongs to run"):
+        hist.load(a)
+
+
+def test_edited_series_or_parameters_are_refused(tmp_path):
+    d = _toy().save(tmp_path / "run")
+    meta = json.loads((d / "metadata.json").read_text())
+    meta["seed"] = 7
+    (d / "metadata.json").write_text(json.dumps(meta))
+    with pytest.raises(ValueError, match=r"history.csv does not hold the series"):
+        hist.load(d)
+
+
+def test_interrupted_save_onto_an_old_run_does_not_load(tmp_path, monkeypatch):
+    a, _ = _two_runs(tmp_path)
+    newer = _toy()
+    newer.scalars["time_us"] = newer.scalars["time_us"] + 5.0
+    real = hist.atomic_write_bytes
+
+    def killed_before_metadata(path, data):
+        if Path(path).name == "metadata.json":
+            raise KeyboardInterrupt
+        real(path, data)
+
+    monkeypatch.setattr(hist, "atomic_write_bytes", killed_before_metadata)
+    with pytest.raises(KeyboardInterrupt):
+        newer.save(a)
+    with pytest.raises((FileNotFoundError, ValueError), match="metadata.json"):
+        hist.load(a)
+
+
+def test_garbage_metadata_names_the_file(tmp_path):
+    d = _toy().save(tmp_path / "run")
+    (d / "metadata.json").write_bytes(b"\xff\xfe\x00garbage\x81")
+    with pytest.raises(ValueError, match=r"metadata.json is not a gecko_agents metadata"):
+        hist.load(d)
+    (d / "metadata.json").write_text("[1, 2]")
+    with pytest.raises(ValueError, match=r"metadata.json is not a gecko_agents metadata"):
+        hist.load(d)
+
+
+@pytest.mark.parametrize("seed", [-3, 2.5, "abc", True])
+def test_nonsense_seed_in_metadata_is_refused(tmp_path, seed):
+    d = _toy().save(tmp_path / "run")
+    meta = json.loads((d / "metadata.json").read_text())
+    meta["seed"] = seed
+    (d / "metadata.json").write_text(json.dumps(meta))
+    with pytest.raises(ValueError, match=r"metadata.json .*seed = "):
+        hist.load(d)
+
+
+def test_truncated_npz_names_the_file(tmp_path):
+    d = _toy().save(tmp_path / "run")
+    data = (d / "setae.npz").read_bytes()
+    (d / "setae.npz").write_bytes(data[: len(data) // 2])
+    with pytest.raises(ValueError, match=r"setae.npz is corrupt or truncated") as err:
+        hist.load(d)
+    assert type(err.value) is ValueError
+
+
+def test_saving_a_new_run_removes_stale_files_of_the_old_one(tmp_path):
+    a, b = _two_runs(tmp_path)
+    (a / "detachment.gif").write_bytes(b"GIF89a old run")
+    (a / "notes.txt").write_text("mine")
+    hist.load(b).save(a)
+    assert not (a / "detachment.gif").exists()  # drawn from the previous run
+    assert (a / "notes.txt").read_text() == "mine"  # not a run file: left alone
+    assert hist.load(a).run_id() == hist.load(b).run_id()
+    # Re-saving the same run keeps what was drawn from it.
+    (a / "detachment.gif").write_bytes(b"GIF89a this run")
+    hist.load(a).save(a)
+    assert (a / "detachment.gif").exists()
+
+
+def test_runs_saved_before_run_ids_still_load(tmp_path):
+    d = _toy().save(tmp_path / "run")
+    meta = json.loads((d / "metadata.json").read_text())
+    del meta["run_id"]
+    (d / "metadata.json").write_text(json.dumps(meta))
+    (d / "history.csv").write_text("".join((d / "history.csv").read_text().splitlines(True)[1:]))
+    (d / "setae.npz").unlink()
+    assert len(hist.load(d)) == 5
