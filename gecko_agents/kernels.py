@@ -56,6 +56,7 @@ class LoopConstants(NamedTuple):
     paper: bool  # friction cap μ·max(P, 0) (eq 27) instead of μ|P + 2Fc|
     Fc: float
     hm: float  # dt / (2m) [µs/ng]
+    release: float  # a rate-dependent tip lets go at a ≤ this radius [µm]
 
 
 class NumpyStep:
@@ -156,7 +157,7 @@ class NumpyStep:
     def contact_energy(self, idx):
         """Energy stored in the contacts of tips ``idx`` [pJ]: tip law + stick spring."""
         xi = self.s.xi[idx]
-        return self.law.energy(self.s.a[idx]) + 0.5 * self.c.k_t * xi * xi
+        return self.law.energy(self.s.a[idx], self.s.delta[idx]) + 0.5 * self.c.k_t * xi * xi
 
     def detach(self, lost, gone, delta):
         """Tips that let go this step: ``lost`` (no candidate floor left, overlap −∞) and
@@ -206,6 +207,8 @@ class NumpyStep:
         att0 = s.attached[tips]
         new = ~att0 & (delta >= law.attach_overlap)
         gone = att0 & (delta < c.detach)
+        if law.rate_dependent:  # the crack has run through
+            gone |= att0 & (s.a[tips] <= c.release)
         att = (att0 | new) & ~gone
         s.delta[tips] = delta
         if np.any(gone):
@@ -219,8 +222,14 @@ class NumpyStep:
         if i.size:
             ti = tips[i]
             n_x, n_y = nx[i], ny[i]
-            a = law.radius(delta[i])
-            Pi = law.force(a)
+            a_old = s.a[ti]
+            a = law.radius(delta[i], a_old, c.dt)
+            Pi = law.force(a, delta[i])
+            if law.rate_dependent:  # work of the moving edge, ∫(G − w)·2πa·|da| ≥ 0
+                was = ~new[i]
+                self.diss += float(
+                    np.sum((law.energy(a_old, delta[i]) - law.energy(a, delta[i]))[was])
+                )
             vn = vx[i] * n_x + vy[i] * n_y
             vt = vx[i] * n_y - vy[i] * n_x
             ax, ay = s.anchor[0, ti], s.anchor[1, ti]
@@ -292,6 +301,8 @@ class NumpyStep:
         att = s.attached
         all_att, all_cand = bool(att.all()), bool(cand.all())
         lo = d < c.detach
+        if law.rate_dependent:  # the crack has run through
+            lo |= s.a <= c.release
         gone = lo if all_att else lo & att
         if all_cand:
             lost = None
@@ -330,8 +341,12 @@ class NumpyStep:
         else:
             ia = np.flatnonzero(att)
             da, xa, vta, vna, anc = d[ia], x[ia], vx[ia], vy[ia], s.anchor[0, ia]
-        a = law.radius(da)
-        P = law.force(a)
+        a_old = s.a if ia is None else s.a[ia]
+        a = law.radius(da, a_old, c.dt)
+        P = law.force(a, da)
+        if law.rate_dependent:  # work of the moving edge, ∫(G − w)·2πa·|da| ≥ 0
+            was = np.ones(a.size, bool) if new is None else ~(new if ia is None else new[ia])
+            self.diss += float(np.sum((law.energy(a_old, da) - law.energy(a, da))[was]))
         xi = xa - anc
         k_t = c.k_t
         if c.paper:

@@ -56,6 +56,7 @@ def pad_loop(law_type, compiled: bool):
     per law and mode.
     """
     radius, force, energy = law_type.radius_scalar, law_type.force_scalar, law_type.energy_scalar
+    rate = law_type.rate_dependent  # a compile-time constant of the loop
     if compiled:
         try:
             import numba
@@ -93,7 +94,7 @@ def pad_loop(law_type, compiled: bool):
         dt, rod, L, Ka, kphi, theta = c.dt, c.rod, c.L, c.Ka, c.k_phi, c.theta
         k00, k01, k10, k11 = c.k00, c.k01, c.k10, c.k11
         cs, R, dc, cn, ct, kt = c.c_seta, c.R, c.detach, c.c_n, c.c_t, c.k_t
-        mu, paper, Fc, hm = c.mu, c.paper, c.Fc, c.hm
+        mu, paper, Fc, hm, arel = c.mu, c.paper, c.Fc, c.hm, c.release
         fast2, slow2 = 4.0 * vref * vref, vref * vref
         opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
         nl = ng = 0
@@ -152,14 +153,14 @@ def pad_loop(law_type, compiled: bool):
                         lost_idx[nl] = i
                         nl += 1
                         gone = True
-                    elif d < dc:
+                    elif d < dc or (rate and S[AC, i] <= arel):
                         gone_idx[ng] = i
                         ng += 1
                         gone = True
                     if gone:  # snap-off: what the contact stored is dissipated
                         attached[i] = False
                         xs = S[XI, i]
-                        diss += energy(S[AC, i], k) + 0.5 * kt * xs * xs
+                        diss += energy(S[AC, i], d, k) + 0.5 * kt * xs * xs
                 elif cand[i] and d >= 0.0:
                     attached[i] = True
                     S[AX, i], S[AY, i] = x, h[i]
@@ -167,7 +168,11 @@ def pad_loop(law_type, compiled: bool):
             # Pass 2: contact radius on the law's branch.
             for i in range(b0, b1):
                 if attached[i]:
-                    S[AC, i] = radius(S[DELTA, i], k)
+                    a_old, d = S[AC, i], S[DELTA, i]
+                    a_new = radius(d, a_old, dt, k)
+                    S[AC, i] = a_new
+                    if rate and S[XI, i] != np.inf:  # work of the moving edge ≥ 0
+                        diss += energy(a_old, d, k) - energy(a_new, d, k)
             # Pass 3: contact forces, stick/slip, release bookkeeping, dissipation, forces.
             for i in range(b0, b1):
                 vx, vy, x = S[VX, i], S[VY, i], S[X, i]
@@ -176,7 +181,7 @@ def pad_loop(law_type, compiled: bool):
                 if attached[i]:
                     new = S[XI, i] == np.inf
                     a = S[AC, i]
-                    P = force(a, k)
+                    P = force(a, S[DELTA, i], k)
                     xi = x - S[AX, i]
                     if paper:
                         cap = (P if P > 0.0 else 0.0) * mu
@@ -202,7 +207,7 @@ def pad_loop(law_type, compiled: bool):
                     S[PN, i], S[FT, i], S[XI, i] = P, ft, xin
                     slip[i] = sl
                     if new:  # attachment starts the branch at U = 0
-                        diss -= energy(a, k) + 0.5 * kt * xin * xin
+                        diss -= energy(a, S[DELTA, i], k) + 0.5 * kt * xin * xin
                     s2 = vx * vx + vy * vy
                     if s2 > fast2:
                         if math.isnan(S[JUMP, i]):

@@ -226,7 +226,7 @@ class Model:
             k11=-K[1, 1], L=self.L, Ka=self.Ka, k_phi=self.k_phi, theta=self.theta,
             c_seta=self.c_seta, R=p.contact.R, detach=self.law.detach_overlap, c_n=self.c_n,
             c_t=self.c_t, k_t=self.k_t, mu=p.friction.mu, paper=p.friction.law == "paper",
-            Fc=self.Fc, hm=0.5 * self.dt / self.mass,
+            Fc=self.Fc, hm=0.5 * self.dt / self.mass, release=self.law.release_radius,
         )  # fmt: skip
 
     def _time_step(self, dt) -> float:

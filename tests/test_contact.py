@@ -11,18 +11,27 @@ from gecko_agents import contact, jkr, protocol
 from gecko_agents.model import Model, numba_available
 from gecko_agents.params import PAPER_TABLE1, TIPS
 
-LAWS = [contact.JKRSphere, contact.HertzSphere]
+RATE = PAPER_TABLE1.replace(**{"contact.crack_speed": 0.5}).contact
+
+
+def _laws():
+    """Every law, the rate-dependent one included (it is tested on its equilibrium branch)."""
+    return [
+        contact.JKRSphere(PAPER_TABLE1.contact),
+        contact.HertzSphere(PAPER_TABLE1.contact),
+        contact.RateJKRSphere(RATE),
+    ]
 
 
 def _overlaps(law):
     """Overlaps over the whole branch, dense near where it ends."""
-    lo = law.detach_overlap
+    lo = law.detach_overlap if math.isfinite(law.detach_overlap) else law.delta_c
     ends = lo + np.geomspace(1e-9, 1.0, 200) * max(abs(lo), 0.1)
     return np.concatenate([ends, np.linspace(lo, 3.0, 400)[1:]])
 
 
 def _closed_form(law, delta):
-    """(a, P, U) from jkr.py for the law's material."""
+    """(a, P, U) from jkr.py for the law's material (JKR branch or Hertz)."""
     R, E = law.R, law.E_star
     if isinstance(law, contact.JKRSphere):
         w = law.w
@@ -34,57 +43,61 @@ def _closed_form(law, delta):
     return a, P, U
 
 
-def _scalar(fn, x, k):
-    return np.array([fn(float(v), k) for v in x])
+def _check_forms(law, radius, force, energy):
+    d = _overlaps(law)
+    a, P, U = _closed_form(law, d)
+    k = law.constants
+    scale_P = max(law.pull_off_force, float(np.max(np.abs(P))))
+    scale_U = float(np.max(np.abs(U)))
+    # At equilibrium (a_prev on the branch) every law's radius is the branch radius.
+    assert_allclose([radius(x, y, 0.1, k) for x, y in zip(d, a, strict=True)], a, rtol=1e-9,
+                    atol=1e-12)  # fmt: skip
+    assert_allclose([force(x, y, k) for x, y in zip(a, d, strict=True)], P, rtol=1e-9,
+                    atol=1e-9 * scale_P)  # fmt: skip
+    assert_allclose([energy(x, y, k) for x, y in zip(a, d, strict=True)], U, rtol=1e-9,
+                    atol=1e-9 * scale_U)  # fmt: skip
 
 
 def test_every_tip_name_has_a_law():
     assert set(TIPS) == set(contact.TIP_LAWS)
 
 
-@pytest.mark.parametrize("law_type", LAWS)
-def test_numpy_and_scalar_forms_match_the_closed_form(law_type):
-    law = law_type(PAPER_TABLE1.contact)
+@pytest.mark.parametrize("i", range(3))
+def test_numpy_and_scalar_forms_match_the_closed_form(i):
+    law = _laws()[i]
     d = _overlaps(law)
     a, P, U = _closed_form(law, d)
     scale_P = max(law.pull_off_force, float(np.max(np.abs(P))))
-    assert_allclose(law.radius(d.copy()), a, rtol=1e-9, atol=1e-12)
-    assert_allclose(law.force(a), P, rtol=1e-9, atol=1e-9 * scale_P)
-    assert_allclose(law.energy(a), U, rtol=1e-9, atol=1e-9 * float(np.max(np.abs(U))))
-    k = law.constants
-    assert_allclose(_scalar(law.radius_scalar, d, k), a, rtol=1e-9, atol=1e-12)
-    assert_allclose(_scalar(law.force_scalar, a, k), P, rtol=1e-9, atol=1e-9 * scale_P)
-    assert_allclose(
-        _scalar(law.energy_scalar, a, k), U, rtol=1e-9, atol=1e-9 * float(np.max(np.abs(U)))
-    )
+    assert_allclose(law.radius(d.copy(), a, 0.1), a, rtol=1e-9, atol=1e-12)
+    assert_allclose(law.force(a, d), P, rtol=1e-9, atol=1e-9 * scale_P)
+    assert_allclose(law.energy(a, d), U, rtol=1e-9, atol=1e-9 * float(np.max(np.abs(U))))
+    _check_forms(law, law.radius_scalar, law.force_scalar, law.energy_scalar)
 
 
 @pytest.mark.skipif(not numba_available(), reason="numba not installed (the 'fast' extra)")
-@pytest.mark.parametrize("law_type", LAWS)
-def test_compiled_scalar_forms_match_the_closed_form(law_type):
+@pytest.mark.parametrize("i", range(3))
+def test_compiled_scalar_forms_match_the_closed_form(i):
     import numba
 
-    law = law_type(PAPER_TABLE1.contact)
-    d = _overlaps(law)
-    a, P, U = _closed_form(law, d)
-    k = law.constants
-    radius, force, energy = (
-        numba.njit(f) for f in (law.radius_scalar, law.force_scalar, law.energy_scalar)
-    )
-    scale_P = max(law.pull_off_force, float(np.max(np.abs(P))))
-    assert_allclose(_scalar(radius, d, k), a, rtol=1e-9, atol=1e-12)
-    assert_allclose(_scalar(force, a, k), P, rtol=1e-9, atol=1e-9 * scale_P)
-    assert_allclose(_scalar(energy, a, k), U, rtol=1e-9, atol=1e-9 * float(np.max(np.abs(U))))
+    law = _laws()[i]
+    jit = numba.njit(error_model="numpy")
+    _check_forms(law, jit(law.radius_scalar), jit(law.force_scalar), jit(law.energy_scalar))
 
 
-@pytest.mark.parametrize("law_type", LAWS)
-def test_energy_is_the_work_of_the_force(law_type):
+@pytest.mark.parametrize("i", range(3))
+def test_energy_is_the_work_of_the_force(i):
     # dU/dδ = P along the branch (central differences), an oracle independent of U's formula.
-    law = law_type(PAPER_TABLE1.contact)
-    d = np.linspace(law.detach_overlap * 0.9 + 1e-3, 2.0, 50)
+    law = _laws()[i]
+    lo = law.detach_overlap if math.isfinite(law.detach_overlap) else law.delta_c
+    d = np.linspace(lo * 0.9 + 1e-3, 2.0, 50)
     h = 1e-6
-    dU = (law.energy(law.radius(d + h)) - law.energy(law.radius(d - h))) / (2 * h)
-    assert_allclose(dU, law.force(law.radius(d.copy())), rtol=1e-5, atol=1e-6)
+    el = contact.JKRSphere(PAPER_TABLE1.contact) if law.rate_dependent else law
+
+    def U(x):
+        return law.energy(el.radius(x, None, 0.0), x)
+
+    dU = (U(d + h) - U(d - h)) / (2 * h)
+    assert_allclose(dU, law.force(el.radius(d.copy(), None, 0.0), d), rtol=1e-5, atol=1e-6)
 
 
 def test_jkr_law_constants():
@@ -93,14 +106,15 @@ def test_jkr_law_constants():
     assert law.pull_off_force == pytest.approx(1.5 * math.pi * R * w, rel=1e-12)
     assert law.detach_overlap == pytest.approx(jkr.snap_off_overlap(R, w, E), rel=1e-12)
     # Attachment at δ = 0 lands on the branch at the jump-in radius, where U = 0.
-    assert float(law.radius(np.array([0.0]))[0]) == pytest.approx(law.jump_radius, rel=1e-9)
-    assert law.energy_scalar(law.jump_radius, law.constants) == pytest.approx(0.0, abs=1e-12)
+    r = float(law.radius(np.array([0.0]), None, 0.0)[0])
+    assert r == pytest.approx(law.jump_radius, rel=1e-9)
+    assert law.energy_scalar(law.jump_radius, 0.0, law.constants) == pytest.approx(0.0, abs=1e-12)
 
 
 def test_hertz_law_has_no_adhesion():
     law = contact.HertzSphere(PAPER_TABLE1.contact)
     assert law.pull_off_force == 0.0 and law.detach_overlap == 0.0
-    assert law.radius_scalar(-0.1, law.constants) == 0.0
+    assert law.radius_scalar(-0.1, 0.0, 0.1, law.constants) == 0.0
 
 
 @pytest.mark.parametrize("tip", ["sphere", "hertz"])
