@@ -60,6 +60,7 @@ __all__ = [
 ]
 
 KERNELS = ("auto", "numpy", "numba", "python")
+_MAX_N = 200_000  # 10⁵ setae take ~0.5 GB (python -m gecko_agents.bench)
 _PYTHON_MAX_N = 6  # below this many setae the interpreted loop beats numpy's call overhead
 
 
@@ -77,10 +78,11 @@ def _checked_arguments(params, n_sim, contact, record_every, kernel, floor_profi
     if not isinstance(params, SetaArray):
         raise TypeError(f"params must be a SetaArray, got {type(params).__name__}")
     n = params.array.count if n_sim is None else n_sim
-    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= 20_000:
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= _MAX_N:
         raise ValueError(
-            f"n_sim = {n!r} must be an integer in [1, 20000]; simulate a patch "
-            "of a large array with n_sim (the quasi-static solver does 10⁷)"
+            f"n_sim = {n!r} must be an integer in [1, {_MAX_N}] (about 2 GB of pymunk bodies "
+            "at the top); simulate a patch of a large array with n_sim (the quasi-static "
+            "solver does 10⁷)"
         )
     if contact not in ("batch", "callback"):
         raise ValueError(f"contact = {contact!r} must be 'batch' or 'callback'")
@@ -139,6 +141,11 @@ class Model:
     floor_profile : a given floor (:class:`gecko_agents.floor.Profile`, e.g. a measured
         surface from :func:`gecko_agents.floor.from_profile`) instead of one drawn from
         ``params.floor``.
+    detection : how pymunk finds tip–floor contact candidates: ``"full"`` (every tip's sensor
+        tested every step: the reference), ``"lazy"`` (pad floors with ``contact="batch"``: a
+        tip has its sensor only near the sensor's edge, where events happen,
+        :meth:`gecko_agents.world.World.update_sensors`; the same flags every step, so the
+        same history) or ``"auto"`` (default: lazy where it applies). ``meta["detection"]``.
     """
 
     def __init__(
@@ -155,6 +162,7 @@ class Model:
         verbose: bool = False,
         kernel: str = "auto",
         floor_profile: Profile | None = None,
+        detection: str = "auto",
     ):
         n = _checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
         self.params, self.n, self.contact_path = params, int(n), contact
@@ -200,6 +208,7 @@ class Model:
             params.contact.R + abs(law.detach_overlap),
             self.rng,
             floor_profile,
+            self._detection(detection, contact),
         )
         self._constants = self._loop_constants()
         self.physics = NumpyStep(
@@ -218,6 +227,17 @@ class Model:
         self.reaction = (0.0, 0.0)
         self._work_step = 0.0
         self.reset_state_arrays()
+
+    @staticmethod
+    def _detection(detection, contact) -> str:
+        """The detection asked of the world ("auto": lazy on pad floors, World decides)."""
+        if detection not in ("auto", "full", "lazy"):
+            raise ValueError(f"detection = {detection!r} must be 'auto', 'full' or 'lazy'")
+        if contact == "callback":
+            if detection == "lazy":
+                raise ValueError("detection='lazy' needs contact='batch'; use 'full'")
+            return "full"
+        return detection
 
     def _loop_constants(self) -> LoopConstants:
         p, K = self.params, self.K
@@ -563,7 +583,8 @@ class Model:
             "dt_us": self.dt, "n_steps": run.n_steps, "record_every": self.record_every,
             "n_sim": self.n, "scale_to_array": self.params.array.count / self.n,
             "protocol": [f"{seg!r}" for seg in segments], "contact_path": self.contact_path,
-            "kernel": self.kernel, "tip_law": self.law.name, "skipped_travel_um": run.skipped,
+            "kernel": self.kernel, "detection": self.world.detection,
+            "tip_law": self.law.name, "skipped_travel_um": run.skipped,
             "damping": dataclasses.asdict(self.damping), "mass_ng": self.mass,
             "tangential_stiffness_uN_per_um": self.k_t,
             "wall_time_s": time.perf_counter() - t_wall, "versions": versions(),

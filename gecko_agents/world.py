@@ -11,6 +11,13 @@ Units: µm, µN, µs, ng (:mod:`gecko_agents.params`).
   An optional ``pre_solve`` callback computes a contact per contact (the reference path).
 * Forces are read and written for all bodies at once with ``pymunk.batch``.
 
+Detection (pad floors): ``"full"`` keeps every sensor in the space, so pymunk tests every tip
+against its pad every step (~90 % of a step at N = 10⁴ when every tip is pressed). ``"lazy"``
+(see :meth:`World.update_sensors`) gives a tip its sensor only while the tip is within a thin
+band around the sensor's edge, the only place where a begin or separate can happen; pymunk
+delivers those events, and the flags of the other tips follow from where they are. The flags
+after every step are the full detection's, so histories are bit-identical.
+
 Floors: with a pad floor (correlation length 0, the paper's eq 28) seta i meets only its own
 flat pad at height h_i. A pad is an infinite horizontal line for the contact law, so pymunk
 only has to tell when a sensor comes within reach of it: its segment is a short window under
@@ -31,9 +38,10 @@ import pymunk.batch as pb
 
 from . import beam, floor
 
-__all__ = ["World", "TIP", "FLOOR"]
+__all__ = ["World", "TIP", "FLOOR", "DETECTIONS"]
 
 TIP, FLOOR = 1, 2
+DETECTIONS = ("auto", "full", "lazy")
 _FIELDS_READ = pb.BodyFields.BODY_ID | pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
 
 
@@ -48,7 +56,14 @@ class World:
         still exist, R + |δ_detach| [µm]. rng : the run's Generator (draws the floor).
     floor_profile : a given floor (e.g. a measured surface) instead of one drawn from
         ``params.floor``.
+    detection : ``"full"`` (every sensor in the space every step: the reference),
+        ``"lazy"`` (pad floors only: a sensor only near its edge, :meth:`update_sensors`; the
+        same flags on every step) or ``"auto"`` (lazy on a pad floor, else full); the one used
+        is :attr:`detection`.
     """
+
+    band = 0.05
+    """Rounding margin of lazy detection [µm] (see :meth:`update_sensors`)."""
 
     def __init__(
         self,
@@ -59,7 +74,10 @@ class World:
         reach: float,
         rng: np.random.Generator,
         floor_profile: floor.Profile | None = None,
+        detection: str = "full",
     ):
+        if detection not in DETECTIONS:
+            raise ValueError(f"detection = {detection!r} must be one of {DETECTIONS}")
         p = params
         self.state = state
         self.n = n
@@ -83,6 +101,17 @@ class World:
         space.add(self.plate)
         self.sensor_radius = reach + 0.5
         self._build_floor(p, touch_x)
+        if detection == "lazy" and not self.pads:
+            raise ValueError(
+                "detection='lazy' needs a pad floor (floor.correlation_length = 0); "
+                "use detection='full'"
+            )
+        if detection == "auto":
+            detection = "lazy" if self.pads else "full"
+        self.lazy = detection == "lazy"
+        self.detection = detection
+        self._quiet = False  # ignore the separate pymunk fires when lazy detection removes
+        self.geometric_flips = 0  # flags lazy detection changed without a pymunk event
         self._build_tips(mass)
         self.pairs: set[tuple[int, int]] = set()
         self.pairs_dirty = True
@@ -125,7 +154,7 @@ class World:
 
     def _build_tips(self, mass):
         # Point masses with sensor circles; a shared group stops tip–tip detection.
-        self.tips, self._tip_index = [], {}
+        self.tips, self.sensors, self._tip_index = [], [], {}
         rest = np.column_stack([self.rest_dx, self.rest_dy])
         rest[:, 1] += self.plate_start
         for i in range(self.n):
@@ -136,9 +165,19 @@ class World:
             shape.collision_type = TIP
             bit = 1 << (i % 32) if self.pads else pymunk.ShapeFilter.ALL_CATEGORIES()
             shape.filter = pymunk.ShapeFilter(group=1, categories=bit, mask=bit)
-            self.space.add(body, shape)
+            if self.lazy:
+                self.space.add(body)  # sensors join while near their edge (update_sensors)
+            else:
+                self.space.add(body, shape)
             self.tips.append(body)
+            self.sensors.append(shape)
             self._tip_index[shape] = i
+        self.in_space = np.full(self.n, not self.lazy)
+        self._want = np.zeros(self.n, dtype=bool)
+        self._g = np.zeros(self.n)
+        self._w = np.zeros(self.n)
+        self._d = np.zeros(self.n)
+        self._primed = False
         # Chipmunk's body order is internal: map batch rows to setae through body ids.
         ids = np.array([b.id for b in self.tips], dtype=np.uintp)
         self._id_sorted = np.sort(ids)
@@ -156,6 +195,8 @@ class World:
         self.pairs_dirty = True
 
     def _separate(self, arbiter, space, data):
+        if self._quiet:
+            return
         tip_shape, seg_shape = arbiter.shapes
         i, j = self._tip_index.get(tip_shape), self._seg_index.get(seg_shape)
         if self.pads:
@@ -173,6 +214,8 @@ class World:
                 "contact='callback' (the reference path) needs a pad floor "
                 "(floor.correlation_length = 0)"
             )
+        if self.lazy:
+            raise ValueError("contact='callback' needs detection='full' (a sensor on every tip)")
         self._pre_solve_fn = fn
         self.space.on_collision(
             TIP, FLOOR, begin=self._begin, separate=self._separate, pre_solve=self._pre_solve
@@ -263,7 +306,70 @@ class World:
         pb.set_space_bodies(self.space, pb.BodyFields.FORCE, self._force_buf)
 
     def step(self, dt: float) -> None:
+        """One pymunk step of ``dt`` [µs] (lazy detection: :meth:`update_sensors` first)."""
+        if self.lazy:
+            self.update_sensors(dt)
         self.space.step(dt)
+
+    def update_sensors(self, dt: float) -> None:
+        """Lazy detection: before a step of ``dt`` [µs], give sensors to the tips near the
+        sensor's edge, take them from the others and set the others' flags.
+
+        Reads ``state.xy`` (2, N) [µm], the positions x + v·dt that pymunk integrates the tips
+        to and detects collisions at (the model's step leaves them there), and ``state.pv``.
+
+        Why the flags equal full detection's. A sensor of radius r_s overlaps its pad, a
+        horizontal window at height h reaching more than r_s beyond the tip on both sides
+        (:meth:`recentre_pads`), exactly when the gap g = |y − h| < r_s: pymunk finds the
+        window's closest point (x, h) and tests distance² < r_s². Tip i keeps a sensor this
+        step iff |g − r_s| ≤ m_i = ``band`` + 2·|v_y|·dt. Those tips are tested by pymunk as
+        under full detection. The others are at least m_i ≥ ``band`` = 0.05 µm from the edge,
+        ~10¹⁰ times the rounding of g and of pymunk's distance (µm-sized numbers, relative
+        precision 1e-16), so their overlap is decided by the sign of g − r_s and set here:
+        True inside (g < r_s − m_i), False outside. A tip whose sensor joins this step starts
+        False, so only a begin from pymunk in this step makes it True; a sensor leaving the
+        space fires a separate, which is ignored (the flag is set from g as for any tip
+        without a sensor). Hence after every step ``state.candidate`` is the overlap of every
+        sensor with its pad at the step's positions, as full detection gives it.
+
+        Why pymunk still delivers the events. A flag changes only when g crosses r_s. The
+        band's 2·|v_y|·dt term holds a tip moving at up to twice its current vertical speed
+        in the band on the step it crosses, so the crossing is seen by pymunk's callbacks;
+        a tip that jumps across the whole band in one step is still set right, and is counted
+        in ``geometric_flips`` (0 in the tests and benchmarks: see ``tests/test_world.py``).
+        """
+        s, r_s = self.state, self.sensor_radius
+        g, m, want = self._g, self._w, self._want
+        np.subtract(s.xy[1], self.h, out=g)
+        np.abs(g, out=g)
+        np.abs(s.pv[3], out=m)
+        m *= 2.0 * dt
+        m += self.band
+        d = self._d
+        np.subtract(g, r_s, out=d)
+        inside = d < 0.0
+        np.abs(d, out=d)
+        np.less_equal(d, m, out=want)
+        cand, have = s.candidate, self.in_space
+        if not np.array_equal(want, have):
+            space, sensors = self.space, self.sensors
+            leave = np.flatnonzero(have & ~want)
+            join = np.flatnonzero(want & ~have)
+            if leave.size:
+                self._quiet = True
+                try:
+                    space.remove(*(sensors[i] for i in leave))
+                finally:
+                    self._quiet = False
+            if join.size:
+                cand[join] = False  # a begin in this step makes it True
+                space.add(*(sensors[i] for i in join))
+            np.copyto(have, want)
+        free = ~want
+        if self._primed:  # the first step sets the flags pymunk's first begins would
+            self.geometric_flips += int(np.count_nonzero((cand != inside) & free))
+        self._primed = True
+        np.copyto(cand, inside, where=free)
 
     def skip_free_travel(self, vp, omega: float, dt: float, target=None) -> float:
         """Move plate and tips rigidly along the plate velocity ``vp`` [µm/µs] while nothing
