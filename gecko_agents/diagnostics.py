@@ -1,0 +1,427 @@
+"""Validity diagnostics: does a run mean what its numbers seem to say?
+
+Every :meth:`gecko_agents.model.Model.run` ends with :func:`diagnose`, which writes the result
+into the history's metadata under ``"validity"`` and warns once (:class:`ValidityWarning`) per
+violated item. A run whose result cannot mean anything (the plate went past the floor but no tip
+ever touched it) raises :class:`MeaninglessRunError` instead. :func:`validity_table` summarises
+the diagnostics of several runs as a markdown table (for ``renders/paper_comparison.md``).
+
+Units: µm, µN, µs, ng (:mod:`gecko_agents.params`). Each item is a dict::
+
+    {"value": float, "limit": float, "ok": bool | None, "rule": "value ≤ limit", "meaning": str,
+     "source": str}
+
+``ok`` is ``None`` where the item does not apply to the run (an adhesion measure for the Hertz
+tip, the beam's range for the rod, the crack number for elastic contact). The items:
+
+``a_over_R``
+    Largest contact radius over tip radius, a/R, with a the larger of the zero-load JKR radius
+    a0 and the radius at the largest tip compression reached. JKR (like Hertz) treats the
+    sphere as a paraboloid on a half-space, which needs a ≪ R (Johnson 1985, *Contact
+    Mechanics*, §4.2 and §5.5); Maugis 1995 (Langmuir 11:679, "Extension of the JKR theory of
+    the elastic contact of spheres to large contact radii") gives the large-radius correction,
+    which grows beyond a few per cent above a/R ≈ 0.1. Limit 0.1. The paper's tip (R = 4 µm,
+    E* = 1.55 MPa, w = 0.165 J/m²) has a0/R = 0.72: its JKR numbers are the formula's, not
+    the sphere's.
+``tabor``
+    Tabor's parameter μ = (R·w²/(E*²·z0³))^(1/3) (Tabor 1977, J Colloid Interface Sci 58:2),
+    the ratio of the elastic neck height at pull-off to the range of the surface forces. JKR
+    holds for μ ≳ 5 (Johnson & Greenwood 1997, J Colloid Interface Sci 192:326, "An adhesion
+    map for the contact of elastic spheres"); below it Maugis–Dugdale or DMT apply. z0 is the
+    equilibrium separation of the surfaces (the ε of the Lennard-Jones law in Greenwood 1997,
+    Proc R Soc A 453:1277); :data:`Z0_UM` = 0.3 nm, an interatomic spacing. A smaller z0 (e.g.
+    Israelachvili's 0.165 nm contact separation) gives a larger μ, so 0.3 nm is the cautious
+    choice. Limit: μ ≥ 5.
+``linear_deflection``
+    Largest tip deflection of a linear seta over its length, |u|/L (``mechanics="linear"``
+    only). Eq 16–21 are small-deflection beam theory; a cantilever's tip deflection departs
+    from it by ~1 % at 0.1 L and grows fast beyond (Bisshopp & Drucker 1945, Q Appl Math
+    3:272). Limit 0.1, the same as the model's own warning. Computed from the recorded contact
+    forces (quasi-statically the seta spring carries them: u = K⁻¹F), per seta if per-seta
+    forces were recorded, else from the mean force per attached tip (a lower bound); the
+    model's own in-run check (``model_warned``) sees every step.
+``quasi_static``
+    q = v·T/|δc|: plate speed v [µm/µs] × the slowest relaxation the plate drives, the free
+    seta's period T = 2π√(m/Ky) [µs] (``Model.settle_time``), over the contact's stroke |δc|
+    [µm] (the elastic JKR snap-off overlap, the finest length the plate must resolve). A free,
+    critically damped seta dragged at v lags the plate by v·T/π (docs/physics.md, "Time
+    stepping"); once that lag exceeds the whole stroke between jump-in and snap-off, where a
+    tip meets and leaves the floor is set by the seta's dynamics, not by the plate. Limit 1
+    (the default speed gives 0.62 for Table 1's seta, 0.36 for the array's). The recorded
+    peak kinetic/elastic energy ratio is given beside it, but it can look small in a run whose
+    tips never touch.
+``time_step``
+    ω·dt with ω = √(k/m) of the stiffest spring a tip met (seta + contact at the largest
+    compression reached, at least the model's design point 5 Fc, + stick spring).
+    Semi-implicit Euler is stable for ω·dt < 2 and books a jump event's energy to a fraction
+    ~ω·dt (docs/physics.md, "Time stepping" and "Energy bookkeeping"; Hairer, Lubich & Wanner,
+    *Geometric Numerical Integration*, §I.1). Limit 1 (the model's default is 0.75).
+``touched``
+    Whether any tip ever attached. 1 if so, 0 if not. A run in which the plate never went past
+    the height at which the tip over the highest floor point touches (a pull-off alone, free
+    travel) may legitimately touch nothing: ``ok`` is then None. If the plate did go past it
+    and no tip touched, the plate outran the setae and the run measured nothing:
+    :class:`MeaninglessRunError`.
+``crack_deborah``
+    For rate-dependent contact (``params.contact.crack_speed`` v* < ∞): De = (v/|δc|)/(v*/a0),
+    the loading rate of a contact over the crack's relaxation rate (Maugis & Barquins 1978,
+    J Phys D 11:1989; Greenwood & Johnson 1981, Phil Mag A 43:697). De ≪ 1: the crack keeps
+    up, elastic JKR; De ~ 1: rate-dependent. With the kinetic law G/w − 1 = (v/v*)^n the
+    crack must run at ~De·v*, i.e. G/w ≈ 1 + De^n. Viscoelastic enhancement cannot exceed the
+    ratio of glassy to rubbery modulus, ~10²–10³ for elastomers (Greenwood & Johnson 1981), so
+    the power law is extrapolated beyond its physics when De^n > 100. Limit: De^n ≤ 100.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from . import jkr
+
+__all__ = [
+    "ValidityWarning",
+    "MeaninglessRunError",
+    "Z0_UM",
+    "LIMITS",
+    "diagnose",
+    "non_finite_report",
+    "run_cost",
+    "check_cost",
+    "validity_table",
+    "COST_WARN",
+    "COST_REFUSE",
+]
+
+Z0_UM = 3.0e-4
+"""Equilibrium separation z0 of Tabor's parameter [µm] (0.3 nm; module docstring, ``tabor``)."""
+
+LIMITS = {
+    "a_over_R": ("≤", 0.1),
+    "tabor": ("≥", 5.0),
+    "linear_deflection": ("≤", 0.1),
+    "quasi_static": ("≤", 1.0),
+    "time_step": ("≤", 1.0),
+    "touched": ("≥", 1.0),
+    "crack_deborah": ("≤", 100.0),
+}
+"""Item → (relation, limit); the reasons and sources are in the module docstring."""
+
+COST_WARN = 1e9
+"""Seta-steps (steps × simulated setae) above which a run warns before it starts: about 10⁷
+seta-steps per second on one core (numpy path, 100+ setae) makes this minutes to hours."""
+COST_REFUSE = 1e11
+"""Seta-steps above which a run is refused before it starts: hours to days on one core; cut
+n_sim, the travel or the duration, or raise the speed (checking ``quasi_static``)."""
+
+
+class ValidityWarning(UserWarning):
+    """A run left the range in which its model holds (see :mod:`gecko_agents.diagnostics`)."""
+
+
+class MeaninglessRunError(RuntimeError):
+    """A run whose result cannot mean anything; ``history`` holds what it recorded."""
+
+    def __init__(self, message: str, history=None):
+        super().__init__(message)
+        self.history = history
+
+
+def _item(name: str, value: float | None, meaning: str, source: str, applies: bool = True):
+    rel, limit = LIMITS[name]
+    if value is None or not applies:
+        ok = None
+    elif rel == "≤":
+        ok = bool(value <= limit)
+    else:
+        ok = bool(value >= limit)
+    return {
+        "value": None if value is None else float(value),
+        "limit": limit,
+        "ok": ok,
+        "rule": f"value {rel} {limit:g}",
+        "meaning": meaning,
+        "source": source,
+    }
+
+
+def _tip_forces(history) -> tuple[np.ndarray, np.ndarray]:
+    """Per-tip normal and tangential contact forces [µN]: per seta if recorded, else the mean
+    over attached tips of every record (a lower bound of the largest)."""
+    setae = history.setae
+    if setae and "force_normal_uN" in setae and "force_tangential_uN" in setae:
+        return np.asarray(setae["force_normal_uN"]), np.asarray(setae["force_tangential_uN"])
+    n = np.maximum(np.asarray(history["n_attached"], dtype=float), 1.0)
+    return history["force_normal_uN"] / n, history["force_tangential_uN"] / n
+
+
+def _plate_speed(history, segments) -> float:
+    """Largest plate speed [µm/µs]: the protocol's segment speeds if given, else from the
+    recorded plate trajectory."""
+    speeds = [float(getattr(s, "speed", 0.0) or 0.0) for s in segments or ()]
+    if speeds:
+        return max(speeds)
+    t = np.asarray(history["time_us"], dtype=float)
+    if len(t) < 2:
+        return 0.0
+    dt = np.diff(t)
+    dist = np.hypot(np.diff(history["plate_x_um"]), np.diff(history["plate_y_um"]))
+    good = dt > 0
+    return float(np.max(dist[good] / dt[good], initial=0.0))
+
+
+def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
+    """Validity of one run (module docstring): ``{"ok", "violations", "items"}``.
+
+    Parameters
+    ----------
+    model : the :class:`~gecko_agents.model.Model` that ran.
+    history : its :class:`~gecko_agents.history.History`.
+    segments : the protocol's segments (for the plate speed); None: from the trajectory.
+    warn : issue one :class:`ValidityWarning` per violated item.
+
+    Raises
+    ------
+    MeaninglessRunError if the plate went past the floor and no tip ever touched it.
+    """
+    p = model.params
+    c = p.contact
+    R, w, E = c.jkr_args()
+    adhesive = p.tip == "sphere" and w > 0
+    items: dict[str, dict] = {}
+    P_tip, F_tip = _tip_forces(history)
+    P_comp = float(np.max(P_tip, initial=0.0))  # largest compression of a tip [µN]
+
+    # a/R
+    a0 = float(jkr.zero_load_contact_radius(R, w, E)) if adhesive else 0.0
+    if adhesive:
+        a_load = float(jkr.contact_radius_from_force(P_comp, R, w, E))
+    else:
+        a_load = float(jkr.hertz_contact_radius(P_comp, R, E))
+    a_max = max(a0, a_load)
+    items["a_over_R"] = _item(
+        "a_over_R",
+        a_max / R,
+        f"largest contact radius {a_max:.3g} µm over tip radius {R:g} µm (JKR and Hertz "
+        "treat the sphere as a paraboloid on a half-space: a ≪ R)",
+        "Johnson 1985 Contact Mechanics §4.2, §5.5; Maugis 1995 Langmuir 11:679",
+        applies=a_max > 0,
+    )
+
+    # Tabor
+    mu_t = (R * w**2 / (E**2 * Z0_UM**3)) ** (1 / 3) if adhesive else None
+    items["tabor"] = _item(
+        "tabor",
+        mu_t,
+        f"Tabor parameter (R·w²/(E*²·z0³))^(1/3) with z0 = {Z0_UM * 1e3:g} nm; JKR needs "
+        "μ ≳ 5, below it Maugis–Dugdale/DMT",
+        "Tabor 1977 J Colloid Interface Sci 58:2; Johnson & Greenwood 1997 J Colloid "
+        "Interface Sci 192:326; z0 as ε of Greenwood 1997 Proc R Soc A 453:1277",
+        applies=adhesive,
+    )
+
+    # Linear seta's deflection
+    linear = p.mechanics == "linear"
+    dev = None
+    if linear:
+        Kinv = np.linalg.inv(model.K)
+        u = np.hypot(
+            Kinv[0, 0] * F_tip + Kinv[0, 1] * P_tip, Kinv[1, 0] * F_tip + Kinv[1, 1] * P_tip
+        )
+        dev = float(np.max(u, initial=0.0)) / p.seta.L
+    warned = bool(getattr(model, "_warned_linear", False))
+    if linear and warned:
+        dev = max(dev, LIMITS["linear_deflection"][1] * (1 + 1e-9))
+    items["linear_deflection"] = _item(
+        "linear_deflection",
+        dev,
+        "largest linear-seta tip deflection / L from the recorded contact forces (u = K⁻¹F"
+        f"{', per seta' if history.setae else ', mean per attached tip'}); eq 16–21 are "
+        "small-deflection theory; mechanics='rod' stays physical",
+        "Bisshopp & Drucker 1945 Q Appl Math 3:272; docs/physics.md 'Seta mechanics'",
+        applies=linear,
+    )
+    items["linear_deflection"]["model_warned"] = warned
+
+    # Quasi-static ratio
+    v = _plate_speed(history, segments)
+    stroke = abs(c.snap_off_overlap) if adhesive else None
+    q = v * model.settle_time / stroke if stroke else None
+    items["quasi_static"] = _item(
+        "quasi_static",
+        q,
+        f"plate speed {v:.3g} µm/µs × free seta period {model.settle_time:.3g} µs / JKR stroke "
+        f"|δc| = {stroke or 0:.3g} µm: a critically damped seta lags the plate by v·T/π, "
+        "which must stay within the stroke between jump-in and snap-off",
+        "docs/physics.md 'Time stepping' (seta damping, settle period) and 'JKR contact' (δc)",
+        applies=adhesive and v > 0,
+    )
+    items["quasi_static"]["plate_speed_um_per_us"] = v
+    items["quasi_static"]["max_kinetic_to_elastic"] = history.meta.get("max_kinetic_to_elastic")
+
+    # Time step against the stiffest spring met
+    load = max(P_comp, 5 * c.pull_off_force)
+    k = model.Ka + model.law.stiffest(load) + model.k_t
+    omega = max(math.sqrt(k / model.mass), model.omega_max)
+    items["time_step"] = _item(
+        "time_step",
+        omega * model.dt,
+        f"ω·dt with ω = √(k/m) of the stiffest spring met (k = {k:.3g} µN/µm, m = "
+        f"{model.mass:.3g} ng, dt = {model.dt:.3g} µs); stable below 2, energy of jump "
+        "events booked to ~ω·dt",
+        "docs/physics.md 'Time stepping'; Hairer, Lubich & Wanner, Geometric Numerical "
+        "Integration §I.1",
+    )
+
+    # Did any tip touch?
+    touched = bool(np.max(history["n_attached"], initial=0) > 0)
+    floor_top = float(np.max(model.profile.y)) if len(model.profile.y) else 0.0
+    reached = float(np.min(history["plate_y_um"], initial=np.inf)) <= model.z_touch + floor_top
+    items["touched"] = _item(
+        "touched",
+        1.0 if touched else 0.0,
+        "whether any tip ever attached; a run whose plate never reached the floor (pull-off "
+        "only, free travel) need not touch",
+        "gecko_agents issue 18 (a plate that outruns its setae measures nothing)",
+        applies=touched or reached,
+    )
+
+    # Crack kinetics (rate-dependent contact)
+    v_star = float(getattr(c, "crack_speed", math.inf))
+    n_exp = float(getattr(c, "crack_exponent", 0.5) or 0.5)
+    rate = math.isfinite(v_star) and adhesive and stroke
+    De = (v / stroke) / (v_star / a0) if rate else None
+    items["crack_deborah"] = _item(
+        "crack_deborah",
+        De**n_exp if De is not None else None,
+        "De^n with De = (v/|δc|)/(v*/a0), the loading rate over the crack's relaxation rate: "
+        "G/w ≈ 1 + De^n must stay below the glassy/rubbery modulus ratio ~10²",
+        "Maugis & Barquins 1978 J Phys D 11:1989; Greenwood & Johnson 1981 Phil Mag A 43:697",
+        applies=bool(rate),
+    )
+    items["crack_deborah"]["deborah"] = De
+
+    violations = [name for name, it in items.items() if it["ok"] is False]
+    result = {"ok": not violations, "violations": violations, "items": items}
+    if reached and not touched:
+        raise MeaninglessRunError(
+            f"no tip ever touched the floor although the plate went {model.z_touch + floor_top - min(history['plate_y_um']):.3g} µm "
+            f"past the height at which a resting tip touches it: at {v:.3g} µm/µs the setae "
+            f"(free period {model.settle_time:.3g} µs) lag the plate by ~{v * model.settle_time / math.pi:.3g} µm, "
+            f"so the run measured nothing; lower the plate speed below "
+            f"{abs(c.snap_off_overlap) / model.settle_time:.3g} µm/µs or press deeper "
+            "(the recorded history is the exception's .history)",
+            history,
+        )
+    if warn:
+        for name in violations:
+            if name == "linear_deflection" and warned:
+                continue  # the model already warned during the run
+            it = items[name]
+            warnings.warn(
+                ValidityWarning(
+                    f"validity: {name} = {it['value']:.3g} violates {it['rule']}: "
+                    f"{it['meaning']} [{it['source']}]"
+                ),
+                stacklevel=3,
+            )
+    return result
+
+
+def non_finite_report(model, row: dict) -> str:
+    """Say what went non-finite in a model's state and where (which quantity, which setae),
+    and whether an input (an external force) or the integration is to blame."""
+    from .state import ROWS
+
+    s = model.state
+    t = f"t = {model.time:.4g} µs"
+    ext = np.asarray(s.external_force)
+    bad_ext = np.flatnonzero(~np.isfinite(ext).all(axis=1))
+    if bad_ext.size:
+        return (
+            f"non-finite external force {ext[bad_ext[0]].tolist()} µN on seta(s) "
+            f"{bad_ext[:10].tolist()} at {t}: it was given to the model (Model.external_force), "
+            "not produced by the integration; pass finite forces"
+        )
+    found = []
+    for name in ROWS:
+        if name in ("delta", "jump"):  # NaN by design (no candidate floor, not running away)
+            continue
+        row_vals = s.block[ROWS.index(name)]
+        idx = np.flatnonzero(~np.isfinite(row_vals))
+        if idx.size:
+            found.append(f"{name} (setae {idx[:10].tolist()})")
+    cols = [k for k, v in row.items() if not math.isfinite(v)]
+    where = "; ".join(found) if found else "no per-seta quantity"
+    return (
+        f"non-finite state at {t}: per-seta {where}; recorded columns {cols}. "
+        f"The inputs were finite, so the integration diverged: the time step dt = "
+        f"{model.dt:.3g} µs (ω_max·dt = {model.omega_max * model.dt:.2f}) may be too large for "
+        "the contact stiffness reached; pass a smaller dt or a shallower depth/preload"
+    )
+
+
+def run_cost(n_setae: int, duration_us: float, dt_us: float) -> float:
+    """Estimated seta-steps of a run: (duration / dt) × setae [-]."""
+    return n_setae * duration_us / dt_us
+
+
+def check_cost(n_setae: int, duration_us: float, dt_us: float) -> float:
+    """Refuse (ValueError) a run above :data:`COST_REFUSE` seta-steps, warn
+    (:class:`ValidityWarning`) above :data:`COST_WARN`; returns the estimate."""
+    cost = run_cost(n_setae, duration_us, dt_us)
+    steps = duration_us / dt_us
+    what = (
+        f"the run would take ~{steps:.3g} steps of dt = {dt_us:.3g} µs over ~{duration_us:.3g} "
+        f"µs for {n_setae} setae: {cost:.3g} seta-steps"
+    )
+    fix = (
+        "simulate fewer setae (n_sim), a shorter protocol (depth, travel, hold) or a faster "
+        "plate (keeping the quasi-static ratio ≤ 1), or check the moduli, which set dt"
+    )
+    if not cost <= COST_REFUSE:
+        raise ValueError(f"{what}, above the limit {COST_REFUSE:.0e}; {fix}")
+    if cost > COST_WARN:
+        warnings.warn(
+            ValidityWarning(f"{what} (above {COST_WARN:.0e}: expect minutes to hours); {fix}"),
+            stacklevel=3,
+        )
+    return cost
+
+
+def _validity_of(obj) -> dict | None:
+    meta = getattr(obj, "meta", obj)
+    if not isinstance(meta, dict):
+        return None
+    if "items" in meta:
+        return meta
+    return meta.get("validity")
+
+
+def validity_table(runs, labels=None) -> str:
+    """Markdown table of the validity items of several runs.
+
+    ``runs``: histories, metadata dicts (with ``"validity"``) or validity dicts, or a dict
+    label → one of those. Each cell is the value, with ✗ when it violates its limit and "—"
+    where the item does not apply.
+    """
+    if isinstance(runs, dict) and _validity_of(runs) is None:
+        labels, runs = list(runs), list(runs.values())
+    runs = list(runs)
+    labels = list(labels) if labels is not None else [f"run {i + 1}" for i in range(len(runs))]
+    names = list(LIMITS)
+    head = "| run | " + " | ".join(f"{n} ({LIMITS[n][0]} {LIMITS[n][1]:g})" for n in names)
+    lines = [head + " |", "|" + " --- |" * (len(names) + 1)]
+    for label, run in zip(labels, runs, strict=True):
+        v = _validity_of(run) or {"items": {}}
+        cells = []
+        for n in names:
+            it = v["items"].get(n)
+            if it is None or it["ok"] is None or it["value"] is None:
+                cells.append("—")
+            else:
+                cells.append(f"{it['value']:.3g}" + ("" if it["ok"] else " ✗"))
+        lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
