@@ -306,13 +306,15 @@ def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
     violations = [name for name, it in items.items() if it["ok"] is False]
     result = {"ok": not violations, "violations": violations, "items": items}
     if reached and not touched:
+        past = model.z_touch + floor_top - float(np.min(history["plate_y_um"]))
+        lag = v * model.settle_time / math.pi
+        v_ok = abs(c.snap_off_overlap) / model.settle_time
         raise MeaninglessRunError(
-            f"no tip ever touched the floor although the plate went {model.z_touch + floor_top - min(history['plate_y_um']):.3g} µm "
-            f"past the height at which a resting tip touches it: at {v:.3g} µm/µs the setae "
-            f"(free period {model.settle_time:.3g} µs) lag the plate by ~{v * model.settle_time / math.pi:.3g} µm, "
-            f"so the run measured nothing; lower the plate speed below "
-            f"{abs(c.snap_off_overlap) / model.settle_time:.3g} µm/µs or press deeper "
-            "(the recorded history is the exception's .history)",
+            f"no tip ever touched the floor although the plate went {past:.3g} µm past the "
+            f"height at which the highest resting tip touches it: at {v:.3g} µm/µs the setae "
+            f"(free period {model.settle_time:.3g} µs) lag the plate by ~{lag:.3g} µm, so the "
+            f"run measured nothing; lower the plate speed below {v_ok:.3g} µm/µs (quasi-static "
+            "ratio 1) or press deeper (the recorded history is the exception's .history)",
             history,
         )
     if warn:
