@@ -34,6 +34,12 @@ test and benchmark points are in :mod:`gecko_agents.sweep_bench`.
 
 Command line: ``gecko-agents sweep SWEEPFILE.toml`` (``python -m gecko_agents.sweep`` is the
 same command).
+
+Stopping. Local worker processes exit when the sweep's process dies, even by SIGKILL (on Linux
+the kernel sends them SIGKILL via ``prctl(PR_SET_PDEATHSIG)``; everywhere a watchdog thread in
+each worker polls its parent every :data:`WATCHDOG_PERIOD` s). SIGINT (Ctrl-C) and SIGTERM stop
+the sweep: running workers are terminated, finished points stay stored, ``sweep.csv`` is
+written, and :class:`SweepInterrupted` (a KeyboardInterrupt) says how to resume.
 """
 
 from __future__ import annotations
@@ -47,7 +53,9 @@ import itertools
 import json
 import multiprocessing
 import os
+import signal
 import sys
+import threading
 import time
 import traceback
 from collections.abc import Callable, Sequence
@@ -69,11 +77,84 @@ __all__ = [
     "run_sweep",
     "parse_dask_arg",
     "DaskArgError",
+    "SweepInterrupted",
     "import_distributed",
     "main",
 ]
 
 _DASK_HINT = "install it with: pip install -e '.[dask]'"
+WATCHDOG_PERIOD = 1.0
+"""How often [s] a worker checks that the sweep's process is still alive."""
+_PR_SET_PDEATHSIG = 1  # linux/prctl.h
+
+
+class SweepInterrupted(KeyboardInterrupt):
+    """A sweep stopped by SIGINT or SIGTERM; its message says how to resume."""
+
+
+def _worker_init(parent_pid: int) -> None:
+    """Make a worker process exit when the sweep's process (``parent_pid``) dies.
+
+    On Linux, ``prctl(PR_SET_PDEATHSIG, SIGKILL)`` has the kernel kill the worker when its
+    parent dies; a daemon thread polling ``os.getppid()`` covers other platforms (and the
+    moment before the prctl call). Workers ignore SIGINT: a Ctrl-C in a terminal reaches the
+    whole process group, and the sweep's process decides how to stop them.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != parent_pid:  # the parent died before the prctl call
+        os._exit(1)
+
+    def watch() -> None:
+        while True:
+            time.sleep(WATCHDOG_PERIOD)
+            if os.getppid() != parent_pid:
+                os._exit(1)
+
+    threading.Thread(target=watch, name="sweep-parent-watchdog", daemon=True).start()
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """Terminate the pool's worker processes (running points are abandoned, not recorded)."""
+    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+        if proc.is_alive():
+            proc.terminate()
+    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+        proc.join(timeout=5)
+        if proc.is_alive():
+            proc.kill()
+
+
+class _StopOnSignals:
+    """Within the block, SIGINT and SIGTERM raise :class:`SweepInterrupted` in this (main)
+    thread; the previous handlers are restored afterwards. No-op outside the main thread."""
+
+    def __init__(self, message: str):
+        self.message = message
+        self.saved: dict = {}
+
+    def _raise(self, signum, frame):
+        raise SweepInterrupted(f"{signal.Signals(signum).name}: {self.message}")
+
+    def __enter__(self):
+        if threading.current_thread() is threading.main_thread():
+            for sig in (signal.SIGINT, signal.SIGTERM):
+                self.saved[sig] = signal.signal(sig, self._raise)
+        return self
+
+    def __exit__(self, *exc):
+        for sig, handler in self.saved.items():
+            signal.signal(sig, handler)
+        return False
+
+
 FN_PREFIX = "fn."
 """Grid names with this prefix sweep a keyword argument of the point function."""
 
@@ -390,7 +471,8 @@ def run_sweep(
     Raises
     ------
     ValueError / TypeError for a bad spec, ImportError if Dask is asked for and not installed:
-    all before anything runs or any file is created.
+    all before anything runs or any file is created. :class:`SweepInterrupted` on SIGINT or
+    SIGTERM, after stopping the workers and writing ``sweep.csv``: the same call resumes.
     """
     points = expand_grid(base, grid, seeds)
     fn, fn_name = _resolve_point_fn(point_fn)
@@ -444,27 +526,43 @@ def run_sweep(
         if n_errors:
             bar.set_postfix(errors=n_errors)
 
+    stop = _StopOnSignals(
+        f"sweep stopped; finished points are stored in {point_dir}/ and the same run_sweep "
+        "call (or gecko-agents sweep … --resume) resumes it"
+    )
     try:
-        if todo and dask is not None:
-            _run_dask(dask, n_workers, todo, fn, fn_name, fn_kwargs, finish)
-        elif todo and n_workers == 1:
-            for point, key in todo:
-                finish(_run_point(fn, fn_name, fn_kwargs, point, key))
-        elif todo:
-            ctx = multiprocessing.get_context("spawn")
-            pool = ProcessPoolExecutor(max_workers=min(n_workers, len(todo)), mp_context=ctx)
-            try:
-                futures = {
-                    pool.submit(_run_point, fn, fn_name, fn_kwargs, p, k): (p, k) for p, k in todo
-                }
-                for fut in futures_as_completed(futures):
-                    finish(_collect(fut, fn_name, fn_kwargs, *futures[fut]))
-            finally:
-                pool.shutdown(wait=True, cancel_futures=True)
+        with stop:
+            if todo and dask is not None:
+                _run_dask(dask, n_workers, todo, fn, fn_name, fn_kwargs, finish)
+            elif todo and n_workers == 1:
+                for point, key in todo:
+                    finish(_run_point(fn, fn_name, fn_kwargs, point, key))
+            elif todo:
+                _run_local(n_workers, todo, fn, fn_name, fn_kwargs, finish)
     finally:
         bar.close()
         rows = _write_table(out / "sweep.csv", points, keys, list(grid), point_dir)
     return rows
+
+
+def _run_local(n_workers: int, todo, fn, fn_name, fn_kwargs, finish) -> None:
+    """Run the points on a pool of spawned worker processes that die with this process."""
+    ctx = multiprocessing.get_context("spawn")
+    pool = ProcessPoolExecutor(
+        max_workers=min(n_workers, len(todo)),
+        mp_context=ctx,
+        initializer=_worker_init,
+        initargs=(os.getpid(),),
+    )
+    try:
+        futures = {pool.submit(_run_point, fn, fn_name, fn_kwargs, p, k): (p, k) for p, k in todo}
+        for fut in futures_as_completed(futures):
+            finish(_collect(fut, fn_name, fn_kwargs, *futures[fut]))
+    except BaseException:
+        _stop_workers(pool)  # do not wait for the running points
+        raise
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _collect(fut, fn_name: str, fn_kwargs: dict, point: SweepPoint, key: str) -> dict:

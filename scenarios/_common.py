@@ -13,6 +13,7 @@ import csv
 import io
 import json
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -46,6 +47,31 @@ def off_paper(ours: float, paper: float) -> str:
     return f"{rel_off(ours, paper)} off the paper's value"
 
 
+def writable_dir(value: str) -> Path:
+    """``--out`` as argparse ``type=``: a folder that exists or can be made, and is writable.
+
+    Refuses (usage error, exit 2) an empty value (it would write into the current directory),
+    an existing file, a path under a file, and a folder that cannot be created or written to.
+    The folder is created here, as the scenario would do first anyway.
+    """
+    if not value.strip():
+        raise argparse.ArgumentTypeError(
+            f"{value!r} is empty: give an output folder (or omit --out for renders/<scenario>/)"
+        )
+    path = Path(value)
+    if path.exists() and not path.is_dir():
+        raise argparse.ArgumentTypeError(f"{value!r} is an existing file, not a folder")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=path):
+            pass
+    except OSError as err:
+        raise argparse.ArgumentTypeError(
+            f"{value!r} cannot be used as the output folder: {err.strerror or err}"
+        ) from None
+    return path
+
+
 def parse_args(doc: str, argv=None, extra=None) -> argparse.Namespace:
     """Parse the common options; ``extra(parser)`` may add scenario-specific ones."""
     parser = argparse.ArgumentParser(description=(doc or "").strip().splitlines()[0])
@@ -53,7 +79,10 @@ def parse_args(doc: str, argv=None, extra=None) -> argparse.Namespace:
         "--quick", action="store_true", help="small and fast (seconds): for tests and a first look"
     )
     parser.add_argument(
-        "--out", type=Path, default=None, help="output folder (default renders/<scenario>/)"
+        "--out",
+        type=writable_dir,
+        default=None,
+        help="output folder, created if needed (default renders/<scenario>/)",
     )
     parser.add_argument("--no-progress", action="store_true", help="hide progress bars")
     if extra is not None:
