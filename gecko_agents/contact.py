@@ -332,7 +332,9 @@ class RateJKRSphere(JKRSphere):
     U = U_E − πwa², counted from attachment (a_j at δ = 0, as :class:`JKRSphere`); a moving
     edge dissipates ∫(G − w)·2πa·|da| ≥ 0, which the kernels book as
     U(a_old, δ) − U(a_new, δ). The tip lets go once a ≤ :attr:`release_radius` = 1 % of a0,
-    where it carries < 1 % of its zero-load contact stiffness: the crack has run through.
+    where it carries < 1 % of its zero-load contact stiffness: the crack has run through; a step
+    that would shrink a by more than 10 % (a runaway the time step cannot resolve) sets a = 0,
+    a snap-off; as a backstop it also lets go once stretched past 20·|δc|.
 
     Integration (per time step, at the step's δ): linearly implicit Euler — one Newton step of
     backward Euler on f(a) = a − a_prev + dt·v*·((G(a) − w)/w)^(1/n) from a_prev, clipped to
@@ -356,8 +358,10 @@ class RateJKRSphere(JKRSphere):
         self.n_exp = float(contact.crack_exponent)
         self.v_close = float(contact.crack_closing_speed)
         self.release_radius = 0.01 * self.a0
-        self.detach_overlap = -math.inf
         self.delta_c = float(jkr.snap_off_overlap(self.R, self.w, self.E_star))
+        # A slow crack holds the tip past δc; stretched beyond 20·|δc| (an effective work of
+        # adhesion ~90 w: far outside what the rate law is meant for) it lets go regardless.
+        self.detach_overlap = 20.0 * self.delta_c
         R, w, E = self.R, self.w, self.E_star
         # k = (R, ac, w, E*, v*, 1/n, v_close, δc, U(a_j, 0) + πw·a_j²)
         self.constants = np.array(
@@ -438,6 +442,11 @@ class RateJKRSphere(JKRSphere):
         step = dt * rate
         if dG > 0.0:
             step /= fprime
+        if step > 0.1 * a:
+            # The edge runs through faster than the time step resolves: a snap-off. Releasing
+            # now books the stored energy exactly (as the elastic snap-off does) instead of
+            # integrating an unresolved runaway to first order.
+            return 0.0
         a_new = a - step
         lo = a_eq if has_eq else 0.0
         if a_new < lo:
