@@ -4,14 +4,22 @@ Run ``python -m gecko_agents.bench`` (``--quick`` for a seconds-long smoke run).
 
 * seta-steps/s of :class:`gecko_agents.model.Model` for N setae pressed onto a flat floor
   (every tip attached), stepped through a plate move with :meth:`Model.run` (recording
-  included), for N = 1 000 and 10 000;
-* seta-steps/s of the bare engine on an identical world (same bodies, sensor circles, floor
-  segments and collision handler, pressed the same way): one ``space.step`` plus one
-  ``pymunk.batch.get_space_bodies`` read and one ``set_space_bodies`` force write per step,
-  which is the least any pymunk model with per-step forces must do;
-* their ratio (1 would mean our per-step force computation is free), the best of a few
-  interleaved repeats of each, so machine noise hits both alike; for the numpy kernel and,
-  when numba is installed, the numba one (the last line is the default kernel's);
+  included), for N = 1 000 and 10 000, with the default (lazy) contact detection and, for the
+  default kernel, with full detection;
+* two baselines, each one ``space.step`` plus one ``pymunk.batch.get_space_bodies`` read and
+  one ``set_space_bodies`` force write per step (the least any pymunk model with per-step
+  forces must do): **pymunk with shapes**, the pressed world with a sensor circle and a floor
+  pad for every tip (what full detection makes pymunk test every step), and the **bare
+  engine**, the same bodies with no shapes at all;
+* the agent's rate over each (1 would mean that everything but pymunk's stepping is free),
+  the best of a few interleaved repeats of each, so machine noise hits all alike; for the
+  numpy kernel and, when numba is installed, the numba one;
+* a scaling table (``--scaling``, default N = 10³, 10⁴, 10⁵): ms per step of the pressed
+  array, the wall time of a full press-pull (the paper's array, rod setae, σ = 0.5 µm pad
+  floor, ``protocol.press_pull(1.0)``) — run for N ≤ ``--run-max`` and extrapolated above it
+  as (steps of the largest run) × (ms/step at N) — and the process's peak resident memory
+  after each size (``resource.getrusage``: pymunk's bodies live in C, which tracemalloc does
+  not see);
 * the wall time of the quasi-static force–displacement curve of the paper's 10⁷-seta array
   (:func:`gecko_agents.quasistatic.press_pull` on
   :func:`~gecko_agents.quasistatic.representative_heights` with the sorted sample, so blocks
@@ -21,7 +29,8 @@ Run ``python -m gecko_agents.bench`` (``--quick`` for a seconds-long smoke run).
   relative to 1 (:func:`gecko_agents.sweep_bench.benchmark_dask_scaling`; skip with
   ``--no-dask``).
 
-The last line is always ``agent/pymunk ratio at N=<largest N>: X.XX``.
+The last line is always ``agent/bare-engine ratio at N=<largest N>: X.XX`` (the default
+kernel and detection against the bodies-only engine).
 """
 
 from __future__ import annotations
@@ -29,17 +38,29 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import resource
 import time
+import warnings
 
 import numpy as np
 import pymunk.batch as pb
 
+from . import protocol
 from . import quasistatic as qs
 from .model import Model, numba_available
 from .params import PAPER_ARRAY
 from .protocol import DEFAULT_SPEED, Move
 
-__all__ = ["pressed_model", "agent_rate", "pymunk_rate", "quasistatic_time", "main"]
+__all__ = [
+    "pressed_model",
+    "bare_engine",
+    "agent_rate",
+    "pymunk_rate",
+    "press_pull_run",
+    "peak_memory_mb",
+    "quasistatic_time",
+    "main",
+]
 
 _READ = pb.BodyFields.BODY_ID | pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
 
@@ -60,6 +81,15 @@ def pressed_model(n: int, depth: float = 0.3, settle: int = 200, **kw) -> Model:
         m.step((0.0, 0.0))
     if not np.all(m.attached):
         raise RuntimeError(f"only {int(m.attached.sum())} of {n} tips attached after settling")
+    return m
+
+
+def bare_engine(n: int) -> Model:
+    """:func:`pressed_model` with every shape taken out of its space: bodies only (the plate
+    and N tips, pressed, at rest), for :func:`pymunk_rate`. The model itself is not meant to
+    be stepped afterwards."""
+    m = pressed_model(n, detection="full")
+    m.space.remove(*m.space.shapes)
     return m
 
 
@@ -89,6 +119,22 @@ def pymunk_rate(m: Model, steps: int) -> float:
         pb.set_space_bodies(space, pb.BodyFields.FORCE, write)
         space.step(dt)
     return m.n * steps / (time.perf_counter() - t)
+
+
+def press_pull_run(n: int) -> tuple[float, int]:
+    """Wall time [s] and steps of a full press-pull of ``n`` setae: the paper's array with rod
+    setae on a σ = 0.5 µm pad floor, ``protocol.press_pull(1.0)``, seed 1, no progress bar."""
+    p = PAPER_ARRAY.replace(**{"floor.sigma": 0.5, "mechanics": "rod"})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = Model(p, n_sim=int(n), seed=1)
+        h = m.run(protocol.press_pull(1.0), progress=False)
+    return h.meta["wall_time_s"], h.meta["n_steps"]
+
+
+def peak_memory_mb() -> float:
+    """Peak resident memory of this process so far [MB] (Linux ru_maxrss is in kB)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
 def quasistatic_time(
@@ -122,6 +168,30 @@ def quasistatic_time(
     return time.perf_counter() - t, r.pull_off, r.plate_y.size
 
 
+def _scaling(sizes, run_max, steps, repeats) -> list[dict]:
+    """The scaling table's rows (see the module docstring), printed as they come."""
+    print("scaling (default kernel and detection; press-pull: rod setae, σ = 0.5 µm pads):")
+    print("       N   ms/step (pressed)   press-pull wall [s]   steps   peak RSS [MB]")
+    rows, run_steps = [], None
+    for n in sorted(sizes):
+        m = pressed_model(n)
+        ms = min(n / agent_rate(m, steps) * 1e3 for _ in range(repeats))
+        del m
+        if n <= run_max or run_steps is None:
+            wall, run_steps = press_pull_run(n)
+            how = "run"
+        else:
+            wall, how = run_steps * ms * 1e-3, "extrapolated"
+        row = {"n": n, "ms_per_step": ms, "press_pull_s": wall, "steps": run_steps,
+               "how": how, "peak_rss_mb": peak_memory_mb()}  # fmt: skip
+        rows.append(row)
+        print(
+            f"{n:>8}   {ms:17.3g}   {wall:12.4g} ({how:>12})   {run_steps:>5}   "
+            f"{row['peak_rss_mb']:13.0f}"
+        )
+    return rows
+
+
 def main(argv=None) -> dict:
     """Run the benchmark and print its table; returns the numbers."""
     ap = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
@@ -133,6 +203,14 @@ def main(argv=None) -> dict:
     ap.add_argument(
         "--qs-setae", type=int, default=10**7, help="setae of the quasi-static curve (0: skip it)"
     )
+    ap.add_argument(
+        "--scaling", type=int, nargs="*", default=[1_000, 10_000, 100_000],
+        help="sizes N of the scaling table (none: skip it)",
+    )  # fmt: skip
+    ap.add_argument(
+        "--run-max", type=int, default=10_000,
+        help="largest N whose press-pull is run in the scaling table (larger: extrapolated)",
+    )  # fmt: skip
     ap.add_argument("--quick", action="store_true", help="tiny sizes: a smoke run")
     ap.add_argument(
         "--no-dask", action="store_true", help="skip the 1- vs 2-worker Dask sweep throughput"
@@ -140,6 +218,7 @@ def main(argv=None) -> dict:
     args = ap.parse_args(argv)
     if args.quick:
         args.sizes, args.steps, args.repeats, args.qs_setae = [50, 200], 40, 2, 10**5
+        args.scaling, args.run_max = [20, 200], 20
     default = Model(PAPER_ARRAY, n_sim=max(args.sizes)).kernel
     kernels = ["numpy"] + (["numba"] if numba_available() else [])
     out = {
@@ -148,7 +227,9 @@ def main(argv=None) -> dict:
         "default_kernel": default,
         "agent": {},
         "pymunk": {},
+        "bare": {},
         "ratio": {},
+        "ratio_bare": {},
     }
     if args.qs_setae:
         for n_blocks, split in ((2000, True), (20_000, True), (20_000, False)):
@@ -161,21 +242,36 @@ def main(argv=None) -> dict:
                 f"included: {t_qs:.2f} s, pull-off {pull:.7g} µN"
             )
     for n in args.sizes:
-        bare = pressed_model(n)
-        agents = {k: pressed_model(n, kernel=k) for k in kernels}
-        rp, ra = 0.0, dict.fromkeys(kernels, 0.0)
+        shaped, bare = pressed_model(n, detection="full"), bare_engine(n)
+        agents = {(k, "lazy"): pressed_model(n, kernel=k) for k in kernels}
+        agents[(default, "full")] = pressed_model(n, kernel=default, detection="full")
+        rp = rb = 0.0
+        ra = dict.fromkeys(agents, 0.0)
         for _ in range(args.repeats):  # interleaved, best of each
-            rp = max(rp, pymunk_rate(bare, args.steps))
-            for k, m in agents.items():
-                ra[k] = max(ra[k], agent_rate(m, args.steps))
-        out["pymunk"][n] = rp
-        print(f"N={n:>6}: pymunk        {rp:10.4g} seta-steps/s ({n / rp * 1e3:.3g} ms/step)")
-        for k in kernels:
-            out["agent"][(n, k)], out["ratio"][(n, k)] = ra[k], ra[k] / rp
+            rp = max(rp, pymunk_rate(shaped, args.steps))
+            rb = max(rb, pymunk_rate(bare, args.steps))
+            for key, m in agents.items():
+                ra[key] = max(ra[key], agent_rate(m, args.steps))
+        out["pymunk"][n], out["bare"][n] = rp, rb
+        print(f"N={n:>6}: pymunk with shapes  {rp:10.4g} seta-steps/s ({n / rp * 1e3:.3g} ms/step)")
+        print(
+            f"          bare engine (bodies only, no shapes) {rb:10.4g} seta-steps/s "
+            f"({n / rb * 1e3:.3g} ms/step)"
+        )
+        for (k, det), r in ra.items():
             print(
-                f"          agent[{k}] {ra[k]:10.4g} seta-steps/s ({n / ra[k] * 1e3:.3g} "
-                f"ms/step)  agent/pymunk {ra[k] / rp:.2f}"
+                f"          agent[{k}, {det} detection] {r:10.4g} seta-steps/s "
+                f"({n / r * 1e3:.3g} ms/step)  agent/pymunk-with-shapes {r / rp:.2f}  "
+                f"agent/bare-engine {r / rb:.2f}"
             )
+            if det == "lazy":
+                out["agent"][(n, k)] = r
+                out["ratio"][(n, k)], out["ratio_bare"][(n, k)] = r / rp, r / rb
+            else:
+                out["agent_full"] = {n: r}
+        del shaped, bare, agents
+    if args.scaling:
+        out["scaling"] = _scaling(args.scaling, args.run_max, args.steps, args.repeats)
     if not args.no_dask and not args.quick:
         try:
             from .sweep_bench import benchmark_dask_scaling
@@ -191,8 +287,9 @@ def main(argv=None) -> dict:
                 f"({os.cpu_count()} cores)"
             )
     big = max(args.sizes)
-    ratio = out["ratio"][(big, default)]
-    print(f"agent/pymunk ratio at N={big}: {ratio:.2f}")
+    print(f"agent/pymunk-with-shapes ratio at N={big}: {out['ratio'][(big, default)]:.2f}")
+    ratio = out["ratio_bare"][(big, default)]
+    print(f"agent/bare-engine ratio at N={big}: {ratio:.2f}")
     if not math.isfinite(ratio):
         raise RuntimeError("benchmark produced a non-finite ratio")
     return out
