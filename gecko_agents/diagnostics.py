@@ -14,6 +14,8 @@ Units: µm, µN, µs, ng (:mod:`gecko_agents.params`). Each item is a dict::
 ``ok`` is ``None`` where the item does not apply to the run (an adhesion measure for the Hertz
 tip, the beam's range for the rod, the crack number for elastic contact). The items:
 
+The contact items (``a_over_R``, ``tabor``) apply only to runs in which a tip touched.
+
 ``a_over_R``
     Largest contact radius over tip radius, a/R, with a the larger of the zero-load JKR radius
     a0 and the radius at the largest tip compression reached. JKR (like Hertz) treats the
@@ -193,6 +195,7 @@ def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
     items: dict[str, dict] = {}
     P_tip, F_tip = _tip_forces(history)
     P_comp = float(np.max(P_tip, initial=0.0))  # largest compression of a tip [µN]
+    touched = bool(np.max(history["n_attached"], initial=0) > 0)
 
     # a/R
     a0 = float(jkr.zero_load_contact_radius(R, w, E)) if adhesive else 0.0
@@ -207,7 +210,7 @@ def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
         f"largest contact radius {a_max:.3g} µm over tip radius {R:g} µm (JKR and Hertz "
         "treat the sphere as a paraboloid on a half-space: a ≪ R)",
         "Johnson 1985 Contact Mechanics §4.2, §5.5; Maugis 1995 Langmuir 11:679",
-        applies=a_max > 0,
+        applies=a_max > 0 and touched,
     )
 
     # Tabor
@@ -219,7 +222,7 @@ def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
         "μ ≳ 5, below it Maugis–Dugdale/DMT",
         "Tabor 1977 J Colloid Interface Sci 58:2; Johnson & Greenwood 1997 J Colloid "
         "Interface Sci 192:326; z0 as ε of Greenwood 1997 Proc R Soc A 453:1277",
-        applies=adhesive,
+        applies=adhesive and touched,
     )
 
     # Linear seta's deflection
@@ -276,7 +279,6 @@ def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
     )
 
     # Did any tip touch?
-    touched = bool(np.max(history["n_attached"], initial=0) > 0)
     floor_top = float(np.max(model.profile.y)) if len(model.profile.y) else 0.0
     reached = float(np.min(history["plate_y_um"], initial=np.inf)) <= model.z_touch + floor_top
     items["touched"] = _item(
