@@ -16,8 +16,6 @@ histories, ``metadata.json`` (parameters and the floor statistics).
 
 from __future__ import annotations
 
-import contextlib
-import inspect
 from pathlib import Path
 
 from _common import ROOT, output_dir, parse_args, write_json, write_table
@@ -31,34 +29,9 @@ NAME = "measured_floor"
 DEFAULT_FILE = ROOT / "data" / "surfaces" / "dektak_profile.csv"
 
 
-@contextlib.contextmanager
-def _floor_profile_shim(profile):
-    """SHIM — remove once ``Model(params, ..., floor_profile=profile)`` exists in model.py.
-
-    Routes ``profile`` into the model's one floor hook, ``floor.for_array(..., measured=)``,
-    while the model is built."""
-    original = floor.for_array
-
-    def with_profile(*args, **kwargs):
-        kwargs["measured"] = profile
-        return original(*args, **kwargs)
-
-    floor.for_array = with_profile
-    try:
-        yield
-    finally:
-        floor.for_array = original
-
-
 def make_model(params, profile, **kwargs) -> Model:
-    """``Model(params, floor_profile=profile, **kwargs)``, through the shim while the model
-    lacks that keyword."""
-    if profile is None:
-        return Model(params, **kwargs)
-    if "floor_profile" in inspect.signature(Model).parameters:
-        return Model(params, floor_profile=profile, **kwargs)
-    with _floor_profile_shim(profile):
-        return Model(params, **kwargs)
+    """``Model(params, floor_profile=profile, **kwargs)`` (the generated floor if None)."""
+    return Model(params, floor_profile=profile, **kwargs)
 
 
 def _extra(parser):
@@ -152,9 +125,6 @@ def main(argv=None) -> dict:
             "row": args.row,
             "x_start_um": args.x_start,
             "n_sim": n_sim,
-            "shim": "floor_profile passed through floor.for_array (model keyword not yet wired)"
-            if "floor_profile" not in inspect.signature(Model).parameters
-            else None,
             "floor_statistics_scan": stats_whole,
             "floor_statistics_under_patch": {
                 k: v for k, v in stats_under.items() if k not in strip

@@ -174,12 +174,7 @@ def test_flat_measured_profile_gives_the_flat_floor_exactly():
 
 
 def test_flat_measured_profile_reproduces_the_flat_floor_history():
-    model = pytest.importorskip("gecko_agents.model")
-    import inspect
-
-    if "floor_profile" not in inspect.signature(model.Model).parameters:
-        pytest.skip("Model(..., floor_profile=) is not wired in model.py yet")
-    from gecko_agents import protocol
+    from gecko_agents import model, protocol
 
     ell = 4.0
     p = PAPER_ARRAY.replace(
