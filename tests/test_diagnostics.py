@@ -1,0 +1,161 @@
+"""Validity diagnostics (issue 12 item 3): every item against its closed form, the warnings,
+the metadata, and the summary table."""
+
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from gecko_agents import diagnostics as dg
+from gecko_agents import history as hist
+from gecko_agents import jkr, protocol
+from gecko_agents.model import Model
+from gecko_agents.params import PAPER_TABLE1, Contact
+
+STIFF = PAPER_TABLE1.replace(**{"seta.L": 5.0})  # a short seta: quick runs
+PROT = protocol.press_pull(0.3, speed=0.05)
+
+
+@pytest.fixture(scope="module")
+def run():
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        m = Model(STIFF, n_sim=2, seed=1)
+        h = m.run(PROT, progress=False)
+    return m, h, rec
+
+
+def test_every_run_carries_its_validity(run):
+    _, h, _ = run
+    v = h.meta["validity"]
+    assert set(v["items"]) == set(dg.LIMITS)
+    for name, it in v["items"].items():
+        assert it["limit"] == dg.LIMITS[name][1] and it["source"] and it["meaning"]
+        assert it["ok"] in (True, False, None)
+    assert v["violations"] == [n for n, it in v["items"].items() if it["ok"] is False]
+    assert v["ok"] == (not v["violations"])
+
+
+def test_validity_is_saved_and_loaded(run, tmp_path):
+    _, h, _ = run
+    g = hist.load(h.save(tmp_path / "run"))
+    assert g.meta["validity"]["violations"] == h.meta["validity"]["violations"]
+
+
+def test_contact_items_against_closed_forms(run):
+    m, h, _ = run
+    items = h.meta["validity"]["items"]
+    R, w, E = STIFF.contact.jkr_args()
+    a0 = float(jkr.zero_load_contact_radius(R, w, E))
+    assert_allclose(a0 / R, 0.7214, rtol=1e-3)  # the paper's tip: a0/R ≈ 0.7
+    assert items["a_over_R"]["value"] >= a0 / R and items["a_over_R"]["ok"] is False
+    mu = (R * w**2 / (E**2 * dg.Z0_UM**3)) ** (1 / 3)
+    assert_allclose(items["tabor"]["value"], mu, rtol=1e-12)
+    assert 1e3 < mu < 1.3e3 and items["tabor"]["ok"] is True  # deep in the JKR regime
+
+
+def test_quasi_static_time_step_and_touch_items(run):
+    m, h, _ = run
+    items = h.meta["validity"]["items"]
+    q = 0.05 * m.settle_time / abs(STIFF.contact.snap_off_overlap)
+    assert_allclose(items["quasi_static"]["value"], q, rtol=1e-12)
+    assert items["quasi_static"]["plate_speed_um_per_us"] == 0.05
+    assert items["time_step"]["value"] >= m.omega_max * m.dt - 1e-12
+    assert items["time_step"]["ok"] is True
+    assert items["touched"] == {**items["touched"], "value": 1.0, "ok": True}
+    assert items["crack_deborah"]["ok"] is None  # elastic contact
+
+
+def test_linear_deflection_from_recorded_forces():
+    m = Model(STIFF, n_sim=2, seed=1, record_setae=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        h = m.run(PROT, progress=False)
+    P, F = h.setae["force_normal_uN"], h.setae["force_tangential_uN"]
+    Kinv = np.linalg.inv(m.K)
+    u = np.hypot(Kinv[0, 0] * F + Kinv[0, 1] * P, Kinv[1, 0] * F + Kinv[1, 1] * P)
+    it = h.meta["validity"]["items"]["linear_deflection"]
+    expected = max(float(u.max()) / STIFF.seta.L, 0.1 * (1 + 1e-9) if it["model_warned"] else 0)
+    assert_allclose(it["value"], expected, rtol=1e-12)
+    rod = STIFF.replace(mechanics="rod")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        hr = Model(rod, n_sim=1, seed=1).run(PROT, progress=False)
+    assert hr.meta["validity"]["items"]["linear_deflection"]["ok"] is None
+
+
+def test_one_warning_per_violated_item(run):
+    _, h, rec = run
+    ours = [str(w.message) for w in rec if issubclass(w.category, dg.ValidityWarning)]
+    for name in h.meta["validity"]["violations"]:
+        if name == "linear_deflection" and h.meta["validity"]["items"][name]["model_warned"]:
+            continue  # the model warned during the run already
+        assert sum(msg.startswith(f"validity: {name} ") for msg in ours) == 1, name
+    assert issubclass(dg.ValidityWarning, UserWarning)
+
+
+def test_a_slow_plate_is_quasi_static_and_a_fast_one_is_not():
+    m = Model(STIFF, n_sim=1, seed=1)
+    stroke = abs(STIFF.contact.snap_off_overlap)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        slow = m.run(protocol.press_pull(0.3, speed=0.2 * stroke / m.settle_time), progress=False)
+    assert slow.meta["validity"]["items"]["quasi_static"]["ok"] is True
+
+
+def test_hertz_tip_has_no_adhesion_items():
+    p = STIFF.replace(tip="hertz")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        h = Model(p, n_sim=1, seed=1).run(PROT, progress=False)
+    items = h.meta["validity"]["items"]
+    assert items["tabor"]["ok"] is None and items["quasi_static"]["ok"] is None
+    assert items["touched"]["ok"] is True
+
+
+def test_crack_deborah_number(run):
+    m, h, _ = run
+    v_star, n = 1e-6, 0.5
+    fields = {f.name for f in dataclasses.fields(Contact)}
+    if "crack_speed" in fields:
+        c = dataclasses.replace(STIFF.contact, crack_speed=v_star, crack_exponent=n)
+    else:  # before rate-dependent contact exists: the attribute alone
+        c = dataclasses.replace(STIFF.contact)
+        object.__setattr__(c, "crack_speed", v_star)
+        object.__setattr__(c, "crack_exponent", n)
+    m.params = dataclasses.replace(STIFF, contact=c)
+    try:
+        with pytest.warns(dg.ValidityWarning, match="crack_deborah"):
+            v = dg.diagnose(m, h, PROT)
+    finally:
+        m.params = STIFF
+    R, w, E = STIFF.contact.jkr_args()
+    a0 = float(jkr.zero_load_contact_radius(R, w, E))
+    De = (0.05 / abs(STIFF.contact.snap_off_overlap)) / (v_star / a0)
+    it = v["items"]["crack_deborah"]
+    assert_allclose(it["deborah"], De, rtol=1e-12)
+    assert_allclose(it["value"], De**n, rtol=1e-12)
+    assert it["ok"] is (De**n <= 100) and it["ok"] is False
+
+
+def test_validity_table(run):
+    _, h, _ = run
+    table = dg.validity_table({"stiff seta": h, "as metadata": h.metadata()})
+    lines = table.strip().splitlines()
+    assert lines[0].startswith("| run | a_over_R (≤ 0.1) | tabor (≥ 5)")
+    assert lines[2].startswith("| stiff seta | ") and lines[3].startswith("| as metadata | ")
+    assert " ✗" in lines[2] and "—" in lines[2]  # a/R violated; crack number not applicable
+    assert dg.validity_table([h]).splitlines()[2].startswith("| run 1 |")
+
+
+def test_run_cost():
+    assert dg.run_cost(10, 100.0, 0.1) == 1e4
+    with pytest.raises(ValueError, match="seta-steps"):
+        dg.check_cost(20_000, 1e7, 1e-3)
+    with pytest.raises(ValueError, match="seta-steps"):
+        dg.check_cost(1, math.inf, 0.1)
+    with pytest.warns(dg.ValidityWarning, match="seta-steps"):
+        dg.check_cost(1000, 1e6, 0.1)
