@@ -69,6 +69,7 @@ import numpy as np
 
 from .history import atomic_write_bytes, versions
 from .params import SetaArray
+from .provenance import code_fingerprint, source_fingerprint
 
 __all__ = [
     "SweepPoint",
@@ -272,11 +273,25 @@ def expand_grid(
     return points
 
 
-def point_key(fn_name: str, fn_kwargs: dict, params: SetaArray, seed: int) -> str:
-    """16 hex digits of the sha256 of the canonical JSON of (fn_name, fn_kwargs, params, seed)."""
+def point_code(fn) -> str:
+    """What identifies the code computing a point: the package's fingerprint plus, for a point
+    function defined outside the package (a scenario's), its file's."""
+    return code_fingerprint() + (source_fingerprint(fn) or "")
+
+
+def point_key(
+    fn_name: str, fn_kwargs: dict, params: SetaArray, seed: int, code: str | None = None
+) -> str:
+    """16 hex digits of the sha256 of the canonical JSON of (fn_name, fn_kwargs, params, seed,
+    code). ``code`` identifies the code that computes the point (default: the package's
+    :func:`~gecko_agents.provenance.code_fingerprint`), so that a point computed by other code
+    is never reused."""
+    if code is None:
+        code = code_fingerprint()
     text = _canonical_json(
-        {"point_fn": fn_name, "fn_kwargs": fn_kwargs, "params": params.to_dict(), "seed": seed}
-    )
+        {"point_fn": fn_name, "fn_kwargs": fn_kwargs, "params": params.to_dict(), "seed": seed,
+         "code": code}
+    )  # fmt: skip
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -499,12 +514,21 @@ def run_sweep(
 
     out = Path(out_dir)
     point_dir = out / "points"
-    keys = [point_key(fn_name, fn_kwargs | p.fn_overrides, p.params, p.seed) for p in points]
+    code = point_code(fn)
+    keys = [point_key(fn_name, fn_kwargs | p.fn_overrides, p.params, p.seed, code) for p in points]
     done = {
         k for k in keys if (_read_record(point_dir / f"{k}.json", k) or {}).get("status") == "ok"
     }
     todo = [(p, k) for p, k in zip(points, keys, strict=True) if k not in done]
     point_dir.mkdir(parents=True, exist_ok=True)
+    stale = len(list(point_dir.glob("*.json"))) - len(done)
+    if done or stale > 0:
+        print(
+            f"sweep {out}: reusing {len(done)} of {len(points)} points computed by this code"
+            + (f"; {stale} stored points from other code or parameters are not used" if stale > 0
+               else ""),
+            flush=True,
+        )  # fmt: skip
 
     from tqdm.auto import tqdm
 

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gecko_agents import sweep, sweep_bench
+from gecko_agents import provenance, sweep, sweep_bench
 from gecko_agents.params import PAPER_TABLE1
 
 HERE = Path(__file__).resolve().parent
@@ -198,8 +198,29 @@ def test_point_key_depends_on_everything_that_defines_the_run():
         sweep.point_key("m:f", {"a": 2}, p, 0),
         sweep.point_key("m:f", {"a": 1}, p.replace(**{"floor.sigma": 0.1}), 0),
         sweep.point_key("m:f", {"a": 1}, p, 1),
+        sweep.point_key("m:f", {"a": 1}, p, 0, code="other code"),
     ]
-    assert len({k, *others}) == 5
+    assert len({k, *others}) == 6
+    assert k == sweep.point_key("m:f", {"a": 1}, p, 0, code=provenance.code_fingerprint())
+
+
+def test_a_sweep_never_reuses_points_of_other_code(tmp_path, monkeypatch, capsys):
+    out, counter = tmp_path / "out", tmp_path / "calls.txt"
+    kw = {"fn_kwargs": {"counter": str(counter)}, "n_workers": 1, "progress": False}
+    grid = {"floor.sigma": [0.0, 0.5]}
+    sweep.run_sweep("test_sweep:counted_point", PAPER_TABLE1, grid, [0], out, **kw)
+    assert len(calls(counter)) == 2
+    capsys.readouterr()
+    # Resumed with the same code: nothing recomputed, and it says so.
+    sweep.run_sweep("test_sweep:counted_point", PAPER_TABLE1, grid, [0], out, **kw)
+    assert len(calls(counter)) == 2
+    assert "reusing 2 of 2 points" in capsys.readouterr().out
+    # A (simulated) physics change: every point is computed again, none reused.
+    monkeypatch.setattr(sweep, "code_fingerprint", lambda: "changed physics")
+    sweep.run_sweep("test_sweep:counted_point", PAPER_TABLE1, grid, [0], out, **kw)
+    assert len(calls(counter)) == 4
+    said = capsys.readouterr().out
+    assert "reusing 0 of 2 points" in said and "2 stored points from other code" in said
 
 
 def test_analytic_point_matches_params_and_depends_on_seed():
@@ -314,7 +335,8 @@ def test_interrupted_sweep_resumes_without_recomputing(tmp_path):
     assert calls(counter) == ["0.0 4.0 0", "0.0 4.0 1", "0.5 4.0 0", "0.5 4.0 1"]
     # ... and one finished point file was lost as well
     lost = PAPER_TABLE1.replace(**{"floor.sigma": 0.5})
-    lost_key = sweep.point_key("test_sweep:counted_point", {"counter": str(counter)}, lost, 1)
+    code = sweep.point_code(counted_point)
+    lost_key = sweep.point_key("test_sweep:counted_point", {"counter": str(counter)}, lost, 1, code)
     (out / "points" / f"{lost_key}.json").unlink()
     # the full sweep, in worker processes, runs only what is missing
     rows = _sweep(out, counter, n_workers=2)
