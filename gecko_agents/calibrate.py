@@ -43,7 +43,7 @@ import math
 import re
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -234,18 +234,26 @@ class Forward:
     kind : ``"quasistatic"`` (default; :mod:`quasistatic` on representative heights) or
         ``"agent"`` (the pymunk model on an ``n_sim`` patch, scaled to the array; slow, for a
         final check of a fitted point).
-    n_blocks : representative heights per array (:func:`quasistatic.representative_heights`).
-        With ``linear`` mechanics the blocks are split exactly where a seta's history changes
-        (the curve of every seta); with ``rod`` they are plain block means and the pull-off
-        errs by about 0.7/n_blocks of itself.
-    retract_steps : plate steps of each retract.
+    n_blocks : representative heights per array, on the fixed Gaussian quantile grid of
+        :func:`quasistatic.quantile_heights` (no random draw: the model is a smooth function of
+        σ and of every other parameter).
+    retract_steps : plate steps of each retract (the travel of :func:`quasistatic.preload_pull`
+        divided by this; an array pulls off within about the first half of it).
     n_sim : agent patch size.
+    dz : approach step [µm] (the turning point is bisected exactly; the result does not depend
+        on it, measured: 0.0072 and 0.02 µm give the same pull-offs to 5 digits).
+    retract_dz : retract step [µm] (None: travel/retract_steps); the peak is refined by
+        bisection (``preload_pulls(refine_peak=True)``).
+
+    The defaults are set by the forward model's noise (see :func:`fit`).
     """
 
     kind: str = "quasistatic"
     n_blocks: int = 64
     retract_steps: int = 400
     n_sim: int = 20
+    dz: float = 0.05
+    retract_dz: float | None = 0.1
 
     def __post_init__(self):
         if self.kind not in ("quasistatic", "agent"):
@@ -267,15 +275,14 @@ def _apply(base: SetaArray, names, values) -> tuple[SetaArray, float]:
     return base.replace(**over), scale
 
 
-def _heights(p: SetaArray, sigma: float, seed: int, n_blocks: int):
-    """Block heights, weights and (linear mechanics: the blocks are split exactly) the sample."""
-    if p.array.count == 1 or sigma == 0:
+def _heights(p: SetaArray, sigma: float, n_blocks: int):
+    """Heights [µm], weights and the ``gaussian`` front argument of the fixed quantile grid."""
+    if p.array.count == 1 or sigma == 0 or n_blocks == 1:
         return np.zeros(1), np.array([float(p.array.count)]), None
-    rng = np.random.default_rng(seed)
-    h, w, sample = qs.representative_heights(
-        p.array.count, sigma, rng, n_blocks, return_sample=True
+    h, w, e = qs.quantile_heights(
+        p.array.count, sigma, min(n_blocks, p.array.count), return_edges=True
     )
-    return h, w, (sample if p.mechanics == "linear" else None)
+    return h, w, (sigma, e)
 
 
 def predict(
@@ -288,9 +295,10 @@ def predict(
 ) -> np.ndarray:
     """Model values for each observation of ``data`` (as :meth:`Data.observed`) [µN, µm].
 
-    Floor heights of an array come from ``numpy.random.default_rng(seed)`` (the same draw for
-    every parameter set, so the fit sees a smooth model); a row's ``sigma_um`` overrides
-    ``params.floor.sigma``.
+    The array's floor heights are the fixed quantile grid of
+    :func:`quasistatic.quantile_heights` (``seed`` only seeds the agent model's floor); a
+    row's ``sigma_um`` overrides ``params.floor.sigma``. Pull-off-vs-preload rows of one σ share
+    one approach (:func:`quasistatic.preload_pulls`).
     """
     c = data.columns
     forward = forward or Forward()
@@ -300,24 +308,24 @@ def predict(
     if data.kind == "preload":
         out = np.empty(data.n)
         sig = c.get("sigma", np.full(data.n, params.floor.sigma))
-        cache = {}
-        for i in range(data.n):
-            s = float(sig[i])
-            if s not in cache:
-                cache[s] = _heights(params, s, seed, forward.n_blocks)
-            h, w, sample = cache[s]
-            r = qs.preload_pull(
+        for s in np.unique(sig):
+            rows = np.flatnonzero(sig == s)
+            h, w, g = _heights(params, float(s), forward.n_blocks)
+            res = qs.preload_pulls(
                 params,
                 h,
-                float(c["preload"][i]),
+                c["preload"][rows],
                 weights=w,
-                sample=sample,
                 stiffness_scale=stiffness_scale,
                 retract_steps=forward.retract_steps,
+                dz=forward.dz,
+                retract_dz=forward.retract_dz,
+                gaussian=g,
+                refine_peak=True,
             )
-            out[i] = r.pull_off
+            out[rows] = [r.pull_off for r in res]
         return out
-    h, w, sample = _heights(params, params.floor.sigma, seed, forward.n_blocks)
+    h, w, _ = _heights(params, params.floor.sigma, forward.n_blocks)
     depth = 0.5
     if data.kind == "curve":
         depth = max(0.5, -float(np.min(c["displacement"])))
@@ -326,7 +334,6 @@ def predict(
         h,
         depth,
         weights=w,
-        sample=sample,
         stiffness_scale=stiffness_scale,
         n_retract=forward.retract_steps * 2,
     )
@@ -514,7 +521,7 @@ def fit(
     n_blocks: int | None = None,
     retract_steps: int | None = None,
     diff_step: float = 0.02,
-    max_nfev: int = 40,
+    max_nfev: int = 15,
 ) -> FitResult:
     """Fit the parameters named in ``free`` to ``data``.
 
@@ -522,15 +529,26 @@ def fit(
     ----------
     data : CSV path or table (see the module docstring).
     free : dotted parameter name → (low, high) bounds in the parameter's unit (µm, µN/µm, MPa,
-        …). The base value must lie inside.
+        …). The base value must lie inside. A parameter with 0 < low and high ≥ 10·low is
+        fitted in log space (its steps are relative), any other on a linear scale.
     base : parameters of everything not free (its ``mechanics`` is the forward model's).
     forward : ``"quasistatic"``, ``"agent"`` or a :class:`Forward`.
-    seed : seed of the floor heights' generator (one draw reused for every evaluation).
+    seed : seed of the agent model's floor (the quasi-static model uses the fixed quantile grid
+        of :func:`quasistatic.quantile_heights` and no random draw).
     n_starts : bounded least-squares starts (at the low and high corners of the bounds, the
         centre, …); the best is kept, all are recorded.
     n_blocks, retract_steps : override the :class:`Forward` accuracy settings.
-    diff_step : finite-difference step of the Jacobian as a fraction of each bound interval.
-    max_nfev : model evaluations per start (scipy's ``max_nfev``).
+    diff_step : forward-difference step of the Jacobian, as a fraction of each parameter's
+        (log or linear) bound interval, taken towards the inside of the bounds.
+    max_nfev : residual evaluations per start (scipy's ``max_nfev``; each Jacobian costs one
+        more model evaluation per free parameter).
+
+    How diff_step was chosen: the quasi-static pull-off of the paper's 10⁷ array (64 quantile
+    blocks, refined peak) scattered about a smooth curve by 2e-4 to 2e-3 of itself when
+    w was stepped by 0.25 % (measured over ±1 % of w = 0.02 J/m², six preloads 0.1–8.6 N),
+    and d ln F/d ln w ≈ 0.3–3. A step of 0.02 of a log interval of w from 0.002 to 0.2 (4.6 %
+    of w) moves the pull-off by 1.5–15 %, 10–100 × that noise, so the Jacobian errs by a
+    few per cent at most; smaller steps would measure the noise.
 
     Returns
     -------
@@ -541,44 +559,73 @@ def fit(
         raise ValueError(f"base must be a SetaArray, got {type(base).__name__}")
     fw = forward if isinstance(forward, Forward) else Forward(kind=forward)
     if n_blocks is not None or retract_steps is not None:
-        fw = Forward(fw.kind, n_blocks or fw.n_blocks, retract_steps or fw.retract_steps, fw.n_sim)
+        fw = replace(
+            fw, n_blocks=n_blocks or fw.n_blocks, retract_steps=retract_steps or fw.retract_steps
+        )
     if not isinstance(n_starts, int) or n_starts < 1:
         raise ValueError(f"n_starts = {n_starts!r} must be an integer ≥ 1")
+    if not 0 < diff_step < 0.5:
+        raise ValueError(f"diff_step = {diff_step!r} must be in (0, 0.5)")
     d = load_data(data)
     names, lo, hi = _check_free(base, free)
     y, err = d.observed()
-    span = hi - lo
+    k = len(names)
+    logs = (lo > 0) & (hi >= 10 * lo)
+    tlo = np.where(logs, np.log(np.where(logs, lo, 1.0)), lo)
+    thi = np.where(logs, np.log(np.where(logs, hi, 1.0)), hi)
+    tspan = thi - tlo
+
+    def to_param(u):
+        t = tlo + tspan * np.asarray(u, dtype=float)
+        return np.where(logs, np.exp(t), t)
+
     cache: dict = {}
 
     def model(u):
         key = tuple(np.round(u, 12))
         if key not in cache:
-            p, scale = _apply(base, names, lo + span * np.asarray(u))
+            p, scale = _apply(base, names, to_param(u))
             cache[key] = predict(d, p, stiffness_scale=scale, seed=seed, forward=fw)
         return cache[key]
 
     def resid(u):
         return (model(u) - y) / err
 
+    def jac(u):
+        r0 = resid(u)
+        J = np.empty((y.size, k))
+        for j in range(k):
+            step = diff_step if u[j] + diff_step <= 1.0 else -diff_step
+            v = np.array(u, dtype=float)
+            v[j] += step
+            J[:, j] = (resid(v) - r0) / step
+        return J
+
     runs = []
-    for u0 in _starts(len(names), n_starts):
+    for u0 in _starts(k, n_starts):
         r = least_squares(
             resid,
             u0,
+            jac=jac,
             bounds=(0.0, 1.0),
-            diff_step=diff_step,
             x_scale=1.0,
             max_nfev=max_nfev,
+            xtol=1e-4,
+            ftol=1e-6,
             method="trf",
         )
         runs.append(r)
     best = min(runs, key=lambda r: r.cost)
-    J = best.jac / span[None, :]  # d(weighted residual)/d(parameter)
-    dof = max(y.size - len(names), 1)
+    values = to_param(best.x)
+    # d(parameter)/du at the optimum: the covariance in the parameters' own units.
+    dpdu = np.where(logs, values * tspan, tspan)
+    J = jac(best.x) / dpdu[None, :]
+    span = hi - lo
+    dof = max(y.size - k, 1)
     chi2 = float(2 * best.cost)
     s2 = 1.0 if d.err_given else chi2 / dof
     JtJ = J.T @ J
-    colnorm = np.sqrt(np.diag(JtJ))
+    colnorm = np.sqrt(np.diag(JtJ) * dpdu**2)
     with np.errstate(divide="ignore", invalid="ignore"):
         cov = np.linalg.pinv(JtJ, rcond=1e-12) * s2
         se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
@@ -587,20 +634,19 @@ def fit(
     se = np.where(flat, np.inf, se)
     corr = np.where(np.isfinite(corr), corr, np.nan)
     np.fill_diagonal(corr, 1.0)
-    values = lo + span * best.x
     ident, notes = {}, {}
     for i, n in enumerate(names):
         why = []
         if flat[i]:
             why.append("the data do not depend on it (flat direction of the fit)")
-        elif se[i] > 0.25 * span[i]:
+        elif se[i] > 0.25 * span[i] or (logs[i] and se[i] > values[i]):
             why.append(
                 f"its standard error {se[i]:.3g} exceeds a quarter of its bound "
-                f"interval {span[i]:.3g}"
+                f"interval {span[i]:.3g} or its value"
             )
         others = [
             names[j]
-            for j in range(len(names))
+            for j in range(k)
             if j != i and np.isfinite(corr[i, j]) and abs(corr[i, j]) > 0.95
         ]
         if others:
@@ -640,10 +686,11 @@ def fit(
         "model": model_best.tolist(),
         "starts": [
             {
-                "start": (lo + span * u0).tolist(),
-                "value": (lo + span * r.x).tolist(),
+                "start": to_param(u0).tolist(),
+                "value": to_param(r.x).tolist(),
                 "cost": float(r.cost),
                 "nfev": int(r.nfev),
+                "njev": int(r.njev),
                 "status": int(r.status),
             }
             for u0, r in zip(_starts(len(names), n_starts), runs, strict=True)
@@ -653,7 +700,11 @@ def fit(
             "n_blocks": fw.n_blocks,
             "retract_steps": fw.retract_steps,
             "n_sim": fw.n_sim,
+            "dz_um": fw.dz,
+            "retract_dz_um": fw.retract_dz,
             "seed": seed,
+            "diff_step": diff_step,
+            "log_scaled": {n: bool(logs[i]) for i, n in enumerate(names)},
             "mechanics": base.mechanics,
             "seta_stiffness_scale": scale,
         },

@@ -70,7 +70,9 @@ __all__ = [
     "RodSetup",
     "rod_retract_travel",
     "preload_pull",
+    "preload_pulls",
     "representative_heights",
+    "quantile_heights",
     "plate_start_height",
     "single_seta",
 ]
@@ -1231,6 +1233,306 @@ def preload_pull(
     for i, ((P, Ft, d, rel, rel_d), s, wk) in enumerate(results):
         rec.record(i, P, Ft, d, s, wk, rel, rel_d)
     return rec.result(np.asarray(Zs), w, h)
+
+
+def _concat_states(states):
+    """One state holding the setae of several states one after another."""
+    out = type(states[0])(0)
+    for k in vars(out):
+        setattr(out, k, np.concatenate([getattr(s, k) for s in states]))
+    return out
+
+
+def _take_state(st, idx):
+    """The setae ``idx`` of a state (a copy)."""
+    out = type(st)(0)
+    for k in vars(out):
+        setattr(out, k, getattr(st, k)[idx].copy())
+    return out
+
+
+def preload_pulls(
+    params: SetaArray,
+    heights,
+    preloads,
+    *,
+    dz: float | None = None,
+    weights=None,
+    lateral: str = "coupled",
+    stiffness_scale: float = 1.0,
+    tangential_stiffness: float = math.inf,
+    max_steps: int = 200_000,
+    retract_steps: int | None = None,
+    gaussian: tuple | None = None,
+    refine_peak: bool = False,
+    retract_dz: float | None = None,
+) -> list[QuasiStaticResult]:
+    """:func:`preload_pull` for several preloads [µN] at once, with one shared approach.
+
+    The plate approaches once, on the same grid of steps ``dz`` as :func:`preload_pull`; each
+    time the total normal force passes the next preload, that turning point is found by
+    bisection from the state before the step (as :func:`preload_pull` does) and saved, and the
+    approach goes on from the unbisected step. The retracts from all saved states then run
+    together as one vectorized solve over (preloads × setae), each with the step
+    :func:`preload_pull` would use. Every result equals :func:`preload_pull`'s for that preload
+    (same plate heights, same equilibria; tested), in about the time of the deepest one.
+
+    Parameters as :func:`preload_pull` (no ``sample``: plain representative heights, e.g.
+    :func:`quantile_heights`); ``preloads`` [µN], each > 0, in any order.
+
+    ``gaussian = (sigma, edges)``: the heights are the slices of a Gaussian floor of RMS sigma
+    [µm] between the standard quantiles ``edges`` (n + 1, from −∞ to +∞;
+    ``quantile_heights(..., return_edges=True)``). During the approach each slice is then
+    represented by the part of it above the contact front h_t(Z) = Z − R − L sin θ (setae
+    below it have not touched): weight w·Pr(z > z_t | slice), height σ·E[z | z > z_t, slice]
+    (truncated normal), so a slice enters contact gradually instead of all at once and the
+    force, the turning point and the pull-off vary continuously with every parameter (a plain
+    grid jumps by one block whenever the block at the front changes). Slices wholly below the
+    front sit at their top edge. The plate starts where 0.1 seta is expected above the front.
+    The retract keeps each preload's slices as they were at its turning point.
+
+    ``refine_peak``: the tension of an array of blocks rises between releases and drops at
+    each, so its sampled maximum (the top of one tooth) moves by up to one plate step's rise
+    whenever a release crosses a step. With this option the step that ends the highest
+    sampled tooth is bisected (30 halvings, from the state before it) for the last plate height
+    before any of that copy's setae lets go, and that point is added to the curve: the
+    pull-off is then the tooth's exact top, continuous in the parameters.
+
+    ``retract_dz`` [µm]: a fixed retract step instead of max(dz, travel/retract_steps).
+
+    Returns
+    -------
+    One :class:`QuasiStaticResult` per preload, in the order given.
+    """
+    pre = np.atleast_1d(np.asarray(preloads, dtype=float))
+    if pre.size == 0 or not np.all(pre > 0):
+        raise ValueError(f"preloads = {preloads!r} must be one or more forces > 0 [µN]")
+    br = _setup(params, lateral, stiffness_scale, tangential_stiffness)
+    rod = isinstance(br, RodSetup)
+    step_fn = _rod_step if rod else _step
+    h = np.asarray(heights, dtype=float)
+    w = np.ones_like(h) if weights is None else np.asarray(weights, dtype=float)
+    h_of = None
+    if gaussian is not None:
+        from scipy.special import ndtr, ndtri
+
+        g_sigma, edges = float(gaussian[0]), np.asarray(gaussian[1], dtype=float)
+        if not (g_sigma > 0 and edges.size == h.size + 1 and np.all(np.diff(edges) > 0)):
+            raise ValueError(
+                f"gaussian = (sigma {g_sigma!r}, {edges.size} edges) needs sigma > 0 [µm] "
+                f"and {h.size + 1} increasing edges for {h.size} heights"
+            )
+        lo_e, hi_e = edges[:-1], edges[1:]
+        p_blk = ndtr(-lo_e) - ndtr(-hi_e)  # upper-tail form: accurate far out
+        z_of_touch = params.contact.R + params.seta.L * math.sin(params.seta.theta)
+
+        def h_of(Z):  # the part of every slice above the contact front at plate height Z
+            zt = (Z - z_of_touch) / g_sigma
+            lo = np.maximum(lo_e, zt)
+            p_in = np.clip(ndtr(-lo) - ndtr(-hi_e), 0.0, None)
+            dens = np.exp(-0.5 * lo * lo) - np.exp(-0.5 * np.minimum(hi_e, 1e3) ** 2)
+            ok = p_in > 1e-300
+            mean = np.where(ok, dens / math.sqrt(2 * math.pi) / np.where(ok, p_in, 1.0), hi_e)
+            mean = np.where(ok, np.clip(mean, lo, hi_e), np.minimum(hi_e, lo))
+            return g_sigma * mean, w * (p_in / p_blk)
+
+        n_total = float(np.sum(w))
+        z_top = float(ndtri(1.0 - 0.1 / max(n_total, 1.0)))
+        Z_start = g_sigma * z_top + z_of_touch + 0.5
+    else:
+        Z_start = plate_start_height(params, h, 0.5)
+
+    def at(Z):
+        return (h, w) if h_of is None else h_of(Z)
+
+    dz = abs(params.contact.snap_off_overlap) / 20 if dz is None else float(dz)
+    if not dz > 0:
+        raise ValueError(f"dz = {dz!r} must be > 0 [µm]")
+    order = np.argsort(pre, kind="stable")
+    st = _RodState(h.size) if rod else _State(h.size)
+    Z = Z_start
+    approach_Z, approach_F, approach_T, approach_n = [], [], [], []
+    turns = {}  # preload index → (Z, state, forces, n steps of approach before it)
+    k = 0
+    for _ in range(max_steps):
+        saved = st.copy()
+        hz, wz = at(Z)
+        res = step_fn(br, st, Z, hz)
+        F = float(np.sum(wz * res[0]))
+        while k < order.size and F >= pre[order[k]]:
+            target = pre[order[k]]
+            lo, hi, best = Z + dz, Z, (res, st.copy(), hz, wz)
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                trial = saved.copy()
+                hm, wm = at(mid)
+                r = step_fn(br, trial, mid, hm)
+                Fm = float(np.sum(wm * r[0]))
+                if Fm >= target:
+                    hi, best = mid, (r, trial, hm, wm)
+                    if Fm - target <= 1e-9 * target:
+                        break
+                else:
+                    lo = mid
+            turns[int(order[k])] = (hi, best[1], best[0], len(approach_Z), best[2], best[3])
+            k += 1
+        if k == order.size:
+            break
+        approach_Z.append(Z)
+        approach_F.append(F)
+        approach_T.append(float(np.sum(wz * res[1])))
+        approach_n.append(float(np.sum(wz[st.state != FREE])))
+        Z -= dz
+    else:
+        raise RuntimeError(
+            f"preload {pre[order[k]]} µN not reached within {max_steps} steps of "
+            f"{dz} µm; the floor may be out of reach"
+        )
+    # Retracts of every preload together: copy c of the setae starts from turn c.
+    n_up = retract_steps or 4000
+    K, n = pre.size, h.size
+    Zc = np.array([turns[c][0] for c in range(K)])
+    travel = rod_retract_travel if rod else retract_travel
+    top = h if h_of is None else np.array([Z_start - 0.5 - z_of_touch])
+    dzc = np.array([max(dz, travel(params, br, top, Zc[c]) / n_up) for c in range(K)])
+    if retract_dz is not None:
+        if not retract_dz > 0:
+            raise ValueError(f"retract_dz = {retract_dz!r} must be > 0 [µm]")
+        dzc[:] = float(retract_dz)
+    big = _concat_states([turns[c][1] for c in range(K)])
+    hh = np.concatenate([turns[c][4] for c in range(K)])
+    ww = np.concatenate([turns[c][5] for c in range(K)])
+    owner = np.repeat(np.arange(K), n)
+    rec = [{"Z": [Zc[c]], "F": [], "T": [], "n": [], "rel": []} for c in range(K)]
+    for c in range(K):
+        r, wt = turns[c][2], turns[c][5]
+        rec[c]["F"].append(float(np.sum(wt * r[0])))
+        rec[c]["T"].append(float(np.sum(wt * r[1])))
+        rec[c]["n"].append(float(np.sum(wt[turns[c][1].state != FREE])))
+        rec[c]["rel"] += [(0, int(j), float(r[4][j])) for j in np.flatnonzero(r[3])]
+    active = np.arange(K)
+    sel = np.arange(K * n)
+    best = {c: (rec[c]["F"][0], 0, _take_state(big, slice(c * n, (c + 1) * n))) for c in range(K)}
+    for t in range(1, n_up + 1):
+        Zs = Zc[owner[sel]] + t * dzc[owner[sel]]
+        P, Ft, _, rel, rel_d = step_fn(br, big, Zs, hh[sel])
+        att = big.state != FREE
+        wp, wf, wa = ww[sel] * P, ww[sel] * Ft, ww[sel] * att
+        done = []
+        for m, c in enumerate(active):
+            s = slice(m * n, (m + 1) * n)
+            rc = rec[c]
+            rc["Z"].append(Zc[c] + t * dzc[c])
+            rc["F"].append(float(wp[s].sum()))
+            rc["T"].append(float(wf[s].sum()))
+            rc["n"].append(float(wa[s].sum()))
+            for j in np.flatnonzero(rel[s]):
+                rc["rel"].append((t, int(j), float(rel_d[s][j])))
+            if refine_peak and rc["F"][-1] < best[c][0]:
+                best[c] = (rc["F"][-1], t, _take_state(big, np.arange(m * n, (m + 1) * n)))
+            if rc["Z"][-1] > Z_start and not att[s].any():
+                done.append(m)
+        if done:
+            keep = np.setdiff1d(np.arange(active.size), done)
+            if keep.size == 0:
+                break
+            rows = (keep[:, None] * n + np.arange(n)[None, :]).ravel()
+            big = _take_state(big, rows)
+            sel = sel[rows]
+            active = active[keep]
+    if refine_peak:
+        _refine_peaks(br, step_fn, rec, best, hh, ww, n, Zc, dzc)
+    out = []
+    for c in range(K):
+        na = turns[c][3]
+        rc = rec[c]
+        shift = na
+        out.append(
+            QuasiStaticResult(
+                np.array(approach_Z[:na] + rc["Z"]),
+                np.array(approach_F[:na] + rc["F"]),
+                np.array(approach_T[:na] + rc["T"]),
+                np.array(approach_n[:na] + rc["n"]),
+                turns[c][5],
+                turns[c][4],
+                {},
+                [(i + shift, j, d) for i, j, d in rc["rel"]],
+            )
+        )
+    return out
+
+
+def _refine_peaks(br, step_fn, rec, best, hh, ww, n, Zc, dzc, halvings: int = 30):
+    """Bisect, for every copy at once, the step after its highest sampled tension for the
+    last plate height before a release; insert that point into the copy's record."""
+    cs = [
+        c
+        for c, (_, t, _) in best.items()
+        if t + 1 < len(rec[c]["F"]) and any(i == t + 1 for i, _, _ in rec[c]["rel"])
+    ]
+    if not cs:
+        return
+    base = _concat_states([best[c][2] for c in cs])
+    rows = np.concatenate([np.arange(c * n, (c + 1) * n) for c in cs])
+    lo = np.array([Zc[c] + best[c][1] * dzc[c] for c in cs])
+    hi = lo + np.array([dzc[c] for c in cs])
+    keep = [None] * len(cs)
+    for _ in range(halvings):
+        mid = 0.5 * (lo + hi)
+        trial = base.copy()
+        P, Ft, _, rel, _ = step_fn(br, trial, np.repeat(mid, n), hh[rows])
+        for m in range(len(cs)):
+            s = slice(m * n, (m + 1) * n)
+            if rel[s].any():
+                hi[m] = mid[m]
+            else:
+                lo[m] = mid[m]
+                w = ww[rows][s]
+                att = trial.state[s] != FREE
+                keep[m] = (mid[m], (w * P[s]).sum(), (w * Ft[s]).sum(), w[att].sum())
+    for m, c in enumerate(cs):
+        if keep[m] is None:
+            continue
+        t = best[c][1]
+        rc = rec[c]
+        for key, v in zip(("Z", "F", "T", "n"), keep[m], strict=True):
+            rc[key].insert(t + 1, float(v))
+        rc["rel"] = [(i + (i > t), j, d) for i, j, d in rc["rel"]]
+
+
+def quantile_heights(n_setae: int, sigma: float, n_blocks: int = 256, *, return_edges=False):
+    """Representative floor heights on a fixed grid of Gaussian quantiles (eq 28) [µm].
+
+    The normal distribution of RMS ``sigma`` is cut into ``n_blocks`` slices of equal
+    probability at the quantiles z_j = Φ⁻¹(j/n_blocks); slice j is represented by its
+    conditional mean σ·n_blocks·(φ(z_j) − φ(z_{j+1})) (φ, Φ: standard normal density and
+    distribution) and stands for n_setae/n_blocks setae. No random draw: the heights are σ
+    times a fixed set of numbers, so a model built on them changes smoothly with σ and with
+    every other parameter (a random draw of blocks instead jumps when it is redrawn). This is
+    the expectation over floors of the array's floor-height distribution, which a 10⁷-seta
+    array samples to ~1e-3 of σ per block anyway.
+
+    Returns
+    -------
+    (heights [µm], weights [-]), each of length n_blocks (1 and [n_setae] when σ = 0); with
+    ``return_edges`` also the standard quantiles z_j (n_blocks + 1, −∞ … +∞; None when σ = 0)
+    for :func:`preload_pulls`'s ``gaussian``.
+    """
+    from scipy.special import ndtri
+
+    if not (isinstance(n_blocks, int | np.integer) and n_blocks >= 1):
+        raise ValueError(f"n_blocks = {n_blocks!r} must be an integer ≥ 1")
+    if not (n_setae >= 1 and sigma >= 0):
+        raise ValueError(f"n_setae = {n_setae!r} must be ≥ 1 and sigma = {sigma!r} ≥ 0 [µm]")
+    if sigma == 0 or n_blocks == 1:
+        out = np.zeros(1), np.array([float(n_setae)])
+        return out + (None,) if return_edges else out
+    z = ndtri(np.arange(n_blocks + 1) / n_blocks)  # −∞ … +∞
+    phi = np.exp(-0.5 * np.where(np.isfinite(z), z, 0.0) ** 2) / math.sqrt(2 * math.pi)
+    phi = np.where(np.isfinite(z), phi, 0.0)
+    means = n_blocks * (phi[:-1] - phi[1:])
+    out = sigma * means, np.full(n_blocks, float(n_setae) / n_blocks)
+    return out + (z,) if return_edges else out
 
 
 def representative_heights(

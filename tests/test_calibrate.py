@@ -8,11 +8,11 @@ import pytest
 from gecko_agents import calibrate as cal
 from gecko_agents.params import PAPER_ARRAY
 
-# A stubby seta (L = 5 µm, Ky ≈ 0.45 N/m), 400 setae in 10 blocks split exactly (linear seta).
+# A stubby seta (L = 5 µm, Ky ≈ 0.45 N/m), 400 setae on 16 Gaussian quantile blocks.
 BASE = PAPER_ARRAY.replace(**{"array.count": 400, "seta.L": 5.0, "floor.sigma": 0.5})
 PRELOADS = np.array([6.0, 40.0, 200.0, 2000.0])
 FREE = {"contact.w": (0.05, 0.3), "floor.sigma": (0.1, 1.5)}
-FAST = {"n_blocks": 10, "retract_steps": 200}
+FAST = {"n_blocks": 16}
 
 
 def _synthetic(truth, noise, seed):
@@ -27,21 +27,16 @@ def _synthetic(truth, noise, seed):
 def recovery():
     truth = {"contact.w": 0.12, "floor.sigma": 0.8}
     data = _synthetic(truth, 0.03, 1)
-    return truth, data, cal.fit(data, FREE, base=BASE, n_starts=2, max_nfev=12, **FAST)
+    return truth, data, cal.fit(data, FREE, base=BASE, n_starts=2, **FAST)
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="in this fast configuration (400 setae, 12 evaluations "
-    "per start) the fit stops short of the optimum; a 100-seta, 40-evaluation, "
-    "3-start fit recovered w and sigma within 1-1.5 standard errors but took 105 s",
-)
 def test_synthetic_recovery_within_two_standard_errors(recovery):
     truth, _, r = recovery
-    # The starts were the corners of the bounds, 2 % inside them.
+    # The starts were the corners of the bounds, 2 % inside them (σ's bounds span a factor
+    # 15, so it is fitted in log space: 2 % of its log interval).
     starts = [s["start"] for s in r.record["starts"]]
-    assert np.allclose(starts[0], [0.05 + 0.02 * 0.25, 0.1 + 0.02 * 1.4])
-    assert np.allclose(starts[1], [0.05 + 0.98 * 0.25, 0.1 + 0.98 * 1.4])
+    assert np.allclose(starts[0], [0.05 + 0.02 * 0.25, 0.1 * 15**0.02])
+    assert np.allclose(starts[1], [0.05 + 0.98 * 0.25, 0.1 * 15**0.98])
     for name, value in truth.items():
         assert r.identifiable[name], r.notes
         assert 0 < r.stderr[name] < 0.2 * value
@@ -49,6 +44,19 @@ def test_synthetic_recovery_within_two_standard_errors(recovery):
     assert r.correlation.shape == (2, 2) and np.allclose(np.diag(r.correlation), 1.0)
     # With stated uncertainties χ² = 2·cost should be of the order of the degrees of freedom.
     assert 2 * r.cost < 6 * max(PRELOADS.size - 2, 1)
+
+
+def test_forward_model_is_smooth_in_the_parameters():
+    # The quantile grid with its moving contact front and refined peak: the pull-off changes
+    # by a smooth amount for small steps of w and σ (no block redrawn, no step-sized jumps).
+    d = cal.load_data({"preload_uN": PRELOADS, "pull_off_uN": np.ones(PRELOADS.size)})
+    fw = cal.Forward(**FAST)
+    for name, c in (("contact.w", 0.12), ("floor.sigma", 0.8)):
+        x = c * (1 + np.linspace(-0.02, 0.02, 5))
+        y = np.array([cal.predict(d, BASE.replace(**{name: float(v)}), forward=fw) for v in x])
+        for k in range(PRELOADS.size):
+            quad = np.polyval(np.polyfit(x, y[:, k], 2), x)
+            assert np.max(np.abs(y[:, k] - quad)) < 3e-3 * y[:, k].mean(), (name, k, y[:, k])
 
 
 def test_save_writes_record_and_plots(recovery, tmp_path):
@@ -70,7 +78,7 @@ def test_unidentifiable_parameter_is_flagged():
         {"contact.w": (0.05, 0.3), "seta.density": (5e-4, 3e-3)},
         base=BASE,
         n_starts=1,
-        max_nfev=5,
+        max_nfev=3,
         **FAST,
     )
     assert not r.identifiable["seta.density"]

@@ -318,3 +318,52 @@ def test_rod_quasistatic_matches_the_agent_rod(n, sigma):
     assert len(q.releases) == len(h.detachments["seta"])
     if n > 1:  # rough floor: unequal load sharing keeps the pull-off below N·Fc
         assert q.pull_off < 0.95 * n * p.contact.pull_off_force
+
+
+@pytest.mark.parametrize("mechanics", ["linear", "rod"])
+def test_shared_approach_equals_one_preload_pull_per_preload(mechanics):
+    p = PAPER_ARRAY.replace(
+        mechanics=mechanics, **{"array.count": 400, "seta.L": 5.0, "floor.sigma": 0.5}
+    )
+    h, w = qs.quantile_heights(400, 0.5, 16)
+    pre = [2000.0, 6.0, 200.0, 40.0]
+    many = qs.preload_pulls(p, h, pre, weights=w, retract_steps=100)
+    for P, m in zip(pre, many, strict=True):
+        one = qs.preload_pull(p, h, P, weights=w, retract_steps=100)
+        assert_allclose(m.plate_y, one.plate_y, rtol=0, atol=1e-9)
+        scale = np.abs(one.force_normal).max()
+        assert_allclose(m.force_normal, one.force_normal, rtol=0, atol=1e-9 * scale)
+        assert [r[:2] for r in m.releases] == [r[:2] for r in one.releases]
+
+
+def test_quantile_heights_are_the_conditional_means_of_equal_probability_slices():
+    h, w, z = qs.quantile_heights(10**7, 2.0, 64, return_edges=True)
+    assert_allclose(w, 10**7 / 64)
+    assert np.all((h > 2.0 * z[:-1]) & (h < 2.0 * z[1:]))
+    # Oracle: sorted means of a large independent draw, in 64 equal groups.
+    s = np.sort(np.random.default_rng(3).standard_normal(64 * 20_000)) * 2.0
+    assert_allclose(h, s.reshape(64, -1).mean(axis=1), atol=0.02)
+    assert_allclose(np.sum(w * h) / np.sum(w), 0.0, atol=1e-12)
+    assert qs.quantile_heights(5, 0.0, 8)[0].tolist() == [0.0]
+
+
+def test_moving_front_makes_the_pull_off_continuous_and_peak_refinement_exact():
+    # Stepping the preload finely: with the front the pull-off varies smoothly; a plain grid
+    # of the same blocks jumps as whole blocks enter contact.
+    p = PAPER_ARRAY.replace(**{"array.count": 400, "seta.L": 5.0, "floor.sigma": 0.5})
+    h, w, z = qs.quantile_heights(400, 0.5, 8, return_edges=True)
+    pre = np.geomspace(2.0, 200.0, 25)
+    g = (0.5, z)
+    smooth = [r.pull_off for r in qs.preload_pulls(p, h, pre, weights=w, gaussian=g)]
+    plain = [r.pull_off for r in qs.preload_pulls(p, h, pre, weights=w)]
+    # A whole block (50 setae ≈ 10 % of the pull-off) enters contact somewhere in this range.
+    assert np.max(np.abs(np.diff(plain, 2))) > 0.05 * np.mean(plain)
+    assert np.max(np.abs(np.diff(smooth, 2))) < 0.005 * np.mean(smooth)
+    # The refined peak is at least the sampled one, and no setae let go before it.
+    r0, r1 = (
+        qs.preload_pulls(p, h, [22.0], weights=w, gaussian=(0.5, z), refine_peak=f)[0]
+        for f in (False, True)
+    )
+    assert r1.pull_off >= r0.pull_off
+    i = int(np.argmin(r1.force_normal))
+    assert all(k > i for k, _, _ in r1.releases if k >= r1.turn_index)
