@@ -32,6 +32,7 @@ SCENARIOS = (
     "fig11b_roughness",
     "directional_adhesion",
 )
+LONGEST = ("fig10_array_pulloff", "fig11b_roughness")  # started first when run in parallel
 
 
 def conclusion_rows(quick: bool) -> list[dict]:
@@ -112,25 +113,66 @@ def markdown(rows: list[dict], timings: dict, quick: bool) -> str:
     return "\n".join(lines)
 
 
-def main(argv=None) -> dict:
-    args = parse_args(__doc__, argv)
-    base = args.out if args.out is not None else ROOT / "renders"
-    base.mkdir(parents=True, exist_ok=True)
+def _run_scenario(name: str, sub: list[str]) -> tuple[dict, float]:
+    """Run one scenario's main (in this or a worker process); (its result, wall time [s])."""
     here = str(Path(__file__).resolve().parent)
     if here not in sys.path:
         sys.path.insert(0, here)
+    t0 = time.perf_counter()
+    res = importlib.import_module(name).main(sub)
+    return res, time.perf_counter() - t0
+
+
+def _add_jobs(parser) -> None:
+    parser.add_argument(
+        "--jobs", type=int, default=2,
+        help="scenarios run at once in separate processes (default 2; 1 runs them in order "
+        "in this process)",
+    )  # fmt: skip
+
+
+def run_scenarios(base: Path, args) -> dict:
+    """Every scenario of :data:`SCENARIOS`, ``args.jobs`` at a time (longest first, so the
+    long fig10 overlaps the rest); {name: (result, wall time)} in :data:`SCENARIOS` order."""
+    subs = {
+        name: ["--out", str(base / name)]
+        + (["--quick"] if args.quick else [])
+        + (["--no-progress"] if args.no_progress or args.jobs > 1 else [])
+        for name in SCENARIOS
+    }
+    done = {}
+    if args.jobs <= 1:
+        for i, name in enumerate(SCENARIOS, 1):
+            print(f"[{i}/{len(SCENARIOS)}] {name} …", flush=True)
+            done[name] = _run_scenario(name, subs[name])
+            print(f"      done in {done[name][1]:.0f} s", flush=True)
+        return done
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    order = sorted(SCENARIOS, key=lambda n: n not in LONGEST)
+    ctx = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=args.jobs, mp_context=ctx) as pool:
+        futures = {pool.submit(_run_scenario, n, subs[n]): n for n in order}
+        for k, fut in enumerate(as_completed(futures), 1):
+            name = futures[fut]
+            done[name] = fut.result()
+            print(f"[{k}/{len(SCENARIOS)}] {name} done in {done[name][1]:.0f} s", flush=True)
+    return {n: done[n] for n in SCENARIOS}
+
+
+def main(argv=None) -> dict:
+    args = parse_args(__doc__, argv, _add_jobs)
+    if args.jobs < 1:
+        raise SystemExit(f"--jobs = {args.jobs} must be ≥ 1")
+    base = args.out if args.out is not None else ROOT / "renders"
+    base.mkdir(parents=True, exist_ok=True)
     rows, timings, results = [], {}, {}
     t_all = time.perf_counter()
-    for i, name in enumerate(SCENARIOS, 1):
-        print(f"[{i}/{len(SCENARIOS)}] {name} …", flush=True)
-        t0 = time.perf_counter()
-        sub = ["--out", str(base / name)] + (["--quick"] if args.quick else [])
-        sub += ["--no-progress"] if args.no_progress else []
-        res = importlib.import_module(name).main(sub)
-        timings[name] = time.perf_counter() - t0
+    for name, (res, wall) in run_scenarios(base, args).items():
+        timings[name] = wall
         rows += res.get("claims", [])
         results[name] = {k: v for k, v in res.items() if k != "claims"}
-        print(f"      done in {timings[name]:.0f} s", flush=True)
     t0 = time.perf_counter()
     rows += conclusion_rows(args.quick) + [conclusion1_row()]
     timings["conclusions"] = time.perf_counter() - t0
