@@ -36,9 +36,9 @@ from . import beam, jkr
 
 MECHANICS = ("linear", "rod")
 DETACHMENT_RULES = ("fold", "delta_s", "load_control")
-TIPS = ("sphere", "hertz")
+TIPS = ("sphere", "hertz", "spatula")
 """Tip contact laws (:data:`gecko_agents.contact.TIP_LAWS`): the adhesive JKR sphere of the
-paper, or a Hertz sphere without adhesion."""
+paper, a Hertz sphere without adhesion, or a thin-film spatula that peels (:class:`Spatula`)."""
 FRICTION_LAWS = ("adhesive", "paper")
 FLOOR_KINDS = ("gaussian", "self_affine")
 
@@ -334,13 +334,45 @@ class Friction:
 
 
 @dataclass(frozen=True)
+class Spatula:
+    """A thin-film spatula tip (``tip = "spatula"``, :class:`gecko_agents.contact.SpatulaTip`):
+    an elastic film of width b and thickness h hanging from the tip centre and attached to the
+    floor over a length ℓ, peeling by Kendall's energy balance (Kendall 1975, J Phys D 8:1449)
+    with the pre-tension of Chen, Wu & Gao (2009, J R Soc Interface 6:529). Its work of adhesion
+    is the contact's w (:class:`Contact`).
+
+    Attributes
+    ----------
+    b : film width [µm]; default 3.0 µm = the seta's diameter 2r (Table 1: the film is as wide
+        as the seta it ends).
+    h : film thickness [µm]; default 1.0 µm, an assumption (no source gives the thickness of a
+        spatula on this seta; a third of its width). b·h·E_f sets how far the film stretches.
+    E_f : film modulus [MPa]; default 1.413 MPa, the paper's polyurethane (Table 1's E).
+    length : attached length ℓ0 at first contact [µm]; default 3.0 µm, an assumption (a square
+        pad b × b).
+    """
+
+    b: float = 3.0
+    h: float = 1.0
+    E_f: float = 1.413
+    length: float = 3.0
+
+    def __post_init__(self):
+        _check(self, "b", *LENGTH_RANGE)
+        _check(self, "h", *LENGTH_RANGE)
+        _check(self, "E_f", *MODULUS_RANGE)
+        _check(self, "length", *LENGTH_RANGE)
+
+
+@dataclass(frozen=True)
 class SetaArray:
     """Everything that defines a simulated array.
 
     ``mechanics`` is ``"linear"`` (the paper's 2×2 beam stiffness, eq 20–21) or ``"rod"``
     (large rotation: a rigid rod on a rotary bending spring plus an axial spring). ``tip`` is
     the tip's contact law, one of :data:`TIPS` (:mod:`gecko_agents.contact`): ``"sphere"``
-    (JKR, eq 1–15; the default) or ``"hertz"`` (the same sphere without adhesion).
+    (JKR, eq 1–15; the default), ``"hertz"`` (the same sphere without adhesion) or
+    ``"spatula"`` (a peeling thin film, parameters in ``spatula``, :class:`Spatula`).
     """
 
     contact: Contact = field(default_factory=Contact)
@@ -350,6 +382,7 @@ class SetaArray:
     friction: Friction = field(default_factory=Friction)
     mechanics: str = "linear"
     tip: str = "sphere"
+    spatula: Spatula = field(default_factory=Spatula)
 
     def __post_init__(self):
         for name, cls in _GROUPS.items():
@@ -402,7 +435,7 @@ class SetaArray:
                     raise ValueError(f"unknown parameter {key!r}")
                 top[part] = value
                 continue
-            if part not in {"contact", "seta", "array", "floor", "friction"}:
+            if part not in {"contact", "seta", "array", "floor", "friction", "spatula"}:
                 raise ValueError(f"unknown parameter group {part!r} in {key!r}")
             sub = getattr(self, part)
             if name not in {f.name for f in dataclasses.fields(sub)}:
@@ -427,10 +460,18 @@ class SetaArray:
             friction=Friction(**d["friction"]),
             mechanics=d["mechanics"],
             tip=d.get("tip", "sphere"),
+            spatula=Spatula(**d.get("spatula", {})),
         )
 
 
-_GROUPS = {"contact": Contact, "seta": Seta, "array": Array, "floor": Floor, "friction": Friction}
+_GROUPS = {
+    "contact": Contact,
+    "seta": Seta,
+    "array": Array,
+    "floor": Floor,
+    "friction": Friction,
+    "spatula": Spatula,
+}
 
 
 def check_seed(seed, name: str = "seed") -> int:
