@@ -100,7 +100,6 @@ class World:
         self.plate.position = (0.0, self.plate_start)
         space.add(self.plate)
         self.sensor_radius = reach + 0.5
-        self._build_floor(p, touch_x)
         if detection == "lazy" and not self.pads:
             raise ValueError(
                 "detection='lazy' needs a pad floor (floor.correlation_length = 0); "
@@ -112,6 +111,7 @@ class World:
         self.detection = detection
         self._quiet = False  # ignore the separate pymunk fires when lazy detection removes
         self.geometric_flips = 0  # flags lazy detection changed without a pymunk event
+        self._build_floor(p, touch_x)
         self._build_tips(mass)
         self.pairs: set[tuple[int, int]] = set()
         self.pairs_dirty = True
@@ -149,7 +149,8 @@ class World:
                 prev = tuple(seg_a[i - 1]) if i > 0 else tuple(a)
                 nxt = tuple(seg_b[i + 1]) if i + 1 < len(seg_a) else tuple(b)
                 seg.set_neighbors(prev, nxt)
-            space.add(seg)
+            if not self.lazy:  # lazy: a pad joins the space with its tip's sensor
+                space.add(seg)
             self._seg_index[seg] = i
 
     def _build_tips(self, mass):
@@ -245,7 +246,8 @@ class World:
         for i in far:
             seg, c, h = self._pad_shapes[i], float(x[i]), float(self.h[i])
             seg.unsafe_set_endpoints((c - half, h), (c + half, h))
-            self.space.reindex_shape(seg)
+            if not self.lazy or self.in_space[i]:
+                self.space.reindex_shape(seg)
             self.pad_centre[i] = c
 
     # ------------------------------------------------------------------ batch I/O
@@ -352,17 +354,19 @@ class World:
         np.less_equal(d, m, out=want)
         cand, have = s.candidate, self.in_space
         if not np.array_equal(want, have):
-            space, sensors = self.space, self.sensors
+            space, sensors, pads = self.space, self.sensors, self._pad_shapes
             leave = np.flatnonzero(have & ~want)
             join = np.flatnonzero(want & ~have)
             if leave.size:
                 self._quiet = True
                 try:
                     space.remove(*(sensors[i] for i in leave))
+                    space.remove(*(pads[i] for i in leave))
                 finally:
                     self._quiet = False
             if join.size:
                 cand[join] = False  # a begin in this step makes it True
+                space.add(*(pads[i] for i in join))
                 space.add(*(sensors[i] for i in join))
             np.copyto(have, want)
         free = ~want
