@@ -464,6 +464,8 @@ def invariant_violations(
     out = []
     law = contact_law(h.params)
     Fc = math.inf if law.rate_dependent else law.pull_off_force
+    if not math.isnan(law.max_tension):  # the law's own bound (a film holds many w·b)
+        Fc = law.max_tension
     if energy_rtol is None:
         energy_rtol = ENERGY_RTOL * (2 if law.rate_dependent else 1)
     for name, col in h.scalars.items():

@@ -155,7 +155,10 @@ class NumpyStep:
 
     # ------------------------------------------------------------------ contact
     def contact_energy(self, idx):
-        """Energy stored in the contacts of tips ``idx`` [pJ]: tip law + stick spring."""
+        """Energy stored in the contacts of tips ``idx`` [pJ]: tip law + stick spring (a
+        tangential law keeps its own in ``state.uc``)."""
+        if self.law.tangential:
+            return self.s.uc[idx]
         xi = self.s.xi[idx]
         return self.law.energy(self.s.a[idx], self.s.delta[idx]) + 0.5 * self.c.k_t * xi * xi
 
@@ -203,6 +206,11 @@ class NumpyStep:
         adds the contact force to ``state.F``; returns it (fx, fy). Tangent t = (n_y, −n_x).
         """
         s, c, law = self.s, self.c, self.law
+        if law.tangential:
+            raise ValueError(
+                f"tip = {law.name!r} needs a pad floor (floor.correlation_length = 0) and "
+                "contact='batch'"
+            )
         qx, qy, nx, ny, delta = self.geometry(ps, x, y)
         att0 = s.attached[tips]
         new = ~att0 & (delta >= law.attach_overlap)
@@ -290,6 +298,8 @@ class NumpyStep:
         The same physics as :meth:`contact` with n = (0, 1), t = (1, 0), q = (x, h): works on
         whole rows when every tip is attached and gathers the attached tips otherwise."""
         s, c, law = self.s, self.c, self.law
+        if law.tangential:
+            return self.contact_pads_tangential()
         n = s.n
         h = self.world.h
         x, y = s.xy
@@ -390,6 +400,58 @@ class NumpyStep:
         self.any_contact_damping = True
         if new is not None:  # attachment starts the branch at U = 0: book the difference
             self.diss -= float(np.sum(self.contact_energy(np.flatnonzero(new))))
+
+    def contact_pads_tangential(self):
+        """Pad floor, a law that takes the tip's tangential position (the spatula): per seta,
+        the law's ``step_scalar`` at the tip's offset from its front and height above its pad,
+        in the order of :func:`gecko_agents.loop.pad_loop` (which compiles the same loop).
+
+        Attachment at δ ≥ 0 puts the front under the tip (ℓ = ℓ0, s0 = h, no pre-tension); a tip
+        lets go when its film has peeled off (ℓ = 0), past δ_detach or without a candidate
+        floor, and its stored energy is dissipated. Contact damping acts on attached tips."""
+        s, c, law = self.s, self.c, self.law
+        h = self.world.h
+        x, y = s.xy
+        d = s.delta
+        np.subtract(y, h, out=d)
+        np.subtract(c.R, d, out=d)  # δ = R − (y − h)
+        cand = s.candidate_step
+        np.copyto(cand, s.candidate)
+        att = s.attached
+        lost = np.flatnonzero(att & ~cand)
+        gone = np.flatnonzero(att & cand & (d < c.detach))
+        if lost.size or gone.size:
+            self.detach(lost, gone, d)
+        new = ~att & cand & (d >= law.attach_overlap)
+        if new.any():
+            att |= new
+            s.anchor[0, new], s.anchor[1, new] = x[new], h[new]
+            s.a[new], s.s0[new], s.p0[new], s.uc[new] = law.ell0, law.s_attach, 0.0, 0.0
+        Fdmp = s.F_damp_contact
+        Fdmp.fill(0.0)
+        self.any_contact_damping = True
+        k = law.constants
+        step = law.step_scalar
+        peeled = []
+        for i in np.flatnonzero(att):
+            P, T, shift, ell, p0, s0, U, diss, slid = step(
+                x[i] - s.anchor[0, i], y[i] - h[i], s.a[i], s.p0[i], s.s0[i], k
+            )
+            # Attachment starts the contact at U = 0: book the energy it starts with.
+            self.diss += -U if new[i] else diss
+            s.anchor[0, i] += shift
+            s.a[i], s.p0[i], s.s0[i], s.uc[i] = ell, p0, s0, U
+            if ell <= 0.0:
+                peeled.append(i)
+                continue
+            dtg = -c.c_t * s.pv[2, i]
+            dn = -c.c_n * s.pv[3, i]
+            s.F[0, i] += T + dtg
+            s.F[1, i] += P + dn
+            Fdmp[0, i], Fdmp[1, i] = dtg, dn
+            s.P[i], s.Ft[i], s.slip[i] = P, T, slid > 0.0
+        if peeled:
+            self.detach(np.zeros(0, np.int64), np.array(peeled), d)
 
     # ------------------------------------------------------------------ after the forces
     def bookkeeping(self, vpx, vpy):

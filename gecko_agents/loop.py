@@ -27,8 +27,11 @@ from .state import (
     FX,
     FY,
     JUMP,
+    P0,
     PX,
     PY,
+    S0,
+    UC,
     UX,
     UY,
     VX,
@@ -55,6 +58,8 @@ def pad_loop(law_type, compiled: bool):
     constants. ``compiled``: numba (None if numba is missing) or the interpreter. Built once
     per law and mode.
     """
+    if getattr(law_type, "tangential", False):
+        return _tangential_loop(law_type, compiled)
     radius, force, energy = law_type.radius_scalar, law_type.force_scalar, law_type.energy_scalar
     rate = law_type.rate_dependent  # a compile-time constant of the loop
     if compiled:
@@ -228,6 +233,151 @@ def pad_loop(law_type, compiled: bool):
         res[3], res[4], res[5], res[6] = nl, ng, max_u2, drift
 
     # (A closure is compiled anew in every process, ~2 s: numba cannot cache it on disk.)
+    return numba.njit(error_model="numpy")(loop) if compiled else loop
+
+
+def _tangential_loop(law_type, compiled: bool):
+    """:func:`pad_loop` for a law that takes the tip's tangential position (``step_scalar``,
+    the spatula): the springs as the sphere's loop, the contact as
+    :meth:`gecko_agents.kernels.NumpyStep.contact_pads_tangential`, in the same order."""
+    step = law_type.step_scalar
+    if compiled:
+        try:
+            import numba
+        except ImportError:
+            return None
+        step = numba.njit(error_model="numpy")(step)
+
+    def loop(
+        data,
+        rows,
+        out,
+        c,
+        k,
+        pnx,
+        pny,
+        vpx,
+        vpy,
+        vref,
+        has_ext,
+        h,
+        cand,
+        attached,
+        slip,
+        S,
+        ext,
+        pad_c,
+        rest,
+        root,
+        lost_idx,
+        gone_idx,
+        res,
+    ):
+        n = S.shape[1]
+        dt, rod, L, Ka, kphi, theta = c.dt, c.rod, c.L, c.Ka, c.k_phi, c.theta
+        k00, k01, k10, k11 = c.k00, c.k01, c.k10, c.k11
+        cs, R, dc, cn, ct = c.c_seta, c.R, c.detach, c.c_n, c.c_t
+        hm = c.hm
+        ell0 = k[5]
+        fast2, slow2 = 4.0 * vref * vref, vref * vref
+        opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
+        nl = ng = 0
+        for i in range(n):
+            r = rows[i]
+            px, py, vx, vy = data[r, 0], data[r, 1], data[r, 2], data[r, 3]
+            S[PX, i], S[PY, i], S[VX, i], S[VY, i] = px, py, vx, vy
+            x = vx * dt + px
+            y = vy * dt + py
+            S[X, i], S[Y, i] = x, y
+            if rod:
+                dx = (x - pnx) - root[0, i]
+                dy = (y - pny) - root[1, i]
+                ell = math.sqrt(dx * dx + dy * dy)
+                dphi = math.atan2(dy, dx) + (theta + math.pi)
+                dphi = dphi % (2.0 * math.pi) - math.pi
+                t0 = (ell - L) * -Ka / ell
+                t1 = dphi * kphi / ell / ell
+                fx = t0 * dx + t1 * dy
+                fy = t0 * dy - t1 * dx
+            else:
+                ux = (x - pnx) - rest[0, i]
+                uy = (y - pny) - rest[1, i]
+                S[UX, i], S[UY, i] = ux, uy
+                fx = ux * k00 + uy * k01
+                fy = ux * k10 + uy * k11
+                u2 = ux * ux + uy * uy
+                if u2 > max_u2:
+                    max_u2 = u2
+            fdx = (vx - vpx) * -cs
+            fdy = (vy - vpy) * -cs
+            S[FDX, i], S[FDY, i] = fdx, fdy
+            sfdx += fdx
+            sfdy += fdy
+            fx += fdx
+            fy += fdy
+            opx += fx
+            opy += fy
+            if has_ext:
+                fx += ext[i, 0]
+                fy += ext[i, 1]
+            d = R - (y - h[i])
+            S[DELTA, i] = d
+            dmpx = dmpy = 0.0
+            new = False
+            if attached[i]:
+                if not cand[i]:
+                    lost_idx[nl] = i
+                    nl += 1
+                    attached[i] = False
+                    diss += S[UC, i]
+                elif d < dc:
+                    gone_idx[ng] = i
+                    ng += 1
+                    attached[i] = False
+                    diss += S[UC, i]
+            elif cand[i] and d >= 0.0:
+                attached[i] = True
+                new = True
+                S[AX, i], S[AY, i] = x, h[i]
+                S[AC, i], S[S0, i], S[P0, i], S[UC, i] = ell0, k[12], 0.0, 0.0
+            if attached[i]:
+                P, T, shift, ell, p0, s0, U, de, slid = step(
+                    x - S[AX, i], y - h[i], S[AC, i], S[P0, i], S[S0, i], k
+                )
+                diss += -U if new else de
+                S[AX, i] += shift
+                S[AC, i], S[P0, i], S[S0, i], S[UC, i] = ell, p0, s0, U
+                if ell <= 0.0:  # the film has peeled off: what it stored is dissipated
+                    gone_idx[ng] = i
+                    ng += 1
+                    attached[i] = False
+                    diss += U
+                else:
+                    dtg = vx * -ct
+                    dn = vy * -cn
+                    fx += T + dtg
+                    fy += P + dn
+                    dmpx, dmpy = dtg, dn
+                    S[PN, i], S[FT, i] = P, T
+                    slip[i] = slid > 0.0
+                    s2 = vx * vx + vy * vy
+                    if s2 > fast2:
+                        if math.isnan(S[JUMP, i]):
+                            S[JUMP, i] = d
+                    elif s2 < slow2:
+                        S[JUMP, i] = np.nan
+            S[FX, i], S[FY, i], S[DMPX, i], S[DMPY, i] = fx, fy, dmpx, dmpy
+            out[r, 0], out[r, 1] = fx, fy
+            vmx = fx * hm + vx
+            vmy = fy * hm + vy
+            dd += (fdx + dmpx) * vmx + (fdy + dmpy) * vmy
+            dr = abs(x - pad_c[i])
+            if dr > drift:
+                drift = dr
+        res[0], res[1] = opx, opy
+        res[2] = diss - (dd - vpx * sfdx - vpy * sfdy) * dt
+        res[3], res[4], res[5], res[6] = nl, ng, max_u2, drift
+
     return numba.njit(error_model="numpy")(loop) if compiled else loop
 
 

@@ -35,12 +35,16 @@ ROWS = (
     "uy",
     "fdx",
     "fdy",
+    "s0",
+    "p0",
+    "uc",
 )
 """Row names of the block, in order (see :class:`SetaState` for their meaning)."""
 
-(PX, PY, VX, VY, X, Y, FX, FY, DMPX, DMPY, AX, AY, AC, XI, P, FT, DELTA, JUMP, UX, UY, FDX, FDY) = (
-    range(len(ROWS))
-)
+(
+    PX, PY, VX, VY, X, Y, FX, FY, DMPX, DMPY, AX, AY, AC, XI, P, FT, DELTA, JUMP, UX, UY, FDX, FDY,
+    S0, P0, UC,
+) = range(len(ROWS))  # fmt: skip
 
 
 class SetaState:
@@ -60,7 +64,10 @@ class SetaState:
     * ``jump``: overlap at which an attached tip started to run away from its equilibrium
       [µm] (NaN while it follows it);
     * ``u`` (2, N): linear seta's tip displacement from rest, or the rod's root-to-tip vector
-      [µm].
+      [µm];
+    * film tips (:class:`gecko_agents.contact.SpatulaTip`): ``anchor`` is the peel front,
+      ``a`` the attached length ℓ [µm], ``s0`` the free film's unstretched length [µm], ``p0``
+      the pre-tension of the attached film [µN], ``uc`` the energy the contact stores [pJ].
 
     Flags (bool (N,)): ``attached``, ``slip`` (attached and sliding), ``candidate`` (pymunk
     reports the tip's sensor touching its floor), ``candidate_step`` (the copy a step used).
@@ -78,6 +85,7 @@ class SetaState:
         self.delta, self.jump = S[DELTA], S[JUMP]
         self.u = S[UX : UY + 1]
         self.F_damp_seta = S[FDX : FDY + 1]
+        self.s0, self.p0, self.uc = S[S0], S[P0], S[UC]
         self.jump[:] = np.nan
         self.delta[:] = np.nan
         self.attached = np.zeros(n, dtype=bool)
