@@ -60,7 +60,7 @@ __all__ = [
 ]
 
 KERNELS = ("auto", "numpy", "numba", "python")
-_MAX_N = 200_000  # 10⁵ setae take ~0.5 GB (python -m gecko_agents.bench)
+_MAX_N = 200_000  # 10⁵ setae: ~0.7 GB peak RSS (python -m gecko_agents.bench)
 _PYTHON_MAX_N = 6  # below this many setae the interpreted loop beats numpy's call overhead
 
 
@@ -80,7 +80,7 @@ def _checked_arguments(params, n_sim, contact, record_every, kernel, floor_profi
     n = params.array.count if n_sim is None else n_sim
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= _MAX_N:
         raise ValueError(
-            f"n_sim = {n!r} must be an integer in [1, {_MAX_N}] (about 2 GB of pymunk bodies "
+            f"n_sim = {n!r} must be an integer in [1, {_MAX_N}] (~1.5 GB of pymunk bodies "
             "at the top); simulate a patch of a large array with n_sim (the quasi-static "
             "solver does 10⁷)"
         )
