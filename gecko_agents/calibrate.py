@@ -242,8 +242,8 @@ class Forward:
     n_sim : agent patch size.
     dz : approach step [µm] (the turning point is bisected exactly; the result does not depend
         on it, measured: 0.0072 and 0.02 µm give the same pull-offs to 5 digits).
-    retract_dz : retract step [µm] (None: travel/retract_steps); the peak is refined by
-        bisection (``preload_pulls(refine_peak=True)``).
+    retract_dz : largest retract step [µm] (the step is travel/retract_steps or this, the
+        smaller); the peak is refined by bisection (``preload_pulls(refine_peak=True)``).
 
     The defaults are set by the forward model's noise (see :func:`fit`).
     """
@@ -253,7 +253,7 @@ class Forward:
     retract_steps: int = 400
     n_sim: int = 20
     dz: float = 0.05
-    retract_dz: float | None = 0.1
+    retract_dz: float | None = 0.25
 
     def __post_init__(self):
         if self.kind not in ("quasistatic", "agent"):

@@ -1298,7 +1298,8 @@ def preload_pulls(
     before any of that copy's setae lets go, and that point is added to the curve: the
     pull-off is then the tooth's exact top, continuous in the parameters.
 
-    ``retract_dz`` [µm]: a fixed retract step instead of max(dz, travel/retract_steps).
+    ``retract_dz`` [µm]: an upper bound on the retract step max(dz, travel/retract_steps); the
+    retract then goes on until every seta has let go (up to 10× the estimated travel).
 
     Returns
     -------
@@ -1361,19 +1362,34 @@ def preload_pulls(
         F = float(np.sum(wz * res[0]))
         while k < order.size and F >= pre[order[k]]:
             target = pre[order[k]]
+            # Illinois regula falsi on the plate height between the last two steps (the force
+            # grows as the plate descends), from the state before the step; bisection where
+            # the secant leaves the bracket.
             lo, hi, best = Z + dz, Z, (res, st.copy(), hz, wz)
+            f_lo = (approach_F[-1] if approach_F else 0.0) - target
+            f_hi, side = F - target, 0
+            gap = f_hi  # the true excess force at hi (f_hi is halved by the Illinois rule)
             for _ in range(60):
-                mid = 0.5 * (lo + hi)
+                if gap <= 1e-9 * target:
+                    break
+                mid = hi - f_hi * (hi - lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
+                if not hi < mid < lo:
+                    mid = 0.5 * (lo + hi)
                 trial = saved.copy()
                 hm, wm = at(mid)
                 r = step_fn(br, trial, mid, hm)
                 Fm = float(np.sum(wm * r[0]))
                 if Fm >= target:
-                    hi, best = mid, (r, trial, hm, wm)
-                    if Fm - target <= 1e-9 * target:
-                        break
+                    hi, f_hi, best = mid, Fm - target, (r, trial, hm, wm)
+                    gap = f_hi
+                    if side == 1:
+                        f_lo *= 0.5
+                    side = 1
                 else:
-                    lo = mid
+                    lo, f_lo = mid, Fm - target
+                    if side == -1:
+                        f_hi *= 0.5
+                    side = -1
             turns[int(order[k])] = (hi, best[1], best[0], len(approach_Z), best[2], best[3])
             k += 1
         if k == order.size:
@@ -1394,11 +1410,17 @@ def preload_pulls(
     Zc = np.array([turns[c][0] for c in range(K)])
     travel = rod_retract_travel if rod else retract_travel
     top = h if h_of is None else np.array([Z_start - 0.5 - z_of_touch])
-    dzc = np.array([max(dz, travel(params, br, top, Zc[c]) / n_up) for c in range(K)])
+    trav = np.array([travel(params, br, top, Zc[c]) for c in range(K)])
+    dzc = np.maximum(dz, trav / n_up)
+    n_c = np.full(K, n_up)
     if retract_dz is not None:
         if not retract_dz > 0:
             raise ValueError(f"retract_dz = {retract_dz!r} must be > 0 [µm]")
-        dzc[:] = float(retract_dz)
+        # A step of at most retract_dz; a rod can swing past upright and hold on beyond the
+        # estimated travel, so a copy goes on (up to 10× the estimate) until all have let go.
+        dzc = np.minimum(dzc, float(retract_dz))
+        n_c = (10 * np.maximum(n_up, np.ceil(trav / dzc))).astype(int)
+        n_up = int(n_c.max())
     big = _concat_states([turns[c][1] for c in range(K)])
     hh = np.concatenate([turns[c][4] for c in range(K)])
     ww = np.concatenate([turns[c][5] for c in range(K)])
@@ -1430,7 +1452,7 @@ def preload_pulls(
                 rc["rel"].append((t, int(j), float(rel_d[s][j])))
             if refine_peak and rc["F"][-1] < best[c][0]:
                 best[c] = (rc["F"][-1], t, _take_state(big, np.arange(m * n, (m + 1) * n)))
-            if rc["Z"][-1] > Z_start and not att[s].any():
+            if t >= n_c[c] or (rc["Z"][-1] > Z_start and not att[s].any()):
                 done.append(m)
         if done:
             keep = np.setdiff1d(np.arange(active.size), done)

@@ -330,9 +330,9 @@ def test_shared_approach_equals_one_preload_pull_per_preload(mechanics):
     many = qs.preload_pulls(p, h, pre, weights=w, retract_steps=100)
     for P, m in zip(pre, many, strict=True):
         one = qs.preload_pull(p, h, P, weights=w, retract_steps=100)
-        assert_allclose(m.plate_y, one.plate_y, rtol=0, atol=1e-9)
+        assert_allclose(m.plate_y, one.plate_y, rtol=0, atol=1e-6)
         scale = np.abs(one.force_normal).max()
-        assert_allclose(m.force_normal, one.force_normal, rtol=0, atol=1e-9 * scale)
+        assert_allclose(m.force_normal, one.force_normal, rtol=0, atol=1e-6 * scale)
         assert [r[:2] for r in m.releases] == [r[:2] for r in one.releases]
 
 
