@@ -325,3 +325,11 @@ def test_one_sign_convention_for_displacement_in_plots_and_animation(toy):
     assert frame.force_ax.get_xlabel() == render.PRESSING_LABEL
     caption = [t.get_text() for t in frame.figure.texts if "pressing displacement" in t.get_text()]
     assert caption and "+1.000 µm" in caption[0]
+
+
+def test_mp4_is_written_with_the_video_extra(toy, tmp_path):
+    pytest.importorskip("imageio_ffmpeg", reason="MP4 needs the 'video' extra (imageio-ffmpeg)")
+    out = render.animate(toy, tmp_path / "run.mp4", frames=4, dpi=40)
+    data = out.read_bytes()
+    assert len(data) > 1000 and data[4:8] == b"ftyp"  # an ISO media (MP4) file
+    assert not list(tmp_path.glob("*.tmp*"))
