@@ -96,6 +96,21 @@ def _alive(pid: int) -> bool:
     return state != "Z"
 
 
+def _kill_all(proc, kids) -> None:
+    """Clean up after a failed test: the sweep's process and the workers it started."""
+    for pid in [proc.pid, *kids]:
+        if _alive(pid):
+            os.kill(pid, signal.SIGKILL)
+    proc.communicate(timeout=30)
+
+
+def _wait_gone(kids, seconds: float = 15.0) -> list[int]:
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline and any(_alive(k) for k in kids):
+        time.sleep(0.1)
+    return [k for k in kids if _alive(k)]
+
+
 def _start_sweep(tmp_path, argv):
     proc = subprocess.Popen(
         argv, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
@@ -117,15 +132,14 @@ def test_sweep_workers_die_with_the_sweep(tmp_path, sig):
     script = tmp_path / "sweep_script.py"
     script.write_text(_SWEEP_SCRIPT)
     proc, kids = _start_sweep(tmp_path, [sys.executable, str(script), str(tmp_path / "out")])
-    os.kill(proc.pid, sig)
-    _, err = proc.communicate(timeout=30)
-    deadline = time.monotonic() + 15
-    while time.monotonic() < deadline and any(_alive(k) for k in kids):
-        time.sleep(0.1)
-    left = [k for k in kids if _alive(k)]
-    for k in left:  # do not leave them behind if the test fails
-        os.kill(k, signal.SIGKILL)
-    assert left == [], f"workers {left} outlived the sweep's process (signal {sig.name})"
+    try:
+        os.kill(proc.pid, sig)
+        # Orphaned workers would hold the output pipes open: communicate() would hang.
+        _, err = proc.communicate(timeout=30)
+        left = _wait_gone(kids)
+        assert left == [], f"workers {left} outlived the sweep's process (signal {sig.name})"
+    finally:
+        _kill_all(proc, kids)
     if sig != signal.SIGKILL:
         assert "SweepInterrupted" in err and "resume" in err
         assert (tmp_path / "out" / "sweep.csv").is_file()
@@ -150,14 +164,14 @@ def test_sweep_command_stops_cleanly_on_sigterm(tmp_path):
     )
     argv = [sys.executable, "-m", "gecko_agents.sweep", str(spec), "--out", "out"]
     proc, kids = _start_sweep(tmp_path, [*argv, "--workers", "2", "--no-progress"])
-    os.kill(proc.pid, signal.SIGTERM)
-    _, err = proc.communicate(timeout=30)
-    assert proc.returncode not in (0, -signal.SIGTERM), err
-    assert "interrupted" in err and "--resume" in err, err
-    deadline = time.monotonic() + 15
-    while time.monotonic() < deadline and any(_alive(k) for k in kids):
-        time.sleep(0.1)
-    assert not any(_alive(k) for k in kids)
+    try:
+        os.kill(proc.pid, signal.SIGTERM)
+        _, err = proc.communicate(timeout=30)
+        assert proc.returncode not in (0, -signal.SIGTERM), err
+        assert "interrupted" in err and "--resume" in err, err
+        assert _wait_gone(kids) == []
+    finally:
+        _kill_all(proc, kids)
 
 
 # Defect 4: seeds ----------------------------------------------------------------------------
