@@ -65,10 +65,13 @@ __all__ = [
 _READ = pb.BodyFields.BODY_ID | pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
 
 
-def pressed_model(n: int, depth: float = 0.3, settle: int = 200, **kw) -> Model:
+def pressed_model(
+    n: int, depth: float = 0.3, settle: int = 200, overrides: dict | None = None, **kw
+) -> Model:
     """The paper's array with ``n`` setae over a flat floor, the plate ``depth`` [µm] below
-    touch-down and every tip attached, after ``settle`` steps of rest."""
-    p = PAPER_ARRAY.replace(**{"array.count": int(n), "floor.sigma": 0.0})
+    touch-down and every tip attached, after ``settle`` steps of rest; ``overrides`` are
+    dotted parameter overrides (e.g. ``{"contact.crack_speed": 1.0}``)."""
+    p = PAPER_ARRAY.replace(**{"array.count": int(n), "floor.sigma": 0.0, **(overrides or {})})
     m = Model(p, **kw)
     plate_y = m.z_touch - depth
     m.plate.position = (0.0, plate_y)
@@ -270,6 +273,18 @@ def main(argv=None) -> dict:
             else:
                 out["agent_full"] = {n: r}
         del shaped, bare, agents
+    big = max(args.sizes)
+    # Crack kinetics (contact.crack_speed finite) against the elastic tip, same N, interleaved.
+    elastic = pressed_model(big)
+    rate = pressed_model(big, overrides={"contact.crack_speed": 1.0})
+    re = rr = 0.0
+    for _ in range(args.repeats):
+        re = max(re, agent_rate(elastic, args.steps))
+        rr = max(rr, agent_rate(rate, args.steps))
+    out["rate_dependent_cost"] = re / rr
+    print(f"N={big:>6}: crack-kinetics tip {rr:10.4g} seta-steps/s, elastic {re:10.4g}: "
+          f"cost per seta-step ×{re / rr:.2f}")  # fmt: skip
+    del elastic, rate
     if args.scaling:
         out["scaling"] = _scaling(args.scaling, args.run_max, args.steps, args.repeats)
     if not args.no_dask and not args.quick:
