@@ -25,7 +25,7 @@ def _laws():
 
 def _overlaps(law):
     """Overlaps over the whole branch, dense near where it ends."""
-    lo = law.detach_overlap if math.isfinite(law.detach_overlap) else law.delta_c
+    lo = law.delta_c if law.rate_dependent else law.detach_overlap
     ends = lo + np.geomspace(1e-9, 1.0, 200) * max(abs(lo), 0.1)
     return np.concatenate([ends, np.linspace(lo, 3.0, 400)[1:]])
 
@@ -88,7 +88,7 @@ def test_compiled_scalar_forms_match_the_closed_form(i):
 def test_energy_is_the_work_of_the_force(i):
     # dU/dδ = P along the branch (central differences), an oracle independent of U's formula.
     law = _laws()[i]
-    lo = law.detach_overlap if math.isfinite(law.detach_overlap) else law.delta_c
+    lo = law.delta_c if law.rate_dependent else law.detach_overlap
     d = np.linspace(lo * 0.9 + 1e-3, 2.0, 50)
     h = 1e-6
     el = contact.JKRSphere(PAPER_TABLE1.contact) if law.rate_dependent else law
