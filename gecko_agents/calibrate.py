@@ -29,6 +29,22 @@ Identifiability: a parameter is flagged (``identifiable[name] = False``, with th
 the largest), its standard error exceeds a quarter of its bound interval, or its correlation
 with another free parameter exceeds 0.95 in magnitude.
 
+Forward model (quasi-static): heights on a fixed grid of Gaussian quantiles with a moving
+contact front, one shared approach for all preloads of a σ and batched retracts, the peak
+refined by bisection (:func:`quasistatic.preload_pulls`), so the model is a smooth function of
+the parameters. Measured on the paper's 10⁷ array (64 blocks, w = 0.021 J/m², σ = 1.2 µm, six
+preloads 0.1–8.6 N, w or σ stepped by 0.25 % over ±1 %): the pull-off scatters about a
+quadratic by ≤ 3.4e-5 of itself with the ``linear`` seta and ≤ 1.7e-3 (mostly < 2e-4) with the
+``rod`` seta, against d ln F/d ln w ≈ 0.8–1.2; a plain grid of the same blocks jumped by up to
+3e-2. The Jacobian step (``diff_step`` = 0.02 of each bound interval, log or linear) moves the
+pull-off by 1–10 %, ≥ 10× that noise.
+
+Speed (measured, not a test): a fit of six pull-off-vs-preload points (the paper's Fig 10 and
+11a numbers) with two free parameters (w, σ) of the paper's 10⁷ array, ``linear`` seta, two
+starts, 63 model evaluations: 50 s of CPU on one core, 139 s wall while the 2-core machine
+ran at load 10–17. With the ``rod`` seta an evaluation costs about 4× as much (see
+``scenarios/calibrate_paper.py``'s recorded wall time).
+
 Units: µm, µN (see :mod:`gecko_agents.params`).
 """
 
