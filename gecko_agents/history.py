@@ -173,6 +173,55 @@ class History:
         """Largest adhesive (tensile) contact force magnitude over the run [µN], ≥ 0."""
         return float(max(0.0, -np.min(self.scalars["force_normal_uN"])))
 
+    @classmethod
+    def from_quasistatic(cls, result, params: SetaArray, seed: int = 0) -> History:
+        """The same vocabulary for a quasi-static result (:mod:`gecko_agents.quasistatic`):
+        one row per plate position, the agent model's columns and units, so every plot and
+        comparison takes either.
+
+        A quasi-static history has no time and no energy bookkeeping: ``time_us`` and the
+        ``energy_*``/``work_plate_pJ`` columns are NaN, ``meta["solver"]`` is
+        ``"quasistatic"`` (and :func:`invariant_violations` skips those columns). The plate
+        force equals the contact force (static equilibrium); ``n_attached`` counts setae of the
+        whole array (blocks weighted). Per-seta arrays and releases are kept when recorded.
+        """
+        n = len(result.plate_y)
+        nan = np.full(n, np.nan)
+        per = getattr(result, "per_seta", {}) or {}
+        state = per.get("state")
+        sliding = (
+            np.sum((np.asarray(state) == STATE_SLIP) * result.weights, axis=1)
+            if state is not None
+            else nan
+        )
+        scalars = {
+            "time_us": nan, "plate_x_um": np.zeros(n), "plate_y_um": result.plate_y,
+            "force_normal_uN": result.force_normal,
+            "force_tangential_uN": result.force_tangential,
+            "plate_force_x_uN": -np.asarray(result.force_tangential, dtype=float),
+            "plate_force_y_uN": result.force_normal,
+            "n_attached": result.n_attached, "n_sliding": sliding,
+            "energy_elastic_pJ": nan, "energy_kinetic_pJ": nan, "energy_dissipated_pJ": nan,
+            "work_plate_pJ": nan,
+        }  # fmt: skip
+        setae = {}
+        if per:
+            setae = {"force_normal_uN": per.get("force"), "overlap_um": per.get("overlap"),
+                     "state": per.get("state")}  # fmt: skip
+            setae = {k: np.asarray(v) for k, v in setae.items() if v is not None}
+        releases = list(getattr(result, "releases", []) or [])
+        det = {
+            "record": np.array([r[0] for r in releases], dtype=int),
+            "seta": np.array([r[1] for r in releases], dtype=int),
+            "plate_y_um": np.array([result.plate_y[r[0]] for r in releases], dtype=float),
+            "overlap_um": np.array([r[2] for r in releases], dtype=float),
+        }
+        geometry = {"floor_heights_um": np.asarray(result.heights),
+                    "weights": np.asarray(result.weights)}  # fmt: skip
+        meta = {"solver": "quasistatic", "n_sim": int(len(result.heights)),
+                "scale_to_array": 1.0, "versions": versions()}  # fmt: skip
+        return cls(params, int(seed), scalars, setae, geometry, det, meta)
+
     def to_dataframe(self):
         """The scalar series as a :class:`pandas.DataFrame`, one row per record, columns
         :data:`SCALAR_COLUMNS` (units in the names); the run's metadata in ``df.attrs``.
@@ -468,7 +517,14 @@ def invariant_violations(
         Fc = law.max_tension
     if energy_rtol is None:
         energy_rtol = ENERGY_RTOL * (2 if law.rate_dependent else 1)
+    quasi_static = h.meta.get("solver") == "quasistatic"
+    untimed = ("time_us", "n_sliding", "energy_elastic_pJ", "energy_kinetic_pJ",
+               "energy_dissipated_pJ", "work_plate_pJ")  # fmt: skip
+    if quasi_static:
+        energy_rtol = False  # no energy bookkeeping in the quasi-static solver
     for name, col in h.scalars.items():
+        if quasi_static and name in untimed:
+            continue
         if not np.all(np.isfinite(col)):
             out.append(f"{name} has non-finite values")
     n_att = h["n_attached"]

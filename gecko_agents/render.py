@@ -274,8 +274,12 @@ def _snap_offs(history: History) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     det = history.detachments
     if not det or len(np.atleast_1d(det.get("plate_y_um", []))) == 0:
         return np.empty(0), np.empty(0), np.empty(0, int)
-    t = np.asarray(history["time_us"])
-    k = np.clip(np.searchsorted(t, np.asarray(det["time_us"]), side="right") - 1, 0, len(t) - 1)
+    if "record" in det:  # quasi-static: the record (plate position) of each release
+        k = np.asarray(det["record"], dtype=int)
+    else:
+        t = np.asarray(history["time_us"])
+        t_det = np.asarray(det["time_us"])
+        k = np.clip(np.searchsorted(t, t_det, side="right") - 1, 0, len(t) - 1)
     seta = np.asarray(det.get("seta", np.full(len(k), -1)), dtype=int)
     d = pressing_displacement(history, np.asarray(det["plate_y_um"], dtype=float))
     return d, history["force_normal_uN"][k], seta

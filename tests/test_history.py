@@ -244,3 +244,24 @@ def test_runs_saved_before_run_ids_still_load(tmp_path):
     (d / "history.csv").write_text("".join((d / "history.csv").read_text().splitlines(True)[1:]))
     (d / "setae.npz").unlink()
     assert len(hist.load(d)) == 5
+
+
+def test_quasistatic_results_speak_the_same_vocabulary(tmp_path):
+    from gecko_agents import quasistatic as qs
+    from gecko_agents import render
+    from gecko_agents.params import PAPER_ARRAY
+
+    p = PAPER_ARRAY.replace(**{"array.count": 5})
+    heights = np.random.default_rng(0).normal(0.0, 0.5, 5)
+    res = qs.press_pull(p, heights, 0.5, record_setae=True)
+    h = hist.History.from_quasistatic(res, p, seed=3)
+    assert set(h.scalars) == set(hist.SCALAR_COLUMNS) and h.meta["solver"] == "quasistatic"
+    np.testing.assert_array_equal(h["force_normal_uN"], res.force_normal)
+    np.testing.assert_array_equal(h["plate_y_um"], res.plate_y)
+    assert h.peak_pull_off == pytest.approx(res.pull_off)
+    assert hist.invariant_violations(h) == []
+    assert h.detachments["seta"].size == len(res.releases)
+    render.plot_history(h, tmp_path / "qs.png")  # the agent's plot takes it
+    h.save(tmp_path / "run")
+    g = hist.load(tmp_path / "run")
+    np.testing.assert_array_equal(g["force_normal_uN"], h["force_normal_uN"])
