@@ -42,8 +42,9 @@ pull-off by 1–10 %, ≥ 10× that noise.
 Speed (measured, not a test): a fit of six pull-off-vs-preload points (the paper's Fig 10 and
 11a numbers) with two free parameters (w, σ) of the paper's 10⁷ array, ``linear`` seta, two
 starts, 63 model evaluations: 50 s of CPU on one core, 139 s wall while the 2-core machine
-ran at load 10–17. With the ``rod`` seta an evaluation costs about 4× as much (see
-``scenarios/calibrate_paper.py``'s recorded wall time).
+ran at load 10–17. With the ``rod`` seta (a Newton solve per seta and step instead of a table)
+an evaluation costs 4–5× as much: the five-point Fig 10 + 11a fit took 52 evaluations and
+534 s wall at load 5–17, so the rod does not meet a two-minute budget on this machine.
 
 Units: µm, µN (see :mod:`gecko_agents.params`).
 """
