@@ -1,0 +1,377 @@
+"""A compliant backing: an elastic strip under the setae, pulled through a handle spring.
+
+Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`); parameters in
+:class:`gecko_agents.params.Backing`.
+
+The strip (plane strain, as wide as the row spacing b = ``array.pitch``) is a chain of rigid
+links of length ℓ, each a pymunk body of mass m = ρ_b·b·t_b·ℓ [ng] and moment of inertia
+mℓ²/12, joined at the nodes by pivot joints and damped rotary springs of stiffness
+
+    k_r = EI/ℓ [pJ/rad],   EI = E_b·b·t_b³ / (12(1 − ν_b²)) [µN·µm²]
+
+(the bar-chain discretisation of the Euler–Bernoulli beam, Hencky 1921; a joint's rotation
+θ = M·ℓ/EI is the curvature M/EI integrated over one link). A clamped end carries the
+half-link stiffness 2EI/ℓ, which makes a cantilever's end deflection under an end load P
+
+    δ = P·ℓ³/EI·[n²/2 + Σ_{m=1}^{n−1} m²] = P·L³/(3EI)·(1 + 1/(2n²))
+
+against Euler–Bernoulli's P·L³/(3EI) (Timoshenko & Gere 1972, Mechanics of Materials, §7.3).
+The links are inextensible (the pivots hold them): the axial stiffness E_b·b·t_b/ℓ is 10³–10⁵
+times a seta's, so axial springs would only shorten the time step.
+
+Seta roots ride on the links (:class:`ElasticModel`): the root of seta i sits on link j(i) at
+the abscissa it has on a straight strip, so it turns and moves with the link; the seta spring
+and damping act between the tip and that root (position and velocity of the root's material
+point), and the reaction goes onto the link as a force and a torque. A linear seta keeps its
+rest direction in the floor's frame (small strip rotations). The strip is driven through the
+handle, the kinematic body that the protocol moves (``World.plate``), by a linear spring of
+total stiffness k_h (``drive = "uniform"``: k_h/n on every link centre; ``"peel_end"``: k_h on
+the +x end), damped at ``damping_ratio``. With a rigid, stiff strip this is the rigid plate of
+the paper (equal load sharing); a soft one concentrates load where it is pulled (Hui,
+Glassmaker, Tang & Jagota 2004, J R Soc Interface 1:35; Bacca, Booth, Turner & McMeeking 2016,
+J Mech Phys Solids 96:428).
+
+Time step: the chain's stiffest mode is the zig-zag of links turning about their centres,
+ω² = 4k_r/(mℓ²/12) = 48·EI/(ρA·ℓ⁴); the handle spring on a link adds ω² ≤ 4k/m. The model's
+time step is set by the setae; when the chain is stiffer, the strip's density is scaled up
+until ω·dt = 0.5 (explicit mass scaling: the strip's inertia plays no part in a quasi-static
+pull, and its slowest modes stay faster than the pull), recorded as
+``meta["backing"]["mass_scale"]``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pymunk
+import pymunk.batch as pb
+
+from .model import Model
+
+__all__ = ["Strip", "ElasticModel", "bending_length", "OMEGA_DT", "MIN_LINKS"]
+
+MIN_LINKS = 4
+"""Fewest links of a default chain (a strip shorter than λ bends little, but still bends)."""
+
+OMEGA_DT = 0.5
+"""ω·dt of the chain's stiffest mode after mass scaling (semi-implicit Euler is stable < 2)."""
+
+_READ = (
+    pb.BodyFields.BODY_ID
+    | pb.BodyFields.POSITION
+    | pb.BodyFields.ANGLE
+    | pb.BodyFields.VELOCITY
+    | pb.BodyFields.ANGULAR_VELOCITY
+)
+
+
+def bending_length(EI: float, k_f: float) -> float:
+    """Bending length λ = (4EI/k_f)^(1/4) [µm] of a beam of stiffness EI [µN·µm²] on an elastic
+    foundation of stiffness k_f [µN/µm²] (Hetényi 1946, Beams on Elastic Foundation, eq 2.4:
+    the load spreads over ~λ)."""
+    return (4.0 * EI / k_f) ** 0.25
+
+
+class Strip:
+    """A chain of ``n_links`` rigid links in its own pymunk space.
+
+    Parameters
+    ----------
+    x0 : abscissa of the left end [µm]. ell : link length [µm]. n_links : number of links.
+    y0 : height of the strip's centre line [µm]. EI : bending stiffness [µN·µm²].
+    rho_A : mass per length [ng/µm]. zeta : damping ratio of the rotary springs [-].
+    iterations : pymunk solver iterations (the pivots of a long chain need many).
+    """
+
+    def __init__(self, x0, ell, n_links, y0, EI, rho_A, zeta=0.3, iterations=60):
+        if n_links < 1:
+            raise ValueError(f"n_links = {n_links!r} must be ≥ 1")
+        self.ell, self.n, self.EI, self.rho_A = float(ell), int(n_links), float(EI), float(rho_A)
+        self.space = space = pymunk.Space()
+        space.gravity = (0.0, 0.0)
+        space.iterations = iterations
+        self.m = m = rho_A * ell
+        self.I_link = inertia = m * ell * ell / 12.0
+        self.k_rot = EI / ell  # [pJ/rad]
+        self.c_rot = 2.0 * zeta * math.sqrt(self.k_rot * inertia)
+        self.x_centre = x0 + (np.arange(self.n) + 0.5) * ell  # rest abscissae of link centres
+        self.links = []
+        for xc in self.x_centre:
+            b = pymunk.Body(m, inertia)
+            b.position = (float(xc), float(y0))
+            space.add(b)
+            self.links.append(b)
+        for j in range(self.n - 1):
+            a, b = self.links[j], self.links[j + 1]
+            node = (float(x0 + (j + 1) * ell), float(y0))
+            pin = pymunk.PivotJoint(a, b, node)
+            spring = pymunk.DampedRotarySpring(a, b, 0.0, self.k_rot, self.c_rot)
+            space.add(pin, spring)
+        self.x0, self.y0 = float(x0), float(y0)
+        ids = np.array([b.id for b in self.links], dtype=np.uintp)
+        self._id_sorted, self._id_to_link = np.sort(ids), np.argsort(ids)
+        self._ids = None
+        self._buf = pb.Buffer()
+        self._fbuf = pb.Buffer()
+        self.out = np.zeros((self.n, 3))
+        self.omega_max = math.sqrt(48.0 * EI / (rho_A * ell**4))
+        """Stiffest free mode [rad/µs]: the links' zig-zag, ω² = 48·EI/(ρA·ℓ⁴)."""
+
+    def clamp_left(self):
+        """Clamp the left end to the static body: a pivot and the half-link rotary spring
+        2EI/ℓ (the cantilever of the module docstring)."""
+        a = self.links[0]
+        st = self.space.static_body
+        self.space.add(
+            pymunk.PivotJoint(st, a, (self.x0, self.y0)),
+            pymunk.DampedRotarySpring(st, a, 0.0, 2.0 * self.k_rot, 2.0 * self.c_rot),
+        )
+
+    def scale_mass(self, factor: float) -> None:
+        """Multiply every link's mass and moment of inertia by ``factor``."""
+        self.m *= factor
+        self.I_link *= factor
+        self.rho_A *= factor
+        self.c_rot *= math.sqrt(factor)
+        for b in self.links:
+            b.mass, b.moment = self.m, self.I_link
+        for c in self.space.constraints:
+            if isinstance(c, pymunk.DampedRotarySpring):
+                c.damping *= math.sqrt(factor)
+        self.omega_max /= math.sqrt(factor)
+
+    def read(self) -> np.ndarray:
+        """(n, 6) rows (x, y, φ, vx, vy, ω) of the links, in link order."""
+        buf = self._buf
+        buf.clear()
+        pb.get_space_bodies(self.space, _READ, buf)
+        ids = np.frombuffer(buf.int_buf(), dtype=np.uintp)
+        if self._ids is None or not np.array_equal(ids, self._ids):
+            # Chipmunk's body order is internal (and a clamp adds the static body): map rows
+            # to links through the body ids.
+            where = np.minimum(np.searchsorted(self._id_sorted, ids), self.n - 1)
+            rows = np.flatnonzero(self._id_sorted[where] == ids)
+            order = np.empty(self.n, dtype=np.int64)
+            order[self._id_to_link[where[rows]]] = rows
+            self._ids, self._order = ids.copy(), order
+            self.out = np.zeros((ids.size, 3))
+            self._fbuf.set_float_buf(self.out.reshape(-1))
+        data = np.frombuffer(buf.float_buf()).reshape(ids.size, 6)
+        return data[self._order]
+
+    def write(self, fx, fy, torque) -> None:
+        """Forces [µN] and torques [pJ] on the links (link order) for the next step."""
+        o = self.out
+        o[self._order, 0] = fx
+        o[self._order, 1] = fy
+        o[self._order, 2] = torque
+        pb.set_space_bodies(self.space, pb.BodyFields.FORCE | pb.BodyFields.TORQUE, self._fbuf)
+
+    def step(self, dt: float) -> None:
+        self.space.step(dt)
+
+    @staticmethod
+    def points(data, link, s, dt):
+        """World positions at t + dt (x + v·dt, φ + ω·dt) and velocities of the material points
+        at abscissa ``s`` [µm] from the centres of links ``link`` (rows of :meth:`read`)."""
+        d = data[link]
+        phi = d[:, 2] + d[:, 5] * dt
+        rx, ry = s * np.cos(phi), s * np.sin(phi)
+        px = d[:, 0] + d[:, 3] * dt + rx
+        py = d[:, 1] + d[:, 4] * dt + ry
+        vx = d[:, 3] - d[:, 5] * ry
+        vy = d[:, 4] + d[:, 5] * rx
+        return px, py, vx, vy, rx, ry
+
+    def node_y(self, data) -> np.ndarray:
+        """Heights of the n + 1 nodes [µm]."""
+        h = 0.5 * self.ell
+        yl = data[:, 1] - h * np.sin(data[:, 2])
+        yr = data[:, 1] + h * np.sin(data[:, 2])
+        return np.concatenate([yl, yr[-1:]])
+
+
+class ElasticModel(Model):
+    """:class:`gecko_agents.model.Model` with the elastic backing of ``params.backing``
+    (built by ``Model(params)`` when ``params.backing.kind == "elastic"``). The numpy kernel
+    only; the free approach is stepped (no rigid skip: the strip is not rigid)."""
+
+    def __init__(self, params, **kwargs):
+        kernel = kwargs.get("kernel", "auto")
+        if kernel in ("numba", "python"):
+            raise ValueError(
+                f"kernel = {kernel!r}: the elastic backing (backing.kind = 'elastic') runs "
+                "with kernel='numpy'"
+            )
+        kwargs["kernel"] = "numpy"
+        super().__init__(params, **kwargs)
+        self._build_strip()
+
+    def _build_strip(self):
+        p, w, bk = self.params, self.world, self.params.backing
+        pitch = p.array.pitch
+        EI = bk.bending_stiffness(pitch)
+        length = self.n * pitch
+        k_f = p.Ky / pitch  # the setae as an elastic foundation [µN/µm²]
+        lam = bending_length(EI, k_f)
+        # Default: the coarsest chain that resolves λ (the stiffest mode ∝ 1/ℓ² sets the mass
+        # scaling), and at least MIN_LINKS links.
+        spacing = bk.spacing or min(0.25 * lam, length / MIN_LINKS)
+        if spacing > 0.25 * lam:
+            raise ValueError(
+                f"Backing.spacing = {spacing:.4g} µm (0 = the pitch) is too coarse to resolve "
+                f"the strip's bending length λ = (4EI/k_f)^(1/4) = {lam:.4g} µm (EI = "
+                f"{EI:.4g} µN·µm², k_f = Ky/pitch = {k_f:.4g} µN/µm²): use spacing ≤ λ/4 = "
+                f"{0.25 * lam:.4g} µm"
+            )
+        n_links = max(1, math.ceil(length / spacing - 1e-9))
+        ell = length / n_links
+        rho_A = bk.density * pitch * bk.t_b
+        strip = Strip(-0.5 * length, ell, n_links, w.plate_start, EI, rho_A, bk.damping_ratio)
+        # Handle spring: k_h/n per link (uniform) or k_h on the +x end (peel).
+        if bk.drive == "uniform":
+            self._h_link = np.arange(n_links)
+            self._h_s = np.zeros(n_links)
+            self._h_dx = strip.x_centre.copy()
+            k_each = bk.handle_stiffness / n_links
+        else:
+            self._h_link = np.array([n_links - 1])
+            self._h_s = np.array([0.5 * ell])
+            self._h_dx = np.array([0.5 * length])
+            k_each = bk.handle_stiffness
+        self._k_h = k_each
+        # Explicit spring on a link end: effective mass m/4 (ω² ≤ 4k/m).
+        omega_h = math.sqrt(4.0 * k_each / strip.m)
+        omega = max(strip.omega_max, omega_h)
+        scale = max(1.0, (omega * self.dt / OMEGA_DT) ** 2)
+        if scale > 1.0:
+            strip.scale_mass(scale)
+        m_h = strip.m if bk.drive == "uniform" else strip.m * n_links
+        self._c_h = 2.0 * bk.damping_ratio * math.sqrt(k_each * m_h)
+        self.strip = strip
+        # Roots: link and abscissa from its centre on a straight strip.
+        rx = w.root_dx
+        self._r_link = np.clip(((rx + 0.5 * length) // ell).astype(np.int64), 0, n_links - 1)
+        self._r_s = rx - strip.x_centre[self._r_link]
+        self.backing_info = {
+            "EI_uN_um2": EI, "width_um": pitch, "length_um": length, "n_links": n_links,
+            "link_um": ell, "bending_length_um": lam, "foundation_uN_per_um2": k_f,
+            "mass_scale": scale, "handle_stiffness_each_uN_per_um": k_each,
+        }  # fmt: skip
+        self._rec = {"time_us": [], "front_x_um": [], "handle_fx_uN": [], "handle_fy_uN": []}
+        self._n_adv = 0
+        self._roots = (np.zeros(self.n), np.zeros(self.n))
+
+    # ------------------------------------------------------------------ stepping
+    def _advance(self, vpx, vpy):
+        """One step: setae between tips and the roots on the chain, the chain pulled by the
+        handle (``world.plate``) moving at (vpx, vpy) [µm/µs]."""
+        dt, s, ph, w, st = self.dt, self.state, self.physics, self.world, self.strip
+        w.plate.velocity = (vpx, vpy)
+        pp = w.plate.position
+        hx, hy = pp.x + vpx * dt, pp.y + vpy * dt  # the handle where forces are evaluated
+        self._pnext = (hx, hy)
+        ph.events = []
+        ph.diss = 0.0
+        data = st.read()
+        rx, ry, rvx, rvy, ox, oy = st.points(data, self._r_link, self._r_s, dt)
+        self._roots = (rx, ry)
+        w.read()
+        x, y = s.xy
+        np.multiply(s.pv[2], dt, out=x)
+        x += s.pv[0]
+        np.multiply(s.pv[3], dt, out=y)
+        y += s.pv[1]
+        # NumpyStep measures roots as (plate + root offset): give it per-seta "plates".
+        ph.spring_damp(rx - w.root_dx, ry - w.root_dy, rvx, rvy)
+        fsx, fsy = s.F[0].copy(), s.F[1].copy()  # spring + damping on the tips
+        if s.external_force.any():
+            fsx -= s.external_force[:, 0]
+            fsy -= s.external_force[:, 1]
+        if not self._constants.rod:
+            self._check_linear(ph.max_u2)
+        if self._fast_pads:
+            ph.contact_pads()
+        else:
+            ph.contact_general()
+        w.write_forces(s.F)
+        # Reactions on the links: −F at the root (force and torque r × F).
+        nl = st.n
+        fx = -np.bincount(self._r_link, fsx, nl)
+        fy = -np.bincount(self._r_link, fsy, nl)
+        tq = -np.bincount(self._r_link, ox * fsy - oy * fsx, nl)
+        # Handle spring: k·(handle point − link point) + c·(v_handle − v_point).
+        hl, hs = self._h_link, self._h_s
+        qx, qy, qvx, qvy, qox, qoy = st.points(data, hl, hs, dt)
+        Fhx = self._k_h * (hx + self._h_dx - qx) + self._c_h * (vpx - qvx)
+        Fhy = self._k_h * (hy - qy) + self._c_h * (vpy - qvy)
+        np.add.at(fx, hl, Fhx)
+        np.add.at(fy, hl, Fhy)
+        np.add.at(tq, hl, qox * Fhy - qoy * Fhx)
+        st.write(fx, fy, tq)
+        if w.pads:
+            w.recentre_pads(s.xy[0])
+        w.step(dt)
+        st.step(dt)
+        self.time += dt
+        # Seta damping dissipates Fd·(v_tip − v_root): bookkeeping books it against the
+        # handle's velocity, the correction moves it onto the roots' (and keeps the release
+        # detection's reference speed, the handle's).
+        ph.bookkeeping(vpx, vpy)
+        Fd = s.F_damp_seta
+        ph.diss += float(np.sum(Fd[0] * (rvx - vpx)) + np.sum(Fd[1] * (rvy - vpy))) * dt
+        opx, opy = float(Fhx.sum()), float(Fhy.sum())
+        ppx, ppy = self._on_plate_prev
+        self._work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
+        self._on_plate_prev = (opx, opy)
+        self.reaction = (-opx, -opy)
+        self._n_adv += 1
+        if self._n_adv % self.record_every == 0 or self._n_adv == 1:
+            self._note()
+
+    def _note(self):
+        r = self._rec
+        r["time_us"].append(self.time)
+        r["front_x_um"].append(self.front_x())
+        r["handle_fx_uN"].append(self.reaction[0])
+        r["handle_fy_uN"].append(self.reaction[1])
+
+    def front_x(self) -> float:
+        """Detachment front [µm]: root abscissa (straight strip) of the attached seta nearest
+        the pulled side (+x for a peel; the outermost attached seta for a uniform pull); NaN
+        when none is attached."""
+        att = np.flatnonzero(self.state.attached)
+        if not att.size:
+            return math.nan
+        x = self.world.root_dx[att]
+        if self.params.backing.drive == "peel_end":
+            return float(x.max())
+        return float(x[np.argmax(np.abs(x))])
+
+    def handle_force(self) -> tuple[float, float]:
+        """Force of the strip on the handle [µN] and its angle from the +x axis [deg]."""
+        fx, fy = self.reaction
+        return math.hypot(fx, fy), math.degrees(math.atan2(fy, fx))
+
+    def spring_energies(self) -> np.ndarray:
+        """Elastic energy of every seta [pJ] at the last step's evaluation positions."""
+        root = np.column_stack(self._roots)
+        return self.spring_force(self.state.xy.T, root)[1]
+
+    def _skip_free_travel(self, seg, state, vp) -> float:
+        return 0.0
+
+    def run(self, protocol, **kwargs):
+        """:meth:`Model.run`; the history's ``meta["backing"]`` holds the strip's figures and,
+        per recorded step, the time, the detachment front and the handle force."""
+        self._n_adv = 0
+        for v in self._rec.values():
+            v.clear()
+        history = super().run(protocol, **kwargs)
+        r = {k: list(map(float, v)) for k, v in self._rec.items()}
+        fx, fy = np.array(r["handle_fx_uN"]), np.array(r["handle_fy_uN"])
+        r["handle_force_uN"] = np.hypot(fx, fy).tolist()
+        r["handle_angle_deg"] = np.degrees(np.arctan2(fy, fx)).tolist()
+        history.meta["backing"] = {**self.backing_info, **r}
+        return history

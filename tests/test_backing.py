@@ -1,0 +1,117 @@
+"""The elastic backing: the strip against Euler–Bernoulli, the stiff limit against the rigid
+plate, and the parameter checks."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from gecko_agents import protocol
+from gecko_agents.backing import ElasticModel, Strip
+from gecko_agents.model import Model
+from gecko_agents.params import PAPER_ARRAY, Backing
+
+EI, LENGTH, N_LINKS, RHO_A = 1e4, 100.0, 10, 1.0  # µN·µm², µm, -, ng/µm
+STUBBY = PAPER_ARRAY.replace(**{"array.count": 20, "seta.L": 5.0, "floor.sigma": 0.3})
+
+
+def _cantilever(zeta):
+    s = Strip(0.0, LENGTH / N_LINKS, N_LINKS, 0.0, EI, RHO_A, zeta=zeta)
+    s.clamp_left()
+    return s, 0.5 / s.omega_max
+
+
+def _end_point_y(s):
+    d = s.read()
+    return d[-1, 1] + 0.5 * s.ell * math.sin(d[-1, 2])
+
+
+def _step_with_end_load(s, dt, P):
+    """One step with a downward load P [µN] at the free end (force + torque on the last link)."""
+    d = s.read()
+    n = s.n
+    fy, tq = np.zeros(n), np.zeros(n)
+    fy[-1] = -P
+    tq[-1] = -P * 0.5 * s.ell * math.cos(d[-1, 2])
+    s.write(np.zeros(n), fy, tq)
+    s.step(dt)
+
+
+def test_cantilever_end_deflection_euler_bernoulli():
+    """δ = P·L³/(3EI) (Timoshenko & Gere 1972 §7.3) within 2 % once the strip has settled."""
+    s, dt = _cantilever(zeta=0.3)
+    s.space.damping = 0.9  # settle to the static shape
+    P = 0.01
+    for _ in range(8000):
+        _step_with_end_load(s, dt, P)
+    exact = -P * LENGTH**3 / (3 * EI)
+    assert _end_point_y(s) == pytest.approx(exact, rel=0.02)
+
+
+def test_cantilever_first_frequency():
+    """f₁ = 1.875²·√(EI/ρA)/(2πL²) (Euler–Bernoulli cantilever) within 5 %: release the
+    statically loaded strip without damping and time its zero crossings."""
+    s, dt = _cantilever(zeta=0.3)
+    s.space.damping = 0.9
+    for _ in range(8000):
+        _step_with_end_load(s, dt, 0.01)
+    s.space.damping = 1.0
+    for c in s.space.constraints:
+        if hasattr(c, "damping"):
+            c.damping = 0.0
+    f1 = 1.875**2 * math.sqrt(EI / RHO_A) / (2 * math.pi * LENGTH**2)
+    ys = []
+    for _ in range(int(2.5 / f1 / dt)):
+        _step_with_end_load(s, dt, 0.0)
+        ys.append(_end_point_y(s))
+    ys = np.array(ys)
+    up = np.flatnonzero((ys[:-1] < 0) & (ys[1:] >= 0))
+    assert up.size >= 2
+    period = (up[-1] - up[0]) * dt / (up.size - 1)
+    assert 1.0 / period == pytest.approx(f1, rel=0.05)
+
+
+def _peak_pull(params):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cls = ElasticModel if params.backing.kind == "elastic" else Model
+        m = cls(params, seed=1)
+        h = m.run(protocol.press_pull(0.5, speed=0.02), progress=False)
+    return m, h
+
+
+def test_stiff_elastic_backing_matches_rigid_plate():
+    """A very stiff strip on a stiff handle carries the rigid plate's peak pull-off (1 %)."""
+    _, rigid = _peak_pull(STUBBY)
+    m, soft = _peak_pull(STUBBY.replace(**{"backing.kind": "elastic", "backing.E_b": 20.0}))
+    assert isinstance(m, ElasticModel)
+    peak_r = -float(np.min(rigid["plate_force_y_uN"]))
+    peak_e = -float(np.min(soft["plate_force_y_uN"]))
+    assert peak_e == pytest.approx(peak_r, rel=0.01)
+    b = soft.meta["backing"]
+    assert len(b["front_x_um"]) == len(b["handle_force_uN"]) > 10
+
+
+@pytest.mark.parametrize(
+    "field, value",
+    [("t_b", 0.0), ("t_b", -1.0), ("E_b", 0.0), ("E_b", -2.0), ("kind", "foam"),
+     ("drive", "twist"), ("spacing", -1.0)],
+)  # fmt: skip
+def test_bad_backing_values_refused_naming_the_field(field, value):
+    with pytest.raises(ValueError, match=f"Backing.{field}"):
+        Backing(**{field: value})
+
+
+def test_chain_too_coarse_refused():
+    p = STUBBY.replace(**{"backing.kind": "elastic", "backing.spacing": 40.0})
+    with pytest.raises(ValueError, match="Backing.spacing"):
+        ElasticModel(p)
+
+
+def test_backing_kind_chooses_the_model():
+    assert type(Model(STUBBY)) is Model
+    elastic = STUBBY.replace(**{"backing.kind": "elastic"})
+    assert type(Model(elastic)) is ElasticModel
+    with pytest.raises(ValueError, match="kernel"):
+        ElasticModel(elastic, kernel="python")
