@@ -247,8 +247,8 @@ class ElasticModel(Model):
         scale = max(1.0, (omega * self.dt / OMEGA_DT) ** 2)
         if scale > 1.0:
             strip.scale_mass(scale)
-        m_h = strip.m if bk.drive == "uniform" else strip.m * n_links
-        self._c_h = 2.0 * bk.damping_ratio * math.sqrt(k_each * m_h)
+        # Damping ratio on the link end's effective mass m/4 (explicit: c·dt/(m/4) = 2ζ·ω·dt).
+        self._c_h = 2.0 * bk.damping_ratio * math.sqrt(k_each * 0.25 * strip.m)
         self.strip = strip
         # Roots: link and abscissa from its centre on a straight strip.
         rx = w.root_dx
@@ -259,7 +259,9 @@ class ElasticModel(Model):
             "link_um": ell, "bending_length_um": lam, "foundation_uN_per_um2": k_f,
             "mass_scale": scale, "handle_stiffness_each_uN_per_um": k_each,
         }  # fmt: skip
-        self._rec = {"time_us": [], "front_x_um": [], "handle_fx_uN": [], "handle_fy_uN": []}
+        self._rec = {"time_us": [], "front_x_um": [], "handle_fx_uN": [], "handle_fy_uN": [],
+                     "setae_fx_uN": [], "setae_fy_uN": []}  # fmt: skip
+        self.setae_force = (0.0, 0.0)
         self._n_adv = 0
         self._roots = (np.zeros(self.n), np.zeros(self.n))
 
@@ -310,6 +312,7 @@ class ElasticModel(Model):
         np.add.at(fy, hl, Fhy)
         np.add.at(tq, hl, qox * Fhy - qoy * Fhx)
         st.write(fx, fy, tq)
+        self.setae_force = (float(fsx.sum()), float(fsy.sum()))
         if w.pads:
             w.recentre_pads(s.xy[0])
         w.step(dt)
@@ -336,6 +339,8 @@ class ElasticModel(Model):
         r["front_x_um"].append(self.front_x())
         r["handle_fx_uN"].append(self.reaction[0])
         r["handle_fy_uN"].append(self.reaction[1])
+        r["setae_fx_uN"].append(self.setae_force[0])
+        r["setae_fy_uN"].append(self.setae_force[1])
 
     def front_x(self) -> float:
         """Detachment front [µm]: root abscissa (straight strip) of the attached seta nearest
@@ -364,7 +369,10 @@ class ElasticModel(Model):
 
     def run(self, protocol, **kwargs):
         """:meth:`Model.run`; the history's ``meta["backing"]`` holds the strip's figures and,
-        per recorded step, the time, the detachment front and the handle force."""
+        per recorded step, the time, the detachment front, the handle force (force of the strip
+        on the handle, its magnitude and angle from +x) and ``setae_f*_uN``, the total seta
+        spring + damping force on the tips (= the force the setae pull the strip with, free of
+        the strip's inertia) [µN]."""
         self._n_adv = 0
         for v in self._rec.values():
             v.clear()
