@@ -58,6 +58,39 @@ __all__ = [
 ]
 
 
+try:  # the scalar forms call it from inside numba-compiled code too
+    from numba.extending import register_jitable as _jitable
+except ImportError:  # numba is optional: then it is a plain function
+
+    def _jitable(fn):
+        return fn
+
+
+@_jitable
+def branch_radius(delta, R, ac):
+    """Scalar :func:`jkr.radius_from_overlap`: contact radius on the stable JKR branch [µm]
+    at overlap δ [µm] (clipped to δc), for R [µm] and the snap-off radius a_c [µm] (eq 10
+    inverted by Ferrari's method plus one Newton step)."""
+    d = delta * (R / (ac * ac))
+    if d < -3.0:
+        d = -3.0
+    disc = math.sqrt(d * d * d * (1.0 / 27.0) + 1.0)
+    A = np.cbrt(disc + 1.0)
+    Bp = d / (3.0 * A)
+    m = 2.0 / (A * A + d * (1.0 / 3.0) + Bp * Bp)
+    inner = math.sqrt(2.0 / m) * 4.0 - 2.0 * m
+    if inner < 0.0:
+        inner = 0.0
+    u = (math.sqrt(m * 2.0) + math.sqrt(inner)) * 0.5
+    u2 = u * u
+    fp = (u2 * u - 1.0) * 4.0
+    if fp > 1e-3:
+        u -= (u2 * u2 - 4.0 * u - d) / fp
+    if u < 1.0:
+        u = 1.0
+    return (u * u) * ac
+
+
 def mindlin_stiffness(contact, a: float) -> float:
     """Tangential stick stiffness k_t = 8G*·a of a circular contact of radius a [µN/µm].
 
@@ -234,25 +267,7 @@ class JKRSphere(ContactLaw):
 
     @staticmethod
     def radius_scalar(delta, a_prev, dt, k):
-        R, ac = k[0], k[1]
-        d = delta * (R / (ac * ac))
-        if d < -3.0:
-            d = -3.0
-        disc = math.sqrt(d * d * d * (1.0 / 27.0) + 1.0)
-        A = np.cbrt(disc + 1.0)
-        Bp = d / (3.0 * A)
-        m = 2.0 / (A * A + d * (1.0 / 3.0) + Bp * Bp)
-        inner = math.sqrt(2.0 / m) * 4.0 - 2.0 * m
-        if inner < 0.0:
-            inner = 0.0
-        u = (math.sqrt(m * 2.0) + math.sqrt(inner)) * 0.5
-        u2 = u * u
-        fp = (u2 * u - 1.0) * 4.0
-        if fp > 1e-3:
-            u -= (u2 * u2 - 4.0 * u - d) / fp
-        if u < 1.0:
-            u = 1.0
-        return (u * u) * ac
+        return branch_radius(delta, k[0], k[1])
 
     @staticmethod
     def force_scalar(a, delta, k):
@@ -415,26 +430,11 @@ class RateJKRSphere(JKRSphere):
             k[7],
         )
         a = a_prev
-        # Equilibrium radius on the stable branch (as JKRSphere.radius_scalar), if any.
+        # Equilibrium radius on the stable branch, if any.
         has_eq = delta >= delta_c
         a_eq = 0.0
         if has_eq:
-            d = delta * (R / (ac * ac))
-            disc = math.sqrt(d * d * d * (1.0 / 27.0) + 1.0)
-            A = np.cbrt(disc + 1.0)
-            Bp = d / (3.0 * A)
-            m = 2.0 / (A * A + d * (1.0 / 3.0) + Bp * Bp)
-            inner = math.sqrt(2.0 / m) * 4.0 - 2.0 * m
-            if inner < 0.0:
-                inner = 0.0
-            u = (math.sqrt(m * 2.0) + math.sqrt(inner)) * 0.5
-            u2 = u * u
-            fp = (u2 * u - 1.0) * 4.0
-            if fp > 1e-3:
-                u -= (u2 * u2 - 4.0 * u - d) / fp
-            if u < 1.0:
-                u = 1.0
-            a_eq = (u * u) * ac
+            a_eq = branch_radius(delta, R, ac)
         g = a * a / R - delta
         opening = a > 0.0 and g > math.sqrt(2.0 * math.pi * w * a / E)
         if not opening:
