@@ -45,6 +45,52 @@ from .state import P as PN
 __all__ = ["pad_loop", "numba_available"]
 
 
+try:  # called from inside the compiled loops too
+    from numba.extending import register_jitable as _jitable
+except ImportError:  # numba is optional: then it is a plain function
+
+    def _jitable(fn):
+        return fn
+
+
+@_jitable
+def seta_spring(i, r, data, S, c, pnx, pny, vpx, vpy, rest, root):
+    """Seta i (batch row r of ``data``): stores its position and velocity and the evaluation
+    point x + v·dt in ``S``, and returns (x, y, vx, vy, fx, fy, fdx, fdy, |u|²): the seta's
+    spring force on the tip (``rod``: :func:`gecko_agents.beam.rod_spring_force`; linear:
+    −K·u, eq 20–21) [µN] and its damping relative to the plate [µN], and the linear seta's
+    squared deflection [µm²] (0 for the rod). The plate is at (pnx, pny) [µm], moving at
+    (vpx, vpy) [µm/µs]; ``c`` is a :class:`gecko_agents.kernels.LoopConstants`."""
+    dt = c.dt
+    px, py, vx, vy = data[r, 0], data[r, 1], data[r, 2], data[r, 3]
+    S[PX, i], S[PY, i], S[VX, i], S[VY, i] = px, py, vx, vy
+    x = vx * dt + px
+    y = vy * dt + py
+    S[X, i], S[Y, i] = x, y
+    u2 = 0.0
+    if c.rod:
+        dx = (x - pnx) - root[0, i]
+        dy = (y - pny) - root[1, i]
+        ell = math.sqrt(dx * dx + dy * dy)
+        dphi = math.atan2(dy, dx) + (c.theta + math.pi)
+        dphi = dphi % (2.0 * math.pi) - math.pi
+        t0 = (ell - c.L) * -c.Ka / ell
+        t1 = dphi * c.k_phi / ell / ell
+        fx = t0 * dx + t1 * dy
+        fy = t0 * dy - t1 * dx
+    else:
+        ux = (x - pnx) - rest[0, i]
+        uy = (y - pny) - rest[1, i]
+        S[UX, i], S[UY, i] = ux, uy
+        fx = ux * c.k00 + uy * c.k01
+        fy = ux * c.k10 + uy * c.k11
+        u2 = ux * ux + uy * uy
+    fdx = (vx - vpx) * -c.c_seta
+    fdy = (vy - vpy) * -c.c_seta
+    S[FDX, i], S[FDY, i] = fdx, fdy
+    return x, y, vx, vy, fx, fy, fdx, fdy, u2
+
+
 @functools.cache
 def pad_loop(law_type, compiled: bool):
     """The pad-floor step of every seta as one loop, for contact laws of class ``law_type``.
@@ -96,9 +142,8 @@ def pad_loop(law_type, compiled: bool):
         res,
     ):
         n = S.shape[1]
-        dt, rod, L, Ka, kphi, theta = c.dt, c.rod, c.L, c.Ka, c.k_phi, c.theta
-        k00, k01, k10, k11 = c.k00, c.k01, c.k10, c.k11
-        cs, R, dc, cn, ct, kt = c.c_seta, c.R, c.detach, c.c_n, c.c_t, c.k_t
+        dt = c.dt
+        R, dc, cn, ct, kt = c.R, c.detach, c.c_n, c.c_t, c.k_t
         mu, paper, Fc, hm, arel = c.mu, c.paper, c.Fc, c.hm, c.release
         fast2, slow2 = 4.0 * vref * vref, vref * vref
         opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
@@ -111,34 +156,11 @@ def pad_loop(law_type, compiled: bool):
             b1 = min(n, b0 + 128)
             # Pass 1: springs, damping, overlaps and contact state changes.
             for i in range(b0, b1):
-                r = rows[i]
-                px, py, vx, vy = data[r, 0], data[r, 1], data[r, 2], data[r, 3]
-                S[PX, i], S[PY, i], S[VX, i], S[VY, i] = px, py, vx, vy
-                x = vx * dt + px
-                y = vy * dt + py
-                S[X, i], S[Y, i] = x, y
-                if rod:
-                    dx = (x - pnx) - root[0, i]
-                    dy = (y - pny) - root[1, i]
-                    ell = math.sqrt(dx * dx + dy * dy)
-                    dphi = math.atan2(dy, dx) + (theta + math.pi)
-                    dphi = dphi % (2.0 * math.pi) - math.pi
-                    t0 = (ell - L) * -Ka / ell
-                    t1 = dphi * kphi / ell / ell
-                    fx = t0 * dx + t1 * dy
-                    fy = t0 * dy - t1 * dx
-                else:
-                    ux = (x - pnx) - rest[0, i]
-                    uy = (y - pny) - rest[1, i]
-                    S[UX, i], S[UY, i] = ux, uy
-                    fx = ux * k00 + uy * k01
-                    fy = ux * k10 + uy * k11
-                    u2 = ux * ux + uy * uy
-                    if u2 > max_u2:
-                        max_u2 = u2
-                fdx = (vx - vpx) * -cs
-                fdy = (vy - vpy) * -cs
-                S[FDX, i], S[FDY, i] = fdx, fdy
+                x, y, vx, vy, fx, fy, fdx, fdy, u2 = seta_spring(
+                    i, rows[i], data, S, c, pnx, pny, vpx, vpy, rest, root
+                )
+                if u2 > max_u2:
+                    max_u2 = u2
                 sfdx += fdx
                 sfdy += fdy
                 fx += fdx
@@ -274,43 +296,18 @@ def _tangential_loop(law_type, compiled: bool):
         res,
     ):
         n = S.shape[1]
-        dt, rod, L, Ka, kphi, theta = c.dt, c.rod, c.L, c.Ka, c.k_phi, c.theta
-        k00, k01, k10, k11 = c.k00, c.k01, c.k10, c.k11
-        cs, R, dc, cn, ct = c.c_seta, c.R, c.detach, c.c_n, c.c_t
+        dt, R, dc, cn, ct = c.dt, c.R, c.detach, c.c_n, c.c_t
         hm = c.hm
         ell0 = k[5]
         fast2, slow2 = 4.0 * vref * vref, vref * vref
         opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
         nl = ng = 0
         for i in range(n):
-            r = rows[i]
-            px, py, vx, vy = data[r, 0], data[r, 1], data[r, 2], data[r, 3]
-            S[PX, i], S[PY, i], S[VX, i], S[VY, i] = px, py, vx, vy
-            x = vx * dt + px
-            y = vy * dt + py
-            S[X, i], S[Y, i] = x, y
-            if rod:
-                dx = (x - pnx) - root[0, i]
-                dy = (y - pny) - root[1, i]
-                ell = math.sqrt(dx * dx + dy * dy)
-                dphi = math.atan2(dy, dx) + (theta + math.pi)
-                dphi = dphi % (2.0 * math.pi) - math.pi
-                t0 = (ell - L) * -Ka / ell
-                t1 = dphi * kphi / ell / ell
-                fx = t0 * dx + t1 * dy
-                fy = t0 * dy - t1 * dx
-            else:
-                ux = (x - pnx) - rest[0, i]
-                uy = (y - pny) - rest[1, i]
-                S[UX, i], S[UY, i] = ux, uy
-                fx = ux * k00 + uy * k01
-                fy = ux * k10 + uy * k11
-                u2 = ux * ux + uy * uy
-                if u2 > max_u2:
-                    max_u2 = u2
-            fdx = (vx - vpx) * -cs
-            fdy = (vy - vpy) * -cs
-            S[FDX, i], S[FDY, i] = fdx, fdy
+            x, y, vx, vy, fx, fy, fdx, fdy, u2 = seta_spring(
+                i, rows[i], data, S, c, pnx, pny, vpx, vpy, rest, root
+            )
+            if u2 > max_u2:
+                max_u2 = u2
             sfdx += fdx
             sfdy += fdy
             fx += fdx
@@ -367,6 +364,7 @@ def _tangential_loop(law_type, compiled: bool):
                     elif s2 < slow2:
                         S[JUMP, i] = np.nan
             S[FX, i], S[FY, i], S[DMPX, i], S[DMPY, i] = fx, fy, dmpx, dmpy
+            r = rows[i]
             out[r, 0], out[r, 1] = fx, fy
             vmx = fx * hm + vx
             vmy = fy * hm + vy
