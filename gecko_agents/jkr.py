@@ -23,12 +23,28 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = [
-    "effective_modulus", "work_of_adhesion", "pull_off_force", "zero_load_contact_radius",
-    "snap_off_overlap", "snap_off_radius", "force_from_radius", "overlap_from_radius",
-    "contact_radius_from_force", "force_from_overlap", "radius_from_overlap",
-    "contact_stiffness", "contact_energy", "hertz_contact_radius", "hertz_overlap", "hertz_force",
-    "hertz_pressure", "dimensionless_force", "dimensionless_radius", "dimensionless_overlap",
-    "dimensionless_force_from_radius", "dimensionless_overlap_from_radius",
+    "effective_modulus",
+    "work_of_adhesion",
+    "pull_off_force",
+    "zero_load_contact_radius",
+    "snap_off_overlap",
+    "snap_off_radius",
+    "force_from_radius",
+    "overlap_from_radius",
+    "contact_radius_from_force",
+    "force_from_overlap",
+    "radius_from_overlap",
+    "contact_stiffness",
+    "contact_energy",
+    "hertz_contact_radius",
+    "hertz_overlap",
+    "hertz_force",
+    "hertz_pressure",
+    "dimensionless_force",
+    "dimensionless_radius",
+    "dimensionless_overlap",
+    "dimensionless_force_from_radius",
+    "dimensionless_overlap_from_radius",
 ]
 
 
@@ -138,8 +154,10 @@ def contact_radius_from_force(P, R, w, E_star):
     P = np.asarray(P, dtype=float)
     Fc = pull_off_force(R, w)
     if np.any(P < -Fc * (1 + 1e-12)):
-        raise ValueError(f"P = {np.min(P)!r} is below the pull-off force −Fc = {-Fc!r}: "
-                         "no JKR equilibrium exists")
+        raise ValueError(
+            f"P = {np.min(P)!r} is below the pull-off force −Fc = {-Fc!r}: "
+            "no JKR equilibrium exists"
+        )
     s = 3.0 * np.pi * w * R
     root = np.sqrt(np.maximum(6.0 * np.pi * w * R * P + s * s, 0.0))
     return np.cbrt(3.0 * R / (4.0 * E_star) * (P + s + root))
@@ -224,13 +242,17 @@ def contact_energy(a, R, w, E_star):
     C = np.sqrt(2.0 * np.pi * w / E_star)
 
     def U(x):
-        return (2.0 * A * x**5 / (5.0 * R) - (A * C / 7.0 + 4.0 * B / (7.0 * R)) * x**3.5
-                + np.pi * w * x * x)
+        return (
+            2.0 * A * x**5 / (5.0 * R)
+            - (A * C / 7.0 + 4.0 * B / (7.0 * R)) * x**3.5
+            + np.pi * w * x * x
+        )
 
     return U(np.asarray(a, dtype=float)) - U(np.cbrt((C * R) ** 2))
 
 
 # --- Hertz (no adhesion), eq 1–3 ---------------------------------------------------------------
+
 
 def hertz_contact_radius(P, R, E_star):
     """Hertz contact radius a_h = (3RP/(4E*))^(1/3) (eq 1) [length], P ≥ 0 [force]."""
@@ -257,6 +279,7 @@ def hertz_pressure(r, P, R, E_star):
 
 
 # --- Dimensionless forms, eq 11–15 -------------------------------------------------------------
+
 
 def dimensionless_force(P, R, w):
     """P* = P/(πRw) (eq 11) [-]."""

@@ -149,12 +149,15 @@ class Contact:
         _check(self, "crack_exponent", 0.0, 1.0, hi_open=False)
         _check(self, "crack_closing_speed", 0.0, math.inf, hi_open=False)
         if self.detachment not in DETACHMENT_RULES:
-            raise ValueError(f"Contact.detachment = {self.detachment!r} must be one of "
-                             f"{DETACHMENT_RULES}")
+            raise ValueError(
+                f"Contact.detachment = {self.detachment!r} must be one of {DETACHMENT_RULES}"
+            )
         if self.detachment != "fold" and math.isfinite(self.crack_speed):
-            raise ValueError(f"Contact.detachment = {self.detachment!r} applies to the elastic "
-                             "contact (crack_speed = inf); a rate-dependent contact lets go "
-                             "when its crack has run through: use 'fold'")
+            raise ValueError(
+                f"Contact.detachment = {self.detachment!r} applies to the elastic "
+                "contact (crack_speed = inf); a rate-dependent contact lets go "
+                "when its crack has run through: use 'fold'"
+            )
         _check(self, "R", *LENGTH_RANGE, lo_open=False, hi_open=False)
         for name in ("E1", "E2"):
             _check(self, name, *MODULUS_RANGE, lo_open=False, hi_open=False)

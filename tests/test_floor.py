@@ -32,8 +32,8 @@ def test_correlated_profile_rms_and_correlation_length():
         c_ell.append(_autocorr(p.y, round(ell / dx)))
         c_2ell.append(_autocorr(p.y, round(2 * ell / dx)))
     assert abs(np.mean(rms) - sigma) < 0.03 * sigma
-    assert abs(np.mean(c_ell) - np.exp(-1)) < 0.03      # C(ℓ)/C(0) = e⁻¹
-    assert abs(np.mean(c_2ell) - np.exp(-4)) < 0.03     # Gaussian, not exponential
+    assert abs(np.mean(c_ell) - np.exp(-1)) < 0.03  # C(ℓ)/C(0) = e⁻¹
+    assert abs(np.mean(c_2ell) - np.exp(-4)) < 0.03  # Gaussian, not exponential
     y = floor.correlated_profile(sigma, ell, 0, 20_000, np.random.default_rng(7)).y
     assert stats.normaltest(y[:: int(16 * 3)]).pvalue > 1e-3
 
