@@ -151,6 +151,11 @@ class Model:
         same history) or ``"auto"`` (default: lazy where it applies). ``meta["detection"]``.
     """
 
+    energy_complete = True
+    """Whether the energy columns book every energy of the world (plate work = elastic +
+    kinetic + dissipated); a model with parts whose energy it does not book says False and
+    its histories skip the energy-balance invariant."""
+
     def __new__(cls, params=None, *args, **kwargs):
         # An elastic backing (params.backing.kind) is the subclass of gecko_agents.backing.
         if cls is Model and getattr(getattr(params, "backing", None), "kind", "") == "elastic":
@@ -600,6 +605,7 @@ class Model:
             "protocol": [f"{seg!r}" for seg in segments], "contact_path": self.contact_path,
             "kernel": self.kernel, "detection": self.world.detection,
             "tip_law": self.law.name, "tip_bounds": tip_bounds(self.law),
+            "energy_complete": self.energy_complete,
             "skipped_travel_um": run.skipped,
             "damping": dataclasses.asdict(self.damping), "mass_ng": self.mass,
             "tangential_stiffness_uN_per_um": self.k_t,

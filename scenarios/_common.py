@@ -157,3 +157,18 @@ def jkr_curves(contact, n: int, P_max: float) -> dict:
         "P_un": jkr.force_from_radius(a_un, R, w, E),
         "d_un": jkr.overlap_from_radius(a_un, R, w, E),
     }
+
+
+def run_scenario(name: str, argv: list[str]) -> tuple[dict, float]:
+    """Run scenario ``name``'s ``main(argv)`` (here or in a worker process: a module-level
+    function, so it pickles by name); returns (its result, wall time [s])."""
+    import importlib
+    import sys
+    import time
+
+    here = str(Path(__file__).resolve().parent)
+    if here not in sys.path:
+        sys.path.insert(0, here)
+    t0 = time.perf_counter()
+    res = importlib.import_module(name).main(argv)
+    return res, time.perf_counter() - t0

@@ -10,13 +10,11 @@ in: every "ours" entry is formatted from a result of this run.
 
 from __future__ import annotations
 
-import importlib
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
-from _common import ROOT, claim, parse_args, write_json
+from _common import ROOT, claim, parse_args, run_scenario, write_json
 
 from gecko_agents import quasistatic as qs
 from gecko_agents.history import atomic_write_bytes, versions
@@ -115,16 +113,6 @@ def markdown(rows: list[dict], timings: dict, quick: bool) -> str:
     return "\n".join(lines)
 
 
-def _run_scenario(name: str, sub: list[str]) -> tuple[dict, float]:
-    """Run one scenario's main (in this or a worker process); (its result, wall time [s])."""
-    here = str(Path(__file__).resolve().parent)
-    if here not in sys.path:
-        sys.path.insert(0, here)
-    t0 = time.perf_counter()
-    res = importlib.import_module(name).main(sub)
-    return res, time.perf_counter() - t0
-
-
 def _add_jobs(parser) -> None:
     parser.add_argument(
         "--jobs", type=int, default=2,
@@ -153,7 +141,7 @@ def run_scenarios(base: Path, args) -> dict:
     if args.jobs <= 1:
         for i, name in enumerate(names, 1):
             print(f"[{i}/{len(names)}] {name} …", flush=True)
-            done[name] = _run_scenario(name, subs[name])
+            done[name] = run_scenario(name, subs[name])
             print(f"      done in {done[name][1]:.0f} s", flush=True)
         return done
     import multiprocessing
@@ -162,7 +150,7 @@ def run_scenarios(base: Path, args) -> dict:
     order = sorted(names, key=lambda n: n not in LONGEST)
     ctx = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(max_workers=args.jobs, mp_context=ctx) as pool:
-        futures = {pool.submit(_run_scenario, n, subs[n]): n for n in order}
+        futures = {pool.submit(run_scenario, n, subs[n]): n for n in order}
         for k, fut in enumerate(as_completed(futures), 1):
             name = futures[fut]
             done[name] = fut.result()
