@@ -41,6 +41,7 @@ from .contact import contact_law
 from .diagnostics import check_cost, diagnose, non_finite_report
 from .dynamics import DEFAULT_DAMPING, Damping, seta_mass, tangential_stiffness
 from .floor import Profile
+from .floor import statistics as _floor_stats
 from .history import History, versions
 from .kernels import LoopConstants, NumpyStep
 from .loop import numba_available as _numba_installed
@@ -98,6 +99,16 @@ def _checked_arguments(params, n_sim, contact, record_every, kernel, floor_profi
             f"{type(floor_profile).__name__}"
         )
     return int(n)
+
+
+def floor_statistics(profile: Profile, floor_params) -> dict:
+    """The floor's RMS height and slope, PSD and Hurst estimate for a run's metadata
+    (:func:`gecko_agents.floor.statistics`; a self-affine floor's Hurst exponent is fitted
+    between twice its short and half its long cutoff)."""
+    fit = None
+    if getattr(floor_params, "kind", "gaussian") == "self_affine":
+        fit = (2.0 * floor_params.short_cutoff, 0.5 * floor_params.long_cutoff)
+    return _floor_stats(profile, fit_wavelengths=fit)
 
 
 @dataclass
@@ -606,6 +617,7 @@ class Model:
             "kernel": self.kernel, "detection": self.world.detection,
             "tip_law": self.law.name, "tip_bounds": tip_bounds(self.law),
             "energy_complete": self.energy_complete,
+            "floor_statistics": floor_statistics(self.world.profile, self.params.floor),
             "skipped_travel_um": run.skipped,
             "damping": dataclasses.asdict(self.damping), "mass_ng": self.mass,
             "tangential_stiffness_uN_per_um": self.k_t,

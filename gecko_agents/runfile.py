@@ -714,7 +714,8 @@ def execute_run(
     """Run a checked run file and write its run directory ``out``.
 
     The directory holds ``history.csv``, ``metadata.json`` and ``setae.npz``
-    (:meth:`History.save`), ``force_history.png``, ``detachment.gif``/``.mp4`` if
+    (:meth:`History.save`), ``force_history.png``, ``floor.png`` (profile and PSD),
+    ``detachment.gif``/``.mp4`` if
     ``animation`` is ``"gif"``/``"mp4"`` (per-seta recording is then switched on; it does not
     change the dynamics), and the run file copied verbatim as ``run.toml``. Everything is
     written into a hidden sibling directory that replaces ``out`` only once complete, so an
@@ -762,6 +763,9 @@ def execute_run(
         from . import render
 
         render.plot_history(history, stage / "force_history.png")
+        from .floor_plots import plot_floor
+
+        plot_floor(model.profile, stage / "floor.png", stats=history.meta["floor_statistics"])
         if animation:
             render.animate(history, stage / f"detachment.{animation}")
         _replace_dir(stage, out)

@@ -368,3 +368,17 @@ def test_floor_panel_is_written(tmp_path):
 
     out = plot_floor(_synth(0), tmp_path / "floor.png", title="self-affine")
     assert (tmp_path / "floor.png").stat().st_size > 10_000 and len(out.axes) == 2
+
+
+def test_run_metadata_carries_the_floor_statistics():
+    from gecko_agents import model, protocol
+
+    p = PAPER_ARRAY.replace(
+        **{"floor.kind": "self_affine", "floor.sigma": 0.2, "mechanics": "rod", "seta.L": 5.0}
+    )
+    m = model.Model(p, n_sim=2)
+    h = m.run(protocol.press_pull(0.2, speed=0.05), progress=False)
+    st = h.meta["floor_statistics"]
+    y = m.profile.y
+    assert st["rms_height_um"] == pytest.approx(float(np.sqrt(np.mean((y - y.mean()) ** 2))))
+    assert st["hurst"] is not None and 0.0 < st["hurst"] < 1.5
