@@ -60,6 +60,10 @@ from gecko_agents.params import PAPER_ARRAY
 NAME = "fig11a_preload"
 
 
+ROD_PRELOADS_N = [0.01, 0.1, 1.0, 10.0]
+"""Preloads of the quasi-static rod-seta series [N] (a rod point costs ~8 s at 1000 blocks)."""
+
+
 def run_sweeps(cfg, out, args, base, adhesive, alt) -> tuple[dict, dict]:
     """The four sweeps of the figure; (rows by series, wall times [s])."""
     seeds = cfg["floor_seeds"]
@@ -79,6 +83,13 @@ def run_sweeps(cfg, out, args, base, adhesive, alt) -> tuple[dict, dict]:
                 cfg["alt_preloads_N"],
                 f"alt_w{W_ALT:.3f}",
                 f"w = {W_ALT}",
+            ),
+            "rod": (
+                base.replace(mechanics="rod"),
+                {"floor.seed": seeds[:1]},
+                ROD_PRELOADS_N[:2] if args.quick else ROD_PRELOADS_N,
+                "rod",
+                "rod setae",
             ),
             "agent": (
                 PAPER_ARRAY,
@@ -108,6 +119,7 @@ def write_summary(out, curves: dict, n_sim: int) -> None:
         ("quasi-static paper's method", curves["qs"]),
         ("quasi-static adhesive friction", curves["ad"]),
         (f"quasi-static paper's method w={W_ALT}", curves["al"]),
+        ("quasi-static paper's method, rod setae", curves["rod"]),
         (f"agent rod patch n_sim={n_sim}", curves["ag"]),
     ):
         for i, P in enumerate(s["preload_N"]):
@@ -154,6 +166,12 @@ def draw(out, cfg, base, curves: dict, m: dict, ideal_N: float) -> None:
             "y": al["mean"],
             "style": {"ls": "--", "marker": "s", "ms": 3},
             "label": f"paper's method, w = {W_ALT:.3f} J/m² (Fig 5 reading)",
+        },
+        {
+            "x": curves["rod"]["preload_N"],
+            "y": curves["rod"]["mean"],
+            "style": {"ls": "-.", "marker": "v", "ms": 4, "color": "tab:green"},
+            "label": "paper's method with large-rotation rod setae, quasi-static (1 floor)",
         },
         {
             "x": xs,
@@ -278,6 +296,7 @@ def results(curves: dict, metrics: dict, frac, ideal_N, ideal_alt_N, check, time
         "quasistatic": {k: v.tolist() for k, v in qs.items()},
         "attached_fraction": frac.tolist(),
         "adhesive_friction": {**metrics["ad"], "curve": {k: v.tolist() for k, v in ad.items()}},
+        "rod_setae": {k: v.tolist() for k, v in curves["rod"].items()},
         "alternative": {
             "w": W_ALT,
             "ideal_N": ideal_alt_N,
@@ -332,6 +351,7 @@ def main(argv=None) -> dict:
         "qs": summarize(rows["quasistatic"], "pull_off_uN", scale)[None],
         "ad": summarize(rows["adhesive_friction"], "pull_off_uN", scale)[None],
         "al": summarize(rows["alternative"], "pull_off_uN", scale)[None],
+        "rod": summarize(rows["rod"], "pull_off_uN", scale)[None],
         "ag": summarize(rows["agent"], "pull_off_array_uN", 1 / UN_PER_N)[None],
     }
     frac = summarize(rows["quasistatic"], "attached_fraction", 1.0)[None]["mean"]
