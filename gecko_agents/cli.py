@@ -285,31 +285,15 @@ def _cmd_reproduce(args, extra) -> int:
 
 # render ------------------------------------------------------------------------------------------
 def _add_render(p: argparse.ArgumentParser) -> None:
-    p.add_argument("run_dir", type=Path, help="run directory (written by `run` or History.save)")
-    kind = p.add_mutually_exclusive_group()
-    kind.add_argument(
-        "--gif", dest="fmt", action="store_const", const="gif", help="animated GIF (default)"
-    )
-    kind.add_argument(
-        "--mp4",
-        dest="fmt",
-        action="store_const",
-        const="mp4",
-        help="MP4 video (needs pip install -e '.[video]')",
-    )
-    p.add_argument("--window", type=int, default=None, help="setae drawn (default 40)")
-    p.add_argument("--frames", type=int, default=None, help="frames (default ≤ 300)")
-    p.add_argument("--fps", type=float, default=None, help="frames per second (default 20)")
+    from . import render
+
+    render.add_arguments(p)
 
 
 def _cmd_render(args, extra) -> int:
     from . import render
 
-    argv = [str(args.run_dir)] + ([f"--{args.fmt}"] if args.fmt else [])
-    for name in ("window", "frames", "fps"):
-        if getattr(args, name) is not None:
-            argv += [f"--{name}", str(getattr(args, name))]
-    return render.main(argv)
+    return render.run(args)
 
 
 # bench -------------------------------------------------------------------------------------------

@@ -763,6 +763,13 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(
         prog="python -m gecko_agents.render", description="Render a saved gecko_agents run."
     )
+    add_arguments(parser)
+    return run(parser.parse_args(argv))
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """The render command's arguments (``python -m gecko_agents.render`` and
+    ``gecko-agents render``)."""
     parser.add_argument("run_dir", type=Path, help="directory written by History.save")
     kind = parser.add_mutually_exclusive_group()
     kind.add_argument(
@@ -778,7 +785,11 @@ def main(argv=None) -> int:
     parser.add_argument("--window", type=int, default=40, help="setae drawn (default 40)")
     parser.add_argument("--frames", type=int, default=None, help="frames (default ≤ 300)")
     parser.add_argument("--fps", type=float, default=20, help="frames per second (default 20)")
-    args = parser.parse_args(argv)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Render the run directory ``args.run_dir`` (arguments of :func:`add_arguments`);
+    returns the exit code (2 on a missing or corrupt run)."""
     try:
         start = time.perf_counter()
         history = load(args.run_dir)
