@@ -292,6 +292,19 @@ class NumpyStep:
             pt, ps = pt[keep], ps[keep]
         self.contact(pt, x[pt], y[pt], s.pv[2, pt], s.pv[3, pt], ps)
 
+    def _pad_overlaps(self):
+        """Every tip against its own horizontal pad: (pad heights, tip x, overlap δ = R − (y − h)
+        written into ``state.delta``, this step's candidate flags, attached flags)."""
+        s = self.s
+        h = self.world.h
+        x, y = s.xy
+        d = s.delta
+        np.subtract(y, h, out=d)
+        np.subtract(self.c.R, d, out=d)  # δ = R − (y − h)
+        cand = s.candidate_step
+        np.copyto(cand, s.candidate)
+        return h, x, d, cand, s.attached
+
     def contact_pads(self):
         """Pad floor, batch path: every tip against its own horizontal pad, in bulk.
 
@@ -301,14 +314,7 @@ class NumpyStep:
         if law.tangential:
             return self.contact_pads_tangential()
         n = s.n
-        h = self.world.h
-        x, y = s.xy
-        d = s.delta
-        np.subtract(y, h, out=d)
-        np.subtract(c.R, d, out=d)  # δ = R − (y − h)
-        cand = s.candidate_step
-        np.copyto(cand, s.candidate)
-        att = s.attached
+        h, x, d, cand, att = self._pad_overlaps()
         all_att, all_cand = bool(att.all()), bool(cand.all())
         lo = d < c.detach
         if law.rate_dependent:  # the crack has run through
@@ -410,14 +416,7 @@ class NumpyStep:
         lets go when its film has peeled off (ℓ = 0), past δ_detach or without a candidate
         floor, and its stored energy is dissipated. Contact damping acts on attached tips."""
         s, c, law = self.s, self.c, self.law
-        h = self.world.h
-        x, y = s.xy
-        d = s.delta
-        np.subtract(y, h, out=d)
-        np.subtract(c.R, d, out=d)  # δ = R − (y − h)
-        cand = s.candidate_step
-        np.copyto(cand, s.candidate)
-        att = s.attached
+        h, x, d, cand, att = self._pad_overlaps()
         lost = np.flatnonzero(att & ~cand)
         gone = np.flatnonzero(att & cand & (d < c.detach))
         if lost.size or gone.size:
@@ -435,7 +434,7 @@ class NumpyStep:
         peeled = []
         for i in np.flatnonzero(att):
             P, T, shift, ell, p0, s0, U, diss, slid = step(
-                x[i] - s.anchor[0, i], y[i] - h[i], s.a[i], s.p0[i], s.s0[i], k
+                x[i] - s.anchor[0, i], s.xy[1, i] - h[i], s.a[i], s.p0[i], s.s0[i], k
             )
             # Attachment starts the contact at U = 0: book the energy it starts with.
             self.diss += -U if new[i] else diss
