@@ -47,7 +47,7 @@ import numpy as np
 import pymunk
 import pymunk.batch as pb
 
-from .model import Model
+from .model import Model, register_backing
 
 __all__ = ["Strip", "ElasticModel", "bending_length", "peel", "OMEGA_DT", "MIN_LINKS"]
 
@@ -192,6 +192,7 @@ class Strip:
         return np.concatenate([yl, yr[-1:]])
 
 
+@register_backing("elastic")
 class ElasticModel(Model):
     """:class:`gecko_agents.model.Model` with the elastic backing of ``params.backing``
     (built by ``Model(params)`` when ``params.backing.kind == "elastic"``). The numpy kernel

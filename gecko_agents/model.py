@@ -67,6 +67,21 @@ _MAX_N = 200_000  # 10⁵ setae: ~0.7 GB peak RSS (python -m gecko_agents.bench)
 _PYTHON_MAX_N = 6  # below this many setae the interpreted loop beats numpy's call overhead
 
 
+BACKINGS: dict[str, type] = {}
+"""Model subclass for each backing kind other than the rigid plate (``params.backing.kind``)."""
+
+
+def register_backing(kind: str):
+    """Class decorator: ``Model(params)`` with ``params.backing.kind == kind`` builds the
+    decorated subclass of :class:`Model` (e.g. :class:`gecko_agents.backing.ElasticModel`)."""
+
+    def register(cls):
+        BACKINGS[kind] = cls
+        return cls
+
+    return register
+
+
 class SimulationUnstable(RuntimeError):
     """The run blew up (non-finite state or runaway kinetic energy)."""
 
@@ -168,11 +183,16 @@ class Model:
     its histories skip the energy-balance invariant."""
 
     def __new__(cls, params=None, *args, **kwargs):
-        # An elastic backing (params.backing.kind) is the subclass of gecko_agents.backing.
-        if cls is Model and getattr(getattr(params, "backing", None), "kind", "") == "elastic":
-            from .backing import ElasticModel
-
-            return super().__new__(ElasticModel)
+        # A backing other than the rigid plate is a subclass registered by its module
+        # (:func:`register_backing`), so this module imports no backing.
+        kind = getattr(getattr(params, "backing", None), "kind", "rigid")
+        if cls is Model and kind != "rigid":
+            if kind not in BACKINGS:
+                raise ValueError(
+                    f"backing.kind = {kind!r}: no model registered for it "
+                    f"(registered: {['rigid', *sorted(BACKINGS)]}); import its module first"
+                )
+            return super().__new__(BACKINGS[kind])
         return super().__new__(cls)
 
     def __init__(
