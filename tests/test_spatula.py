@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.contact import _film_force, contact_law
+from gecko_agents.contact import contact_law
+from gecko_agents.contact.spatula import _film_force
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 

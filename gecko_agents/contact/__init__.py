@@ -1,0 +1,60 @@
+"""Tip contact laws: one small interface, one class per law, chosen by name in the parameters.
+
+Units: µm, µN, µs, pJ (:mod:`gecko_agents.params`). Sign convention (everywhere): the overlap
+δ > 0 when the tip sphere is pressed into the floor; the normal force P > 0 when the floor
+pushes the tip away (compression) and P < 0 in adhesion (tension).
+
+A law answers the few questions the time-stepped model asks of a contact, as LAMMPS's granular
+sub-models do (``touch``, ``pulloff_distance``, ``calculate_forces``, ``set_fncrit``):
+
+* :meth:`ContactLaw.radius` — contact radius a [µm] after a step of dt [µs] at overlap δ [µm]
+  from the previous radius (an elastic law ignores both: a(δ) on its branch; a rate-dependent
+  law integrates its edge's motion);
+* :meth:`ContactLaw.force` — normal force P(a, δ) [µN];
+* :meth:`ContactLaw.energy` — energy stored in the contact at (a, δ) counted from attachment
+  [pJ] (∂U/∂δ = P), which a snap-off dissipates;
+* :attr:`ContactLaw.attach_overlap` / :attr:`ContactLaw.detach_overlap` — a free tip attaches
+  at δ ≥ δ_attach; an attached tip lets go below δ_detach, or (rate-dependent laws) once its
+  radius has fallen to :attr:`ContactLaw.release_radius`;
+* :attr:`ContactLaw.tangential_stiffness` — the stick spring of Coulomb friction [µN/µm];
+* :attr:`ContactLaw.pull_off_force` — Fc [µN], which the adhesive friction cap μ|P + 2Fc| uses.
+
+A law that needs the tip's tangential position (:attr:`ContactLaw.tangential`, the thin-film
+:class:`SpatulaTip`) answers one question instead of ``radius``/``force``: ``step_scalar`` takes
+the tip's offset from its peel front along the floor and its height, and returns both force
+components and the new contact state (front shift, attached length, pre-tension, stored
+energy, dissipation); the kernels call it per seta on pad floors. The sphere laws never reach
+that branch, so their histories are unchanged.
+
+Each law gives the same formulas twice, kept side by side so that they cannot drift apart:
+vectorized numpy methods (the general floor path, recording, energies) and scalar
+``@staticmethod`` functions with ``k``, the law's constants, as last argument
+(:attr:`ContactLaw.constants`, a float64 array) that the per-seta loop calls, compiled by numba
+or interpreted (:mod:`gecko_agents.kernels`). ``tests/test_contact.py`` pins both forms of every
+law to its closed form (:mod:`gecko_agents.jkr`) point by point.
+
+Layout: :mod:`.base` (interface, shared scalar helpers), one module per law (:mod:`.jkr_sphere`,
+:mod:`.rate_jkr`, :mod:`.hertz`, :mod:`.spatula`) and :mod:`.registry` (names). Adding a law: write
+one module with a subclass of :class:`ContactLaw`, register it in :data:`TIP_LAWS`, add its tests.
+Nothing in the model changes.
+"""
+
+from .base import ContactLaw, branch_radius, mindlin_stiffness
+from .hertz import HertzSphere
+from .jkr_sphere import JKRSphere
+from .rate_jkr import RateJKRSphere
+from .registry import TIP_LAWS, bounds, contact_law
+from .spatula import SpatulaTip
+
+__all__ = [
+    "ContactLaw",
+    "JKRSphere",
+    "RateJKRSphere",
+    "HertzSphere",
+    "SpatulaTip",
+    "TIP_LAWS",
+    "contact_law",
+    "bounds",
+    "mindlin_stiffness",
+    "branch_radius",
+]

@@ -1,0 +1,109 @@
+"""The contact-law interface (:class:`ContactLaw`) and the scalar helpers several laws share.
+
+Units and sign conventions: :mod:`gecko_agents.contact`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["ContactLaw", "branch_radius", "jitable", "mindlin_stiffness"]
+
+
+try:  # the scalar forms call it from inside numba-compiled code too
+    from numba.extending import register_jitable as jitable
+except ImportError:  # numba is optional: then it is a plain function
+
+    def jitable(fn):
+        return fn
+
+
+@jitable
+def branch_radius(delta, R, ac):
+    """Scalar :func:`jkr.radius_from_overlap`: contact radius on the stable JKR branch [µm]
+    at overlap δ [µm] (clipped to δc), for R [µm] and the snap-off radius a_c [µm] (eq 10
+    inverted by Ferrari's method plus one Newton step)."""
+    d = delta * (R / (ac * ac))
+    if d < -3.0:
+        d = -3.0
+    disc = math.sqrt(d * d * d * (1.0 / 27.0) + 1.0)
+    A = np.cbrt(disc + 1.0)
+    Bp = d / (3.0 * A)
+    m = 2.0 / (A * A + d * (1.0 / 3.0) + Bp * Bp)
+    inner = math.sqrt(2.0 / m) * 4.0 - 2.0 * m
+    if inner < 0.0:
+        inner = 0.0
+    u = (math.sqrt(m * 2.0) + math.sqrt(inner)) * 0.5
+    u2 = u * u
+    fp = (u2 * u - 1.0) * 4.0
+    if fp > 1e-3:
+        u -= (u2 * u2 - 4.0 * u - d) / fp
+    if u < 1.0:
+        u = 1.0
+    return (u * u) * ac
+
+
+def mindlin_stiffness(contact, a: float) -> float:
+    """Tangential stick stiffness k_t = 8G*·a of a circular contact of radius a [µN/µm].
+
+    Mindlin (1949, J Appl Mech 16:259); G* = ((2−ν1)/G1 + (2−ν2)/G2)⁻¹, G = E/(2(1+ν))
+    (Johnson, Contact Mechanics, 1985, §7.2).
+
+    Parameters
+    ----------
+    contact : :class:`gecko_agents.params.Contact` (E in MPa). a : contact radius [µm].
+    """
+    G1, G2 = contact.E1 / (2 * (1 + contact.nu1)), contact.E2 / (2 * (1 + contact.nu2))
+    G_star = 1.0 / ((2 - contact.nu1) / G1 + (2 - contact.nu2) / G2)
+    return 8.0 * G_star * a
+
+
+class ContactLaw:
+    """The interface (see the module docstring). Subclasses set the attributes in
+    ``__init__`` and implement the vectorized and scalar methods."""
+
+    name: str = ""
+    rate_dependent: bool = False  # the radius is a state variable (crack kinetics)
+    tangential: bool = False  # the law takes the tip's tangential position (step_scalar)
+    max_tension: float = math.nan  # largest tension a tip can hold [µN] (nan: Fc)
+    release_radius: float = 0.0  # a rate-dependent tip lets go at a ≤ this [µm]
+    attach_overlap: float = 0.0  # δ at which a free tip attaches [µm]
+    detach_overlap: float  # δ below which an attached tip lets go [µm]
+    jump_radius: float  # contact radius at attachment [µm]
+    pull_off_force: float  # Fc [µN] (0 without adhesion)
+    tangential_stiffness: float  # Mindlin stick stiffness [µN/µm]
+    zero_load_stiffness: float  # dP/dδ at P = 0 [µN/µm] (damping scale)
+    constants: np.ndarray  # constants of the scalar functions
+
+    def radius(self, delta, a_prev, dt: float):
+        """Contact radius a [µm] after a step dt [µs] at overlaps δ [µm] from radii a_prev."""
+        raise NotImplementedError
+
+    def force(self, a, delta):
+        """Normal force P [µN] at contact radius a [µm] and overlap δ [µm]."""
+        raise NotImplementedError
+
+    def energy(self, a, delta):
+        """Energy stored in the contact at (a, δ), from attachment [pJ]."""
+        raise NotImplementedError
+
+    def stiffest(self, load: float) -> float:
+        """Contact stiffness dP/dδ [µN/µm] at a compressive load [µN] (time-step bound)."""
+        raise NotImplementedError
+
+    @staticmethod
+    def radius_scalar(delta, a_prev, dt, k):
+        """Scalar :meth:`radius` for the per-seta loop."""
+        raise NotImplementedError
+
+    @staticmethod
+    def force_scalar(a, delta, k):
+        """Scalar :meth:`force`."""
+        raise NotImplementedError
+
+    @staticmethod
+    def energy_scalar(a, delta, k):
+        """Scalar :meth:`energy`."""
+        raise NotImplementedError

@@ -1,0 +1,43 @@
+"""Tip laws by name: :data:`TIP_LAWS`, :func:`contact_law` (the law of a parameter set) and
+:func:`bounds` (what history invariants may assume of it)."""
+
+from __future__ import annotations
+
+import math
+
+from .base import ContactLaw
+from .hertz import HertzSphere
+from .jkr_sphere import JKRSphere
+from .rate_jkr import RateJKRSphere
+from .spatula import SpatulaTip
+
+__all__ = ["TIP_LAWS", "bounds", "contact_law"]
+
+
+TIP_LAWS: dict[str, type[ContactLaw]] = {
+    "sphere": JKRSphere,
+    "hertz": HertzSphere,
+    "spatula": SpatulaTip,
+}
+"""Tip laws by the name ``params.tip`` selects."""
+
+
+def bounds(law: ContactLaw) -> dict:
+    """What :func:`gecko_agents.history.invariant_violations` may assume of a law's histories:
+    the largest tension one tip holds [µN] (inf for a rate-dependent contact, whose crack lags),
+    the overlap below which no tip stays attached [µm], and whether the law is rate dependent."""
+    tension = math.inf if law.rate_dependent else law.pull_off_force
+    if not math.isnan(law.max_tension):  # the law's own bound (a film holds many w·b)
+        tension = law.max_tension
+    return {"max_tension_uN": tension, "detach_overlap_um": law.detach_overlap,
+            "rate_dependent": bool(law.rate_dependent)}  # fmt: skip
+
+
+def contact_law(params) -> ContactLaw:
+    """The contact law of a :class:`gecko_agents.params.SetaArray`: ``params.tip``, with crack
+    kinetics (:class:`RateJKRSphere`) for a sphere of finite ``contact.crack_speed``."""
+    if params.tip == "sphere" and math.isfinite(getattr(params.contact, "crack_speed", math.inf)):
+        return RateJKRSphere(params.contact)
+    if params.tip == "spatula":
+        return SpatulaTip(params.contact, params.spatula, params.friction)
+    return TIP_LAWS[params.tip](params.contact)

@@ -1,0 +1,240 @@
+"""The thin-film (spatula) tip peeling by Kendall's energy balance: :class:`SpatulaTip`."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import jkr
+from .base import ContactLaw
+
+__all__ = ["SpatulaTip"]
+
+
+try:  # the film's helpers are called from the compiled loop, so they are compiled too
+    from numba import njit as _njit
+except ImportError:  # pragma: no cover
+
+    def _njit(**kwargs):
+        return lambda f: f
+
+
+@_njit(cache=True)
+def _film_force(dx, zf, s0, K):
+    """Tension F [µN] of the free film from the peel front to its end at horizontal offset dx
+    and height zf [µm] (chord s = √(dx² + zf²)), unstretched length s0 [µm], K = E_f·h·b [µN]:
+    F = K(s − s0)/s0 while taut, 0 while slack (a film carries no compression)."""
+    s = math.sqrt(dx * dx + zf * zf)
+    e = s - s0
+    return (K * e / s0 if e > 0.0 else 0.0), s
+
+
+@_njit(cache=True)
+def _film_energy(dx, z, ell, p0, s0, k):
+    """Energy the spatula contact stores [pJ], counted from attachment: free film
+    ½K(s − s0)²/s0 + pre-strain of the attached film ℓ·P0²/(2K) + surface energy of the
+    peeled film w·b·(ℓ0 − ℓ) + Hertz compression of the tip (8/15)E*√R·δ^(5/2)."""
+    R, b, w, ell0, K, hz_u = k[0], k[1], k[4], k[5], k[6], k[8]
+    zf = z - R if z > R else 0.0
+    s = math.sqrt(dx * dx + zf * zf)
+    e = s - s0
+    U = 0.5 * K * e * e / s0 if e > 0.0 else 0.0
+    U += ell * p0 * p0 / (2.0 * K) + w * b * (ell0 - ell)
+    d = R - z
+    if d > 0.0:
+        U += hz_u * d * d * math.sqrt(d)
+    return U
+
+
+@_njit(cache=True)
+def _release_rate(dx, zf, p0, s0, k):
+    """Energy release rate per width g [µN/µm] of the peel front (−∂U/∂c per width, c the
+    peeled length): g·b = −F cos φ + (F + F²/2K)/(1 + ε0) + P0²/(2K), ε0 = P0/K, cos φ = −dx/s.
+    P0 = 0 is Kendall's F(1 − cos φ) + F²/(2E_f·h·b) (Kendall 1975, J Phys D 8:1449, eq 4 per
+    width); to second order in the strains it is Chen, Wu & Gao's
+    F(1 − cos φ) + (F − P0)²/(2E_f·h·b) (2009, J R Soc Interface 6:529)."""
+    b, K = k[1], k[6]
+    F, s = _film_force(dx, zf, s0, K)
+    cos_phi = -dx / s if s > 0.0 else 0.0
+    return (-F * cos_phi + (F + F * F / (2.0 * K)) / (1.0 + p0 / K) + p0 * p0 / (2.0 * K)) / b
+
+
+@_njit(cache=True)
+def _friction_cap(z, ell, k):
+    """Friction cap of the attached pad [µN]: ``adhesive`` μ(P_c + 2Fc·ℓ/ℓ0) (Thornton's
+    μ|P + 2Fc| with the adhesion of what is still attached) or ``paper`` μ·P_c (eq 27). P_c ≥ 0
+    is the compression of the tip body: the film's pull acts at the peel front (Kendall's
+    picture), the pad behind the front carries no normal load but its adhesion."""
+    R, ell0, hz_f, mu, paper, Fc = k[0], k[5], k[7], k[9], k[10], k[11]
+    d = R - z
+    Pc = hz_f * d * math.sqrt(d) if d > 0.0 else 0.0
+    if paper > 0.0:
+        return mu * Pc
+    return mu * (Pc + 2.0 * Fc * ell / ell0)
+
+
+class SpatulaTip(ContactLaw):
+    """A thin elastic film (spatula) of width b, thickness h, modulus E_f that hangs from the
+    tip centre and is attached to the floor over a length ℓ (a state variable), peeling by an
+    energy balance (Kendall 1975, J Phys D 8:1449) with the pre-tension dragging puts into the
+    attached film (Chen, Wu & Gao 2009, J R Soc Interface 6:529). Pad floors only.
+
+    Geometry (x along the floor, positive where the setae lean): the attached pad extends from
+    the peel front towards +x (the film continues the seta's lean); the free film runs from the
+    front to the bottom of the tip body (height z_f = max(z − R, 0) above the floor, z the tip
+    centre's), chord s = √(dx² + z_f²), unstretched length s0, tension F = E_f·h·b(s − s0)/s0
+    while taut (0 while slack). The peel angle φ between the free film and the floor away from
+    the pad is cos φ = −dx/s, dx = x_tip − x_front: a tip pulled back over −x peels at small φ,
+    a tip pushed over its pad at φ > 90°. On attachment (δ ≥ 0) the front sits under the tip,
+    ℓ = ℓ0, s0 = h (the film turns under the tip body within its thickness), no pre-tension:
+    the film then holds the pressed tip tangentially with stiffness E_f·b (K/s0).
+
+    Every step, at the tip's position (a quasi-static front: the energy balance holds at the
+    end of each step):
+
+    1. **Slide.** The film pulls the front along the floor with F·|dx|/s; the pad slides towards
+       the tip while that exceeds the friction cap, to where it equals it: adhesive
+       μ(P_c + 2Fc·ℓ/ℓ0) — friction acts on what is still attached (Thornton's μ|P + 2Fc| with
+       P_c ≥ 0 the tip body's compression: the film's pull acts at the front, the pad behind
+       it carries only its adhesion; Fc = w·b) — or paper: μ·P_c (eq 27). Sliding away from
+       the pad stretches the attached film: the pre-tension rises, P0² += 2K·cap·Δ/ℓ (the
+       friction work at most), up to the cap.
+    2. **Peel.** The front advances by dc (ℓ −= dc, s0 += dc/(1 + ε0): the pre-strained
+       attached film enters the free film) to where the energy release rate per width
+       g = [−F cos φ + (F + F²/2K)/(1 + ε0) + P0²/(2K)]/b equals w; if it still exceeds w at
+       ℓ = 0 the film has peeled off: the tip lets go. With P0 = 0 the balance is Kendall's
+       (F/b)(1 − cos φ) + (F/b)²/(2E_f·h) = w (eq 4 per width); to second order in the strains
+       it is Chen, Wu & Gao's G = P(1 − cos φ) + (P − P0)²/(2E_f·h) (per width).
+    3. **Forces.** On the tip: −F·(dx, z)/s from the film plus the Hertz compression
+       (4/3)E*√R·δ^(3/2) of the tip body while δ = R − z > 0 (pressing).
+
+    Stored energy U = ½K(s − s0)²/s0 + ℓP0²/(2K) + w·b(ℓ0 − ℓ) + (8/15)E*√R·δ^(5/2) [pJ] from
+    attachment (K = E_f·h·b); a step's slide and peel dissipate U_before − U_after ≥ 0 at the
+    tip's position (Coulomb work, and the release rate in excess of w), a release dissipates
+    what is left.
+
+    Parameters
+    ----------
+    contact : :class:`gecko_agents.params.Contact` (R [µm], E* [MPa], w [µN/µm]).
+    spatula : :class:`gecko_agents.params.Spatula` (b, h, length [µm], E_f [MPa]).
+    friction : :class:`gecko_agents.params.Friction` (μ, law).
+    """
+
+    name = "spatula"
+    tangential = True
+    max_tension = math.inf  # a film at a small peel angle holds many w·b
+
+    def __init__(self, contact, spatula, friction):
+        R, w, E = contact.jkr_args()
+        b, h, E_f, ell0 = spatula.b, spatula.h, spatula.E_f, spatula.length
+        self.R, self.w, self.E_star = R, w, E
+        self.b, self.h, self.E_f, self.ell0 = b, h, E_f, ell0
+        self.K = E_f * h * b
+        # Fc: the 90° peel force of an inextensible film, w·b (Kendall 1975).
+        self.pull_off_force = w * b
+        self.attach_overlap = 0.0
+        # Backstop: a tip 3(ℓ0 + R) above the floor has stretched its film far past Kendall.
+        self.detach_overlap = -3.0 * (ell0 + R)
+        self.jump_radius = ell0
+        self.a0 = ell0
+        # The film's stiffness on attachment, K/h = E_f·b: the stiffest it gets (s0 ≥ h).
+        self.s_attach = h
+        self.tangential_stiffness = self.K / h
+        self.zero_load_stiffness = self.K / h
+        # k = (R, b, h, E_f, w, ℓ0, K, (4/3)E*√R, (8/15)E*√R, μ, paper, Fc, s0 on attachment)
+        self.constants = np.array(
+            [
+                R,
+                b,
+                h,
+                E_f,
+                w,
+                ell0,
+                self.K,
+                4.0 * E * math.sqrt(R) / 3.0,
+                8.0 * E * math.sqrt(R) / 15.0,
+                friction.mu,
+                1.0 if friction.law == "paper" else 0.0,
+                self.pull_off_force,
+                h,
+            ]
+        )
+
+    def stiffest(self, load: float) -> float:
+        return 2 * self.E_star * float(jkr.hertz_contact_radius(load, self.R, self.E_star))
+
+    def kendall_force(self, phi):
+        """Steady peel force F [µN] of the film at peel angle φ [rad] without pre-tension:
+        the root of (F/b)(1 − cos φ) + (F/b)²/(2E_f·h) = w (Kendall 1975, eq 4 per width)."""
+        c = 1.0 - np.cos(phi)
+        Eh = self.E_f * self.h
+        return self.b * Eh * (np.sqrt(c * c + 2.0 * self.w / Eh) - c)
+
+    def energy(self, a, delta):
+        raise NotImplementedError("SpatulaTip stores its energy in the state (state.uc)")
+
+    @staticmethod
+    def step_scalar(dx, z, ell, p0, s0, k):
+        """One step of the film at the tip's offset dx = x_tip − x_front and height z = y_tip −
+        floor [µm] from state (ℓ, P0, s0). Returns (P, T, shift, ℓ, P0, s0, U, dissipation,
+        slid): normal force P [µN] (> 0 compressive), tangential force on the tip T [µN]
+        (along +x), front displacement along +x [µm], the new state, the stored energy U [pJ],
+        U_before − U_after [pJ] and whether the pad slid (1.0) or not (0.0)."""
+        R, K, hz_f = k[0], k[6], k[7]
+        zf = z - R if z > R else 0.0  # height of the film's end (the tip body's bottom)
+        U0 = _film_energy(dx, z, ell, p0, s0, k)
+        shift = 0.0
+        slid = 0.0
+        # 1. Slide: the pad moves towards the tip while the film's pull exceeds the cap.
+        F, s = _film_force(dx, zf, s0, K)
+        Fh = F * abs(dx) / s if s > 0.0 else 0.0
+        cap = _friction_cap(z, ell, k)
+        if Fh > cap:
+            sgn = 1.0 if dx > 0.0 else -1.0
+            lo, hi = 0.0, abs(dx)
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                dm = dx - sgn * mid
+                Fm, sm = _film_force(dm, zf, s0, K)
+                if Fm * abs(dm) / sm > cap:
+                    lo = mid
+                else:
+                    hi = mid
+            if dx < 0.0 and ell > 0.0:  # pulled away from the pad: friction pre-stretches it
+                p2 = p0 * p0 + 2.0 * K * cap * hi / ell
+                p0 = min(math.sqrt(p2), cap) if cap > p0 else p0
+            shift = sgn * hi
+            dx -= shift
+            slid = 1.0
+        # 2. Peel: advance the front until g = w; a film still above w at ℓ = 0 has let go.
+        w = k[4]
+        if ell > 0.0 and _release_rate(dx, zf, p0, s0, k) > w:
+            grow = 1.0 / (1.0 + p0 / K)
+            if _release_rate(dx - ell, zf, p0, s0 + ell * grow, k) > w:
+                dc = ell
+            else:
+                lo, hi = 0.0, ell
+                for _ in range(60):
+                    mid = 0.5 * (lo + hi)
+                    if _release_rate(dx - mid, zf, p0, s0 + mid * grow, k) > w:
+                        lo = mid
+                    else:
+                        hi = mid
+                dc = hi
+            dx -= dc
+            shift += dc
+            s0 += dc * grow
+            ell -= dc
+            if ell < 1e-9 * k[5]:
+                ell = 0.0
+        # 3. Forces on the tip and the energy left.
+        F, s = _film_force(dx, zf, s0, K)
+        d = R - z
+        P = hz_f * d * math.sqrt(d) if d > 0.0 else 0.0
+        T = 0.0
+        if s > 0.0:
+            P -= F * zf / s
+            T = -F * dx / s
+        U = _film_energy(dx, z, ell, p0, s0, k)
+        return P, T, shift, ell, p0, s0, U, U0 - U, slid
