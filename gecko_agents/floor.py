@@ -21,26 +21,18 @@ PSD, Hurst estimate) for a run's metadata.
 
 Either way the result is a polyline (``x``, ``y``) that the pymunk model turns into segments.
 
-PSD convention
---------------
-The one-dimensional power spectral density of a profile h(x) of length L is, as in
-SurfaceTopography (``power_spectrum_from_profile``) and Jacobs, Junge & Pastewka (2017, Surf
-Topogr Metrol Prop 5:013001, doi:10.1088/2051-672X/aa51f8, their definition of the 1-D PSD)
-
-    C¹ᴰ(q) = |h̃(q)|² / L,   h̃(q) = ∫ h(x) e^(−iqx) dx   [µm³],
-
-so that ⟨h²⟩ = (1/2π) ∫₋∞^∞ C¹ᴰ dq = (1/π) ∫₀^∞ C¹ᴰ dq. Persson's convention (Persson et al.
-2005, J Phys Condens Matter 17:R1, doi:10.1088/0953-8984/17/1/R01) puts 1/(2π)ᵈ in front of
-the transform of the autocorrelation, so that ⟨h²⟩ = ∫ C dᵈq: his C is this C¹ᴰ/(2π) for a
-line scan and the areal C²ᴰ/(2π)² for a map (the (2π)² usually quoted between the two).
-Every PSD in gecko_agents is C¹ᴰ in the SurfaceTopography convention, q in rad/µm.
+The PSD convention (SurfaceTopography's C¹ᴰ, q in rad/µm) is stated in
+:mod:`gecko_agents.floor_spectral`, which holds :func:`self_affine`, :func:`psd` and
+:func:`statistics`; :class:`Profile` lives in :mod:`gecko_agents.floor_profile`. All are
+importable from here.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+
+from .floor_profile import Profile, check_positive, check_rng
+from .floor_spectral import hurst_estimate, psd, self_affine, self_affine_psd, statistics
 
 __all__ = [
     "Profile",
@@ -52,43 +44,12 @@ __all__ = [
     "self_affine_psd",
     "from_profile",
     "psd",
+    "hurst_estimate",
     "statistics",
     "for_array",
     "LENGTH_UNITS",
     "length_factor",
 ]
-
-
-@dataclass(frozen=True)
-class Profile:
-    """A floor polyline.
-
-    Attributes
-    ----------
-    x : vertex abscissae [µm], shape (M,), increasing.
-    y : vertex heights [µm], shape (M,).
-    pad_heights : for a pad floor (correlation length 0), the height under each seta [µm],
-        shape (N,); ``None`` for a continuous profile.
-    spacing : uniform vertex spacing [µm] of a profile sampled on x[0] + spacing·k (generated
-        and measured profiles); ``None`` if not uniform (pad floors).
-    source : where the heights came from (file name, or a short description).
-    """
-
-    x: np.ndarray
-    y: np.ndarray
-    pad_heights: np.ndarray | None = None
-    spacing: float | None = None
-    source: str = ""
-
-    def height_at(self, x) -> np.ndarray:
-        """Floor height at abscissa(e) x [µm] (linear between vertices) [µm]."""
-        return np.interp(x, self.x, self.y)
-
-
-def _check_rng(rng) -> np.random.Generator:
-    if not isinstance(rng, np.random.Generator):
-        raise TypeError(f"rng must be a numpy.random.Generator, got {type(rng).__name__}")
-    return rng
 
 
 def seta_heights(n: int, sigma: float, rng: np.random.Generator) -> np.ndarray:
@@ -100,7 +61,7 @@ def seta_heights(n: int, sigma: float, rng: np.random.Generator) -> np.ndarray:
     """
     if sigma < 0 or not np.isfinite(sigma):
         raise ValueError(f"sigma = {sigma!r} must be finite and ≥ 0 [µm]")
-    return sigma * _check_rng(rng).standard_normal(int(n))
+    return sigma * check_rng(rng).standard_normal(int(n))
 
 
 def correlated_profile(
@@ -132,7 +93,7 @@ def correlated_profile(
     half = int(np.ceil(4.0 * s))
     k = np.exp(-0.5 * (np.arange(-half, half + 1) / s) ** 2)
     k /= np.sqrt(np.sum(k * k))  # unit variance after filtering
-    noise = _check_rng(rng).standard_normal(n + 2 * half)
+    noise = check_rng(rng).standard_normal(n + 2 * half)
     y = sigma * np.convolve(noise, k, mode="valid")
     return Profile(x=x, y=y)
 
@@ -177,149 +138,6 @@ def make_profile(
     x_centres = np.asarray(x_centres, dtype=float)
     return correlated_profile(
         sigma, correlation_length, x_centres.min() - margin, x_centres.max() + margin, rng
-    )
-
-
-# --- Self-affine profiles --------------------------------------------------------------------
-
-
-def self_affine_psd(
-    q, hurst: float, c0: float, short_cutoff: float, long_cutoff: float, rolloff: float = 1.0
-) -> np.ndarray:
-    """The self-affine 1-D PSD with cutoffs, C¹ᴰ(q) [µm³] (module docstring for the convention).
-
-    C(q) = C0·q^−(1+2H) for q_L ≤ q ≤ q_s; rolloff²·C0·q_L^−(1+2H) for 0 < q < q_L (the
-    roll-off region of Persson et al. 2005; flat for rolloff = 1); 0 above q_s and at q = 0;
-    q_s = 2π/λs, q_L = 2π/λL. The areal PSD of a self-affine surface falls as q^−(2+2H); a
-    line scan of it as q^−(1+2H) (Jacobs, Junge & Pastewka 2017).
-
-    Parameters
-    ----------
-    q : wavevector(s) [rad/µm], ≥ 0.
-    hurst : H [-], in (0, 1). c0 : prefactor C0 [µm^(2−2H), so that C is in µm³].
-    short_cutoff : λs [µm]. long_cutoff : λL [µm] > λs. rolloff : [-], ≥ 0.
-    """
-    q = np.abs(np.asarray(q, dtype=float))
-    q_s, q_L = 2 * np.pi / short_cutoff, 2 * np.pi / long_cutoff
-    with np.errstate(divide="ignore"):
-        c = c0 * np.where(q < q_L, rolloff**2 * q_L ** (-1 - 2 * hurst), q ** (-1 - 2 * hurst))
-    return np.where((q > q_s) | (q == 0), 0.0, c)
-
-
-def _check_positive(name: str, value, lo: float = 0.0) -> float:
-    if (
-        isinstance(value, bool)
-        or not isinstance(value, int | float | np.floating | np.integer)
-        or not np.isfinite(value)
-        or value <= lo
-    ):
-        raise ValueError(f"{name} = {value!r} must be a finite number > {lo}")
-    return float(value)
-
-
-def self_affine(
-    x_start: float,
-    x_end: float,
-    rng: np.random.Generator,
-    *,
-    hurst: float,
-    rms_height: float | None = None,
-    rms_slope: float | None = None,
-    short_cutoff: float,
-    long_cutoff: float,
-    rolloff: float = 1.0,
-    spacing: float | None = None,
-) -> Profile:
-    """Random self-affine profile on [x_start, x_end] by spectral (Fourier) synthesis.
-
-    A periodic box of N = L/Δx points and length L ≥ max(x_end − x_start, 8·λL) gets random
-    Fourier coefficients h̃_k = √(L·C(q_k)/2)·(a + ib), a, b ~ N(0, 1) (real with variance
-    L·C at the Nyquist wavevector), q_k = 2πk/L, with C = :func:`self_affine_psd`; the heights
-    are h_j = (1/L)·Σ_k h̃_k e^(i q_k x_j) (an inverse real FFT). The expectation of the PSD of
-    the box is then exactly C(q_k) in the SurfaceTopography convention (module docstring), and
-    the profile is the box's first points from x_start. This is the usual random Fourier
-    synthesis of self-affine surfaces (as in SurfaceTopography's ``fourier_synthesis``, used
-    for the computer-generated surfaces of Jacobs, Junge & Pastewka 2017), written here with
-    the run's Generator and Gaussian complex amplitudes.
-
-    C0 is chosen so that the **expected** mean square of the heights (or of the polyline's
-    slopes) over the box equals the request: ⟨h²⟩ = (1/L)·Σ_k C(q_k) over all k ≠ 0, and for
-    the slope ⟨((h_{j+1} − h_j)/Δx)²⟩ = (1/L)·Σ_k C(q_k)·(2 sin(q_k Δx/2)/Δx)², the slope of
-    the polyline the model sees. Any one window is a sample: its RMS scatters about the request,
-    the more so the closer λL is to the window length.
-
-    Parameters
-    ----------
-    x_start, x_end : extent [µm], x_end > x_start.
-    rng : the run's Generator (the only source of randomness).
-    hurst : Hurst exponent H [-], in (0, 1).
-    rms_height : RMS height [µm], ≥ 0; or
-    rms_slope : RMS slope [-], ≥ 0 (exactly one of the two).
-    short_cutoff : λs [µm], > 0: no roughness at shorter wavelengths; ≥ 2·spacing.
-    long_cutoff : λL [µm], > λs: the PSD is flat (``rolloff``) at longer wavelengths.
-    rolloff : PSD below q_L relative to C(q_L), as an amplitude ratio [-], ≥ 0 (1: flat).
-    spacing : vertex spacing Δx [µm]; default λs/4.
-    """
-    _check_rng(rng)
-    if isinstance(hurst, bool) or not isinstance(hurst, int | float) or not 0 < hurst < 1:
-        raise ValueError(f"hurst = {hurst!r} must be in (0, 1)")
-    short_cutoff = _check_positive("short_cutoff", short_cutoff)
-    long_cutoff = _check_positive("long_cutoff", long_cutoff)
-    if not long_cutoff > short_cutoff:
-        raise ValueError(
-            f"long_cutoff = {long_cutoff!r} µm must exceed short_cutoff = {short_cutoff!r} µm"
-        )
-    if not (isinstance(rolloff, int | float) and np.isfinite(rolloff) and rolloff >= 0):
-        raise ValueError(f"rolloff = {rolloff!r} must be a finite number ≥ 0")
-    if (rms_height is None) == (rms_slope is None):
-        raise ValueError(
-            f"give exactly one of rms_height = {rms_height!r} µm and rms_slope = {rms_slope!r}"
-        )
-    target_name, target = (
-        ("rms_height", rms_height) if rms_height is not None else ("rms_slope", rms_slope)
-    )
-    if (
-        isinstance(target, bool)
-        or not isinstance(target, int | float)
-        or not np.isfinite(target)
-        or target < 0
-    ):
-        raise ValueError(f"{target_name} = {target!r} must be a finite number ≥ 0")
-    if not (np.isfinite(x_start) and np.isfinite(x_end) and x_end > x_start):
-        raise ValueError(f"x_end = {x_end!r} must exceed x_start = {x_start!r} [µm]")
-    dx = short_cutoff / 4.0 if spacing is None else _check_positive("spacing", spacing)
-    if short_cutoff < 2 * dx * (1 - 1e-12):
-        raise ValueError(
-            f"short_cutoff = {short_cutoff!r} µm must be ≥ 2·spacing = "
-            f"{2 * dx!r} µm (the Nyquist wavelength)"
-        )
-    n = int(np.ceil((x_end - x_start) / dx - 1e-9)) + 1
-    n_box = max(n, int(np.ceil(8 * long_cutoff / dx)))
-    n_box += n_box % 2  # even: one real Nyquist mode
-    L = n_box * dx
-    k = np.arange(n_box // 2 + 1)
-    q = 2 * np.pi * k / L
-    shape = self_affine_psd(q, hurst, 1.0, short_cutoff, long_cutoff, rolloff)
-    weight = np.full(k.size, 2.0)  # ±k pairs
-    weight[0], weight[-1] = 0.0, 1.0  # q = 0 excluded; Nyquist once
-    if rms_height is not None:
-        mean_square = np.sum(weight * shape) / L
-    else:
-        mean_square = np.sum(weight * shape * (2 * np.sin(q * dx / 2) / dx) ** 2) / L
-    c0 = target**2 / mean_square
-    a = rng.standard_normal(k.size)
-    b = rng.standard_normal(k.size)
-    b[0] = b[-1] = 0.0
-    var = L * c0 * shape  # E|h̃_k|²
-    scale = np.where(weight == 2.0, np.sqrt(var / 2), np.sqrt(var))
-    coeff = scale * (a + 1j * b)
-    h = np.fft.irfft(coeff, n=n_box) * (n_box / L)
-    x = x_start + dx * np.arange(n)
-    return Profile(
-        x=x,
-        y=h[:n],
-        spacing=dx,
-        source=f"self-affine H={hurst:g}, λs={short_cutoff:g} µm, λL={long_cutoff:g} µm",
     )
 
 
@@ -446,136 +264,12 @@ def from_profile(
     elif detrend == "mean":
         h = h - h.mean()
     length = x[-1] - x[0]
-    dx = length / (x.size - 1) if spacing is None else _check_positive("spacing", spacing)
+    dx = length / (x.size - 1) if spacing is None else check_positive("spacing", spacing)
     n = int(np.floor(length / dx + 1e-9)) + 1
     if n < 2:
         raise ValueError(f"spacing = {dx!r} µm exceeds the scan length {length!r} µm{where}")
     xs = dx * np.arange(n)
     return Profile(x=xs, y=np.interp(x[0] + xs, x, h), spacing=dx, source=source)
-
-
-# --- Statistics ------------------------------------------------------------------------------
-
-
-def _uniform(profile: Profile) -> tuple[np.ndarray, float]:
-    """Heights on a uniform grid and its spacing (resampled if the profile is not uniform)."""
-    x, y = np.asarray(profile.x, float), np.asarray(profile.y, float)
-    if profile.spacing is not None:
-        return y, float(profile.spacing)
-    dx = float(np.min(np.diff(x)[np.diff(x) > 0]))
-    xs = x[0] + dx * np.arange(int(np.floor((x[-1] - x[0]) / dx + 1e-9)) + 1)
-    return np.interp(xs, x, y), dx
-
-
-def psd(profile: Profile, window: str | None = "hann") -> tuple[np.ndarray, np.ndarray]:
-    """1-D PSD of a profile on its FFT wavevectors: (q [rad/µm], C¹ᴰ [µm³]).
-
-    C(q_k) = |Δx·Σ_j w_j h_j e^(−i q_k x_j)|²/L with q_k = 2πk/L, L = NΔx, k = 0 … ⌊N/2⌋
-    (+q and −q are equal for real heights), the SurfaceTopography convention (module docstring;
-    Jacobs, Junge & Pastewka 2017). ``window="hann"`` (default, for non-periodic measured
-    scans) multiplies the heights by a Hann window scaled to ⟨w²⟩ = 1, as SurfaceTopography
-    does; ``None`` is the plain periodogram (exact for periodic profiles). The heights' mean
-    is removed first.
-    """
-    h, dx = _uniform(profile)
-    h = h - h.mean()
-    n = h.size
-    if window == "hann":
-        w = np.hanning(n)
-        h = h * w / np.sqrt(np.mean(w * w))
-    elif window is not None:
-        raise ValueError(f"window = {window!r} must be 'hann' or None")
-    L = n * dx
-    c = np.abs(dx * np.fft.rfft(h)) ** 2 / L
-    q = 2 * np.pi * np.arange(c.size) / L
-    return q, c
-
-
-def _log_bins(q, c, per_decade: int = 10):
-    """Average C in logarithmic bins of q (q > 0): the bin-average resampling of
-    SurfaceTopography, so a power law is not dominated by its many short-wavelength points."""
-    q, c = q[1:], c[1:]
-    lo, hi = np.floor(np.log10(q[0]) * per_decade), np.ceil(np.log10(q[-1]) * per_decade)
-    edges = 10 ** (np.arange(lo, hi + 2) / per_decade)
-    idx = np.digitize(q, edges)
-    qb, cb = [], []
-    for i in np.unique(idx):
-        m = idx == i
-        qb.append(np.exp(np.mean(np.log(q[m]))))
-        cb.append(np.mean(c[m]))
-    return np.array(qb), np.array(cb)
-
-
-def hurst_estimate(q, c, q_min: float, q_max: float) -> tuple[float, float]:
-    """Fit C ∝ q^−(1+2H) to log-binned PSD points with q_min ≤ q ≤ q_max [rad/µm]:
-    returns (H [-], slope [-]); NaNs if fewer than 3 bins fall in the range."""
-    qb, cb = _log_bins(np.asarray(q), np.asarray(c))
-    m = (qb >= q_min) & (qb <= q_max) & (cb > 0)
-    if m.sum() < 3:
-        return float("nan"), float("nan")
-    slope = float(np.polyfit(np.log(qb[m]), np.log(cb[m]), 1)[0])
-    return (-slope - 1) / 2, slope
-
-
-def statistics(profile: Profile, fit_wavelengths: tuple[float, float] | None = None) -> dict:
-    """Statistics of a floor profile, JSON-friendly (plain floats and lists).
-
-    * ``rms_height_um`` — √⟨(h − h̄)²⟩ over the profile's points [µm] (Rq);
-    * ``rms_slope`` — √⟨((h_{j+1} − h_j)/Δx_j)²⟩ of the polyline [-] (RΔq);
-    * ``psd_q_per_um``, ``psd_C_um3`` — Hann-windowed 1-D PSD (:func:`psd`), averaged in
-      logarithmic bins (10 per decade), SurfaceTopography convention;
-    * ``hurst`` and ``psd_slope`` — a fit C ∝ q^−(1+2H) (:func:`hurst_estimate`) for
-      wavelengths λ = 2π/q in ``fit_wavelengths`` = (λ_min, λ_max) [µm]; default (8Δx, L/8):
-      clear of the window's leakage and of aliasing, at least eight wavelengths in the
-      profile. The estimate means something only where the PSD is a power law: for a
-      self-affine floor pass (2λs, λL/2), inside its cutoffs.
-    * ``length_um``, ``n_points``, ``spacing_um``, ``source``.
-
-    Pad floors (the paper's independent heights) have no spatial structure: their PSD fields
-    are empty and ``hurst`` is None.
-    """
-    x, y = np.asarray(profile.x, float), np.asarray(profile.y, float)
-    out = {"source": profile.source, "n_points": int(x.size), "length_um": float(x[-1] - x[0])}
-    if profile.pad_heights is not None:
-        h = np.asarray(profile.pad_heights, float)
-        out.update(
-            kind="pads",
-            rms_height_um=float(np.sqrt(np.mean((h - h.mean()) ** 2))),
-            rms_slope=None,
-            spacing_um=None,
-            hurst=None,
-            psd_slope=None,
-            psd_q_per_um=[],
-            psd_C_um3=[],
-        )
-        return out
-    dx_all = np.diff(x)
-    ok = dx_all > 0
-    out["kind"] = "profile"
-    out["rms_height_um"] = float(np.sqrt(np.mean((y - y.mean()) ** 2)))
-    out["rms_slope"] = float(np.sqrt(np.mean((np.diff(y)[ok] / dx_all[ok]) ** 2)))
-    q, c = psd(profile)
-    h_u, dx = _uniform(profile)
-    L = h_u.size * dx
-    lam_min, lam_max = (8 * dx, L / 8) if fit_wavelengths is None else fit_wavelengths
-    if not 0 < lam_min < lam_max:
-        raise ValueError(
-            f"fit_wavelengths = {fit_wavelengths!r} µm must be (λ_min, λ_max) "
-            "with 0 < λ_min < λ_max"
-        )
-    q_lo, q_hi = 2 * np.pi / lam_max, 2 * np.pi / lam_min
-    H, slope = hurst_estimate(q, c, q_lo, q_hi)
-    qb, cb = _log_bins(q, c)
-    out.update(
-        spacing_um=float(dx),
-        hurst=None if np.isnan(H) else float(H),
-        psd_slope=None if np.isnan(slope) else float(slope),
-        fit_q_min_per_um=float(q_lo),
-        fit_q_max_per_um=float(q_hi),
-        psd_q_per_um=[float(v) for v in qb],
-        psd_C_um3=[float(v) for v in cb],
-    )
-    return out
 
 
 # --- The floor under an array ----------------------------------------------------------------
