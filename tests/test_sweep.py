@@ -9,13 +9,14 @@ import argparse
 import csv
 import json
 import os
+import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from gecko_agents import provenance, sweep, sweep_bench
+from gecko_agents import cli, provenance, sweep, sweep_bench, sweep_store
 from gecko_agents.params import PAPER_TABLE1
 
 HERE = Path(__file__).resolve().parent
@@ -216,7 +217,7 @@ def test_a_sweep_never_reuses_points_of_other_code(tmp_path, monkeypatch, capsys
     assert len(calls(counter)) == 2
     assert "reusing 2 of 2 points" in capsys.readouterr().out
     # A (simulated) physics change: every point is computed again, none reused.
-    monkeypatch.setattr(sweep, "code_fingerprint", lambda: "changed physics")
+    monkeypatch.setattr(sweep_store, "code_fingerprint", lambda: "changed physics")
     sweep.run_sweep("test_sweep:counted_point", PAPER_TABLE1, grid, [0], out, **kw)
     assert len(calls(counter)) == 4
     said = capsys.readouterr().out
@@ -398,10 +399,21 @@ def test_fn_axis_validation():
 # the module's command line and the point names sweep files use ---------------------------------
 
 
-def test_module_main_is_the_sweep_subcommand(capsys):
-    assert sweep.main(["--help"]) == 0
+def test_the_sweep_command_lives_above_the_engine(capsys):
+    assert cli.main(["sweep", "--help"]) == 0
     assert "gecko-agents sweep" in capsys.readouterr().out
-    assert sweep.main([]) == 2  # the sweep file is required: an error, not silence
+    assert cli.main(["sweep"]) == 2  # the sweep file is required: an error, not silence
+    # The engine imports nothing of the command line (no arrow back from sweep to cli).
+    code = "import sys, gecko_agents.sweep; print('gecko_agents.cli' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+    # python -m gecko_agents is the command line; python -m gecko_agents.sweep says so.
+    run = [sys.executable, "-m", "gecko_agents", "sweep", "--help"]
+    assert "gecko-agents sweep" in subprocess.run(run, capture_output=True, text=True).stdout
+    old = subprocess.run(
+        [sys.executable, "-m", "gecko_agents.sweep"], capture_output=True, text=True
+    )
+    assert old.returncode == 2 and "python -m gecko_agents sweep" in old.stderr
 
 
 def test_point_names_of_sweep_files_resolve_to_their_homes():

@@ -1,0 +1,9 @@
+"""``python -m gecko_agents COMMAND …`` is the ``gecko-agents`` command line
+(:mod:`gecko_agents.cli`), e.g. ``python -m gecko_agents sweep SWEEPFILE.toml``."""
+
+import sys
+
+from .cli import main
+
+if __name__ == "__main__":
+    sys.exit(main())
