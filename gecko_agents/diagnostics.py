@@ -77,6 +77,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -173,58 +174,75 @@ def _plate_speed(history, segments) -> float:
     return float(np.max(dist[good] / dt[good], initial=0.0))
 
 
-def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
-    """Validity of one run (module docstring): ``{"ok", "violations", "items"}``.
+@dataclass(frozen=True)
+class _Run:
+    """What the items are measured from, read once from the model and its history."""
 
-    Parameters
-    ----------
-    model : the :class:`~gecko_agents.model.Model` that ran.
-    history : its :class:`~gecko_agents.history.History`.
-    segments : the protocol's segments (for the plate speed); None: from the trajectory.
-    warn : issue one :class:`ValidityWarning` per violated item.
+    R: float  # tip radius [µm]
+    w: float  # work of adhesion [µN/µm]
+    E: float  # effective modulus E* [MPa = µN/µm²]
+    adhesive: bool  # a JKR sphere with w > 0
+    P_comp: float  # largest compression of a tip [µN]
+    touched: bool  # any tip ever attached
+    a0: float  # zero-load JKR contact radius [µm] (0 if not adhesive)
+    v: float  # largest plate speed [µm/µs]
+    stroke: float | None  # |δc|, the JKR snap-off overlap [µm] (None if not adhesive)
+    floor_top: float  # highest floor point [µm]
+    reached: bool  # the plate went below the height at which the highest resting tip touches
 
-    Raises
-    ------
-    MeaninglessRunError if the plate went past the floor and no tip ever touched it.
-    """
-    p = model.params
-    c = p.contact
+
+def _facts(model, history, segments) -> _Run:
+    c = model.params.contact
     R, w, E = c.jkr_args()
-    adhesive = p.tip == "sphere" and w > 0
-    items: dict[str, dict] = {}
-    P_tip, F_tip = _tip_forces(history)
-    P_comp = float(np.max(P_tip, initial=0.0))  # largest compression of a tip [µN]
-    touched = bool(np.max(history["n_attached"], initial=0) > 0)
-
-    # a/R
-    a0 = float(jkr.zero_load_contact_radius(R, w, E)) if adhesive else 0.0
-    if adhesive:
-        a_load = float(jkr.contact_radius_from_force(P_comp, R, w, E))
-    else:
-        a_load = float(jkr.hertz_contact_radius(P_comp, R, E))
-    a_max = max(a0, a_load)
-    items["a_over_R"] = _item(
-        "a_over_R",
-        a_max / R,
-        f"largest contact radius {a_max:.3g} µm over tip radius {R:g} µm (JKR and Hertz "
-        "treat the sphere as a paraboloid on a half-space: a ≪ R)",
-        "Johnson 1985 Contact Mechanics §4.2, §5.5; Maugis 1995 Langmuir 11:679",
-        applies=a_max > 0 and touched,
+    adhesive = model.params.tip == "sphere" and w > 0
+    P_tip, _ = _tip_forces(history)
+    floor_top = float(np.max(model.profile.y)) if len(model.profile.y) else 0.0
+    return _Run(
+        R=R,
+        w=w,
+        E=E,
+        adhesive=adhesive,
+        P_comp=float(np.max(P_tip, initial=0.0)),
+        touched=bool(np.max(history["n_attached"], initial=0) > 0),
+        a0=float(jkr.zero_load_contact_radius(R, w, E)) if adhesive else 0.0,
+        v=_plate_speed(history, segments),
+        stroke=abs(c.snap_off_overlap) if adhesive else None,
+        floor_top=floor_top,
+        reached=float(np.min(history["plate_y_um"], initial=np.inf)) <= model.z_touch + floor_top,
     )
 
-    # Tabor
-    mu_t = (R * w**2 / (E**2 * Z0_UM**3)) ** (1 / 3) if adhesive else None
-    items["tabor"] = _item(
+
+def _a_over_R(f: _Run) -> dict:
+    if f.adhesive:
+        a_load = float(jkr.contact_radius_from_force(f.P_comp, f.R, f.w, f.E))
+    else:
+        a_load = float(jkr.hertz_contact_radius(f.P_comp, f.R, f.E))
+    a_max = max(f.a0, a_load)
+    return _item(
+        "a_over_R",
+        a_max / f.R,
+        f"largest contact radius {a_max:.3g} µm over tip radius {f.R:g} µm (JKR and Hertz "
+        "treat the sphere as a paraboloid on a half-space: a ≪ R)",
+        "Johnson 1985 Contact Mechanics §4.2, §5.5; Maugis 1995 Langmuir 11:679",
+        applies=a_max > 0 and f.touched,
+    )
+
+
+def _tabor(f: _Run) -> dict:
+    mu_t = (f.R * f.w**2 / (f.E**2 * Z0_UM**3)) ** (1 / 3) if f.adhesive else None
+    return _item(
         "tabor",
         mu_t,
         f"Tabor parameter (R·w²/(E*²·z0³))^(1/3) with z0 = {Z0_UM * 1e3:g} nm; JKR needs "
         "μ ≳ 5, below it Maugis–Dugdale/DMT",
         "Tabor 1977 J Colloid Interface Sci 58:2; Johnson & Greenwood 1997 J Colloid "
         "Interface Sci 192:326; z0 as ε of Greenwood 1997 Proc R Soc A 453:1277",
-        applies=adhesive and touched,
+        applies=f.adhesive and f.touched,
     )
 
-    # Linear seta's deflection
+
+def _linear_deflection(model, history) -> dict:
+    p = model.params
     linear = p.mechanics == "linear"
     warned = bool(getattr(model, "_warned_linear", False))
     dev = None
@@ -244,7 +262,7 @@ def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
             + L * math.sin(th)
         )
         dev = float(np.max(np.hypot(ux, uy), initial=0.0)) / L
-    items["linear_deflection"] = _item(
+    item = _item(
         "linear_deflection",
         dev,
         "largest linear-seta tip deflection / L (eq 16–21 are small-deflection theory; "
@@ -254,30 +272,34 @@ def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
         applies=linear,
     )
     if linear:  # the model's in-run check sees every step: it decides
-        items["linear_deflection"]["ok"] = bool(not warned and (dev is None or dev <= 0.1))
-    items["linear_deflection"]["model_warned"] = warned
+        item["ok"] = bool(not warned and (dev is None or dev <= 0.1))
+    item["model_warned"] = warned
+    return item
 
-    # Quasi-static ratio
-    v = _plate_speed(history, segments)
-    stroke = abs(c.snap_off_overlap) if adhesive else None
-    q = v * model.settle_time / stroke if stroke else None
-    items["quasi_static"] = _item(
+
+def _quasi_static(model, history, f: _Run) -> dict:
+    q = f.v * model.settle_time / f.stroke if f.stroke else None
+    item = _item(
         "quasi_static",
         q,
-        f"plate speed {v:.3g} µm/µs × free seta period {model.settle_time:.3g} µs / JKR stroke "
-        f"|δc| = {stroke or 0:.3g} µm: a critically damped seta lags the plate by v·T/π, "
-        "which must stay within the stroke between jump-in and snap-off",
+        f"plate speed {f.v:.3g} µm/µs × free seta period {model.settle_time:.3g} µs / JKR "
+        f"stroke |δc| = {f.stroke or 0:.3g} µm: a critically damped seta lags the plate by "
+        "v·T/π, which must stay within the stroke between jump-in and snap-off",
         "docs/physics.md 'Time stepping' (seta damping, settle period) and 'JKR contact' (δc)",
-        applies=adhesive and v > 0,
+        applies=f.adhesive and f.v > 0,
     )
-    items["quasi_static"]["plate_speed_um_per_us"] = v
-    items["quasi_static"]["max_kinetic_to_elastic"] = history.meta.get("max_kinetic_to_elastic")
+    item["plate_speed_um_per_us"] = f.v
+    item["max_kinetic_to_elastic"] = history.meta.get("max_kinetic_to_elastic")
+    return item
 
-    # Time step against the stiffest spring met
-    load = max(P_comp, 5 * c.pull_off_force)
+
+def _time_step(model, f: _Run) -> dict:
+    """ω·dt of the stiffest spring a tip met: seta + contact at the largest compression
+    reached (at least the design point 5 Fc) + stick spring."""
+    load = max(f.P_comp, 5 * model.params.contact.pull_off_force)
     k = model.Ka + model.law.stiffest(load) + model.k_t
     omega = max(math.sqrt(k / model.mass), model.omega_max)
-    items["time_step"] = _item(
+    return _item(
         "time_step",
         omega * model.dt,
         f"ω·dt with ω = √(k/m) of the stiffest spring met (k = {k:.3g} µN/µm, m = "
@@ -287,24 +309,25 @@ def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
         "Integration §I.1",
     )
 
-    # Did any tip touch?
-    floor_top = float(np.max(model.profile.y)) if len(model.profile.y) else 0.0
-    reached = float(np.min(history["plate_y_um"], initial=np.inf)) <= model.z_touch + floor_top
-    items["touched"] = _item(
+
+def _touched(f: _Run) -> dict:
+    return _item(
         "touched",
-        1.0 if touched else 0.0,
+        1.0 if f.touched else 0.0,
         "whether any tip ever attached; a run whose plate never reached the floor (pull-off "
         "only, free travel) need not touch",
         "gecko_agents issue 18 (a plate that outruns its setae measures nothing)",
-        applies=touched or reached,
+        applies=f.touched or f.reached,
     )
 
-    # Crack kinetics (rate-dependent contact)
-    v_star = float(getattr(c, "crack_speed", math.inf))
-    n_exp = float(getattr(c, "crack_exponent", 0.5) or 0.5)
-    rate = math.isfinite(v_star) and adhesive and stroke
-    De = (v / stroke) / (v_star / a0) if rate else None
-    items["crack_deborah"] = _item(
+
+def _crack_deborah(contact, f: _Run) -> dict:
+    """Rate-dependent contact: De^n against the glassy/rubbery modulus ratio."""
+    v_star = float(getattr(contact, "crack_speed", math.inf))
+    n_exp = float(getattr(contact, "crack_exponent", 0.5) or 0.5)
+    rate = math.isfinite(v_star) and f.adhesive and f.stroke
+    De = (f.v / f.stroke) / (v_star / f.a0) if rate else None
+    item = _item(
         "crack_deborah",
         De**n_exp if De is not None else None,
         "De^n with De = (v/|δc|)/(v*/a0), the loading rate over the crack's relaxation rate: "
@@ -312,35 +335,72 @@ def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
         "Maugis & Barquins 1978 J Phys D 11:1989; Greenwood & Johnson 1981 Phil Mag A 43:697",
         applies=bool(rate),
     )
-    items["crack_deborah"]["deborah"] = De
+    item["deborah"] = De
+    return item
 
-    violations = [name for name, it in items.items() if it["ok"] is False]
-    result = {"ok": not violations, "violations": violations, "items": items}
-    if reached and not touched:
-        past = model.z_touch + floor_top - float(np.min(history["plate_y_um"]))
-        lag = v * model.settle_time / math.pi
-        v_ok = abs(c.snap_off_overlap) / model.settle_time
-        raise MeaninglessRunError(
-            f"no tip ever touched the floor although the plate went {past:.3g} µm past the "
-            f"height at which the highest resting tip touches it: at {v:.3g} µm/µs the setae "
-            f"(free period {model.settle_time:.3g} µs) lag the plate by ~{lag:.3g} µm, so the "
-            f"run measured nothing; lower the plate speed below {v_ok:.3g} µm/µs (quasi-static "
-            "ratio 1) or press deeper (the recorded history is the exception's .history)",
-            history,
+
+def _refuse_if_meaningless(model, history, f: _Run) -> None:
+    """MeaninglessRunError if the plate went past the floor and no tip ever touched it."""
+    if not (f.reached and not f.touched):
+        return
+    past = model.z_touch + f.floor_top - float(np.min(history["plate_y_um"]))
+    lag = f.v * model.settle_time / math.pi
+    v_ok = abs(model.params.contact.snap_off_overlap) / model.settle_time
+    raise MeaninglessRunError(
+        f"no tip ever touched the floor although the plate went {past:.3g} µm past the "
+        f"height at which the highest resting tip touches it: at {f.v:.3g} µm/µs the setae "
+        f"(free period {model.settle_time:.3g} µs) lag the plate by ~{lag:.3g} µm, so the "
+        f"run measured nothing; lower the plate speed below {v_ok:.3g} µm/µs (quasi-static "
+        "ratio 1) or press deeper (the recorded history is the exception's .history)",
+        history,
+    )
+
+
+def _warn_violations(items: dict, violations: list[str]) -> None:
+    """One ValidityWarning per violated item, attributed to the caller of ``diagnose``'s
+    caller (stacklevel 4 from here)."""
+    for name in violations:
+        it = items[name]
+        if name == "linear_deflection" and it["model_warned"]:
+            continue  # the model already warned during the run
+        warnings.warn(
+            ValidityWarning(
+                f"validity: {name} = {_fmt(it['value'])} violates {it['rule']}: "
+                f"{it['meaning']} [{it['source']}]"
+            ),
+            stacklevel=4,
         )
+
+
+def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
+    """Validity of one run (module docstring): ``{"ok", "violations", "items"}``.
+
+    Parameters
+    ----------
+    model : the :class:`~gecko_agents.model.Model` that ran.
+    history : its :class:`~gecko_agents.history.History`.
+    segments : the protocol's segments (for the plate speed); None: from the trajectory.
+    warn : issue one :class:`ValidityWarning` per violated item.
+
+    Raises
+    ------
+    MeaninglessRunError if the plate went past the floor and no tip ever touched it.
+    """
+    f = _facts(model, history, segments)
+    items = {
+        "a_over_R": _a_over_R(f),
+        "tabor": _tabor(f),
+        "linear_deflection": _linear_deflection(model, history),
+        "quasi_static": _quasi_static(model, history, f),
+        "time_step": _time_step(model, f),
+        "touched": _touched(f),
+        "crack_deborah": _crack_deborah(model.params.contact, f),
+    }
+    violations = [name for name, it in items.items() if it["ok"] is False]
+    _refuse_if_meaningless(model, history, f)
     if warn:
-        for name in violations:
-            if name == "linear_deflection" and warned:
-                continue  # the model already warned during the run
-            it = items[name]
-            warnings.warn(
-                ValidityWarning(
-                    f"validity: {name} = {_fmt(it['value'])} violates {it['rule']}: "
-                    f"{it['meaning']} [{it['source']}]"
-                ),
-                stacklevel=3,
-            )
-    return result
+        _warn_violations(items, violations)
+    return {"ok": not violations, "violations": violations, "items": items}
 
 
 def _fmt(value) -> str:

@@ -343,6 +343,52 @@ def load(directory) -> History:
         if not (d / name).is_file():
             raise FileNotFoundError(f"{name} is missing from run directory {str(d)!r}")
     meta_path, csv_path, npz_path = d / "metadata.json", d / "history.csv", d / "setae.npz"
+    meta, params, seed, n_records = _read_metadata(meta_path)
+    saved_id = meta.get("run_id")
+    csv_id, table = _read_series(csv_path)
+    if n_records is not None and len(table) != n_records:
+        what = "a header and no data rows" if len(table) == 0 else f"{len(table)} data rows"
+        raise ValueError(
+            f"{csv_path} has {what}, but {meta_path.name} says n_records = {n_records}: the "
+            "file was truncated or the save was interrupted; re-run to regenerate it"
+        )
+    if csv_id != saved_id:
+        raise ValueError(
+            f"{csv_path} belongs to run {csv_id}, but {meta_path.name} to run {saved_id}: "
+            "the directory mixes files of two runs (an interrupted save?); re-run to "
+            "regenerate it"
+        )
+    groups: dict = {"setae": {}, "geometry": {}, "detachments": {}}
+    if npz_path.is_file():
+        npz_id = _read_arrays(npz_path, groups)
+        if npz_id != saved_id:
+            raise ValueError(
+                f"{npz_path} belongs to run {npz_id}, but {meta_path.name} to run "
+                f"{saved_id}: the directory mixes files of two runs; re-run to regenerate it"
+            )
+    meta.pop("columns", None)
+    saved_id = meta.pop("run_id", None)
+    try:
+        h = History(
+            params=params,
+            seed=seed,
+            scalars={c: table[:, i] for i, c in enumerate(SCALAR_COLUMNS)},
+            meta=meta,
+            **groups,
+        )
+    except ValueError as err:
+        raise ValueError(f"{d}: {err}") from err
+    if saved_id is not None and h.run_id() != saved_id:
+        raise ValueError(
+            f"{csv_path} does not hold the series run {saved_id} recorded (or "
+            f"{meta_path.name}'s parameters, seed or protocol were edited): re-run to "
+            "regenerate it"
+        )
+    return h
+
+
+def _read_metadata(meta_path: Path) -> tuple[dict, SetaArray, int, int | None]:
+    """metadata.json as (the rest of its dict, params, seed, n_records or None)."""
     try:
         meta = json.loads(meta_path.read_text(encoding="utf-8"))
         if not isinstance(meta, dict):
@@ -355,7 +401,12 @@ def load(directory) -> History:
     except (ValueError, KeyError, TypeError, AttributeError) as err:
         # UnicodeDecodeError and JSONDecodeError are ValueErrors: a binary or garbled file.
         raise ValueError(f"{meta_path} is not a gecko_agents metadata file: {err}") from err
-    saved_id = meta.get("run_id")
+    return meta, params, seed, n_records
+
+
+def _read_series(csv_path: Path) -> tuple[str | None, np.ndarray]:
+    """history.csv as (the run_id of its ``#`` header, the table of SCALAR_COLUMNS, one row
+    per record); refuses other columns."""
     try:
         text = csv_path.read_text(encoding="utf-8")
         lines = text.split("\n")
@@ -379,65 +430,26 @@ def load(directory) -> History:
         raise ValueError(
             f"{csv_path} has rows of {table.shape[1]} values, expected {len(SCALAR_COLUMNS)}"
         )
-    if n_records is not None and len(table) != n_records:
-        what = "a header and no data rows" if len(table) == 0 else f"{len(table)} data rows"
-        raise ValueError(
-            f"{csv_path} has {what}, but {meta_path.name} says n_records = {n_records}: the "
-            "file was truncated or the save was interrupted; re-run to regenerate it"
-        )
-    if csv_id != saved_id:
-        raise ValueError(
-            f"{csv_path} belongs to run {csv_id}, but {meta_path.name} to run {saved_id}: "
-            "the directory mixes files of two runs (an interrupted save?); re-run to "
-            "regenerate it"
-        )
-    scalars = {c: table[:, i] for i, c in enumerate(SCALAR_COLUMNS)}
-    setae: dict = {}
-    geometry: dict = {}
-    detachments: dict = {}
-    if npz_path.is_file():
-        npz_id = None
-        try:
-            with np.load(npz_path) as z:
-                for key in z.files:
-                    if key == "run_id":
-                        npz_id = str(z[key])
-                        continue
-                    group, _, name = key.partition("__")
-                    {"setae": setae, "geometry": geometry, "detachments": detachments}[group][
-                        name
-                    ] = z[key]
-        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error) as err:
-            raise ValueError(
-                f"{npz_path} is corrupt or truncated ({type(err).__name__}: {err}); "
-                "re-run to regenerate it"
-            ) from err
-        if npz_id != saved_id:
-            raise ValueError(
-                f"{npz_path} belongs to run {npz_id}, but {meta_path.name} to run "
-                f"{saved_id}: the directory mixes files of two runs; re-run to regenerate it"
-            )
-    meta.pop("columns", None)
-    saved_id = meta.pop("run_id", None)
+    return csv_id, table
+
+
+def _read_arrays(npz_path: Path, groups: dict) -> str | None:
+    """Fill ``groups`` (setae, geometry, detachments) from setae.npz; returns its run_id."""
+    npz_id = None
     try:
-        h = History(
-            params=params,
-            seed=seed,
-            scalars=scalars,
-            setae=setae,
-            geometry=geometry,
-            detachments=detachments,
-            meta=meta,
-        )
-    except ValueError as err:
-        raise ValueError(f"{d}: {err}") from err
-    if saved_id is not None and h.run_id() != saved_id:
+        with np.load(npz_path) as z:
+            for key in z.files:
+                if key == "run_id":
+                    npz_id = str(z[key])
+                    continue
+                group, _, name = key.partition("__")
+                groups[group][name] = z[key]
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error) as err:
         raise ValueError(
-            f"{csv_path} does not hold the series run {saved_id} recorded (or "
-            f"{meta_path.name}'s parameters, seed or protocol were edited): re-run to "
-            "regenerate it"
-        )
-    return h
+            f"{npz_path} is corrupt or truncated ({type(err).__name__}: {err}); "
+            "re-run to regenerate it"
+        ) from err
+    return npz_id
 
 
 ENERGY_RTOL = 0.02
