@@ -79,9 +79,9 @@ def contact_numbers(contact) -> dict:
     return out
 
 
-def draw(contacts: list, rows: list[dict], n: int, out) -> list:
-    """fig6a.png (radius vs force) and fig6b.png (force vs overlap)."""
-    P_max = 2.0 * max(r["Fc_uN"] for r in rows)
+def _curves(contacts: list, rows: list[dict], n: int, P_max: float) -> tuple[list, ...]:
+    """Curves and marked points of panels (a) and (b), per modulus: the reachable branch
+    (solid), the rest of eq 7/10 (dotted) and, in (b), the jump D → E (dashed)."""
     colours = STYLE_RC["axes.prop_cycle"].by_key()["color"]
     ca, cb, pa, pb = [], [], [], []
     for contact, row, col in zip(contacts, rows, colours[: len(rows)], strict=True):
@@ -106,7 +106,12 @@ def draw(contacts: list, rows: list[dict], n: int, out) -> list:
             (-row["Fc_uN"], row["a_pull_off_um"], f"C: {num(row['a_pull_off_um'])} µm"),
         ]
         pb += [(row["overlap_end_um"], row["force_end_uN"], "D")]
-    f_lo = -max(r["Fc_uN"] for r in rows)
+    return ca, cb, pa, pb
+
+
+def _add_paper_lines(ca: list, cb: list, f_lo: float, P_max: float) -> None:
+    """Append the paper's two radii to panel (a) as grey dashed lines over [f_lo, P_max] [µN],
+    and the legend notes on the line styles to both panels."""
     for radius in (PAPER_RADIUS_LOW_E, PAPER_RADIUS_HIGH_E):
         ca.append(
             {
@@ -135,42 +140,55 @@ def draw(contacts: list, rows: list[dict], n: int, out) -> list:
             "style": {"color": GREY, "ls": ":"},
         }
     )
-    w = rows[0]["w_J_m2"]
-    paths = []
-    for panel, cs, pts, xl, yl, what in (
-        ("a", ca, pa, "contact force P [µN]", "contact radius a [µm]", "contact radius vs force"),
-        (
+
+
+def _save_panel(panel: str, curves: list, points: list, labels: tuple, title: str, out):
+    """Write fig6<panel>.png: the curves on zero axes; panel (a) with head room for the
+    legend above the curves."""
+    xlabel, ylabel = labels
+    fig = plot_force_curves(curves, None, xlabel=xlabel, ylabel=ylabel, points=points, title=title)
+    ax = fig.axes[0]
+    with mpl.rc_context(STYLE_RC):
+        ax.axhline(0.0, color="#888888", lw=0.6, zorder=1)
+        ax.axvline(0.0, color="#888888", lw=0.6, zorder=1)
+        if panel == "a":  # head room for the legend above the curves
+            ax.set_ylim(top=1.5 * ax.get_ylim()[1])
+        ax.legend(loc="upper left", fontsize=8)
+    path = out / f"fig6{panel}.png"
+    save_figure(fig, path)
+    return path
+
+
+def draw(contacts: list, rows: list[dict], n: int, out) -> list:
+    """fig6a.png (radius vs force) and fig6b.png (force vs overlap)."""
+    P_max = 2.0 * max(r["Fc_uN"] for r in rows)
+    ca, cb, pa, pb = _curves(contacts, rows, n, P_max)
+    _add_paper_lines(ca, cb, -max(r["Fc_uN"] for r in rows), P_max)
+    sub = f"R = {contacts[0].R:g} µm, w = {rows[0]['w_J_m2']:.4f} J/m²"
+    return [
+        _save_panel(
+            "a",
+            ca,
+            pa,
+            ("contact force P [µN]", "contact radius a [µm]"),
+            f"Fig 6a: contact radius vs force, {sub}",
+            out,
+        ),
+        _save_panel(
             "b",
             cb,
             pb,
-            "contact depth (overlap) δ [µm]",
-            "contact force P [µN]",
-            "force vs contact depth",
+            ("contact depth (overlap) δ [µm]", "contact force P [µN]"),
+            f"Fig 6b: force vs contact depth, {sub}",
+            out,
         ),
-    ):
-        fig = plot_force_curves(
-            cs,
-            None,
-            xlabel=xl,
-            ylabel=yl,
-            points=pts,
-            title=f"Fig 6{panel}: {what}, R = {contacts[0].R:g} µm, w = {w:.4f} J/m²",
-        )
-        ax = fig.axes[0]
-        with mpl.rc_context(STYLE_RC):
-            ax.axhline(0.0, color="#888888", lw=0.6, zorder=1)
-            ax.axvline(0.0, color="#888888", lw=0.6, zorder=1)
-            if panel == "a":  # head room for the legend above the curves
-                ax.set_ylim(top=1.5 * ax.get_ylim()[1])
-            ax.legend(loc="upper left", fontsize=8)
-        path = out / f"fig6{panel}.png"
-        save_figure(fig, path)
-        paths.append(path)
-    return paths
+    ]
 
 
-def build_claims(contacts: list, rows: list[dict], alt_rows: list[dict]) -> tuple[list, dict]:
-    """Paper-comparison rows for Fig 6; also returns the numbers behind them."""
+def paper_radii(contacts: list, rows: list[dict]) -> dict:
+    """Radius ratios of the lowest to the highest modulus at the common forces, and the
+    forces at which each curve has the paper's radius, with the other modulus's two radii
+    (a < 0.63 a0 and a ≥ 0.63 a0) at that force [µm, µN]."""
     lo, hi = contacts[0], contacts[-1]
     r_lo, r_hi = rows[0], rows[-1]
     # Radius ratio low-E/high-E at each common force (JKR: the same at every force).
@@ -184,8 +202,6 @@ def build_claims(contacts: list, rows: list[dict], alt_rows: list[dict]) -> tupl
     # Which force gives the paper's radius on each curve, and what the other modulus has there.
     P1 = float(jkr.force_from_radius(PAPER_RADIUS_LOW_E, *lo.jkr_args()))
     P2 = float(jkr.force_from_radius(PAPER_RADIUS_HIGH_E, *hi.jkr_args()))
-    branch1 = "a < 0.63a0" if PAPER_RADIUS_LOW_E < r_lo["a_pull_off_um"] else "a ≥ 0.63a0"
-    branch2 = "a < 0.63a0" if PAPER_RADIUS_HIGH_E < r_hi["a_pull_off_um"] else "a ≥ 0.63a0"
     hi_at_P1 = (
         inner_radius(P1, *hi.jkr_args()),
         float(jkr.contact_radius_from_force(P1, *hi.jkr_args())),
@@ -194,77 +210,102 @@ def build_claims(contacts: list, rows: list[dict], alt_rows: list[dict]) -> tupl
         inner_radius(P2, *lo.jkr_args()),
         float(jkr.contact_radius_from_force(P2, *lo.jkr_args())),
     )
-    paper_ratio = PAPER_RADIUS_LOW_E / PAPER_RADIUS_HIGH_E
-    ratio = ratios["0"]
-    numbers = {
+    return {
         "radius_ratio_at_common_force": ratios,
-        "paper_radius_ratio": paper_ratio,
+        "paper_radius_ratio": PAPER_RADIUS_LOW_E / PAPER_RADIUS_HIGH_E,
         "force_for_paper_low_E_radius_uN": P1,
         "force_for_paper_high_E_radius_uN": P2,
         "high_E_radii_at_that_force_um": hi_at_P1,
         "low_E_radii_at_that_force_um": lo_at_P2,
     }
+
+
+def _claim_radius(rows: list[dict], alt_rows: list[dict], nb: dict) -> dict:
+    """Fig 6a: the radius under the same force against the modulus."""
+    r_lo, r_hi = rows[0], rows[-1]
     a_lo, a_hi = alt_rows[0], alt_rows[-1]
+    ratios, paper_ratio = nb["radius_ratio_at_common_force"], nb["paper_radius_ratio"]
+    P1, P2 = nb["force_for_paper_low_E_radius_uN"], nb["force_for_paper_high_E_radius_uN"]
+    hi_at_P1, lo_at_P2 = nb["high_E_radii_at_that_force_um"], nb["low_E_radii_at_that_force_um"]
+    branch1 = "a < 0.63a0" if PAPER_RADIUS_LOW_E < r_lo["a_pull_off_um"] else "a ≥ 0.63a0"
+    branch2 = "a < 0.63a0" if PAPER_RADIUS_HIGH_E < r_hi["a_pull_off_um"] else "a ≥ 0.63a0"
     E_lo, E_hi = f"{r_lo['E1_MPa']:g} MPa", f"{r_hi['E1_MPa']:g} MPa"
+    return claim(
+        "Fig 6a",
+        "contact radius under the same force falls from 3.69 µm (0.1 MPa) to 0.74 µm (10 MPa)",
+        f"3.69 → 0.74 µm (×{paper_ratio:.2f})",
+        f"a({E_lo})/a({E_hi}) = "
+        + ", ".join(f"{v:.3f}" for v in ratios.values())
+        + " at P = "
+        + ", ".join(ratios)
+        + f" (e.g. zero load "
+        f"{num(r_lo['a_at_0_um'])} → {num(r_hi['a_at_0_um'])} µm); 3.69 µm at {E_lo} needs "
+        f"P = {num(P1)} µN ({branch1}), where {E_hi} gives {num(hi_at_P1[0], '.3f')} or "
+        f"{num(hi_at_P1[1], '.3f')} µm; 0.74 µm at {E_hi} needs P = {num(P2)} µN "
+        f"({branch2}), where {E_lo} gives {num(lo_at_P2[0], '.3f')} or "
+        f"{num(lo_at_P2[1], '.3f')} µm",
+        "trend reproduced",
+        f"JKR shrinks the radius by (E*({E_hi})/E*({E_lo}))^(1/3) = {ratios['0']:.2f} at any "
+        f"common force, so no single force gives both 3.69 and 0.74 µm (×{paper_ratio:.2f}).",
+        f"w = {alt_rows[0]['w_J_m2']:.3f} J/m²: at the common pull-off force −Fc = "
+        f"{num(-a_lo['Fc_uN'], '.3f')} µN, a = {num(a_lo['a_pull_off_um'], '.3f')} → "
+        f"{num(a_hi['a_pull_off_um'], '.3f')} µm "
+        f"({rel_off(a_lo['a_pull_off_um'], PAPER_RADIUS_LOW_E)} and "
+        f"{rel_off(a_hi['a_pull_off_um'], PAPER_RADIUS_HIGH_E)} off the paper's radii); "
+        f"zero load {num(a_lo['a_at_0_um'], '.3f')} → {num(a_hi['a_at_0_um'], '.3f')} µm",
+    )
+
+
+def _claim_push_off(rows: list[dict], alt_rows: list[dict]) -> dict:
+    """Fig 6: the maximum push-off force against the modulus."""
     Fcs = ", ".join(num(r["Fc_uN"], ".3f") for r in rows)
     ends = ", ".join(num(r["force_end_uN"], ".3f") for r in rows)
     Es = ", ".join(f"{r['E1_MPa']:g}" for r in rows)
+    return claim(
+        "Fig 6",
+        "the maximum push-off force changes little with the modulus",
+        "little change",
+        f"Fc = {Fcs} µN and P(δc) = {ends} µN for E1 = {Es} MPa",
+        "reproduced",
+        "JKR's pull-off −1.5πRw (and −(5/9) of it under displacement control) does not "
+        "contain E* at all.",
+        f"w = {alt_rows[0]['w_J_m2']:.3f} J/m²: Fc = "
+        + ", ".join(num(r["Fc_uN"], ".3f") for r in alt_rows)
+        + " µN",
+    )
+
+
+def _claim_deformation(rows: list[dict], alt_rows: list[dict]) -> dict:
+    """Fig 6b: the overlap under the same force against the modulus."""
+    Es = ", ".join(f"{r['E1_MPa']:g}" for r in rows)
     depth0 = ", ".join(num(r["overlap_at_0_um"], ".3f") for r in rows)
     depth1 = ", ".join(num(r[f"overlap_at_{COMMON_FORCE_UN:g}uN_um"], ".3f") for r in rows)
-    rows_out = [
-        claim(
-            "Fig 6a",
-            "contact radius under the same force falls from 3.69 µm (0.1 MPa) to 0.74 µm (10 MPa)",
-            f"3.69 → 0.74 µm (×{paper_ratio:.2f})",
-            f"a({E_lo})/a({E_hi}) = "
-            + ", ".join(f"{v:.3f}" for v in ratios.values())
-            + " at P = "
-            + ", ".join(ratios)
-            + f" (e.g. zero load "
-            f"{num(r_lo['a_at_0_um'])} → {num(r_hi['a_at_0_um'])} µm); 3.69 µm at {E_lo} needs "
-            f"P = {num(P1)} µN ({branch1}), where {E_hi} gives {num(hi_at_P1[0], '.3f')} or "
-            f"{num(hi_at_P1[1], '.3f')} µm; 0.74 µm at {E_hi} needs P = {num(P2)} µN "
-            f"({branch2}), where {E_lo} gives {num(lo_at_P2[0], '.3f')} or "
-            f"{num(lo_at_P2[1], '.3f')} µm",
-            "trend reproduced",
-            f"JKR shrinks the radius by (E*({E_hi})/E*({E_lo}))^(1/3) = {ratio:.2f} at any "
-            f"common force, so no single force gives both 3.69 and 0.74 µm (×{paper_ratio:.2f}).",
-            f"w = {alt_rows[0]['w_J_m2']:.3f} J/m²: at the common pull-off force −Fc = "
-            f"{num(-a_lo['Fc_uN'], '.3f')} µN, a = {num(a_lo['a_pull_off_um'], '.3f')} → "
-            f"{num(a_hi['a_pull_off_um'], '.3f')} µm "
-            f"({rel_off(a_lo['a_pull_off_um'], PAPER_RADIUS_LOW_E)} and "
-            f"{rel_off(a_hi['a_pull_off_um'], PAPER_RADIUS_HIGH_E)} off the paper's radii); "
-            f"zero load {num(a_lo['a_at_0_um'], '.3f')} → {num(a_hi['a_at_0_um'], '.3f')} µm",
-        ),
-        claim(
-            "Fig 6",
-            "the maximum push-off force changes little with the modulus",
-            "little change",
-            f"Fc = {Fcs} µN and P(δc) = {ends} µN for E1 = {Es} MPa",
-            "reproduced",
-            "JKR's pull-off −1.5πRw (and −(5/9) of it under displacement control) does not "
-            "contain E* at all.",
-            f"w = {alt_rows[0]['w_J_m2']:.3f} J/m²: Fc = "
-            + ", ".join(num(r["Fc_uN"], ".3f") for r in alt_rows)
-            + " µN",
-        ),
-        claim(
-            "Fig 6b",
-            "under the same force the deformation gets smaller as E rises",
-            "smaller deformation at higher E",
-            f"overlap at zero load {depth0} µm, at +{COMMON_FORCE_UN:g} µN {depth1} µm, end of "
-            f"contact δc = "
-            + ", ".join(num(r["overlap_end_um"], ".3f") for r in rows)
-            + f" µm for E1 = {Es} MPa",
-            "reproduced",
-            "At a fixed force JKR overlaps scale as E*^(−2/3), so they shrink monotonically "
-            "with the modulus.",
-            f"w = {alt_rows[0]['w_J_m2']:.3f} J/m²: overlap at zero load "
-            + ", ".join(num(r["overlap_at_0_um"], ".3f") for r in alt_rows)
-            + " µm",
-        ),
+    return claim(
+        "Fig 6b",
+        "under the same force the deformation gets smaller as E rises",
+        "smaller deformation at higher E",
+        f"overlap at zero load {depth0} µm, at +{COMMON_FORCE_UN:g} µN {depth1} µm, end of "
+        f"contact δc = "
+        + ", ".join(num(r["overlap_end_um"], ".3f") for r in rows)
+        + f" µm for E1 = {Es} MPa",
+        "reproduced",
+        "At a fixed force JKR overlaps scale as E*^(−2/3), so they shrink monotonically "
+        "with the modulus.",
+        f"w = {alt_rows[0]['w_J_m2']:.3f} J/m²: overlap at zero load "
+        + ", ".join(num(r["overlap_at_0_um"], ".3f") for r in alt_rows)
+        + " µm",
+    )
+
+
+def build_claims(contacts: list, rows: list[dict], alt_rows: list[dict]) -> tuple[list, dict]:
+    """Paper-comparison rows for Fig 6; also returns the numbers behind them."""
+    numbers = paper_radii(contacts, rows)
+    claims = [
+        _claim_radius(rows, alt_rows, numbers),
+        _claim_push_off(rows, alt_rows),
+        _claim_deformation(rows, alt_rows),
     ]
-    return rows_out, numbers
+    return claims, numbers
 
 
 def main(argv=None) -> dict:

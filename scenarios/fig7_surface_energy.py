@@ -77,8 +77,9 @@ def contact_numbers(contact) -> dict:
     }
 
 
-def draw(contacts: list, rows: list[dict], n: int, out) -> list:
-    """fig7a.png (radius vs force) and fig7b.png (force vs overlap)."""
+def _curves(contacts: list, rows: list[dict], n: int) -> tuple[list, list, list, list]:
+    """Curves and marked points of panels (a) and (b), per γ1: the reachable branch (solid),
+    the rest of eq 7/10 (dotted) and, in (b), the jump D → E (dashed)."""
     P_max = max(r["Fc_uN"] for r in rows)  # compression up to the largest Fc
     colours = STYLE_RC["axes.prop_cycle"].by_key()["color"][: len(rows)]
     ca, cb, pa, pb = [], [], [], []
@@ -113,6 +114,12 @@ def draw(contacts: list, rows: list[dict], n: int, out) -> list:
             (row["overlap_pull_off_um"], -row["Fc_uN"], "C"),
             (row["overlap_end_um"], row["force_end_uN"], "D"),
         ]
+    return ca, cb, pa, pb
+
+
+def _add_paper_lines(ca: list, cb: list) -> None:
+    """Append the paper's maximum adhesion forces to panel (a) and its depths at separation to
+    (b), as grey dashed lines, and the legend note on the line styles."""
     a_top = max(float(np.max(c["y"])) for c in ca)
     P_lo = min(float(np.min(c["y"])) for c in cb)
     for k, force in enumerate((PAPER_FC_LOW, PAPER_FC_HIGH)):
@@ -147,34 +154,48 @@ def draw(contacts: list, rows: list[dict], n: int, out) -> list:
     }
     ca.append(note)
     cb.append(dict(note, label=note["label"] + "; dashed: jump D → E"))
+
+
+def _save_panel(panel: str, curves: list, points: list, labels: tuple, title: str, out):
+    """Write fig7<panel>.png: the curves on zero axes, with head room for the legend."""
+    xlabel, ylabel = labels
+    fig = plot_force_curves(curves, None, xlabel=xlabel, ylabel=ylabel, points=points, title=title)
+    ax = fig.axes[0]
+    with mpl.rc_context(STYLE_RC):
+        ax.axhline(0.0, color="#888888", lw=0.6, zorder=1)
+        ax.axvline(0.0, color="#888888", lw=0.6, zorder=1)
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(top=hi + 0.5 * (hi - lo))  # head room for the legend
+        ax.legend(loc="upper left", fontsize=8)
+    path = out / f"fig7{panel}.png"
+    save_figure(fig, path)
+    return path
+
+
+def draw(contacts: list, rows: list[dict], n: int, out) -> list:
+    """fig7a.png (radius vs force) and fig7b.png (force vs overlap)."""
+    ca, cb, pa, pb = _curves(contacts, rows, n)
+    _add_paper_lines(ca, cb)
     c0 = contacts[0]
     sub = f"R = {c0.R:g} µm, E1 = {c0.E1:g} MPa, γ2 = {1e3 * c0.gamma2:g} mJ/m², w = 2√(γ1γ2)"
-    paths = []
-    for panel, cs, pts, xl, yl, what in (
-        ("a", ca, pa, "contact force P [µN]", "contact radius a [µm]", "contact radius vs force"),
-        (
+    return [
+        _save_panel(
+            "a",
+            ca,
+            pa,
+            ("contact force P [µN]", "contact radius a [µm]"),
+            f"Fig 7a: contact radius vs force\n{sub}",
+            out,
+        ),
+        _save_panel(
             "b",
             cb,
             pb,
-            "contact depth (overlap) δ [µm]",
-            "contact force P [µN]",
-            "force vs contact depth",
+            ("contact depth (overlap) δ [µm]", "contact force P [µN]"),
+            f"Fig 7b: force vs contact depth\n{sub}",
+            out,
         ),
-    ):
-        fig = plot_force_curves(
-            cs, None, xlabel=xl, ylabel=yl, points=pts, title=f"Fig 7{panel}: {what}\n{sub}"
-        )
-        ax = fig.axes[0]
-        with mpl.rc_context(STYLE_RC):
-            ax.axhline(0.0, color="#888888", lw=0.6, zorder=1)
-            ax.axvline(0.0, color="#888888", lw=0.6, zorder=1)
-            lo, hi = ax.get_ylim()
-            ax.set_ylim(top=hi + 0.5 * (hi - lo))  # head room for the legend
-            ax.legend(loc="upper left", fontsize=8)
-        path = out / f"fig7{panel}.png"
-        save_figure(fig, path)
-        paths.append(path)
-    return paths
+    ]
 
 
 def gamma2_for(Fc: float, gamma1: float, R: float) -> float:
@@ -187,8 +208,9 @@ def gamma2_for(Fc: float, gamma1: float, R: float) -> float:
     )
 
 
-def build_claims(rows: list[dict], e_rows: list[dict]) -> tuple[list, dict]:
-    """Paper-comparison rows for Fig 7 and conclusion (2); also the numbers behind them."""
+def alternative_gamma2(rows: list[dict]) -> tuple[float, float, float, list[dict]]:
+    """The floor energy γ2 [J/m²] the paper's two forces need (at the lowest and highest γ1),
+    their geometric mean, and the sweep redone with that mean."""
     lo, hi = rows[0], rows[-1]
     R = PAPER_TABLE1.contact.R
     g2_lo = gamma2_for(PAPER_FC_LOW, lo["gamma1_J_m2"], R)
@@ -202,17 +224,37 @@ def build_claims(rows: list[dict], e_rows: list[dict]) -> tuple[list, dict]:
         )
         for r in rows
     ]
-    numbers = {
-        "gamma2_needed_for_paper_Fc_J_m2": [g2_lo, g2_hi],
-        "alternative_gamma2_J_m2": g2_fit,
-        "sweep_alternative_gamma2": alt,
-    }
-    ratio_F, ratio_d = hi["Fc_uN"] / lo["Fc_uN"], hi["overlap_end_um"] / lo["overlap_end_um"]
+    return g2_lo, g2_hi, g2_fit, alt
+
+
+def _claim_pull_off(rows: list[dict], alt: list[dict], g2_lo, g2_hi, g2_fit) -> dict:
+    """Fig 7a: the maximum adhesion force against γ1."""
+    lo, hi = rows[0], rows[-1]
+    mid, mid_alt = rows[len(rows) // 2], alt[len(rows) // 2]
+    ratio_F = hi["Fc_uN"] / lo["Fc_uN"]
     gs = " → ".join(f"{1e3 * r['gamma1_J_m2']:g}" for r in (lo, hi))
-    mid = rows[len(rows) // 2]
-    mid_alt = alt[len(rows) // 2]
-    Es = ", ".join(f"{r['E1_MPa']:g}" for r in e_rows)
-    # Which JKR depth is nearest the paper's two numbers (mean relative distance)?
+    return claim(
+        "Fig 7a",
+        "maximum adhesion force rises from 0.71 µN (γ1 = 4) to 3.55 µN (γ1 = 100 mJ/m²)",
+        f"{PAPER_FC_LOW:g} → {PAPER_FC_HIGH:g} µN (×{PAPER_FC_HIGH / PAPER_FC_LOW:.2f})",
+        f"Fc = {num(lo['Fc_uN'], '.3f')} → {num(hi['Fc_uN'], '.3f')} µN (×{ratio_F:.2f}) "
+        f"for γ1 = {gs} mJ/m² (γ1 = {1e3 * mid['gamma1_J_m2']:g}: "
+        f"{num(mid['Fc_uN'], '.3f')} µN)",
+        "trend reproduced",
+        f"Fc ∝ w ∝ √γ1 gives the paper's factor {ratio_F:.2f}, but γ2 = "
+        f"{1e3 * lo['gamma2_J_m2']:g} mJ/m² makes both forces "
+        f"{lo['Fc_uN'] / PAPER_FC_LOW:.2f}× too large: they need γ2 = {1e3 * g2_lo:.1f} "
+        f"and {1e3 * g2_hi:.1f} mJ/m².",
+        f"γ2 = {1e3 * g2_fit:.1f} mJ/m²: Fc = {num(alt[0]['Fc_uN'], '.3f')} → "
+        f"{num(alt[-1]['Fc_uN'], '.3f')} µN, but then γ1 = "
+        f"{1e3 * mid['gamma1_J_m2']:g} mJ/m² gives {num(mid_alt['Fc_uN'], '.2f')} µN, not "
+        f"Fig 5's {PAPER_FIG5_FC:g} µN",
+    )
+
+
+def nearest_depth(lo: dict, hi: dict) -> tuple[str, str]:
+    """Which JKR depth (δc, δ(C) or the paper's δs) is nearest the paper's two depths at
+    separation (mean relative distance): (its symbol, its column in the sweep)."""
     candidates = {"δc": "overlap_end_um", "δ(C)": "overlap_pull_off_um", "δs": "delta_s_paper_um"}
     best = min(
         candidates,
@@ -221,68 +263,76 @@ def build_claims(rows: list[dict], e_rows: list[dict]) -> tuple[list, dict]:
             + abs(-hi[candidates[k]] / PAPER_DEPTH_HIGH - 1)
         ),
     )
-    key = candidates[best]
+    return best, candidates[best]
+
+
+def _claim_depth(rows: list[dict], alt: list[dict], g2_fit: float) -> dict:
+    """Fig 7b: the depth at separation against γ1."""
+    lo, hi = rows[0], rows[-1]
+    ratio_d = hi["overlap_end_um"] / lo["overlap_end_um"]
+    best, key = nearest_depth(lo, hi)
+    return claim(
+        "Fig 7b",
+        "depth at separation rises from 0.23 µm (γ1 = 4) to 0.71 µm (γ1 = 100 mJ/m²)",
+        f"{PAPER_DEPTH_LOW:g} → {PAPER_DEPTH_HIGH:g} µm "
+        f"(×{PAPER_DEPTH_HIGH / PAPER_DEPTH_LOW:.2f})",
+        f"|δc| = {-lo['overlap_end_um']:.3f} → {-hi['overlap_end_um']:.3f} µm "
+        f"(×{ratio_d:.2f}, δ ∝ w^(2/3)); load-controlled pull-off "
+        f"|δ(C)| = {-lo['overlap_pull_off_um']:.3f} → {-hi['overlap_pull_off_um']:.3f} µm; "
+        f"paper's δs = −0.21a0²/R: {-lo['delta_s_paper_um']:.3f} → "
+        f"{-hi['delta_s_paper_um']:.3f} µm",
+        "trend reproduced",
+        f"The depth grows as w^(2/3) (×{ratio_d:.2f} against the paper's "
+        f"×{PAPER_DEPTH_HIGH / PAPER_DEPTH_LOW:.2f}); of δc, δ(C) and δs, {best} comes "
+        f"closest to the printed depths ({rel_off(-lo[key], PAPER_DEPTH_LOW)} and "
+        f"{rel_off(-hi[key], PAPER_DEPTH_HIGH)} off).",
+        f"γ2 = {1e3 * g2_fit:.1f} mJ/m²: |δc| = {-alt[0]['overlap_end_um']:.3f} → "
+        f"{-alt[-1]['overlap_end_um']:.3f} µm, |δs| = {-alt[0]['delta_s_paper_um']:.3f} "
+        f"→ {-alt[-1]['delta_s_paper_um']:.3f} µm",
+    )
+
+
+def _claim_conclusion_2(rows: list[dict], e_rows: list[dict]) -> dict:
+    """Section 4, conclusion (2): the modulus sets the depth, the surface energy the force."""
+    Es = ", ".join(f"{r['E1_MPa']:g}" for r in e_rows)
+    return claim(
+        "Sec 4 (2)",
+        "lower modulus → deeper contact under the same load, with little "
+        "effect on the maximum push-off force; higher surface energy → larger separation "
+        "distance, push-off force and depth during desorption",
+        "qualitative",
+        f"E1 = {Es} MPa: overlap at zero load "
+        + ", ".join(num(r["overlap_at_0_um"], ".3f") for r in e_rows)
+        + f" µm, at +{COMMON_FORCE_UN:g} µN "
+        + ", ".join(num(r[f"overlap_at_{COMMON_FORCE_UN:g}uN_um"], ".3f") for r in e_rows)
+        + " µm, Fc = "
+        + ", ".join(num(r["Fc_uN"], ".3f") for r in e_rows)
+        + " µN; γ1 = "
+        + ", ".join(f"{1e3 * r['gamma1_J_m2']:g}" for r in rows)
+        + " mJ/m²: Fc = "
+        + ", ".join(num(r["Fc_uN"], ".3f") for r in rows)
+        + " µN, |δc| = "
+        + ", ".join(f"{-r['overlap_end_um']:.3f}" for r in rows)
+        + " µm",
+        "reproduced",
+        "Each statement follows from JKR: overlaps at a fixed load scale as E*^(−2/3), "
+        "Fc = 1.5πRw has no E* in it, and Fc ∝ w and |δc| ∝ w^(2/3) grow with γ1.",
+        "—",
+    )
+
+
+def build_claims(rows: list[dict], e_rows: list[dict]) -> tuple[list, dict]:
+    """Paper-comparison rows for Fig 7 and conclusion (2); also the numbers behind them."""
+    g2_lo, g2_hi, g2_fit, alt = alternative_gamma2(rows)
+    numbers = {
+        "gamma2_needed_for_paper_Fc_J_m2": [g2_lo, g2_hi],
+        "alternative_gamma2_J_m2": g2_fit,
+        "sweep_alternative_gamma2": alt,
+    }
     claims = [
-        claim(
-            "Fig 7a",
-            "maximum adhesion force rises from 0.71 µN (γ1 = 4) to 3.55 µN (γ1 = 100 mJ/m²)",
-            f"{PAPER_FC_LOW:g} → {PAPER_FC_HIGH:g} µN (×{PAPER_FC_HIGH / PAPER_FC_LOW:.2f})",
-            f"Fc = {num(lo['Fc_uN'], '.3f')} → {num(hi['Fc_uN'], '.3f')} µN (×{ratio_F:.2f}) "
-            f"for γ1 = {gs} mJ/m² (γ1 = {1e3 * mid['gamma1_J_m2']:g}: "
-            f"{num(mid['Fc_uN'], '.3f')} µN)",
-            "trend reproduced",
-            f"Fc ∝ w ∝ √γ1 gives the paper's factor {ratio_F:.2f}, but γ2 = "
-            f"{1e3 * lo['gamma2_J_m2']:g} mJ/m² makes both forces "
-            f"{lo['Fc_uN'] / PAPER_FC_LOW:.2f}× too large: they need γ2 = {1e3 * g2_lo:.1f} "
-            f"and {1e3 * g2_hi:.1f} mJ/m².",
-            f"γ2 = {1e3 * g2_fit:.1f} mJ/m²: Fc = {num(alt[0]['Fc_uN'], '.3f')} → "
-            f"{num(alt[-1]['Fc_uN'], '.3f')} µN, but then γ1 = "
-            f"{1e3 * mid['gamma1_J_m2']:g} mJ/m² gives {num(mid_alt['Fc_uN'], '.2f')} µN, not "
-            f"Fig 5's {PAPER_FIG5_FC:g} µN",
-        ),
-        claim(
-            "Fig 7b",
-            "depth at separation rises from 0.23 µm (γ1 = 4) to 0.71 µm (γ1 = 100 mJ/m²)",
-            f"{PAPER_DEPTH_LOW:g} → {PAPER_DEPTH_HIGH:g} µm "
-            f"(×{PAPER_DEPTH_HIGH / PAPER_DEPTH_LOW:.2f})",
-            f"|δc| = {-lo['overlap_end_um']:.3f} → {-hi['overlap_end_um']:.3f} µm "
-            f"(×{ratio_d:.2f}, δ ∝ w^(2/3)); load-controlled pull-off "
-            f"|δ(C)| = {-lo['overlap_pull_off_um']:.3f} → {-hi['overlap_pull_off_um']:.3f} µm; "
-            f"paper's δs = −0.21a0²/R: {-lo['delta_s_paper_um']:.3f} → "
-            f"{-hi['delta_s_paper_um']:.3f} µm",
-            "trend reproduced",
-            f"The depth grows as w^(2/3) (×{ratio_d:.2f} against the paper's "
-            f"×{PAPER_DEPTH_HIGH / PAPER_DEPTH_LOW:.2f}); of δc, δ(C) and δs, {best} comes "
-            f"closest to the printed depths ({rel_off(-lo[key], PAPER_DEPTH_LOW)} and "
-            f"{rel_off(-hi[key], PAPER_DEPTH_HIGH)} off).",
-            f"γ2 = {1e3 * g2_fit:.1f} mJ/m²: |δc| = {-alt[0]['overlap_end_um']:.3f} → "
-            f"{-alt[-1]['overlap_end_um']:.3f} µm, |δs| = {-alt[0]['delta_s_paper_um']:.3f} "
-            f"→ {-alt[-1]['delta_s_paper_um']:.3f} µm",
-        ),
-        claim(
-            "Sec 4 (2)",
-            "lower modulus → deeper contact under the same load, with little "
-            "effect on the maximum push-off force; higher surface energy → larger separation "
-            "distance, push-off force and depth during desorption",
-            "qualitative",
-            f"E1 = {Es} MPa: overlap at zero load "
-            + ", ".join(num(r["overlap_at_0_um"], ".3f") for r in e_rows)
-            + f" µm, at +{COMMON_FORCE_UN:g} µN "
-            + ", ".join(num(r[f"overlap_at_{COMMON_FORCE_UN:g}uN_um"], ".3f") for r in e_rows)
-            + " µm, Fc = "
-            + ", ".join(num(r["Fc_uN"], ".3f") for r in e_rows)
-            + " µN; γ1 = "
-            + ", ".join(f"{1e3 * r['gamma1_J_m2']:g}" for r in rows)
-            + " mJ/m²: Fc = "
-            + ", ".join(num(r["Fc_uN"], ".3f") for r in rows)
-            + " µN, |δc| = "
-            + ", ".join(f"{-r['overlap_end_um']:.3f}" for r in rows)
-            + " µm",
-            "reproduced",
-            "Each statement follows from JKR: overlaps at a fixed load scale as E*^(−2/3), "
-            "Fc = 1.5πRw has no E* in it, and Fc ∝ w and |δc| ∝ w^(2/3) grow with γ1.",
-            "—",
-        ),
+        _claim_pull_off(rows, alt, g2_lo, g2_hi, g2_fit),
+        _claim_depth(rows, alt, g2_fit),
+        _claim_conclusion_2(rows, e_rows),
     ]
     return claims, numbers
 
