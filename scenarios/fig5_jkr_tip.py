@@ -194,12 +194,11 @@ def draw(key: str, contact, title: str, kp: dict, n: int, out, d_min: float) -> 
     return paths
 
 
-def build_claims(kp: dict, alt: dict, alt_contact) -> list[dict]:
-    """The paper-comparison rows for Fig 5 (ours: stated w; alternative: w = 0.080)."""
-    s, a = kp["points"], alt["points"]
+def what_the_paper_needs(kp: dict, alt: dict, alt_contact) -> dict:
+    """What the paper's printed C radius and D overlap would need, solved with the package's
+    own functions: E* [MPa] for 1.24 µm at w = 0.080; w [J/m²] (and P(δc) [µN]) for δc =
+    −0.8 µm at the stated E*; w and γ1 [J/m²] for 1.24 µm at the stated E*."""
     R, w_alt, _ = alt_contact.jkr_args()
-    # What the paper's C radius would need (E* at w = 0.080) and its D overlap would need (w at
-    # the stated E*): solved numerically with the package's own functions.
     E_needed = brentq(
         lambda E: float(jkr.contact_radius_from_force(-alt["Fc"], R, w_alt, E)) - PAPER_C_RADIUS,
         1e-3,
@@ -212,84 +211,129 @@ def build_claims(kp: dict, alt: dict, alt_contact) -> list[dict]:
         10.0,
         xtol=1e-12,
     )
-    P_for_D = float(jkr.force_from_overlap(PAPER_D[0], R, w_for_D, kp["E_star"]))
 
     def a_C_of_w(w):  # load-controlled pull-off radius at the stated E*
         return float(jkr.contact_radius_from_force(-jkr.pull_off_force(R, w), R, w, kp["E_star"]))
 
     w_for_C = brentq(lambda w: a_C_of_w(w) - PAPER_C_RADIUS, 1e-4, 10.0, xtol=1e-14)
-    gamma2 = alt_contact.gamma2
     g1_for_C = brentq(
-        lambda g: float(jkr.work_of_adhesion(g, gamma2)) - w_for_C, 1e-8, 10.0, xtol=1e-14
+        lambda g: float(jkr.work_of_adhesion(g, alt_contact.gamma2)) - w_for_C,
+        1e-8,
+        10.0,
+        xtol=1e-14,
     )
+    return {
+        "E_needed": E_needed,
+        "w_for_D": w_for_D,
+        "P_for_D": float(jkr.force_from_overlap(PAPER_D[0], R, w_for_D, kp["E_star"])),
+        "w_for_C": w_for_C,
+        "g1_for_C": g1_for_C,
+    }
+
+
+def _claim_A(kp: dict, alt: dict) -> dict:
+    """Fig 5b: the jump-in point A."""
     w_s, w_a = num(kp["w"], ".3f"), num(alt["w"], ".3f")
+    s, a = kp["points"], alt["points"]
+    return claim(
+        "Fig 5b",
+        "point A: the approach jumps in at zero overlap to (0, −1.35 µN)",
+        "A = (0, −1.35 µN)",
+        f"A = (0, {num(s['A'][2], '.3f')} µN) = −(8/9)Fc at w = {w_s} J/m²",
+        "not reproducible from the stated parameters",
+        f"w = 2√(γ1γ2) = {w_s} J/m² doubles every adhesive force, and −1.35 µN is "
+        f"−(8/9)Fc only for w ≈ {w_a} J/m².",
+        f"A = (0, {num(a['A'][2], '.3f')} µN) at w = {w_a} J/m² "
+        f"({off_paper(a['A'][2], PAPER_A[1])})",
+    )
+
+
+def _claim_C_force(kp: dict, alt: dict, alt_contact) -> dict:
+    """Fig 5a: the maximum adhesion force at C."""
+    w_a = num(alt["w"], ".3f")
+    return claim(
+        "Fig 5a",
+        "point C: maximum adhesion force −1.5 µN",
+        "−1.5 µN",
+        f"−Fc = −1.5πRw = {num(-kp['Fc'], '.3f')} µN",
+        "not reproducible from the stated parameters",
+        f"The stated γ1, γ2 give Fc = {num(kp['Fc'], '.2f')} µN; −1.5 µN at R = "
+        f"{kp['R']:g} µm needs w = {w_a} J/m² (= {num(alt['w'] / alt_contact.gamma1, '.2f')}"
+        " γ1).",
+        f"−Fc = {num(-alt['Fc'], '.3f')} µN at w = {w_a} J/m² "
+        f"({off_paper(-alt['Fc'], PAPER_C_FORCE)})",
+    )
+
+
+def _claim_C_radius(kp: dict, alt: dict, alt_contact, need: dict) -> dict:
+    """Fig 5a: the contact radius at C."""
+    w_a = num(alt["w"], ".3f")
+    R = alt_contact.R
+    return claim(
+        "Fig 5a",
+        "point C: contact radius 1.24 µm at maximum adhesion",
+        "a = 1.24 µm",
+        f"a = {num(kp['points']['C'][0], '.3f')} µm (= {num(kp['a_C_over_a0'], '.3f')} a0, "
+        f"a0 = {num(kp['a0'], '.3f')} µm)",
+        "not reproducible from the stated parameters",
+        f"JKR puts the load-controlled pull-off at a = 0.63 a0 for any w, and neither "
+        f"reading gives 1.24 µm: at w = {w_a} J/m² it would need "
+        f"E* = {num(need['E_needed'], '.2f')} MPa instead of {num(alt['E_star'], '.3f')} MPa.",
+        f"a = {num(alt['points']['C'][0], '.3f')} µm at w = {w_a} J/m² "
+        f"({off_paper(alt['points']['C'][0], PAPER_C_RADIUS)}); 1.24 µm at the stated E* "
+        f"needs w = {num(need['w_for_C'], '.4f')} J/m², i.e. γ1 = "
+        f"{1e3 * need['g1_for_C']:.2f} mJ/m² with γ2 = {1e3 * alt_contact.gamma2:g} mJ/m², "
+        f"whose Fc is {num(jkr.pull_off_force(R, need['w_for_C']))} µN",
+    )
+
+
+def _claim_D(kp: dict, alt: dict, need: dict) -> dict:
+    """Fig 5b: the end of contact D and the jump D → E."""
+    s, a = kp["points"], alt["points"]
+    w_a = num(alt["w"], ".3f")
+    return claim(
+        "Fig 5b",
+        "point D (−0.8, −0.75) ends the contact; jump D → E (−0.8, 0)",
+        "D = (−0.8 µm, −0.75 µN), E = (−0.8 µm, 0)",
+        f"D = (δc, −(5/9)Fc) = ({num(s['D'][1], '.3f')} µm, {num(s['D'][2], '.3f')} µN); "
+        f"the paper's own δs = −0.21a0²/R = {num(kp['delta_s'], '.3f')} µm "
+        f"(P there {num(kp['P_at_delta_s'], '.3f')} µN)",
+        "not reproducible from the stated parameters",
+        f"The branch ends at δc, so no contact exists at δ = −0.8 µm for either reading; "
+        f"δc = −0.8 µm would need w = {num(need['w_for_D'], '.3f')} J/m² (then P(δc) = "
+        f"{num(need['P_for_D'], '.2f')} µN), and the printed ratio D/C = "
+        f"{num(PAPER_D[1] / PAPER_C_FORCE, '.2f')} is not JKR's 5/9 = {num(5 / 9, '.3f')}.",
+        f"w = {w_a}: D = ({num(a['D'][1], '.3f')} µm, {num(a['D'][2], '.3f')} µN), "
+        f"δs = {num(alt['delta_s'], '.3f')} µm "
+        f"(P there {num(alt['P_at_delta_s'], '.3f')} µN)",
+    )
+
+
+def _claim_delta_s(kp: dict, alt: dict) -> dict:
+    """Section 2.1: the paper's separation displacement δs = −0.21 a0²/R."""
+    return claim(
+        "Sec 2.1",
+        "separation displacement δs = −0.21 a0²/R",
+        "δs = −0.21 a0²/R",
+        f"displacement control δc = {num(kp['delta_c_over_a0sq_R'], '.3f')} a0²/R; "
+        f"load control δ(C) = {num(kp['delta_C_over_a0sq_R'], '.3f')} a0²/R",
+        "not reproducible from the stated parameters",
+        "The coefficient −0.21 matches neither JKR end of contact (both coefficients are "
+        "the same for every R, w and E*); it lies between them.",
+        f"w = {num(alt['w'], '.3f')}: {num(alt['delta_c_over_a0sq_R'], '.3f')} and "
+        f"{num(alt['delta_C_over_a0sq_R'], '.3f')} a0²/R",
+    )
+
+
+def build_claims(kp: dict, alt: dict, alt_contact) -> list[dict]:
+    """The paper-comparison rows for Fig 5 (ours: stated w; alternative: w = 0.080)."""
+    need = what_the_paper_needs(kp, alt, alt_contact)
     return [
-        claim(
-            "Fig 5b",
-            "point A: the approach jumps in at zero overlap to (0, −1.35 µN)",
-            "A = (0, −1.35 µN)",
-            f"A = (0, {num(s['A'][2], '.3f')} µN) = −(8/9)Fc at w = {w_s} J/m²",
-            "not reproducible from the stated parameters",
-            f"w = 2√(γ1γ2) = {w_s} J/m² doubles every adhesive force, and −1.35 µN is "
-            f"−(8/9)Fc only for w ≈ {w_a} J/m².",
-            f"A = (0, {num(a['A'][2], '.3f')} µN) at w = {w_a} J/m² "
-            f"({off_paper(a['A'][2], PAPER_A[1])})",
-        ),
-        claim(
-            "Fig 5a",
-            "point C: maximum adhesion force −1.5 µN",
-            "−1.5 µN",
-            f"−Fc = −1.5πRw = {num(-kp['Fc'], '.3f')} µN",
-            "not reproducible from the stated parameters",
-            f"The stated γ1, γ2 give Fc = {num(kp['Fc'], '.2f')} µN; −1.5 µN at R = "
-            f"{kp['R']:g} µm needs w = {w_a} J/m² (= {num(alt['w'] / alt_contact.gamma1, '.2f')}"
-            " γ1).",
-            f"−Fc = {num(-alt['Fc'], '.3f')} µN at w = {w_a} J/m² "
-            f"({off_paper(-alt['Fc'], PAPER_C_FORCE)})",
-        ),
-        claim(
-            "Fig 5a",
-            "point C: contact radius 1.24 µm at maximum adhesion",
-            "a = 1.24 µm",
-            f"a = {num(s['C'][0], '.3f')} µm (= {num(kp['a_C_over_a0'], '.3f')} a0, "
-            f"a0 = {num(kp['a0'], '.3f')} µm)",
-            "not reproducible from the stated parameters",
-            f"JKR puts the load-controlled pull-off at a = 0.63 a0 for any w, and neither "
-            f"reading gives 1.24 µm: at w = {w_a} J/m² it would need "
-            f"E* = {num(E_needed, '.2f')} MPa instead of {num(alt['E_star'], '.3f')} MPa.",
-            f"a = {num(a['C'][0], '.3f')} µm at w = {w_a} J/m² "
-            f"({off_paper(a['C'][0], PAPER_C_RADIUS)}); 1.24 µm at the stated E* needs "
-            f"w = {num(w_for_C, '.4f')} J/m², i.e. γ1 = {1e3 * g1_for_C:.2f} mJ/m² with "
-            f"γ2 = {1e3 * gamma2:g} mJ/m², whose Fc is {num(jkr.pull_off_force(R, w_for_C))} µN",
-        ),
-        claim(
-            "Fig 5b",
-            "point D (−0.8, −0.75) ends the contact; jump D → E (−0.8, 0)",
-            "D = (−0.8 µm, −0.75 µN), E = (−0.8 µm, 0)",
-            f"D = (δc, −(5/9)Fc) = ({num(s['D'][1], '.3f')} µm, {num(s['D'][2], '.3f')} µN); "
-            f"the paper's own δs = −0.21a0²/R = {num(kp['delta_s'], '.3f')} µm "
-            f"(P there {num(kp['P_at_delta_s'], '.3f')} µN)",
-            "not reproducible from the stated parameters",
-            f"The branch ends at δc, so no contact exists at δ = −0.8 µm for either reading; "
-            f"δc = −0.8 µm would need w = {num(w_for_D, '.3f')} J/m² (then P(δc) = "
-            f"{num(P_for_D, '.2f')} µN), and the printed ratio D/C = "
-            f"{num(PAPER_D[1] / PAPER_C_FORCE, '.2f')} is not JKR's 5/9 = {num(5 / 9, '.3f')}.",
-            f"w = {w_a}: D = ({num(a['D'][1], '.3f')} µm, {num(a['D'][2], '.3f')} µN), "
-            f"δs = {num(alt['delta_s'], '.3f')} µm "
-            f"(P there {num(alt['P_at_delta_s'], '.3f')} µN)",
-        ),
-        claim(
-            "Sec 2.1",
-            "separation displacement δs = −0.21 a0²/R",
-            "δs = −0.21 a0²/R",
-            f"displacement control δc = {num(kp['delta_c_over_a0sq_R'], '.3f')} a0²/R; "
-            f"load control δ(C) = {num(kp['delta_C_over_a0sq_R'], '.3f')} a0²/R",
-            "not reproducible from the stated parameters",
-            "The coefficient −0.21 matches neither JKR end of contact (both coefficients are "
-            "the same for every R, w and E*); it lies between them.",
-            f"w = {w_a}: {num(alt['delta_c_over_a0sq_R'], '.3f')} and "
-            f"{num(alt['delta_C_over_a0sq_R'], '.3f')} a0²/R",
-        ),
+        _claim_A(kp, alt),
+        _claim_C_force(kp, alt, alt_contact),
+        _claim_C_radius(kp, alt, alt_contact, need),
+        _claim_D(kp, alt, need),
+        _claim_delta_s(kp, alt),
     ]
 
 
