@@ -136,17 +136,18 @@ def write_summary(out, curves: dict, n_sim: int) -> None:
     write_table(out / "pull_off_vs_preload.csv", table)
 
 
-def draw(out, cfg, base, curves: dict, m: dict, ideal_N: float) -> None:
-    """fig11a_preload.png: the three quasi-static curves, N·Fc, the paper, the agent points."""
-    qs, ad, al, ag = curves["qs"], curves["ad"], curves["al"], curves["ag"]
+def _lines(cfg, base, curves: dict, ideal_N: float) -> list[dict]:
+    """The quasi-static curves (paper's method, adhesive friction, the Fig 5 reading, rod
+    setae), N·Fc and the paper's saturation, as plot_force_curves lines [N]."""
+    qs, ad, al = curves["qs"], curves["ad"], curves["al"]
     xs = [float(qs["preload_N"][0]) / 1.3, float(qs["preload_N"][-1]) * 1.3]
-    n_fl, n_ag = len(cfg["floor_seeds"]), len(cfg["agent_seeds"])
+    n_fl = len(cfg["floor_seeds"])
     size = (
         "10⁷ setae"
         if cfg["count"] == FULL_COUNT
         else f"{cfg['count']:.0e} setae × {FULL_COUNT // cfg['count']}"
     )
-    lines = [
+    return [
         {
             "x": qs["preload_N"],
             "y": qs["mean"],
@@ -186,6 +187,28 @@ def draw(out, cfg, base, curves: dict, m: dict, ideal_N: float) -> None:
             "label": "paper",
         },
     ]
+
+
+def _agent_points(ax, ag: dict, cfg) -> None:
+    """The agent model's pull-off per preload: mean with the range over floors [N]."""
+    n_ag = len(cfg["agent_seeds"])
+    ax.errorbar(
+        ag["preload_N"],
+        ag["mean"],
+        yerr=[ag["mean"] - ag["min"], ag["max"] - ag["mean"]],
+        fmt="D",
+        color="#2ca02c",
+        ms=5,
+        capsize=3,
+        label=f"agent model (adhesive friction), {cfg['agent']['n_sim']} rod setae × "
+        f"{FULL_COUNT / cfg['agent']['n_sim']:,.0f} (mean, range of "
+        f"{n_ag} floor{'s' * (n_ag > 1)})",
+    )
+
+
+def draw(out, cfg, base, curves: dict, m: dict, ideal_N: float) -> None:
+    """fig11a_preload.png: the three quasi-static curves, N·Fc, the paper, the agent points."""
+    qs, ag = curves["qs"], curves["ag"]
     points = []
     if m["preload_90_exact"]:
         points.append(
@@ -196,7 +219,7 @@ def draw(out, cfg, base, curves: dict, m: dict, ideal_N: float) -> None:
             )
         )
     fig = render.plot_force_curves(
-        lines,
+        _lines(cfg, base, curves, ideal_N),
         None,
         xlabel="preload [N]",
         ylabel="maximum pull-off force [N]",
@@ -207,18 +230,7 @@ def draw(out, cfg, base, curves: dict, m: dict, ideal_N: float) -> None:
         ax = fig.axes[0]
         ax.set_xscale("log")
         ax.fill_between(qs["preload_N"], qs["min"], qs["max"], color="#1f77b4", alpha=0.25, lw=0)
-        ax.errorbar(
-            ag["preload_N"],
-            ag["mean"],
-            yerr=[ag["mean"] - ag["min"], ag["max"] - ag["mean"]],
-            fmt="D",
-            color="#2ca02c",
-            ms=5,
-            capsize=3,
-            label=f"agent model (adhesive friction), {cfg['agent']['n_sim']} rod setae × "
-            f"{FULL_COUNT / cfg['agent']['n_sim']:,.0f} (mean, range of "
-            f"{n_ag} floor{'s' * (n_ag > 1)})",
-        )
+        _agent_points(ax, ag, cfg)
         ax.set_ylim(0, 1.12 * max(ideal_N, float(np.max(ag["max"]))))
         legend_below(fig, ax)
     render.save_figure(fig, out / f"{NAME}.png")
