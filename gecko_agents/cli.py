@@ -10,9 +10,10 @@
     gecko-agents params [PRESET]
     gecko-agents calibrate ...        (when gecko_agents/calibrate.py is present)
 
-Run and sweep files are described in :mod:`gecko_agents.runfile`; ``examples/`` holds one of
-each kind of study. Exit codes: 0 success, 1 the run failed, 2 a usage or input error (nothing
-was run), 130 interrupted (Ctrl-C; nothing half-written).
+Run files are described in :mod:`gecko_agents.runfile`, sweep files in
+:mod:`gecko_agents.sweepfile`; ``examples/`` holds one of each kind of study. ``python -m
+gecko_agents`` is this command line too. Exit codes: 0 success, 1 the run failed, 2 a usage
+or input error (nothing was run), 130 interrupted (Ctrl-C; nothing half-written).
 
 Each subcommand is one ``_cmd_<name>(args, extra) -> int`` handler and one entry of
 :data:`COMMANDS`, which builds its parser; adding a subcommand touches nothing else.
@@ -179,10 +180,10 @@ def _add_sweep(p: argparse.ArgumentParser) -> None:
 
 
 def _cmd_sweep(args, extra) -> int:
-    from . import runfile, sweep
+    from . import sweep, sweepfile
     from .history import atomic_write_bytes
 
-    spec = runfile.load_sweep(args.sweepfile, quick=args.quick)
+    spec = sweepfile.load_sweep(args.sweepfile, quick=args.quick)
     out = args.out if args.out is not None else spec.out_dir
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers {args.workers} must be ≥ 1")
@@ -206,7 +207,7 @@ def _cmd_sweep(args, extra) -> int:
         f"{spec.n_points} points → {out}/"
     )
     out.mkdir(parents=True, exist_ok=True)
-    atomic_write_bytes(out / runfile.SWEEP_FILE_NAME, spec.text)
+    atomic_write_bytes(out / sweepfile.SWEEP_FILE_NAME, spec.text)
     t0 = time.perf_counter()
     try:
         rows = sweep.run_sweep(

@@ -152,6 +152,39 @@ def _points_to_run(out: Path, points, keys) -> list[tuple[SweepPoint, str]]:
     return todo
 
 
+def _progress_bar(total: int, done: int, progress: bool):
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, initial=done, disable=not progress, desc="sweep", unit="point")
+
+
+def _finisher(point_dir: Path, bar) -> Callable[[dict], None]:
+    """``finish(record)``: store a finished point and count it (and its errors) on ``bar``."""
+    n_errors = 0
+
+    def finish(record: dict) -> None:
+        nonlocal n_errors
+        write_record(point_dir, record)
+        n_errors += record["status"] != "ok"
+        bar.update(1)
+        if n_errors:
+            bar.set_postfix(errors=n_errors)
+
+    return finish
+
+
+def _run_points(todo, dask, n_workers: int, fn, fn_name: str, fn_kwargs: dict, finish) -> None:
+    """Run the (point, key) pairs ``todo`` on Dask, serially here (one worker) or on local
+    worker processes, calling ``finish(record)`` as each completes."""
+    if todo and dask is not None:
+        run_dask(dask, n_workers, todo, fn, fn_name, fn_kwargs, finish)
+    elif todo and n_workers == 1:
+        for point, key in todo:
+            finish(run_point(fn, fn_name, fn_kwargs, point, key))
+    elif todo:
+        run_local(n_workers, todo, fn, fn_name, fn_kwargs, finish)
+
+
 def run_sweep(
     point_fn,
     base: SetaArray,
@@ -204,38 +237,15 @@ def run_sweep(
     keys = [point_key(fn_name, fn_kwargs | p.fn_overrides, p.params, p.seed, code) for p in points]
     todo = _points_to_run(out, points, keys)
 
-    from tqdm.auto import tqdm
-
-    bar = tqdm(
-        total=len(points),
-        initial=len(points) - len(todo),
-        disable=not progress,
-        desc="sweep",
-        unit="point",
-    )
-    n_errors = 0
-
-    def finish(record: dict) -> None:
-        nonlocal n_errors
-        write_record(point_dir, record)
-        n_errors += record["status"] != "ok"
-        bar.update(1)
-        if n_errors:
-            bar.set_postfix(errors=n_errors)
-
+    bar = _progress_bar(len(points), len(points) - len(todo), progress)
+    finish = _finisher(point_dir, bar)
     stop = StopOnSignals(
         f"sweep stopped; finished points are stored in {point_dir}/ and the same run_sweep "
         "call (or gecko-agents sweep … --resume) resumes it"
     )
     try:
         with stop:
-            if todo and dask is not None:
-                run_dask(dask, n_workers, todo, fn, fn_name, fn_kwargs, finish)
-            elif todo and n_workers == 1:
-                for point, key in todo:
-                    finish(run_point(fn, fn_name, fn_kwargs, point, key))
-            elif todo:
-                run_local(n_workers, todo, fn, fn_name, fn_kwargs, finish)
+            _run_points(todo, dask, n_workers, fn, fn_name, fn_kwargs, finish)
     finally:
         bar.close()
         rows = write_table(out / "sweep.csv", points, keys, list(grid), point_dir)
@@ -244,7 +254,7 @@ def run_sweep(
 
 # Point functions named by sweep files ----------------------------------------------------------
 #
-# gecko_agents.runfile.point_functions lists the ``*_point`` names of this module's __all__, so
+# gecko_agents.sweepfile.point_functions lists the ``*_point`` names of this module's __all__, so
 # sweep files (examples/*.toml) name these. They live elsewhere and are imported on first use;
 # this table is the only trace of them here. The preload points are the Fig 11 study's, in
 # scenarios/_preload.py, so they are offered only from a source checkout that has that file.

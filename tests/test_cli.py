@@ -6,6 +6,7 @@ import json
 import shutil
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -14,7 +15,7 @@ from gecko_agents import cli, history, runfile, sweep
 from gecko_agents.model import Model
 
 EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.toml"))
-RUN_EXAMPLES = [p for p in EXAMPLES if "point" not in runfile.tomllib.loads(p.read_text())]
+RUN_EXAMPLES = [p for p in EXAMPLES if "point" not in tomllib.loads(p.read_text())]
 SWEEP_EXAMPLES = [p for p in EXAMPLES if p not in RUN_EXAMPLES]
 
 GOOD = """\
