@@ -125,34 +125,44 @@ def _array_fit(data, base, q):
     )
 
 
-def main(argv=None) -> dict:
-    args = parse_args(__doc__, argv)
-    out = output_dir("calibrate_paper", args)
-    q = args.quick
+def fit_arrays(out: Path, quick: bool) -> dict:
+    """Fit w and σ to Fig 10 + Fig 11a with the rod and the linear seta: mechanics → fit
+    (saved under ``fit_fig10_11a_<mechanics>/``, with its wall time in the record)."""
     arr_data = _merge(
         [DATA / "fig10_peak.csv", DATA / "fig11a_preload.csv"], out / "fig10_fig11a.csv"
     )
     bases = {m: PAPER_ARRAY.replace(mechanics=m) for m in ("rod", "linear")}
-    if q:  # seconds: a stubby 100-seta placeholder instead of the 10⁷ array
+    if quick:  # seconds: a stubby 100-seta placeholder instead of the 10⁷ array
         bases = {m: b.replace(**{"array.count": 100, "floor.sigma": 0.5}) for m, b in bases.items()}
         arr_data = {"preload_uN": [8.6], "pull_off_uN": [20.0], "pull_off_err_uN": [2.0]}
     arrs = {}
     for m, b in bases.items():
         t = time.perf_counter()
-        arrs[m] = _array_fit(arr_data, b, q)
+        arrs[m] = _array_fit(arr_data, b, quick)
         arrs[m].save(out / f"fit_fig10_11a_{m}")
         arrs[m].record["scenario_wall_time_s"] = time.perf_counter() - t
-    arr, lin = arrs["rod"], arrs["linear"]
+    return arrs
+
+
+def fit_fig8(out: Path, quick: bool):
+    """Fit w and a seta stiffness scale to Fig 8's single-seta snap-off (saved in fit_fig8/)."""
     f8 = calibrate.fit(
         DATA / "fig8_snapoff.csv",
         {"contact.w": (0.005, 0.3), "seta.stiffness_scale": (0.1, 1000.0)},
         base=PAPER_TABLE1.replace(mechanics="rod"),
         seed=0,
-        n_starts=1 if q else 2,
-        retract_steps=30 if q else 300,
-        max_nfev=1 if q else 15,
+        n_starts=1 if quick else 2,
+        retract_steps=30 if quick else 300,
+        max_nfev=1 if quick else 15,
     )
     f8.save(out / "fit_fig8")
+    return f8
+
+
+def calibration_section(arrs: dict, f8, quick: bool) -> str:
+    """The section "Parameters the paper's figures imply": the fits as a markdown table and
+    what they mean."""
+    arr, lin = arrs["rod"], arrs["linear"]
     w0 = PAPER_ARRAY.contact.work_of_adhesion
     wt = {m: r.record["wall_time_s"] for m, r in arrs.items()}
     ok = {m: all(r.identifiable.values()) for m, r in arrs.items()}
@@ -199,14 +209,17 @@ def main(argv=None) -> dict:
         f"stiff as a 1.413 MPa, 3 µm × 20 µm rod, with w = {_fmt(f8, 'contact.w')} J/m².",
         "",
     ]
-    if q:
+    if quick:
         lines.insert(
             2,
             "*(quick run: placeholder fits of a stubby 100-seta patch and one step; the "
             "numbers are not the paper's figures)*\n",
         )
-    (out / "calibration_section.md").write_text("\n".join(lines))
-    rows = validation_rows()
+    return "\n".join(lines)
+
+
+def validation_section(rows: list[dict]) -> str:
+    """ "Validation against measurements of real setae": :func:`validation_rows` as markdown."""
     val = [
         "## Validation against measurements of real setae",
         "",
@@ -220,10 +233,21 @@ def main(argv=None) -> dict:
         "|---|---|---|---|",
     ]
     val += [f"| {r['quantity']} | {r['model']} | {r['measured']} | {r['source']} |" for r in rows]
-    (out / "validation_section.md").write_text("\n".join(val) + "\n")
+    return "\n".join(val) + "\n"
+
+
+def main(argv=None) -> dict:
+    args = parse_args(__doc__, argv)
+    out = output_dir("calibrate_paper", args)
+    arrs = fit_arrays(out, args.quick)
+    f8 = fit_fig8(out, args.quick)
+    (out / "calibration_section.md").write_text(calibration_section(arrs, f8, args.quick))
+    rows = validation_rows()
+    (out / "validation_section.md").write_text(validation_section(rows))
+    wt = {m: r.record["wall_time_s"] for m, r in arrs.items()}
     result = {
-        "fig10_11a_rod": arr.record["free"],
-        "fig10_11a_linear": lin.record["free"],
+        "fig10_11a_rod": arrs["rod"].record["free"],
+        "fig10_11a_linear": arrs["linear"].record["free"],
         "fig8": f8.record["free"],
         "wall_time_s": {"fig10_11a_rod": wt["rod"], "fig10_11a_linear": wt["linear"]},
         "validation": rows,
