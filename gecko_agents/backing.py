@@ -5,7 +5,8 @@ Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`); parameters in
 
 The strip (plane strain, as wide as the row spacing b = ``array.pitch``) is a chain of rigid
 links of length ℓ, each a pymunk body of mass m = ρ_b·b·t_b·ℓ [ng] and moment of inertia
-mℓ²/12, joined at the nodes by pivot joints and damped rotary springs of stiffness
+mℓ²/12, joined at the nodes by pivot joints and rotary springs (with dampers; both applied by
+:class:`Strip` itself, so that their energy is booked) of stiffness
 
     k_r = EI/ℓ [pJ/rad],   EI = E_b·b·t_b³ / (12(1 − ν_b²)) [µN·µm²]
 
@@ -37,6 +38,14 @@ time step is set by the setae; when the chain is stiffer, the strip's density is
 until ω·dt = 0.5 (explicit mass scaling: the strip's inertia plays no part in a quasi-static
 pull, and its slowest modes stay faster than the pull), recorded as
 ``meta["backing"]["mass_scale"]``.
+
+Energy: the history's energy columns hold the strip too. Elastic = setae + contacts + the
+strip's joints + the handle spring; kinetic = tips + links; dissipated = the setae's and
+contacts' + the joint dampers + the handle's damper, so that the plate (handle) work balances
+them within the history invariant's tolerance (:func:`gecko_agents.history.energy_balance_error`;
+measured 0.2–0.3 % of the run's energy in ``tests/test_backing.py``). The dampers' dissipation
+is computed from the damping forces and moments this module applies (pymunk's
+``DampedRotarySpring`` damps inside the constraint solver, where it cannot be read).
 """
 
 from __future__ import annotations
@@ -74,7 +83,8 @@ def bending_length(EI: float, k_f: float) -> float:
 
 
 class Strip:
-    """A chain of ``n_links`` rigid links in its own pymunk space.
+    """A chain of ``n_links`` rigid links in its own pymunk space, bent by rotary springs and
+    dampers that this class applies itself (so that it can book their energy).
 
     Parameters
     ----------
@@ -82,6 +92,25 @@ class Strip:
     y0 : height of the strip's centre line [µm]. EI : bending stiffness [µN·µm²].
     rho_A : mass per length [ng/µm]. zeta : damping ratio of the rotary springs [-].
     iterations : pymunk solver iterations (the pivots of a long chain need many).
+
+    Stepping (:meth:`step`) is pymunk's semi-implicit Euler: positions with the old
+    velocities, then velocities with the forces evaluated at the new positions. The joint
+    moments are evaluated there too (angles φ + ω·dt), as pymunk's own ``DampedRotarySpring``
+    does; its damping, however, is applied implicitly inside the constraint solver's
+    iterations, where its dissipation cannot be read. Here each joint carries an explicit
+    damper, moment c·(ω_{j+1} − ω_j) from the velocities at the start of the step, and the
+    energy it takes out is booked as the moment times the mid-step relative angular velocity
+    ½(ω_n + ω_{n+1}) times dt: the form in which semi-implicit Euler's energy identity closes
+    (the same rule as the setae's damping in :mod:`gecko_agents.kernels`). After a step:
+
+    * :attr:`energy_bending` [pJ]: ½·k_r·Σ(φ_{j+1} − φ_j)² at the new angles;
+    * :attr:`kinetic` [pJ]: Σ ½m·v_n·v_{n+1} + ½I·ω_n·ω_{n+1} (the form semi-implicit Euler
+      conserves for a linear spring, as :meth:`gecko_agents.model.Model.kinetic_energy`);
+    * :attr:`dissipated` [pJ]: the joint dampers' dissipation in the step;
+    * :attr:`rows`: the links' (x, y, φ, vx, vy, ω) after the step (those before it in
+      :attr:`rows_before`).
+
+    The pivots' impulses are not booked: they do no work as long as the pivots hold.
     """
 
     def __init__(self, x0, ell, n_links, y0, EI, rho_A, zeta=0.3, iterations=60):
@@ -94,7 +123,8 @@ class Strip:
         self.m = m = rho_A * ell
         self.I_link = inertia = m * ell * ell / 12.0
         self.k_rot = EI / ell  # [pJ/rad]
-        self.c_rot = 2.0 * zeta * math.sqrt(self.k_rot * inertia)
+        self.c_rot = 2.0 * zeta * math.sqrt(self.k_rot * inertia)  # [pJ·µs/rad]
+        self.k_clamp = 0.0  # rotary spring of a clamped left end (clamp_left) [pJ/rad]
         self.x_centre = x0 + (np.arange(self.n) + 0.5) * ell  # rest abscissae of link centres
         self.links = []
         for xc in self.x_centre:
@@ -105,9 +135,7 @@ class Strip:
         for j in range(self.n - 1):
             a, b = self.links[j], self.links[j + 1]
             node = (float(x0 + (j + 1) * ell), float(y0))
-            pin = pymunk.PivotJoint(a, b, node)
-            spring = pymunk.DampedRotarySpring(a, b, 0.0, self.k_rot, self.c_rot)
-            space.add(pin, spring)
+            space.add(pymunk.PivotJoint(a, b, node))
         self.x0, self.y0 = float(x0), float(y0)
         ids = np.array([b.id for b in self.links], dtype=np.uintp)
         self._id_sorted, self._id_to_link = np.sort(ids), np.argsort(ids)
@@ -117,32 +145,29 @@ class Strip:
         self.out = np.zeros((self.n, 3))
         self.omega_max = math.sqrt(48.0 * EI / (rho_A * ell**4))
         """Stiffest free mode [rad/µs]: the links' zig-zag, ω² = 48·EI/(ρA·ℓ⁴)."""
+        self.rows = self.rows_before = self.read()
+        self.energy_bending = self.kinetic = self.dissipated = 0.0
 
     def clamp_left(self):
         """Clamp the left end to the static body: a pivot and the half-link rotary spring
-        2EI/ℓ (the cantilever of the module docstring)."""
-        a = self.links[0]
-        st = self.space.static_body
-        self.space.add(
-            pymunk.PivotJoint(st, a, (self.x0, self.y0)),
-            pymunk.DampedRotarySpring(st, a, 0.0, 2.0 * self.k_rot, 2.0 * self.c_rot),
-        )
+        2EI/ℓ with damping 2c (the cantilever of the module docstring)."""
+        self.space.add(pymunk.PivotJoint(self.space.static_body, self.links[0], (self.x0, self.y0)))
+        self.k_clamp = 2.0 * self.k_rot
+        self.rows = self.read()
 
     def scale_mass(self, factor: float) -> None:
-        """Multiply every link's mass and moment of inertia by ``factor``."""
+        """Multiply every link's mass and moment of inertia by ``factor`` (the dampers keep
+        their damping ratio)."""
         self.m *= factor
         self.I_link *= factor
         self.rho_A *= factor
         self.c_rot *= math.sqrt(factor)
         for b in self.links:
             b.mass, b.moment = self.m, self.I_link
-        for c in self.space.constraints:
-            if isinstance(c, pymunk.DampedRotarySpring):
-                c.damping *= math.sqrt(factor)
         self.omega_max /= math.sqrt(factor)
 
     def read(self) -> np.ndarray:
-        """(n, 6) rows (x, y, φ, vx, vy, ω) of the links, in link order."""
+        """(n, 6) rows (x, y, φ, vx, vy, ω) of the links, in link order (read from pymunk)."""
         buf = self._buf
         buf.clear()
         pb.get_space_bodies(self.space, _READ, buf)
@@ -160,16 +185,48 @@ class Strip:
         data = np.frombuffer(buf.float_buf()).reshape(ids.size, 6)
         return data[self._order]
 
-    def write(self, fx, fy, torque) -> None:
-        """Forces [µN] and torques [pJ] on the links (link order) for the next step."""
+    def _joint_moments(self, d, dt):
+        """Moments [pJ] of the joint springs + dampers on the links, from rows ``d`` at the
+        start of a step; sets :attr:`energy_bending` and keeps the dampers' moments."""
+        phi = d[:, 2] + d[:, 5] * dt  # the angles the step will reach
+        bend = np.diff(phi)
+        self._w_rel = np.diff(d[:, 5])
+        self._m_damp = self.c_rot * self._w_rel
+        m = self.k_rot * bend + self._m_damp
+        tq = np.zeros(self.n)
+        tq[:-1] += m
+        tq[1:] -= m
+        self.energy_bending = 0.5 * self.k_rot * float(bend @ bend)
+        if self.k_clamp:
+            # The clamp: rotary spring 2k and damper 2c between the static body and link 0.
+            self._m_clamp = 2.0 * self.c_rot * d[0, 5]
+            tq[0] -= self.k_clamp * phi[0] + self._m_clamp
+            self.energy_bending += 0.5 * self.k_clamp * phi[0] ** 2
+        return tq
+
+    def step(self, dt, fx=0.0, fy=0.0, torque=0.0) -> np.ndarray:
+        """One step of ``dt`` [µs] under external forces ``fx``, ``fy`` [µN] and torques
+        ``torque`` [pJ] on the links (link order, evaluated at the positions the step
+        reaches) besides the joints' own; returns :attr:`rows` after the step."""
+        d = self.rows
+        tq = self._joint_moments(d, dt) + torque
         o = self.out
         o[self._order, 0] = fx
         o[self._order, 1] = fy
-        o[self._order, 2] = torque
+        o[self._order, 2] = tq
         pb.set_space_bodies(self.space, pb.BodyFields.FORCE | pb.BodyFields.TORQUE, self._fbuf)
-
-    def step(self, dt: float) -> None:
         self.space.step(dt)
+        new = self.read()
+        self.rows_before, self.rows = d, new
+        self.kinetic = 0.5 * (
+            self.m * float(np.sum(d[:, 3:5] * new[:, 3:5]))
+            + self.I_link * float(d[:, 5] @ new[:, 5])
+        )
+        w_mid = 0.5 * (self._w_rel + np.diff(new[:, 5]))
+        self.dissipated = float(self._m_damp @ w_mid) * dt
+        if self.k_clamp:
+            self.dissipated += self._m_clamp * 0.5 * (d[0, 5] + new[0, 5]) * dt
+        return new
 
     @staticmethod
     def points(data, link, s, dt):
@@ -184,12 +241,14 @@ class Strip:
         vy = d[:, 4] + d[:, 5] * rx
         return px, py, vx, vy, rx, ry
 
-    def node_y(self, data) -> np.ndarray:
-        """Heights of the n + 1 nodes [µm]."""
+    def nodes(self, data=None) -> tuple[np.ndarray, np.ndarray]:
+        """Positions of the n + 1 nodes (link ends) [µm] of rows ``data`` (default: now)."""
+        d = self.rows if data is None else data
         h = 0.5 * self.ell
-        yl = data[:, 1] - h * np.sin(data[:, 2])
-        yr = data[:, 1] + h * np.sin(data[:, 2])
-        return np.concatenate([yl, yr[-1:]])
+        cx, sy = h * np.cos(d[:, 2]), h * np.sin(d[:, 2])
+        x = np.concatenate([d[:, 0] - cx, d[-1:, 0] + cx[-1:]])
+        y = np.concatenate([d[:, 1] - sy, d[-1:, 1] + sy[-1:]])
+        return x, y
 
 
 @register_backing("elastic")
@@ -241,7 +300,9 @@ class ElasticModel(Model):
             self._h_s = np.array([0.5 * ell])
             self._h_dx = np.array([0.5 * length])
             k_each = bk.handle_stiffness
+        self._h_dy = np.zeros_like(self._h_dx)
         self._k_h = k_each
+        self._E_handle = 0.0
         # Explicit spring on a link end: effective mass m/4 (ω² ≤ 4k/m).
         omega_h = math.sqrt(4.0 * k_each / strip.m)
         omega = max(strip.omega_max, omega_h)
@@ -269,7 +330,13 @@ class ElasticModel(Model):
     # ------------------------------------------------------------------ stepping
     def _advance(self, vpx, vpy):
         """One step: setae between tips and the roots on the chain, the chain pulled by the
-        handle (``world.plate``) moving at (vpx, vpy) [µm/µs]."""
+        handle (``world.plate``) moving at (vpx, vpy) [µm/µs].
+
+        Energy: besides the setae's own bookkeeping, the step books the strip's joints
+        (:meth:`Strip.step`), the handle spring's energy ½k_h·|Δ|² at the positions the step
+        reaches, and the dissipation of the dampers that act on the strip (seta damping and
+        the handle's damper), each as force × mid-step velocity of the link it acts on
+        (v and ω averaged over the step: the work it does in semi-implicit Euler)."""
         dt, s, ph, w, st = self.dt, self.state, self.physics, self.world, self.strip
         w.plate.velocity = (vpx, vpy)
         pp = w.plate.position
@@ -277,7 +344,7 @@ class ElasticModel(Model):
         self._pnext = (hx, hy)
         ph.events = []
         ph.diss = 0.0
-        data = st.read()
+        data = st.rows
         rx, ry, rvx, rvy, ox, oy = st.points(data, self._r_link, self._r_s, dt)
         self._roots = (rx, ry)
         w.read()
@@ -300,31 +367,43 @@ class ElasticModel(Model):
             ph.contact_general()
         w.write_forces(s.F)
         # Reactions on the links: −F at the root (force and torque r × F).
-        nl = st.n
-        fx = -np.bincount(self._r_link, fsx, nl)
-        fy = -np.bincount(self._r_link, fsy, nl)
-        tq = -np.bincount(self._r_link, ox * fsy - oy * fsx, nl)
+        nl, link = st.n, self._r_link
+        fx = -np.bincount(link, fsx, nl)
+        fy = -np.bincount(link, fsy, nl)
+        tq = -np.bincount(link, ox * fsy - oy * fsx, nl)
+        # The seta dampers' share of it, for their dissipation below.
+        Fdx, Fdy = s.F_damp_seta
+        dfx, dfy = np.bincount(link, Fdx, nl), np.bincount(link, Fdy, nl)
+        dtq = np.bincount(link, ox * Fdy - oy * Fdx, nl)
         # Handle spring: k·(handle point − link point) + c·(v_handle − v_point).
         hl, hs = self._h_link, self._h_s
         qx, qy, qvx, qvy, qox, qoy = st.points(data, hl, hs, dt)
-        Fhx = self._k_h * (hx + self._h_dx - qx) + self._c_h * (vpx - qvx)
-        Fhy = self._k_h * (hy - qy) + self._c_h * (vpy - qvy)
+        ex, ey = hx + self._h_dx - qx, hy + self._h_dy - qy
+        self._E_handle = 0.5 * self._k_h * float(ex @ ex + ey @ ey)
+        Fcx, Fcy = self._c_h * (vpx - qvx), self._c_h * (vpy - qvy)
+        Fhx, Fhy = self._k_h * ex + Fcx, self._k_h * ey + Fcy
         np.add.at(fx, hl, Fhx)
         np.add.at(fy, hl, Fhy)
         np.add.at(tq, hl, qox * Fhy - qoy * Fhx)
-        st.write(fx, fy, tq)
         self.setae_force = (float(fsx.sum()), float(fsy.sum()))
         if w.pads:
             w.recentre_pads(s.xy[0])
         w.step(dt)
-        st.step(dt)
+        new = st.step(dt, fx, fy, tq)
         self.time += dt
-        # Seta damping dissipates Fd·(v_tip − v_root): bookkeeping books it against the
+        # Mid-step velocities of the links: what a force on a link works against.
+        vmx, vmy = 0.5 * (data[:, 3] + new[:, 3]), 0.5 * (data[:, 4] + new[:, 4])
+        wm = 0.5 * (data[:, 5] + new[:, 5])
+        # Seta damping dissipates −Fd·(v_tip − v_root): bookkeeping books it against the
         # handle's velocity, the correction moves it onto the roots' (and keeps the release
         # detection's reference speed, the handle's).
         ph.bookkeeping(vpx, vpy)
-        Fd = s.F_damp_seta
-        ph.diss += float(np.sum(Fd[0] * (rvx - vpx)) + np.sum(Fd[1] * (rvy - vpy))) * dt
+        root_power = float(vmx @ dfx + vmy @ dfy + wm @ dtq)
+        ph.diss += (root_power - vpx * float(Fdx.sum()) - vpy * float(Fdy.sum())) * dt
+        # The handle's damper: plate work at the handle minus the work done on the link.
+        hl_power = float(Fcx @ vmx[hl] + Fcy @ vmy[hl] + (qox * Fcy - qoy * Fcx) @ wm[hl])
+        handle_power = vpx * float(Fcx.sum()) + vpy * float(Fcy.sum())
+        ph.diss += (handle_power - hl_power) * dt + st.dissipated
         opx, opy = float(Fhx.sum()), float(Fhy.sum())
         ppx, ppy = self._on_plate_prev
         self._work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
@@ -360,14 +439,24 @@ class ElasticModel(Model):
         fx, fy = self.reaction
         return math.hypot(fx, fy), math.degrees(math.atan2(fy, fx))
 
-    def spring_energies(self) -> np.ndarray:
-        """Elastic energy of every seta [pJ] at the last step's evaluation positions."""
-        root = np.column_stack(self._roots)
-        return self.spring_force(self.state.xy.T, root)[1]
+    def backing_energy(self) -> float:
+        """Elastic energy of the strip's joints and the handle spring [pJ] at the last step's
+        evaluation positions."""
+        return self.strip.energy_bending + self._E_handle
 
-    # The strip's own elastic and kinetic energy and damping are not booked yet, so the
-    # energy-balance invariant does not apply to these histories.
-    energy_complete = False
+    def spring_energies(self) -> np.ndarray:
+        """Elastic energy of every seta [pJ] at the last step's evaluation positions, plus an
+        equal share of :meth:`backing_energy` (so that their sum, which the recorder books as
+        the elastic energy, holds every spring of the model; the per-seta split of the
+        backing's energy has no meaning)."""
+        root = np.column_stack(self._roots)
+        own = self.spring_force(self.state.xy.T, root)[1]
+        return own + self.backing_energy() / self.n
+
+    def kinetic_energy(self) -> float:
+        """Kinetic energy of the tips and of the strip's links [pJ] (both in the form
+        ½m·v(n−½)·v(n+½) of :meth:`gecko_agents.model.Model.kinetic_energy`)."""
+        return super().kinetic_energy() + self.strip.kinetic
 
     def _skip_free_travel(self, seg, state, vp) -> float:
         return 0.0
