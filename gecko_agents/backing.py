@@ -322,7 +322,8 @@ class ElasticModel(Model):
             "mass_scale": scale, "handle_stiffness_each_uN_per_um": k_each,
         }  # fmt: skip
         self._rec = {"time_us": [], "front_x_um": [], "handle_fx_uN": [], "handle_fy_uN": [],
-                     "setae_fx_uN": [], "setae_fy_uN": []}  # fmt: skip
+                     "setae_fx_uN": [], "setae_fy_uN": [], "nodes_x_um": [],
+                     "nodes_y_um": []}  # fmt: skip
         self.setae_force = (0.0, 0.0)
         self._n_adv = 0
         self._roots = (np.zeros(self.n), np.zeros(self.n))
@@ -421,6 +422,9 @@ class ElasticModel(Model):
         r["handle_fy_uN"].append(self.reaction[1])
         r["setae_fx_uN"].append(self.setae_force[0])
         r["setae_fy_uN"].append(self.setae_force[1])
+        x, y = self.strip.nodes()
+        r["nodes_x_um"].append(x.tolist())
+        r["nodes_y_um"].append(y.tolist())
 
     def front_x(self) -> float:
         """Detachment front [µm]: root abscissa (straight strip) of the attached seta nearest
@@ -466,12 +470,20 @@ class ElasticModel(Model):
         per recorded step, the time, the detachment front, the handle force (force of the strip
         on the handle, its magnitude and angle from +x) and ``setae_f*_uN``, the total seta
         spring + damping force on the tips (= the force the setae pull the strip with, free of
-        the strip's inertia) [µN]."""
+        the strip's inertia) [µN], and ``nodes_x_um``, ``nodes_y_um``: the positions of the
+        strip's n_links + 1 nodes (link ends, −x end first) in the floor's frame (the frame of
+        the tips and the floor profile) [µm], one list per record.
+
+        ``front_x_um`` is the front's abscissa on the undeformed strip (the root offset
+        ``root_dx`` of the outermost attached seta); the strip moves sideways by no more than
+        the setae's deflection while setae hold it, so it also marks the front on the drawn
+        backing line."""
         self._n_adv = 0
         for v in self._rec.values():
             v.clear()
         history = super().run(protocol, **kwargs)
-        r = {k: list(map(float, v)) for k, v in self._rec.items()}
+        r = {k: v if k.startswith("nodes_") else list(map(float, v))
+             for k, v in self._rec.items()}  # fmt: skip
         fx, fy = np.array(r["handle_fx_uN"]), np.array(r["handle_fy_uN"])
         r["handle_force_uN"] = np.hypot(fx, fy).tolist()
         r["handle_angle_deg"] = np.degrees(np.arctan2(fy, fx)).tolist()

@@ -160,3 +160,14 @@ def test_peel_detachment_front_starts_at_the_pulled_edge_and_moves():
     assert np.all(np.diff(front) <= 0.0)
     pull_off = max(b["setae_fy_uN"])
     assert 0.0 < pull_off < 0.5 * m.n * m.Fc
+    # The strip's nodes, per record, in the floor's frame: straight and level at the start,
+    # and the pulled end hangs from the handle by the handle spring's stretch F/k_h.
+    nx, ny = np.array(b["nodes_x_um"]), np.array(b["nodes_y_um"])
+    assert nx.shape == ny.shape == (len(b["time_us"]), b["n_links"] + 1)
+    half = 0.5 * b["length_um"]
+    assert np.allclose(nx[0], np.linspace(-half, half, b["n_links"] + 1), atol=1e-3)
+    row = np.searchsorted(h["time_us"], b["time_us"])
+    assert np.allclose(h["time_us"][row], b["time_us"])
+    hang = h["plate_y_um"][row] + np.array(b["handle_fy_uN"]) / p.backing.handle_stiffness
+    assert np.allclose(ny[:, -1], hang, atol=0.02)
+    assert ny[-1, -1] - ny[0, -1] > 1.0  # the end was lifted
