@@ -337,18 +337,8 @@ def build_claims(kp: dict, alt: dict, alt_contact) -> list[dict]:
     ]
 
 
-def main(argv=None) -> dict:
-    args = parse_args(__doc__, argv)
-    out = output_dir(NAME, args)
-    n = 150 if args.quick else 1200
-
-    kps = {key: key_points(p.contact) for key, (p, _) in READINGS.items()}
-    # Shared overlap window: both readings' δc and the paper's printed D must be visible.
-    d_min = 1.25 * min([kp["points"]["D"][1] for kp in kps.values()] + [PAPER_D[0]])
-    figures = []
-    for key, (p, title) in READINGS.items():
-        figures += draw(key, p.contact, title, kps[key], n, out, d_min)
-
+def point_rows(kps: dict) -> list[dict]:
+    """points.csv: every marked point of both readings, and the paper's δs (µm, µN)."""
     rows = []
     for key, kp in kps.items():
         for name, (a, d, P) in kp["points"].items():
@@ -374,24 +364,41 @@ def main(argv=None) -> dict:
                 "force_uN": kp["P_at_delta_s"],
             }
         )
-    write_table(out / "points.csv", rows)
+    return rows
+
+
+def summary(kp: dict) -> dict:
+    """One reading's numbers for metadata.json (µm, µN, J/m², MPa)."""
+    return {
+        "w_J_m2": kp["w"],
+        "E_star_MPa": kp["E_star"],
+        "Fc_uN": kp["Fc"],
+        "a0_um": kp["a0"],
+        "delta_s_paper_um": kp["delta_s"],
+        "points": {
+            k: {"contact_radius_um": v[0], "overlap_um": v[1], "force_uN": v[2]}
+            for k, v in kp["points"].items()
+        },
+    }
+
+
+def main(argv=None) -> dict:
+    args = parse_args(__doc__, argv)
+    out = output_dir(NAME, args)
+    n = 150 if args.quick else 1200
+
+    kps = {key: key_points(p.contact) for key, (p, _) in READINGS.items()}
+    # Shared overlap window: both readings' δc and the paper's printed D must be visible.
+    d_min = 1.25 * min([kp["points"]["D"][1] for kp in kps.values()] + [PAPER_D[0]])
+    figures = []
+    for key, (p, title) in READINGS.items():
+        figures += draw(key, p.contact, title, kps[key], n, out, d_min)
+
+    write_table(out / "points.csv", point_rows(kps))
 
     stated, alt = kps["stated_w"], kps["fig5_reading"]
     claims = build_claims(stated, alt, PAPER_FIG5_READING.contact)
     write_table(out / "claims.csv", claims)
-
-    def summary(kp):
-        return {
-            "w_J_m2": kp["w"],
-            "E_star_MPa": kp["E_star"],
-            "Fc_uN": kp["Fc"],
-            "a0_um": kp["a0"],
-            "delta_s_paper_um": kp["delta_s"],
-            "points": {
-                k: {"contact_radius_um": v[0], "overlap_um": v[1], "force_uN": v[2]}
-                for k, v in kp["points"].items()
-            },
-        }
 
     results = {key: summary(kp) for key, kp in kps.items()}
     write_json(
