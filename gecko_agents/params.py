@@ -353,18 +353,29 @@ class Spatula:
     E_f : film modulus [MPa]; default 1.413 MPa, the paper's polyurethane (Table 1's E).
     length : attached length ℓ0 at first contact [µm]; default 3.0 µm, an assumption (a square
         pad b × b).
+    interface : how the attached film holds on the floor. ``"sliding"`` (default): by friction
+        (the pad's friction cap, :class:`Friction`), so a pull away from the pad stretches the
+        attached film up to the cap and leaves it pre-tensioned (partial slip; Chen, Wu & Gao
+        2009, J R Soc Interface 6:529; Labonte & Federle 2016, J R Soc Interface 13:20160373).
+        ``"bonded"``: Kendall's (1975) assumption, the attached film never stretches (no
+        pre-tension) until the whole pad slides past the cap.
     """
 
     b: float = 3.0
     h: float = 1.0
     E_f: float = 1.413
     length: float = 3.0
+    interface: str = "sliding"
 
     def __post_init__(self):
         _check(self, "b", *LENGTH_RANGE)
         _check(self, "h", *LENGTH_RANGE)
         _check(self, "E_f", *MODULUS_RANGE)
         _check(self, "length", *LENGTH_RANGE)
+        if self.interface not in ("sliding", "bonded"):
+            raise ValueError(
+                f"Spatula.interface = {self.interface!r} must be 'sliding' or 'bonded'"
+            )
 
 
 BACKING_KINDS = ("rigid", "elastic")
@@ -407,6 +418,13 @@ class Backing:
     drive : ``"uniform"`` (the handle pulls every link with k_h/n_links) or ``"peel_end"`` (the
         handle pulls the +x end of the strip).
     damping_ratio : damping ratio of the rotary springs and the handle spring [-]; default 0.3.
+    misalignment_deg : angle between backing and floor at contact [degrees]; default 0
+        (aligned). The strip and the handle that holds it are turned by it about the strip's
+        centre, counter-clockwise: a positive angle lifts the +x end, so the −x edge touches
+        first. A few tenths of a degree turn a pull into a peel (Booth et al. found ~0.1°
+        enough; Bacca, Booth, Turner & McMeeking 2016, J Mech Phys Solids 96:428). Within
+        ±10° (the setae keep their rest direction in the floor's frame, a small-angle
+        assumption); only with ``kind = "elastic"``.
     """
 
     kind: str = "rigid"
@@ -418,6 +436,7 @@ class Backing:
     handle_stiffness: float = 1000.0
     drive: str = "uniform"
     damping_ratio: float = 0.3
+    misalignment_deg: float = 0.0
 
     def __post_init__(self):
         if self.kind not in BACKING_KINDS:
@@ -432,6 +451,12 @@ class Backing:
             _check(self, "spacing", *LENGTH_RANGE, lo_open=False, hi_open=False)
         _check(self, "handle_stiffness", 0.0, 1e12)
         _check(self, "damping_ratio", 0.0, 10.0, lo_open=False)
+        _check(self, "misalignment_deg", -10.0, 10.0, lo_open=False, hi_open=False)
+        if self.misalignment_deg != 0.0 and self.kind != "elastic":
+            raise ValueError(
+                f"Backing.misalignment_deg = {self.misalignment_deg!r} needs kind = 'elastic' "
+                f"(the rigid plate is level), got kind = {self.kind!r}"
+            )
 
     def bending_stiffness(self, width: float) -> float:
         """EI of a strip of width ``width`` [µm] in plane strain [µN·µm²]."""

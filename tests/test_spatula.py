@@ -14,6 +14,7 @@ from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 
 SPATULA = PAPER_ARRAY.replace(**{"tip": "spatula", "mechanics": "rod", "floor.sigma": 0.0})
+BONDED = SPATULA.replace(**{"spatula.interface": "bonded"})
 
 
 def kendall(phi, w, b, Eh):
@@ -25,10 +26,10 @@ def kendall(phi, w, b, Eh):
 
 def peel_at_fixed_angle(law, phi, ds):
     """A stiff mount holds the film's end at angle φ from its current peel front, moving it
-    away by ds [µm] a step on a bonded pad (μ → ∞); returns the film tension at the last step
-    before the film let go [µN]."""
+    away by ds [µm] a step on a pad that does not slide as a whole (μ → ∞); returns the film
+    tension at the last step before the film let go [µN]."""
     k = law.constants.copy()
-    k[9] = 1e12  # bonded pad: it does not slide, no pre-tension
+    k[9] = 1e12  # the whole pad never slides
     ell, p0, s0, xf, s = law.ell0, 0.0, law.s_attach, 0.0, law.s_attach
     F = 0.0
     for _ in range(200_000):
@@ -47,7 +48,7 @@ def peel_at_fixed_angle(law, phi, ds):
 
 @pytest.mark.parametrize("phi_deg", [15.0, 30.0, 60.0, 90.0])
 def test_peel_force_is_kendalls(phi_deg):
-    p = SPATULA.replace(**{"spatula.length": 0.3})
+    p = BONDED.replace(**{"spatula.length": 0.3})
     law = contact_law(p)
     phi = math.radians(phi_deg)
     F = peel_at_fixed_angle(law, phi, 2e-3)
@@ -57,7 +58,7 @@ def test_peel_force_is_kendalls(phi_deg):
 
 @pytest.mark.parametrize("phi_deg", [15.0, 30.0, 60.0, 90.0])
 def test_inextensible_limit(phi_deg):
-    p = SPATULA.replace(**{"spatula.E_f": 1e6, "spatula.length": 0.003})
+    p = BONDED.replace(**{"spatula.E_f": 1e6, "spatula.length": 0.003})
     law = contact_law(p)
     phi = math.radians(phi_deg)
     F_expected = law.w * law.b / (1.0 - math.cos(phi))  # F/b = w/(1 − cos φ)
@@ -65,11 +66,68 @@ def test_inextensible_limit(phi_deg):
     assert F == pytest.approx(F_expected, rel=0.01)
 
 
+def chen_wu_gao_prestretched(phi, w, b, K):
+    """Peel force F [µN] of a film whose attached part carries the pull's horizontal component
+    as pre-tension, P0 = F cos φ, from the energy balance per unit of peeled floor length
+    (Kendall 1975 with a pre-strained attached film, ε0 = P0/K, K = E_f·h·b):
+    −F cos φ + (F + F²/2K)/(1 + ε0) + P0²/(2K) = w·b; to second order in the strains Chen, Wu
+    & Gao's F(1 − cos φ) + (F − P0)²/(2K) = w·b (2009, J R Soc Interface 6:529). Solved by
+    bisection here, independently of the code under test."""
+    c = math.cos(phi)
+
+    def g(F):
+        P0 = F * c
+        return -F * c + (F + F * F / (2 * K)) / (1 + P0 / K) + P0 * P0 / (2 * K) - w * b
+
+    lo, hi = 0.0, 1e3
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if g(mid) < 0 else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+@pytest.mark.parametrize("phi_deg", [30.0, 60.0, 90.0])
+def test_sliding_pad_pretension_is_the_pull(phi_deg):
+    """A pad held by friction (sliding interface, cap far above the pull) is stretched by the
+    pull until its pre-tension equals the horizontal pull, and then peels at Chen, Wu & Gao's
+    force with P0 = F cos φ — above Kendall's for φ < 90°, equal at 90°."""
+    law = contact_law(SPATULA.replace(**{"spatula.length": 0.3}))
+    phi = math.radians(phi_deg)
+    F = peel_at_fixed_angle(law, phi, 2e-3)
+    expected = chen_wu_gao_prestretched(phi, law.w, law.b, law.K)
+    assert F == pytest.approx(expected, rel=0.01)
+    if phi_deg < 90.0:
+        assert F > 1.1 * kendall(phi, law.w, law.b, law.E_f * law.h)
+
+
+def test_pretension_is_kept_and_capped():
+    """Friction locks the pre-tension when the pull falls; a pad whose cap falls below it
+    contracts to the cap (scalar law, one step each, no peel: g < w)."""
+    law = contact_law(SPATULA)
+    k = law.constants.copy()
+    R, s0, ell = law.R, 1.5, law.ell0
+    k[9] = 1.0  # μ = 1: a cap of 2Fc ≈ 1 µN, above P0
+    # Slack film (tip over the front): the locked pre-tension stays.
+    out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, k)
+    assert out[4] == pytest.approx(0.3)
+    # A cap of μ·2Fc·ℓ/ℓ0 below P0: the pre-tension falls to the cap.
+    k[9] = 0.05
+    cap = 0.05 * 2.0 * law.pull_off_force
+    out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, k)
+    assert out[4] == pytest.approx(cap)
+    assert out[7] >= 0.0  # the contraction dissipates
+
+
 @pytest.mark.parametrize("field", ["b", "h", "E_f", "length"])
 @pytest.mark.parametrize("value", [0.0, -1.0])
 def test_bad_values_refused_naming_the_field(field, value):
     with pytest.raises(ValueError, match=f"Spatula.{field}"):
         SPATULA.replace(**{f"spatula.{field}": value})
+
+
+def test_unknown_interface_refused():
+    with pytest.raises(ValueError, match="Spatula.interface"):
+        SPATULA.replace(**{"spatula.interface": "glued"})
 
 
 def test_unknown_tip_refused():

@@ -74,6 +74,100 @@ def _friction_cap(z, ell, k):
     return mu * (Pc + 2.0 * Fc * ell / ell0)
 
 
+@_njit(cache=True)
+def _pull_on_front(dx, zf, s0, K):
+    """Horizontal pull of the free film on the peel front [µN], > 0 away from the pad (the tip
+    behind the front, dx < 0), < 0 towards it (the tip over its pad)."""
+    F, s = _film_force(dx, zf, s0, K)
+    return -F * dx / s if s > 0.0 else 0.0
+
+
+@_njit(cache=True)
+def _slide_to_cap(dx, zf, s0, K, cap):
+    """Distance [µm] the whole pad slides towards the tip so that the film's horizontal pull
+    equals the friction cap (bisection on the front's shift; 0 if the pull is below it)."""
+    lo, hi = 0.0, abs(dx)
+    sgn = 1.0 if dx > 0.0 else -1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if abs(_pull_on_front(dx - sgn * mid, zf, s0, K)) > cap:
+            lo = mid
+        else:
+            hi = mid
+    return hi
+
+
+@_njit(cache=True)
+def _slide(dx, zf, z, ell, p0, s0, k):
+    """The attached pad under the free film's horizontal pull H: returns (dx, shift, P0, slid).
+
+    Partial slip (shear lag): a film held on the floor by friction, not bonded, carries the pull
+    into its attached part, which stretches: the front is free to move and the attached film's
+    tension at the front rises to H (Chen, Wu & Gao 2009, J R Soc Interface 6:529, their
+    pre-tension P0 carried by the attached pad; Labonte & Federle 2016, J R Soc Interface
+    13:20160373, and Gouravaraju, Sauer & Gautam 2021, J Adhes 97:952: sliding pre-stretches
+    the pad, which then peels like an inextensible tape). Stretched uniformly over ℓ (far end
+    held), the pre-tension is P0 = P0_old + K·v/ℓ after the front moved v towards the tip; v
+    solves H(dx + v) = P0 (bisection) while P0 stays under the friction cap. The stretch is
+    counted in the film's material: ℓ (the adhered material) is unchanged. Friction locks the
+    pre-tension when the pull falls (it is kept through the pull-off); a pad whose cap has
+    fallen below P0 (peeled shorter) contracts to the cap, the front moving back by
+    ℓ(P0 − cap)/K. Past the cap the whole pad slides towards the tip to where H = cap (Coulomb),
+    with P0 = cap pulled away from the pad and P0 = 0 pushed over it (the push releases it).
+
+    Energy: the film does work ∫H dv on the front, the attached film stores ∫P0 dv
+    (d(ℓP0²/2K) = P0·dv): the slip dissipates ∫(H − P0) dv ≥ 0.
+    """
+    K = k[6]
+    cap = _friction_cap(z, ell, k)
+    shift = 0.0
+    slid = 0.0
+    if ell <= 0.0:
+        return dx, shift, p0, slid
+    if p0 > cap:  # the pad can no longer hold its pre-tension: it contracts to the cap
+        v = ell * (p0 - cap) / K
+        dx -= v
+        shift += v
+        p0 = cap
+    H = _pull_on_front(dx, zf, s0, K)
+    if k[13] > 0.0:  # bonded (Kendall): no stretch; the whole pad slides past the cap
+        if abs(H) > cap:
+            hi = _slide_to_cap(dx, zf, s0, K, cap)
+            shift = -hi if dx < 0.0 else hi
+            dx -= shift
+            slid = 1.0
+        return dx, shift, p0, slid
+    if H > p0:  # pulled away from the pad beyond the locked pre-tension: it stretches
+        v_max = ell * (cap - p0) / K  # stretch at which the pre-tension reaches the cap
+        if _pull_on_front(dx + v_max, zf, s0, K) >= cap:
+            dx += v_max
+            shift -= v_max
+            p0 = cap
+            hi = _slide_to_cap(dx, zf, s0, K, cap)
+            if hi > 0.0:
+                dx += hi
+                shift -= hi
+                slid = 1.0
+        else:
+            lo, hi = 0.0, v_max
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                if _pull_on_front(dx + mid, zf, s0, K) > p0 + K * mid / ell:
+                    lo = mid
+                else:
+                    hi = mid
+            dx += hi
+            shift -= hi
+            p0 += K * hi / ell
+    elif H < 0.0 and -H > cap:  # pushed over the pad past the cap: it slides, unstretched
+        hi = _slide_to_cap(dx, zf, s0, K, cap)
+        dx -= hi
+        shift += hi
+        p0 = 0.0
+        slid = 1.0
+    return dx, shift, p0, slid
+
+
 class SpatulaTip(ContactLaw):
     """A thin elastic film (spatula) of width b, thickness h, modulus E_f that hangs from the
     tip centre and is attached to the floor over a length ℓ (a state variable), peeling by an
@@ -93,13 +187,17 @@ class SpatulaTip(ContactLaw):
     Every step, at the tip's position (a quasi-static front: the energy balance holds at the
     end of each step):
 
-    1. **Slide.** The film pulls the front along the floor with F·|dx|/s; the pad slides towards
-       the tip while that exceeds the friction cap, to where it equals it: adhesive
-       μ(P_c + 2Fc·ℓ/ℓ0) — friction acts on what is still attached (Thornton's μ|P + 2Fc| with
-       P_c ≥ 0 the tip body's compression: the film's pull acts at the front, the pad behind
-       it carries only its adhesion; Fc = w·b) — or paper: μ·P_c (eq 27). Sliding away from
-       the pad stretches the attached film: the pre-tension rises, P0² += 2K·cap·Δ/ℓ (the
-       friction work at most), up to the cap.
+    1. **Slide** (:func:`_slide`). The film pulls the front along the floor with H = F·|dx|/s
+       against the pad's friction cap: adhesive μ(P_c + 2Fc·ℓ/ℓ0) — friction acts on what is
+       still attached, at zero and tensile load too (Thornton's μ|P + 2Fc| with P_c ≥ 0 the tip
+       body's compression: the film's pull acts at the front, the pad behind it carries only
+       its adhesion; Fc = w·b), an adhesion-controlled friction τ_eff·b·ℓ with
+       τ_eff = 2μw/ℓ0 — or paper: μ·P_c (eq 27), none in tension. With
+       ``spatula.interface = "sliding"`` (default) a pull away from the pad stretches the
+       attached film (partial slip) until its tension at the front, the pre-tension P0,
+       balances H; friction keeps P0 when the pull falls. Past the cap the whole pad slides.
+       ``"bonded"`` (Kendall's film): no stretch, P0 = 0, the pad slides as a whole past the
+       cap.
     2. **Peel.** The front advances by dc (ℓ −= dc, s0 += dc/(1 + ε0): the pre-strained
        attached film enters the free film) to where the energy release rate per width
        g = [−F cos φ + (F + F²/2K)/(1 + ε0) + P0²/(2K)]/b equals w; if it still exceeds w at
@@ -142,7 +240,8 @@ class SpatulaTip(ContactLaw):
         self.s_attach = h
         self.tangential_stiffness = self.K / h
         self.zero_load_stiffness = self.K / h
-        # k = (R, b, h, E_f, w, ℓ0, K, (4/3)E*√R, (8/15)E*√R, μ, paper, Fc, s0 on attachment)
+        # k = (R, b, h, E_f, w, ℓ0, K, (4/3)E*√R, (8/15)E*√R, μ, paper, Fc, s0 on attachment,
+        # bonded interface)
         self.constants = np.array(
             [
                 R,
@@ -158,6 +257,7 @@ class SpatulaTip(ContactLaw):
                 1.0 if friction.law == "paper" else 0.0,
                 self.pull_off_force,
                 h,
+                1.0 if getattr(spatula, "interface", "sliding") == "bonded" else 0.0,
             ]
         )
 
@@ -184,29 +284,8 @@ class SpatulaTip(ContactLaw):
         R, K, hz_f = k[0], k[6], k[7]
         zf = z - R if z > R else 0.0  # height of the film's end (the tip body's bottom)
         U0 = _film_energy(dx, z, ell, p0, s0, k)
-        shift = 0.0
-        slid = 0.0
-        # 1. Slide: the pad moves towards the tip while the film's pull exceeds the cap.
-        F, s = _film_force(dx, zf, s0, K)
-        Fh = F * abs(dx) / s if s > 0.0 else 0.0
-        cap = _friction_cap(z, ell, k)
-        if Fh > cap:
-            sgn = 1.0 if dx > 0.0 else -1.0
-            lo, hi = 0.0, abs(dx)
-            for _ in range(60):
-                mid = 0.5 * (lo + hi)
-                dm = dx - sgn * mid
-                Fm, sm = _film_force(dm, zf, s0, K)
-                if Fm * abs(dm) / sm > cap:
-                    lo = mid
-                else:
-                    hi = mid
-            if dx < 0.0 and ell > 0.0:  # pulled away from the pad: friction pre-stretches it
-                p2 = p0 * p0 + 2.0 * K * cap * hi / ell
-                p0 = min(math.sqrt(p2), cap) if cap > p0 else p0
-            shift = sgn * hi
-            dx -= shift
-            slid = 1.0
+        # 1. Slide: pre-tension by partial slip, then the whole pad while the cap is exceeded.
+        dx, shift, p0, slid = _slide(dx, zf, z, ell, p0, s0, k)
         # 2. Peel: advance the front until g = w; a film still above w at ℓ = 0 has let go.
         w = k[4]
         if ell > 0.0 and _release_rate(dx, zf, p0, s0, k) > w:
