@@ -92,6 +92,8 @@ class Strip:
     y0 : height of the strip's centre line [µm]. EI : bending stiffness [µN·µm²].
     rho_A : mass per length [ng/µm]. zeta : damping ratio of the rotary springs [-].
     iterations : pymunk solver iterations (the pivots of a long chain need many).
+    angle : the straight strip is turned by this angle [rad] about its centre (x0 + n·ℓ/2, y0),
+        counter-clockwise (a misaligned backing); the joints' rest angles stay 0.
 
     Stepping (:meth:`step`) is pymunk's semi-implicit Euler: positions with the old
     velocities, then velocities with the forces evaluated at the new positions. The joint
@@ -113,7 +115,7 @@ class Strip:
     The pivots' impulses are not booked: they do no work as long as the pivots hold.
     """
 
-    def __init__(self, x0, ell, n_links, y0, EI, rho_A, zeta=0.3, iterations=60):
+    def __init__(self, x0, ell, n_links, y0, EI, rho_A, zeta=0.3, iterations=60, angle=0.0):
         if n_links < 1:
             raise ValueError(f"n_links = {n_links!r} must be ≥ 1")
         self.ell, self.n, self.EI, self.rho_A = float(ell), int(n_links), float(EI), float(rho_A)
@@ -126,15 +128,17 @@ class Strip:
         self.c_rot = 2.0 * zeta * math.sqrt(self.k_rot * inertia)  # [pJ·µs/rad]
         self.k_clamp = 0.0  # rotary spring of a clamped left end (clamp_left) [pJ/rad]
         self.x_centre = x0 + (np.arange(self.n) + 0.5) * ell  # rest abscissae of link centres
+        self.angle = float(angle)
         self.links = []
         for xc in self.x_centre:
             b = pymunk.Body(m, inertia)
-            b.position = (float(xc), float(y0))
+            b.position = self._placed(xc, x0, y0)
+            b.angle = self.angle
             space.add(b)
             self.links.append(b)
         for j in range(self.n - 1):
             a, b = self.links[j], self.links[j + 1]
-            node = (float(x0 + (j + 1) * ell), float(y0))
+            node = self._placed(x0 + (j + 1) * ell, x0, y0)
             space.add(pymunk.PivotJoint(a, b, node))
         self.x0, self.y0 = float(x0), float(y0)
         ids = np.array([b.id for b in self.links], dtype=np.uintp)
@@ -148,10 +152,20 @@ class Strip:
         self.rows = self.rows_before = self.read()
         self.energy_bending = self.kinetic = self.dissipated = 0.0
 
+    def _placed(self, x, x0, y0) -> tuple[float, float]:
+        """Where the point at abscissa ``x`` [µm] of the straight strip is, turned by
+        :attr:`angle` about the centre."""
+        if not self.angle:
+            return float(x), float(y0)
+        c = x0 + 0.5 * self.n * self.ell
+        return (float(c + (x - c) * math.cos(self.angle)),
+                float(y0 + (x - c) * math.sin(self.angle)))  # fmt: skip
+
     def clamp_left(self):
         """Clamp the left end to the static body: a pivot and the half-link rotary spring
         2EI/ℓ with damping 2c (the cantilever of the module docstring)."""
-        self.space.add(pymunk.PivotJoint(self.space.static_body, self.links[0], (self.x0, self.y0)))
+        end = self._placed(self.x0, self.x0, self.y0)
+        self.space.add(pymunk.PivotJoint(self.space.static_body, self.links[0], end))
         self.k_clamp = 2.0 * self.k_rot
         self.rows = self.read()
 
@@ -200,8 +214,9 @@ class Strip:
         if self.k_clamp:
             # The clamp: rotary spring 2k and damper 2c between the static body and link 0.
             self._m_clamp = 2.0 * self.c_rot * d[0, 5]
-            tq[0] -= self.k_clamp * phi[0] + self._m_clamp
-            self.energy_bending += 0.5 * self.k_clamp * phi[0] ** 2
+            turn = phi[0] - self.angle
+            tq[0] -= self.k_clamp * turn + self._m_clamp
+            self.energy_bending += 0.5 * self.k_clamp * turn**2
         return tq
 
     def step(self, dt, fx=0.0, fy=0.0, torque=0.0) -> np.ndarray:
@@ -288,7 +303,11 @@ class ElasticModel(Model):
         n_links = max(1, math.ceil(length / spacing - 1e-9))
         ell = length / n_links
         rho_A = bk.density * pitch * bk.t_b
-        strip = Strip(-0.5 * length, ell, n_links, w.plate_start, EI, rho_A, bk.damping_ratio)
+        alpha = math.radians(bk.misalignment_deg)
+        if alpha:
+            self._lift(0.5 * length * abs(math.sin(alpha)), alpha)
+        strip = Strip(-0.5 * length, ell, n_links, w.plate.position.y, EI, rho_A,
+                      bk.damping_ratio, angle=alpha)  # fmt: skip
         # Handle spring: k_h/n per link (uniform) or k_h on the +x end (peel).
         if bk.drive == "uniform":
             self._h_link = np.arange(n_links)
@@ -301,6 +320,8 @@ class ElasticModel(Model):
             self._h_dx = np.array([0.5 * length])
             k_each = bk.handle_stiffness
         self._h_dy = np.zeros_like(self._h_dx)
+        if alpha:  # the handle holds the strip turned: its attachment points turn with it
+            self._h_dx, self._h_dy = self._h_dx * math.cos(alpha), self._h_dx * math.sin(alpha)
         self._k_h = k_each
         self._E_handle = 0.0
         # Explicit spring on a link end: effective mass m/4 (ω² ≤ 4k/m).
@@ -327,6 +348,21 @@ class ElasticModel(Model):
         self.setae_force = (0.0, 0.0)
         self._n_adv = 0
         self._roots = (np.zeros(self.n), np.zeros(self.n))
+
+    def _lift(self, lift, alpha):
+        """A misaligned start: raise the handle by ``lift`` [µm] (the strip's lowest edge
+        starts where a level strip would) and put every tip at rest below its root on the
+        strip turned by ``alpha`` [rad] about the handle."""
+        w = self.world
+        pp = w.plate.position
+        w.plate.position = (pp.x, pp.y + lift)
+        w.plate_start = pp.y + lift
+        c, s = math.cos(alpha), math.sin(alpha)
+        dx = w.root_dx * (c - 1.0)
+        dy = w.root_dx * s + lift
+        for body, ddx, ddy in zip(w.tips, dx.tolist(), dy.tolist(), strict=True):
+            p = body.position
+            body.position = (p.x + ddx, p.y + ddy)
 
     # ------------------------------------------------------------------ stepping
     def _advance(self, vpx, vpy):
