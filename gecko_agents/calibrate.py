@@ -47,261 +47,44 @@ an evaluation costs 4–5× as much: the five-point Fig 10 + 11a fit took 52 eva
 534 s wall at load 5–17, so the rod does not meet a two-minute budget on this machine.
 
 Units: µm, µN (see :mod:`gecko_agents.params`).
+
+The pieces live in :mod:`~gecko_agents.calibrate_data` (reading data),
+:mod:`~gecko_agents.calibrate_free` (free parameters and their unit box),
+:mod:`~gecko_agents.calibrate_forward` (the quasi-static forward model) and
+:mod:`~gecko_agents.calibrate_result` (:class:`FitResult`); this module fits, and holds the
+agent forward model and the command line.
 """
 
 from __future__ import annotations
 
 import argparse
-import csv
-import hashlib
-import io
-import json
-import math
 import re
 import sys
 import time
-from dataclasses import dataclass, field, replace
-from pathlib import Path
+from dataclasses import replace
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import least_squares
 
-from . import quasistatic as qs
-from .history import atomic_write_bytes, versions
+from .calibrate_data import Data, load_data
+from .calibrate_forward import Forward, predict_quasistatic
+from .calibrate_free import (
+    PSEUDO_PARAMETERS,
+    UnitBox,
+    apply_free,
+    base_value,
+    check_free,
+    starts,
+)
+from .calibrate_result import FitResult
+from .history import versions
 from .params import PAPER_ARRAY, PAPER_FIG5_READING, PAPER_TABLE1, SetaArray
 
 __all__ = ["fit", "load_data", "FitResult", "Forward", "PSEUDO_PARAMETERS", "main"]
 
-PSEUDO_PARAMETERS = ("seta.stiffness_scale",)
-"""Free parameters that are not fields of :class:`SetaArray`: ``seta.stiffness_scale``
-multiplies the seta's axial and bending stiffness (Ka, Kp of eq 17, 19) and nothing else."""
-
-_UNITS = {
-    "uN": ("force", 1.0),
-    "µN": ("force", 1.0),
-    "N": ("force", 1e6),
-    "mN": ("force", 1e3),
-    "nN": ("force", 1e-3),
-    "um": ("length", 1.0),
-    "µm": ("length", 1.0),
-    "nm": ("length", 1e-3),
-    "mm": ("length", 1e3),
-    "m": ("length", 1e6),
-}
-_QUANTITIES = {  # quantity → dimension
-    "pull_off_err": "force",
-    "pull_off": "force",
-    "preload": "force",
-    "force_err": "force",
-    "force": "force",
-    "displacement": "length",
-    "sigma": "length",
-    "release_err": "length",
-    "release": "length",
-}
-_KINDS = {
-    "preload": (("preload", "pull_off"), ("pull_off_err", "sigma")),
-    "curve": (("displacement", "force"), ("force_err",)),
-    "snapoff": (("pull_off", "release"), ("pull_off_err", "release_err")),
-}
-_COL = re.compile(r"^(" + "|".join(sorted(_QUANTITIES, key=len, reverse=True)) + r")_(\S+)$")
-
-
-# ------------------------------------------------------------------------------- data
-@dataclass
-class Data:
-    """A validated data set in µm and µN.
-
-    kind : ``"preload"``, ``"curve"`` or ``"snapoff"``.
-    columns : quantity → float array (n,) in µN / µm.
-    err_given : whether measurement uncertainties were stated.
-    digest : sha256 of the table as read (the CSV bytes, or the canonical CSV of a table).
-    extra : non-numeric columns carried along.
-    """
-
-    kind: str
-    columns: dict
-    err_given: bool
-    digest: str
-    source: str
-    extra: dict = field(default_factory=dict)
-
-    @property
-    def n(self) -> int:
-        return len(next(iter(self.columns.values())))
-
-    def observed(self) -> tuple[np.ndarray, np.ndarray]:
-        """Observed values (n_residuals,) and their uncertainties (ones if none stated)."""
-        c = self.columns
-        if self.kind == "preload":
-            y, e = c["pull_off"], c.get("pull_off_err")
-        elif self.kind == "curve":
-            y, e = c["force"], c.get("force_err")
-        else:
-            y = np.concatenate([c["pull_off"], c["release"]])
-            e = None
-            if self.err_given:
-                e = np.concatenate(
-                    [
-                        c.get("pull_off_err", np.full(self.n, np.nan)),
-                        c.get("release_err", np.full(self.n, np.nan)),
-                    ]
-                )
-                if np.any(np.isnan(e)):
-                    raise ValueError(
-                        "a snap-off table needs both pull_off_err_uN and release_err_um, or neither"
-                    )
-        return y, (np.ones_like(y) if e is None else e)
-
-
-def _read_table(data) -> tuple[dict, str, str]:
-    """Columns as lists of strings or numbers, the digest and a description of the source."""
-    if isinstance(data, str | Path):
-        path = Path(data)
-        if not path.is_file():
-            raise ValueError(f"data = {str(path)!r}: no such file")
-        raw = path.read_bytes()
-        rows = list(csv.DictReader(io.StringIO(raw.decode("utf-8-sig"))))
-        if not rows:
-            raise ValueError(f"data file {str(path)!r} has no rows")
-        cols = {k.strip(): [r[k] for r in rows] for k in rows[0]}
-        return cols, hashlib.sha256(raw).hexdigest(), str(path)
-    if hasattr(data, "to_dict") and hasattr(data, "columns"):  # pandas DataFrame
-        cols = {str(k): list(v) for k, v in data.to_dict(orient="list").items()}
-    elif isinstance(data, dict):
-        cols = {str(k): list(np.atleast_1d(v)) for k, v in data.items()}
-    elif isinstance(data, list | tuple) and data and isinstance(data[0], dict):
-        cols = {k: [r.get(k) for r in data] for k in data[0]}
-    else:
-        raise ValueError(
-            f"data must be a CSV path or a table (dict of columns, DataFrame or "
-            f"list of row dicts), got {type(data).__name__}"
-        )
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(list(cols))
-    for row in zip(*cols.values(), strict=True):
-        w.writerow([repr(float(v)) if isinstance(v, int | float) else str(v) for v in row])
-    return cols, hashlib.sha256(buf.getvalue().encode()).hexdigest(), "table"
-
-
-def load_data(data) -> Data:
-    """Read and validate a data set; raises ValueError naming the problem."""
-    cols, digest, source = _read_table(data)
-    found, extra = {}, {}
-    for name, values in cols.items():
-        m = _COL.match(name)
-        if m is None:
-            extra[name] = values
-            continue
-        q, unit = m.group(1), m.group(2)
-        if unit not in _UNITS:
-            raise ValueError(
-                f"column {name!r}: unknown unit {unit!r} (known: {', '.join(sorted(_UNITS))})"
-            )
-        dim, factor = _UNITS[unit]
-        if dim != _QUANTITIES[q]:
-            raise ValueError(f"column {name!r}: {q} is a {_QUANTITIES[q]}, {unit!r} is a {dim}")
-        if q in found:
-            raise ValueError(f"column {name!r}: {q} given twice")
-        try:
-            arr = np.array([float(v) for v in values], dtype=float)
-        except (TypeError, ValueError) as exc:
-            raise ValueError(f"column {name!r} holds a non-number: {exc}") from None
-        bad = np.flatnonzero(~np.isfinite(arr))
-        if bad.size:
-            raise ValueError(
-                f"column {name!r} has NaN or infinite values in rows {(bad + 1).tolist()}"
-            )
-        found[q] = arr * factor
-    kind = None
-    for k, (need, _) in _KINDS.items():
-        if all(q in found for q in need):
-            kind = k
-            break
-    if kind is None:
-        wanted = " or ".join("(" + ", ".join(need) + ")" for need, _ in _KINDS.values())
-        raise ValueError(
-            f"data columns {sorted(cols)} lack the required columns: need {wanted} "
-            "with units, e.g. preload_uN, pull_off_uN"
-        )
-    need, optional = _KINDS[kind]
-    unused = set(found) - set(need) - set(optional)
-    if unused:
-        raise ValueError(
-            f"columns {sorted(unused)} do not belong to a {kind} data set "
-            f"({', '.join(need + optional)})"
-        )
-    errs = [q for q in optional if q.endswith("_err") and q in found]
-    for q in errs:
-        if np.any(found[q] <= 0):
-            raise ValueError(f"column {q}: uncertainties must be > 0")
-    if kind == "preload" and np.any(found["preload"] <= 0):
-        raise ValueError("column preload: preloads must be > 0 µN")
-    if "sigma" in found and np.any(found["sigma"] < 0):
-        raise ValueError("column sigma: roughness must be ≥ 0 µm")
-    return Data(kind, found, bool(errs), digest, source, extra)
-
 
 # ------------------------------------------------------------------------------- forward
-@dataclass
-class Forward:
-    """How the model is evaluated.
-
-    kind : ``"quasistatic"`` (default; :mod:`quasistatic` on representative heights) or
-        ``"agent"`` (the pymunk model on an ``n_sim`` patch, scaled to the array; slow, for a
-        final check of a fitted point).
-    n_blocks : representative heights per array, on the fixed Gaussian quantile grid of
-        :func:`quasistatic.quantile_heights` (no random draw: the model is a smooth function of
-        σ and of every other parameter).
-    retract_steps : plate steps of each retract (the travel of :func:`quasistatic.preload_pull`
-        divided by this; an array pulls off within about the first half of it).
-    n_sim : agent patch size.
-    dz : approach step [µm] (the turning point is bisected exactly; the result does not depend
-        on it, measured: 0.0072 and 0.02 µm give the same pull-offs to 5 digits).
-    retract_dz : largest retract step [µm] (the step is travel/retract_steps or this, the
-        smaller); the peak is refined by bisection (``preload_pulls(refine_peak=True)``).
-
-    The defaults are set by the forward model's noise (see :func:`fit`).
-    """
-
-    kind: str = "quasistatic"
-    n_blocks: int = 64
-    retract_steps: int = 400
-    n_sim: int = 20
-    dz: float = 0.05
-    retract_dz: float | None = 0.25
-
-    def __post_init__(self):
-        if self.kind not in ("quasistatic", "agent"):
-            raise ValueError(f"forward = {self.kind!r} must be 'quasistatic' or 'agent'")
-        for name, lo in (("n_blocks", 1), ("retract_steps", 10), ("n_sim", 1)):
-            v = getattr(self, name)
-            if not isinstance(v, int) or v < lo:
-                raise ValueError(f"Forward.{name} = {v!r} must be an integer ≥ {lo}")
-
-
-def _apply(base: SetaArray, names, values) -> tuple[SetaArray, float]:
-    """Parameters with the free values set, and the seta stiffness scale."""
-    scale, over = 1.0, {}
-    for n, v in zip(names, values, strict=True):
-        if n == "seta.stiffness_scale":
-            scale = float(v)
-        else:
-            over[n] = float(v)
-    return base.replace(**over), scale
-
-
-def _heights(p: SetaArray, sigma: float, n_blocks: int):
-    """Heights [µm], weights and the ``gaussian`` front argument of the fixed quantile grid."""
-    if p.array.count == 1 or sigma == 0 or n_blocks == 1:
-        return np.zeros(1), np.array([float(p.array.count)]), None
-    h, w, e = qs.quantile_heights(
-        p.array.count, sigma, min(n_blocks, p.array.count), return_edges=True
-    )
-    return h, w, (sigma, e)
-
-
 def predict(
     data: Data,
     params: SetaArray,
@@ -317,54 +100,14 @@ def predict(
     row's ``sigma_um`` overrides ``params.floor.sigma``. Pull-off-vs-preload rows of one σ share
     one approach (:func:`quasistatic.preload_pulls`).
     """
-    c = data.columns
     forward = forward or Forward()
     if forward.kind == "agent":
         return _predict_agent(data, params, stiffness_scale, seed, forward)
-    z_touch = params.contact.R + params.seta.L * math.sin(params.seta.theta)
-    if data.kind == "preload":
-        out = np.empty(data.n)
-        sig = c.get("sigma", np.full(data.n, params.floor.sigma))
-        for s in np.unique(sig):
-            rows = np.flatnonzero(sig == s)
-            h, w, g = _heights(params, float(s), forward.n_blocks)
-            res = qs.preload_pulls(
-                params,
-                h,
-                c["preload"][rows],
-                weights=w,
-                stiffness_scale=stiffness_scale,
-                retract_steps=forward.retract_steps,
-                dz=forward.dz,
-                retract_dz=forward.retract_dz,
-                gaussian=g,
-                refine_peak=True,
-            )
-            out[rows] = [r.pull_off for r in res]
-        return out
-    h, w, _ = _heights(params, params.floor.sigma, forward.n_blocks)
-    depth = 0.5
-    if data.kind == "curve":
-        depth = max(0.5, -float(np.min(c["displacement"])))
-    r = qs.press_pull(
-        params,
-        h,
-        depth,
-        weights=w,
-        stiffness_scale=stiffness_scale,
-        n_retract=forward.retract_steps * 2,
-    )
-    if data.kind == "curve":
-        t = r.turn_index
-        z = r.plate_y[t:] - z_touch
-        return np.interp(
-            c["displacement"], z, r.force_normal[t:], left=r.force_normal[t], right=0.0
-        )
-    last = max((i for i, _, _ in r.releases), default=len(r.plate_y) - 1)
-    return np.array([r.pull_off, r.plate_y[last] - z_touch])
+    return predict_quasistatic(data, params, stiffness_scale, forward)
 
 
 def _predict_agent(data, params, scale, seed, forward):
+    """Pull-offs of the agent model (pymunk) on an ``n_sim`` patch, scaled to the array."""
     from . import protocol
     from .model import Model
 
@@ -387,146 +130,6 @@ def _predict_agent(data, params, scale, seed, forward):
 
 
 # ------------------------------------------------------------------------------- fit
-@dataclass
-class FitResult:
-    """Outcome of :func:`fit`.
-
-    values, stderr : fitted value and one standard error per free parameter (dicts by name).
-    correlation : (k, k) correlation matrix in the order of ``names``.
-    cost : ½ Σ (weighted residual)² at the optimum (scipy's convention).
-    identifiable : name → bool (see the module docstring); ``notes`` says why not.
-    """
-
-    names: list
-    values: dict
-    stderr: dict
-    correlation: np.ndarray
-    cost: float
-    identifiable: dict
-    notes: dict
-    bounds: dict
-    observed: np.ndarray
-    uncertainty: np.ndarray
-    model: np.ndarray
-    data: Data
-    record: dict
-
-    @property
-    def residuals(self) -> np.ndarray:
-        """(model − observed) / uncertainty at the optimum."""
-        return (self.model - self.observed) / self.uncertainty
-
-    def save(self, out) -> Path:
-        """Write ``fit.json``, ``fit.png`` and ``residuals.png`` into directory ``out``."""
-        out = Path(out)
-        out.mkdir(parents=True, exist_ok=True)
-        atomic_write_bytes(out / "fit.json", json.dumps(self.record, indent=2).encode())
-        self._plots(out)
-        return out
-
-    def _plots(self, out: Path):
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        d, c = self.data, self.data.columns
-        x = {"preload": c.get("preload"), "curve": c.get("displacement")}.get(d.kind)
-        label = {"preload": "preload [µN]", "curve": "plate above touch-down [µm]"}.get(d.kind)
-        if x is None:
-            x, label = np.arange(self.observed.size), "observation"
-        else:
-            x = np.tile(x, self.observed.size // x.size)
-        fig, ax = plt.subplots(figsize=(5.5, 3.8))
-        ax.errorbar(
-            x, self.observed, yerr=self.uncertainty if d.err_given else None, fmt="o", label="data"
-        )
-        ax.plot(x, self.model, "s", mfc="none", label="model at the fit")
-        ax.set_xlabel(label)
-        ax.set_ylabel(
-            {"preload": "pull-off [µN]", "curve": "normal force [µN]"}.get(
-                d.kind, "value [µN or µm]"
-            )
-        )
-        ax.set_title(
-            ", ".join(f"{n} = {self.values[n]:.3g} ± {self.stderr[n]:.2g}" for n in self.names),
-            fontsize=8,
-        )
-        ax.legend()
-        fig.tight_layout()
-        fig.savefig(out / "fit.png", dpi=120)
-        plt.close(fig)
-        fig, ax = plt.subplots(figsize=(5.5, 3.0))
-        ax.axhline(0.0, color="grey", lw=0.8)
-        ax.plot(x, self.residuals, "o")
-        ax.set_xlabel(label)
-        ax.set_ylabel("(model − data)/σ" if d.err_given else "model − data")
-        fig.tight_layout()
-        fig.savefig(out / "residuals.png", dpi=120)
-        plt.close(fig)
-
-
-def _base_value(base: SetaArray, name: str) -> float:
-    if name == "seta.stiffness_scale":
-        return 1.0
-    part, _, attr = name.partition(".")
-    if name == "contact.w":
-        return base.contact.work_of_adhesion
-    return float(getattr(getattr(base, part), attr) if attr else getattr(base, part))
-
-
-def _check_free(base: SetaArray, free) -> tuple[list, np.ndarray, np.ndarray]:
-    if not isinstance(free, dict) or not free:
-        raise ValueError("free must map at least one dotted parameter name to (low, high)")
-    names, lo, hi = [], [], []
-    for name, b in free.items():
-        if name not in PSEUDO_PARAMETERS:
-            try:
-                if "." not in name:
-                    raise ValueError(name)
-                base.replace(**{name: _base_value(base, name)})
-            except (ValueError, AttributeError, TypeError):
-                raise ValueError(
-                    f"unknown parameter name {name!r} in free (dotted names of "
-                    f"SetaArray fields, e.g. 'contact.w', or one of "
-                    f"{PSEUDO_PARAMETERS})"
-                ) from None
-        try:
-            low, high = (float(v) for v in b)
-        except (TypeError, ValueError):
-            raise ValueError(f"free[{name!r}] = {b!r} must be a (low, high) pair") from None
-        if not (math.isfinite(low) and math.isfinite(high) and low < high):
-            raise ValueError(f"free[{name!r}] = ({low}, {high}): need finite low < high")
-        start = _base_value(base, name)
-        if not low <= start <= high:
-            raise ValueError(
-                f"bounds of {name!r} ({low}, {high}) exclude its start value "
-                f"{start} in the base parameters; widen them or set the base"
-            )
-        for v in (low, high):  # both ends must be valid parameter values
-            try:
-                _apply(base, [name], [v])
-            except ValueError as exc:
-                raise ValueError(f"bound {v} of {name!r} is not allowed: {exc}") from None
-        names.append(name)
-        lo.append(low)
-        hi.append(high)
-    return names, np.array(lo), np.array(hi)
-
-
-def _starts(k: int, n_starts: int) -> list[np.ndarray]:
-    """Starts in the unit box: all-low and all-high corners (2 % inside), the centre, then
-    alternating corners."""
-    pts = [np.full(k, 0.02), np.full(k, 0.98), np.full(k, 0.5)]
-    for i in range(max(0, n_starts - 3)):
-        pts.append(
-            np.array([0.02 if (i >> j) & 1 == 0 else 0.98 for j in range(k)])
-            if k > 1
-            else np.array([0.25 + 0.5 * (i % 2)])
-        )
-    return pts[:n_starts]
-
-
 def fit(
     data,
     free: dict,
@@ -572,6 +175,37 @@ def fit(
     :class:`FitResult`.
     """
     t0 = time.perf_counter()
+    fw = _checked_settings(base, forward, n_starts, n_blocks, retract_steps, diff_step)
+    d = load_data(data)
+    names, lo, hi = check_free(base, free)
+    pb = _Problem(d, base, names, UnitBox(lo, hi), seed, fw, diff_step)
+    u0s = starts(len(names), n_starts)
+    runs = [pb.run(u0, max_nfev) for u0 in u0s]
+    best = min(runs, key=lambda r: r.cost)
+    values = pb.box.to_param(best.x)
+    unc = _uncertainty(pb.jac(best.x), pb.box, values, best.cost, pb.y.size, d.err_given)
+    ident, notes = _identifiability(names, unc, pb.box, values)
+    fitted, scale = apply_free(base, names, values)
+    model_best = pb.model(best.x)
+    return FitResult(
+        names,
+        dict(zip(names, values.tolist(), strict=True)),
+        dict(zip(names, unc.se.tolist(), strict=True)),
+        unc.corr,
+        float(best.cost),
+        ident,
+        notes,
+        {n: (float(lo[i]), float(hi[i])) for i, n in enumerate(names)},
+        pb.y,
+        pb.err,
+        model_best,
+        d,
+        _record(pb, (best, runs, u0s), values, unc, (ident, notes), (fitted, scale), t0),
+    )
+
+
+def _checked_settings(base, forward, n_starts, n_blocks, retract_steps, diff_step) -> Forward:
+    """The forward model's settings, after checking the fit's arguments."""
     if not isinstance(base, SetaArray):
         raise ValueError(f"base must be a SetaArray, got {type(base).__name__}")
     fw = forward if isinstance(forward, Forward) else Forward(kind=forward)
@@ -583,47 +217,38 @@ def fit(
         raise ValueError(f"n_starts = {n_starts!r} must be an integer ≥ 1")
     if not 0 < diff_step < 0.5:
         raise ValueError(f"diff_step = {diff_step!r} must be in (0, 0.5)")
-    d = load_data(data)
-    names, lo, hi = _check_free(base, free)
-    y, err = d.observed()
-    k = len(names)
-    logs = (lo > 0) & (hi >= 10 * lo)
-    tlo = np.where(logs, np.log(np.where(logs, lo, 1.0)), lo)
-    thi = np.where(logs, np.log(np.where(logs, hi, 1.0)), hi)
-    tspan = thi - tlo
+    return fw
 
-    def to_param(u):
-        t = tlo + tspan * np.asarray(u, dtype=float)
-        return np.where(logs, np.exp(t), t)
 
-    cache: dict = {}
+class _Problem:
+    """The least-squares problem in the unit box of the free parameters.
 
-    def model(u):
+    ``resid(u)`` = (model − observed)/uncertainty at unit-box point u; ``jac(u)`` its forward
+    differences with step ``diff_step`` towards the inside of the box; model values are
+    cached by point, so ``cache`` counts the model evaluations.
+    """
+
+    def __init__(self, d: Data, base, names, box: UnitBox, seed, fw: Forward, diff_step):
+        self.d, self.base, self.names, self.box = d, base, names, box
+        self.seed, self.fw, self.diff_step = seed, fw, diff_step
+        self.y, self.err = d.observed()
+        self.cache: dict = {}
+
+    def model(self, u):
         key = tuple(np.round(u, 12))
-        if key not in cache:
-            p, scale = _apply(base, names, to_param(u))
-            cache[key] = predict(d, p, stiffness_scale=scale, seed=seed, forward=fw)
-        return cache[key]
+        if key not in self.cache:
+            p, scale = apply_free(self.base, self.names, self.box.to_param(u))
+            self.cache[key] = predict(
+                self.d, p, stiffness_scale=scale, seed=self.seed, forward=self.fw
+            )
+        return self.cache[key]
 
-    def resid(u):
-        return (model(u) - y) / err
-
-    def jac(u):
-        r0 = resid(u)
-        J = np.empty((y.size, k))
-        for j in range(k):
-            step = diff_step if u[j] + diff_step <= 1.0 else -diff_step
-            v = np.array(u, dtype=float)
-            v[j] += step
-            J[:, j] = (resid(v) - r0) / step
-        return J
-
-    runs = []
-    for u0 in _starts(k, n_starts):
-        r = least_squares(
-            resid,
+    def run(self, u0, max_nfev):
+        """One bounded least-squares search from unit-box point ``u0`` (scipy's trf)."""
+        return least_squares(
+            self.resid,
             u0,
-            jac=jac,
+            jac=self.jac,
             bounds=(0.0, 1.0),
             x_scale=1.0,
             max_nfev=max_nfev,
@@ -631,16 +256,41 @@ def fit(
             ftol=1e-6,
             method="trf",
         )
-        runs.append(r)
-    best = min(runs, key=lambda r: r.cost)
-    values = to_param(best.x)
-    # d(parameter)/du at the optimum: the covariance in the parameters' own units.
-    dpdu = np.where(logs, values * tspan, tspan)
-    J = jac(best.x) / dpdu[None, :]
-    span = hi - lo
-    dof = max(y.size - k, 1)
-    chi2 = float(2 * best.cost)
-    s2 = 1.0 if d.err_given else chi2 / dof
+
+    def resid(self, u):
+        return (self.model(u) - self.y) / self.err
+
+    def jac(self, u):
+        r0 = self.resid(u)
+        J = np.empty((self.y.size, len(self.names)))
+        for j in range(len(self.names)):
+            step = self.diff_step if u[j] + self.diff_step <= 1.0 else -self.diff_step
+            v = np.array(u, dtype=float)
+            v[j] += step
+            J[:, j] = (self.resid(v) - r0) / step
+        return J
+
+
+class _Uncertainty(NamedTuple):
+    """Standard errors and correlations at the optimum (in the parameters' own units), which
+    directions are flat, χ², degrees of freedom and the covariance scale."""
+
+    se: np.ndarray
+    corr: np.ndarray
+    flat: np.ndarray
+    chi2: float
+    dof: int
+    s2: float
+
+
+def _uncertainty(J_unit, box: UnitBox, values, cost, n_obs, err_given) -> _Uncertainty:
+    """Covariance (JᵀJ)⁻¹, scaled by the reduced χ² when no uncertainties were stated, from
+    the Jacobian ``J_unit`` in the unit box at the optimum ``values``."""
+    dpdu = box.dparam_du(values)
+    J = J_unit / dpdu[None, :]
+    dof = max(n_obs - values.size, 1)
+    chi2 = float(2 * cost)
+    s2 = 1.0 if err_given else chi2 / dof
     JtJ = J.T @ J
     colnorm = np.sqrt(np.diag(JtJ) * dpdu**2)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -651,19 +301,26 @@ def fit(
     se = np.where(flat, np.inf, se)
     corr = np.where(np.isfinite(corr), corr, np.nan)
     np.fill_diagonal(corr, 1.0)
+    return _Uncertainty(se, corr, flat, chi2, dof, s2)
+
+
+def _identifiability(names, unc: _Uncertainty, box: UnitBox, values) -> tuple[dict, dict]:
+    """name → whether the data determine it, and name → why not (see the module docstring)."""
+    span = box.hi - box.lo
+    se, corr = unc.se, unc.corr
     ident, notes = {}, {}
     for i, n in enumerate(names):
         why = []
-        if flat[i]:
+        if unc.flat[i]:
             why.append("the data do not depend on it (flat direction of the fit)")
-        elif se[i] > 0.25 * span[i] or (logs[i] and se[i] > values[i]):
+        elif se[i] > 0.25 * span[i] or (box.logs[i] and se[i] > values[i]):
             why.append(
                 f"its standard error {se[i]:.3g} exceeds a quarter of its bound "
                 f"interval {span[i]:.3g} or its value"
             )
         others = [
             names[j]
-            for j in range(k)
+            for j in range(len(names))
             if j != i and np.isfinite(corr[i, j]) and abs(corr[i, j]) > 0.95
         ]
         if others:
@@ -671,9 +328,19 @@ def fit(
         ident[n] = not why
         if why:
             notes[n] = "; ".join(why)
-    fitted, scale = _apply(base, names, values)
-    model_best = model(best.x)
-    record = {
+    return ident, notes
+
+
+def _record(pb: _Problem, search, values, unc: _Uncertainty, verdict, fitted, t0) -> dict:
+    """What ``fit.json`` holds: data, free parameters, correlations, fit quality, every start,
+    the forward model's settings, parameters before and after, evaluations, time, versions.
+
+    ``search`` = (best run, all runs, their starts); ``verdict`` = (identifiable, notes);
+    ``fitted`` = (fitted parameters, seta stiffness scale).
+    """
+    (best, runs, u0s), (ident, notes), (fitted, scale) = search, verdict, fitted
+    d, names, box, fw = pb.d, pb.names, pb.box, pb.fw
+    return {
         "data": {
             "source": d.source,
             "sha256": d.digest,
@@ -683,34 +350,36 @@ def fit(
         },
         "free": {
             n: {
-                "low": float(lo[i]),
-                "high": float(hi[i]),
-                "start": _base_value(base, n),
+                "low": float(box.lo[i]),
+                "high": float(box.hi[i]),
+                "start": base_value(pb.base, n),
                 "value": float(values[i]),
-                "stderr": float(se[i]),
+                "stderr": float(unc.se[i]),
                 "identifiable": ident[n],
                 "note": notes.get(n, ""),
             }
             for i, n in enumerate(names)
         },
-        "correlation": [[None if not np.isfinite(v) else float(v) for v in row] for row in corr],
+        "correlation": [
+            [None if not np.isfinite(v) else float(v) for v in row] for row in unc.corr
+        ],
         "cost": float(best.cost),
-        "chi2": chi2,
-        "dof": dof,
-        "covariance_scale": s2,
-        "observed": y.tolist(),
-        "uncertainty": err.tolist(),
-        "model": model_best.tolist(),
+        "chi2": unc.chi2,
+        "dof": unc.dof,
+        "covariance_scale": unc.s2,
+        "observed": pb.y.tolist(),
+        "uncertainty": pb.err.tolist(),
+        "model": pb.model(best.x).tolist(),
         "starts": [
             {
-                "start": to_param(u0).tolist(),
-                "value": to_param(r.x).tolist(),
+                "start": box.to_param(u0).tolist(),
+                "value": box.to_param(r.x).tolist(),
                 "cost": float(r.cost),
                 "nfev": int(r.nfev),
                 "njev": int(r.njev),
                 "status": int(r.status),
             }
-            for u0, r in zip(_starts(len(names), n_starts), runs, strict=True)
+            for u0, r in zip(u0s, runs, strict=True)
         ],
         "forward": {
             "kind": fw.kind,
@@ -719,33 +388,18 @@ def fit(
             "n_sim": fw.n_sim,
             "dz_um": fw.dz,
             "retract_dz_um": fw.retract_dz,
-            "seed": seed,
-            "diff_step": diff_step,
-            "log_scaled": {n: bool(logs[i]) for i, n in enumerate(names)},
-            "mechanics": base.mechanics,
+            "seed": pb.seed,
+            "diff_step": pb.diff_step,
+            "log_scaled": {n: bool(box.logs[i]) for i, n in enumerate(names)},
+            "mechanics": pb.base.mechanics,
             "seta_stiffness_scale": scale,
         },
-        "base_params": base.to_dict(),
+        "base_params": pb.base.to_dict(),
         "fitted_params": fitted.to_dict(),
-        "model_evaluations": len(cache),
+        "model_evaluations": len(pb.cache),
         "wall_time_s": time.perf_counter() - t0,
         "versions": versions(),
     }
-    return FitResult(
-        names,
-        dict(zip(names, values.tolist(), strict=True)),
-        dict(zip(names, se.tolist(), strict=True)),
-        corr,
-        float(best.cost),
-        ident,
-        notes,
-        {n: (float(lo[i]), float(hi[i])) for i, n in enumerate(names)},
-        y,
-        err,
-        model_best,
-        d,
-        record,
-    )
 
 
 # ------------------------------------------------------------------------------- CLI
