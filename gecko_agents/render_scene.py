@@ -21,11 +21,14 @@ from matplotlib.patches import Rectangle
 from .beam import rest_tip_offset
 from .force_plots import draw_force_curve, pressing_displacement
 from .history import STATE_SLIP, STATE_STICK, History
+from .render_backing import BackingTrack
 from .render_style import DPI, FIGSIZE, STATE_COLOURS, STYLE_RC, apply_style, format_number
 
 __all__ = ["MAX_FRAMES", "Frame", "Scene", "render_frame", "frame_records", "window_range"]
 
 MAX_FRAMES = 300
+FRONT_COLOUR = "#9467bd"
+"""Colour of the detachment-front marker of an elastic backing."""
 _CURVE_POINTS = 16  # points per drawn seta: enough for a smooth cubic
 
 
@@ -81,6 +84,9 @@ class Frame:
     record : index of the drawn record.
     shown : indices of the setae drawn.
     window_text : e.g. ``"setae 480–519 of 1000 shown"``; empty when all setae are drawn.
+    strip : the elastic backing's line through its nodes [µm] (None: a rigid plate is drawn,
+        or the backing's nodes were not recorded).
+    front : the marker of the backing's detachment front (None without an elastic backing).
     """
 
     figure: Figure
@@ -89,6 +95,8 @@ class Frame:
     record: int
     shown: range
     window_text: str
+    strip: Line2D | None = None
+    front: Line2D | None = None
 
     def rgb(self) -> np.ndarray:
         """The frame as an (height, width, 3) uint8 array, row 0 at the top."""
@@ -139,6 +147,9 @@ class Scene:
         self.disp = pressing_displacement(history, self.plate_y)
         self.time = np.asarray(history["time_us"], dtype=float)
         self.plate_h = 0.15 * self.L  # drawn plate thickness [µm], a visual choice
+        backing = history.meta.get("backing")
+        self.backing = BackingTrack(backing, self.time) if backing else None
+        self.strip = self.front = None
         self.pitch = (
             float(np.median(np.diff(np.sort(self.root_dx))))
             if len(self.root_dx) > 1
@@ -156,10 +167,15 @@ class Scene:
             self.tip_x.min() - self.R,
             self.tip_x.max() + self.R,
         ]
+        strip = self.backing.extent() if self.backing else None
+        if strip:
+            xs += [strip[0] - self.pitch / 2, strip[1] + self.pitch / 2]
         xlo, xhi = min(xs), max(xs)
         floor_y = self._floor(xlo, xhi)[1]
         ylo = min(self.tip_y.min() - self.R, floor_y.min())
         yhi = max(self.plate_y.max() + self.root_dy.max() + self.plate_h, self.tip_y.max() + self.R)
+        if strip:
+            yhi = max(yhi, strip[3] + self.plate_h)
         mx, my = 0.04 * (xhi - xlo), 0.06 * (yhi - ylo)
         return (xlo - mx, xhi + mx), (ylo - my - 0.1 * self.R, yhi + my)
 
@@ -191,11 +207,26 @@ class Scene:
         side.fill_between(fx, fy, ylo, color="#e8dcc0", zorder=1, lw=0)
         side.plot(fx, fy, color="#8b6f47", lw=1.2, zorder=2)
         self.plate = Rectangle((0.0, 0.0), 1.0, self.plate_h, color="#444444", zorder=3)
-        side.add_patch(self.plate)
         side.apply_aspect()
         # Rod linewidth to scale (diameter 2r), but never thinner than a hairline.
         px_per_um = side.transData.transform((1.0, 0.0))[0] - side.transData.transform((0, 0))[0]
-        lw = max(0.6, 2.0 * self.h.params.seta.r * px_per_um * 72.0 / dpi)
+        pt_per_um = px_per_um * 72.0 / dpi
+        lw = max(0.6, 2.0 * self.h.params.seta.r * pt_per_um)
+        if self.backing and self.backing.has_nodes:  # the strip instead of the rigid plate
+            # As thick as the drawn plate (a visual choice: the strip's own t_b would hide the
+            # setae, whose roots sit on its centre line).
+            width = max(1.5, self.plate_h * pt_per_um)
+            (self.strip,) = side.plot([], [], color="#444444", lw=width, zorder=3, gid="backing")
+            self.strip.set_solid_capstyle("butt")
+            body = self.strip
+        else:
+            side.add_patch(self.plate)
+            body = self.plate
+        if self.backing:
+            (self.front,) = side.plot(
+                [], [], ls="", marker="v", markersize=9, color=FRONT_COLOUR, mec="#222222",
+                zorder=6, gid="detachment front",
+            )  # fmt: skip
         self.rods = LineCollection([], colors="#5a5a5a", linewidths=lw, capstyle="butt", zorder=4)
         side.add_collection(self.rods)
         n = len(self.shown)
@@ -211,23 +242,7 @@ class Scene:
             zorder=5,
         )
         side.add_collection(self.tips)
-        handles = [
-            Line2D([], [], ls="", marker="o", markersize=8, color=c, mec="#333333", label=name)
-            for name, c in (
-                ("free", STATE_COLOURS["free"]),
-                ("attached, compressed", STATE_COLOURS["compressed"]),
-                ("attached, tension", STATE_COLOURS["tension"]),
-                ("sliding", STATE_COLOURS["sliding"]),
-            )
-        ]
-        fig.legend(
-            handles=handles,
-            loc="lower left",
-            bbox_to_anchor=(0.06, 0.0),
-            ncol=4,
-            frameon=False,
-            fontsize=9,
-        )
+        self._legend()
         apply_style(force)
         draw_force_curve(force, self.h, annotate=False)
         force.legend(loc="lower left", fontsize=8)
@@ -238,8 +253,34 @@ class Scene:
         )
         self.side, self.force_ax = side, force
         # What changes from frame to frame, in drawing (zorder) order; the rest is drawn once.
-        self.moving = [self.plate, self.rods, self.tips, self.marker, self.caption]
+        self.moving = [body, self.rods, self.tips, self.front, self.marker, self.caption]
+        self.moving = [a for a in self.moving if a is not None]
         self.background = None
+
+    def _legend(self) -> None:
+        """Tip states (and the detachment front of an elastic backing) below the side view."""
+        handles = [
+            Line2D([], [], ls="", marker="o", markersize=8, color=c, mec="#333333", label=name)
+            for name, c in (
+                ("free", STATE_COLOURS["free"]),
+                ("attached, compressed", STATE_COLOURS["compressed"]),
+                ("attached, tension", STATE_COLOURS["tension"]),
+                ("sliding", STATE_COLOURS["sliding"]),
+            )
+        ]
+        if self.front is not None:
+            handles.append(
+                Line2D([], [], ls="", marker="v", markersize=8, color=FRONT_COLOUR,
+                       mec="#222222", label="detachment front")
+            )  # fmt: skip
+        self.fig.legend(
+            handles=handles,
+            loc="lower left",
+            bbox_to_anchor=(0.06, 0.0),
+            ncol=len(handles),
+            frameon=False,
+            fontsize=9,
+        )
 
     def rgb_fast(self, k: int) -> np.ndarray:
         """Record ``k`` as an RGB array, redrawing only the moving artists.
@@ -263,7 +304,7 @@ class Scene:
 
     def _segments(self, k: int) -> np.ndarray:
         """Seta centre lines [µm], shape (n_shown, points, 2), root to tip centre."""
-        root = np.stack([self.plate_x[k] + self.root_dx, self.plate_y[k] + self.root_dy], -1)
+        root = np.stack(self._roots(k), -1)
         tip = np.stack([self.tip_x[k], self.tip_y[k]], -1)
         if not self.linear:  # rod mechanics: a rigid straight rod
             return np.stack([root, tip], axis=1)
@@ -281,11 +322,35 @@ class Scene:
             + (t[:, None] * shape)[..., None] * e_t
         )
 
+    def _roots(self, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Seta roots [µm] at record ``k``: on the plate, or on the elastic strip (at their
+        abscissa along it) when its nodes were recorded."""
+        if self.strip is not None:
+            return self.backing.on_strip(k, self.root_dx)
+        return self.plate_x[k] + self.root_dx, self.plate_y[k] + self.root_dy
+
+    def _draw_backing(self, k: int) -> None:
+        """The strip through its nodes, and the detachment front on it (or on the plate's
+        lower edge when the nodes were not recorded); no marker while nothing is attached."""
+        b = self.backing
+        if self.strip is not None:
+            self.strip.set_data(*b.nodes(k))
+        a = b.front_abscissa(k)
+        if not np.isfinite(a):
+            self.front.set_data([], [])
+        elif self.strip is not None:
+            x, y = b.on_strip(k, a)
+            self.front.set_data([x], [y])
+        else:
+            self.front.set_data([self.plate_x[k] + a], [self.plate_y[k] + self.root_dy.max()])
+
     def draw(self, k: int) -> None:
         """Move every artist to record ``k``."""
         root_x = self.plate_x[k] + self.root_dx
         self.plate.set_xy((root_x.min() - self.pitch / 2, self.plate_y[k] + self.root_dy.max()))
         self.plate.set_width(root_x.max() - root_x.min() + self.pitch)
+        if self.backing is not None:
+            self._draw_backing(k)
         self.rods.set_segments(list(self._segments(k)))
         self.tips.set_offsets(np.stack([self.tip_x[k], self.tip_y[k]], -1))
         self.tips.set_facecolor(_tip_colours(self.state[k], self.force[k]))
@@ -312,4 +377,13 @@ def render_frame(history: History, k: int, *, window: int = 40, dpi: float = DPI
     k = range(len(history))[k]
     scene = Scene(history, window, dpi)
     scene.draw(k)
-    return Frame(scene.fig, scene.side, scene.force_ax, k, scene.shown, scene.window_text)
+    return Frame(
+        scene.fig,
+        scene.side,
+        scene.force_ax,
+        k,
+        scene.shown,
+        scene.window_text,
+        scene.strip,
+        scene.front,
+    )

@@ -374,3 +374,78 @@ def test_mp4_is_written_with_the_video_extra(toy, tmp_path):
     data = out.read_bytes()
     assert len(data) > 1000 and data[4:8] == b"ftyp"  # an ISO media (MP4) file
     assert not list(tmp_path.glob("*.tmp*"))
+
+
+# elastic backing (issue 14) -------------------------------------------------------------------
+
+LINK = 30.0  # µm: the toy strip is 5 links under 5 setae at 30 µm pitch, 150 µm long
+
+
+def _with_backing(toy, nodes=True):
+    """``toy`` with a fake ``meta["backing"]`` on its own clock (every 0.7 µs from 0.1 µs): a
+    sagging strip whose nodes sit at material abscissae −75, −45, …, 75 µm, the front at the
+    node of abscissa 45 µm, and nothing attached in the last five backing records."""
+    from dataclasses import replace
+
+    t_b = 0.1 + 0.7 * np.arange(22)
+    material = np.linspace(-75.0, 75.0, 6)
+    plate_y = np.interp(t_b, toy["time_us"], toy["plate_y_um"])
+    nodes_x = np.tile(material, (t_b.size, 1)) + 0.5 * np.arange(t_b.size)[:, None]
+    nodes_y = plate_y[:, None] - 2.0 * np.cos(material / 75.0 * np.pi / 2)[None, :]
+    front = np.where(np.arange(t_b.size) < 17, 45.0, np.nan)
+    backing = {"time_us": t_b.tolist(), "front_x_um": front.tolist(), "length_um": 150.0}
+    if nodes:
+        backing |= {"nodes_x_um": nodes_x.tolist(), "nodes_y_um": nodes_y.tolist()}
+    return replace(toy, meta={**toy.meta, "backing": backing}), t_b, nodes_x, nodes_y
+
+
+def test_nearest_backing_record():
+    from gecko_agents.render_backing import nearest_records
+
+    t = np.array([0.0, 1.0, 2.0, 4.0])
+    got = nearest_records(t, [0.2, 0.5, 0.6, 2.9, 3.1, 10.0, -1.0])
+    np.testing.assert_array_equal(got, [0, 0, 1, 2, 3, 3, 0])  # a tie goes to the earlier
+    np.testing.assert_array_equal(nearest_records([5.0], [0.0, 9.0]), [0, 0])
+
+
+def test_backing_strip_is_drawn_through_the_recorded_nodes(toy):
+    h, t_b, nodes_x, nodes_y = _with_backing(toy)
+    k = 9  # t = 4.5 µs: nearest backing record is 6 (4.3 µs), not 7 (5.0 µs)
+    j = int(np.argmin(np.abs(t_b - h["time_us"][k])))
+    assert j == 6
+    frame = render.render_frame(h, k)
+    np.testing.assert_array_equal(frame.strip.get_xdata(), nodes_x[j])
+    np.testing.assert_array_equal(frame.strip.get_ydata(), nodes_y[j])
+    assert not frame.side_ax.patches  # the strip replaces the rigid plate
+    # The front (abscissa 45 µm) is node 4; the roots (−60, −30, …, 60 µm) sit halfway
+    # between two nodes, each on its rigid link.
+    np.testing.assert_allclose(frame.front.get_xydata(), [[nodes_x[j, 4], nodes_y[j, 4]]])
+    rods = [c for c in frame.side_ax.collections if type(c).__name__ == "LineCollection"]
+    roots = np.array([seg[0] for seg in rods[0].get_segments()])
+    half = 0.5 * (nodes_x[j, :-1] + nodes_x[j, 1:]), 0.5 * (nodes_y[j, :-1] + nodes_y[j, 1:])
+    np.testing.assert_allclose(roots, np.column_stack(half), atol=1e-12)
+    # Drawn where promised: the strip's colour at a node inside the view.
+    rgb = frame.rgb()
+    assert _is(_colour_at(rgb, frame.pixel(nodes_x[j, 2], nodes_y[j, 2]), 1), "#444444")
+
+
+def test_backing_front_vanishes_once_nothing_is_attached(toy):
+    h, t_b, *_ = _with_backing(toy)
+    k = len(h) - 1  # nearest backing record is the last: front NaN
+    assert np.isnan(h.meta["backing"]["front_x_um"][-1])
+    assert len(render.render_frame(h, k).front.get_xdata()) == 0
+
+
+def test_backing_without_nodes_keeps_the_plate_and_puts_the_front_on_it(toy):
+    h, *_ = _with_backing(toy, nodes=False)
+    k = 3
+    frame = render.render_frame(h, k)
+    assert frame.strip is None and len(frame.side_ax.patches) == 1  # the rigid plate
+    want = [[h["plate_x_um"][k] + 45.0, h["plate_y_um"][k]]]  # its lower edge (root_dy = 0)
+    np.testing.assert_allclose(frame.front.get_xydata(), want)
+
+
+def test_backing_animation_is_written(toy, tmp_path):
+    h, *_ = _with_backing(toy)
+    out = render.animate(h, tmp_path / "strip.gif", frames=4, dpi=40)
+    assert len(_gif_frames(out)) == 4
