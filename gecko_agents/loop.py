@@ -91,23 +91,36 @@ def seta_spring(i, r, data, S, c, pnx, pny, vpx, vpy, rest, root):
     return x, y, vx, vy, fx, fy, fdx, fdy, u2
 
 
+BLOCK = 128
+"""Setae per block of the pad loop: its three passes run over one block at a time (the data
+stay in cache), and its sums are summed per block first, then over blocks in block order."""
+
+PARALLEL_MIN_SETAE = 16_384
+"""Fewest setae for which :class:`gecko_agents.model.Model` runs the pad loop's blocks on
+numba's threads (below it a step is too short to pay for the threads)."""
+
+
 @functools.cache
-def pad_loop(law_type, compiled: bool):
+def pad_loop(law_type, compiled: bool, parallel: bool = False):
     """The pad-floor step of every seta as one loop, for contact laws of class ``law_type``.
 
     Returns ``loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand,
     attached, slip, S, ext, pad_c, rest, root, lost_idx, gone_idx, res)``: reads the batch
     rows ``data`` (x, y, vx, vy; seta i in row ``rows[i]``), writes the forces into ``out`` and
     the state block ``S`` (rows as :mod:`gecko_agents.state`), the detached tips into
-    ``lost_idx``/``gone_idx`` and into ``res``: plate force (x, y), dissipation, #lost, #gone,
-    max |u|², max pad-window drift. ``c`` is a :class:`LoopConstants`, ``k`` the law's
-    constants. ``compiled``: numba (None if numba is missing) or the interpreter. Built once
-    per law and mode.
+    ``lost_idx``/``gone_idx`` (ascending) and into ``res``: plate force (x, y), dissipation,
+    #lost, #gone, max |u|², max pad-window drift. ``c`` is a :class:`LoopConstants`, ``k`` the
+    law's constants. ``compiled``: numba (None if numba is missing) or the interpreter.
+    ``parallel``: the blocks of :data:`BLOCK` setae run on numba's threads. Setae are
+    independent within a step and every sum is taken per block, then over the blocks in
+    their order, so the result is the same bit for bit with and without threads (and, for
+    N ≤ ``BLOCK``, the same as one running sum). Built once per law and mode.
     """
     if getattr(law_type, "tangential", False):
         return _tangential_loop(law_type, compiled)
     radius, force, energy = law_type.radius_scalar, law_type.force_scalar, law_type.energy_scalar
     rate = law_type.rate_dependent  # a compile-time constant of the loop
+    blocks = range
     if compiled:
         try:
             import numba
@@ -115,6 +128,149 @@ def pad_loop(law_type, compiled: bool):
             return None
         jit = numba.njit(cache=True, error_model="numpy")
         radius, force, energy = jit(radius), jit(force), jit(energy)
+        blocks = numba.prange
+
+    def block(
+        b0,
+        b1,
+        data,
+        rows,
+        out,
+        c,
+        k,
+        pnx,
+        pny,
+        vpx,
+        vpy,
+        fast2,
+        slow2,
+        has_ext,
+        h,
+        cand,
+        attached,
+        slip,
+        S,
+        ext,
+        pad_c,
+        rest,
+        root,
+        lost_idx,
+        gone_idx,
+        sums,
+    ):
+        """Setae b0 ≤ i < b1; their sums into ``sums``, their detached tips into
+        ``lost_idx``/``gone_idx`` from b0 on."""
+        dt = c.dt
+        R, dc, cn, ct, kt = c.R, c.detach, c.c_n, c.c_t, c.k_t
+        mu, paper, Fc, hm, arel = c.mu, c.paper, c.Fc, c.hm, c.release
+        opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
+        nl = ng = 0
+        # Three passes: (1) springs, damping, overlaps, contact state changes; (2) contact
+        # radius; (3) contact forces and bookkeeping. The contact radius is a long chain of
+        # dependent sqrt/cbrt/divisions that overlaps between setae only in a short loop of
+        # its own; a block keeps the data of the three passes in cache.
+        # Pass 1: springs, damping, overlaps and contact state changes.
+        for i in range(b0, b1):
+            x, y, vx, vy, fx, fy, fdx, fdy, u2 = seta_spring(
+                i, rows[i], data, S, c, pnx, pny, vpx, vpy, rest, root
+            )
+            if u2 > max_u2:
+                max_u2 = u2
+            sfdx += fdx
+            sfdy += fdy
+            fx += fdx
+            fy += fdy
+            opx += fx
+            opy += fy
+            if has_ext:
+                fx += ext[i, 0]
+                fy += ext[i, 1]
+            S[FX, i], S[FY, i] = fx, fy
+            # Contact with the tip's own pad: n = (0, 1), t = (1, 0), q = (x, h).
+            d = R - (y - h[i])
+            S[DELTA, i] = d
+            if attached[i]:
+                gone = False
+                if not cand[i]:
+                    lost_idx[b0 + nl] = i
+                    nl += 1
+                    gone = True
+                elif d < dc or (rate and S[AC, i] <= arel):
+                    gone_idx[b0 + ng] = i
+                    ng += 1
+                    gone = True
+                if gone:  # snap-off: what the contact stored is dissipated
+                    attached[i] = False
+                    xs = S[XI, i]
+                    diss += energy(S[AC, i], d, k) + 0.5 * kt * xs * xs
+            elif cand[i] and d >= 0.0:
+                attached[i] = True
+                S[AX, i], S[AY, i] = x, h[i]
+                S[XI, i] = np.inf  # marks an attachment for pass 3
+        # Pass 2: contact radius on the law's branch.
+        for i in range(b0, b1):
+            if attached[i]:
+                a_old, d = S[AC, i], S[DELTA, i]
+                a_new = radius(d, a_old, dt, k)
+                S[AC, i] = a_new
+                if rate and S[XI, i] != np.inf:  # work of the moving edge ≥ 0
+                    diss += energy(a_old, d, k) - energy(a_new, d, k)
+        # Pass 3: contact forces, stick/slip, release bookkeeping, dissipation, forces.
+        for i in range(b0, b1):
+            vx, vy, x = S[VX, i], S[VY, i], S[X, i]
+            fx, fy, fdx, fdy = S[FX, i], S[FY, i], S[FDX, i], S[FDY, i]
+            dmpx = dmpy = 0.0
+            if attached[i]:
+                new = S[XI, i] == np.inf
+                a = S[AC, i]
+                P = force(a, S[DELTA, i], k)
+                xi = x - S[AX, i]
+                if paper:
+                    cap = (P if P > 0.0 else 0.0) * mu
+                else:
+                    cap = abs(P + 2.0 * Fc) * mu
+                trial = xi * -kt
+                dtg = vx * -ct
+                if abs(trial) > cap:
+                    xin = math.copysign(cap / kt, xi)
+                    diss += cap * abs(xi - xin)  # Coulomb work of the slip
+                    dtg = 0.0
+                    ft = -kt * xin + dtg
+                    sl = True
+                else:
+                    xin = xi
+                    ft = trial + dtg
+                    sl = False
+                S[AX, i] = x - xin
+                dn = vy * -cn
+                fx += ft
+                fy += P + dn
+                dmpx, dmpy = dtg, dn
+                S[PN, i], S[FT, i], S[XI, i] = P, ft, xin
+                slip[i] = sl
+                if new:  # attachment starts the branch at U = 0
+                    diss -= energy(a, S[DELTA, i], k) + 0.5 * kt * xin * xin
+                s2 = vx * vx + vy * vy
+                if s2 > fast2:
+                    if math.isnan(S[JUMP, i]):
+                        S[JUMP, i] = S[DELTA, i]
+                elif s2 < slow2:
+                    S[JUMP, i] = np.nan
+            S[FX, i], S[FY, i], S[DMPX, i], S[DMPY, i] = fx, fy, dmpx, dmpy
+            r = rows[i]
+            out[r, 0], out[r, 1] = fx, fy
+            vmx = fx * hm + vx
+            vmy = fy * hm + vy
+            dd += (fdx + dmpx) * vmx + (fdy + dmpy) * vmy
+            dr = abs(x - pad_c[i])
+            if dr > drift:
+                drift = dr
+        sums[0], sums[1], sums[2], sums[3] = opx, opy, diss, dd
+        sums[4], sums[5], sums[6], sums[7] = sfdx, sfdy, max_u2, drift
+        sums[8], sums[9] = nl, ng
+
+    if compiled:
+        block = numba.njit(error_model="numpy")(block)
 
     def loop(
         data,
@@ -142,120 +298,63 @@ def pad_loop(law_type, compiled: bool):
         res,
     ):
         n = S.shape[1]
-        dt = c.dt
-        R, dc, cn, ct, kt = c.R, c.detach, c.c_n, c.c_t, c.k_t
-        mu, paper, Fc, hm, arel = c.mu, c.paper, c.Fc, c.hm, c.release
         fast2, slow2 = 4.0 * vref * vref, vref * vref
-        opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
-        nl = ng = 0
-        # Three passes over blocks of setae: (1) springs, damping, overlaps, contact state
-        # changes; (2) contact radius; (3) contact forces and bookkeeping. The contact radius
-        # is a long chain of dependent sqrt/cbrt/divisions that overlaps between setae only in
-        # a short loop of its own; blocks keep the data of the three passes in cache.
-        for b0 in range(0, n, 128):
-            b1 = min(n, b0 + 128)
-            # Pass 1: springs, damping, overlaps and contact state changes.
-            for i in range(b0, b1):
-                x, y, vx, vy, fx, fy, fdx, fdy, u2 = seta_spring(
-                    i, rows[i], data, S, c, pnx, pny, vpx, vpy, rest, root
-                )
-                if u2 > max_u2:
-                    max_u2 = u2
-                sfdx += fdx
-                sfdy += fdy
-                fx += fdx
-                fy += fdy
-                opx += fx
-                opy += fy
-                if has_ext:
-                    fx += ext[i, 0]
-                    fy += ext[i, 1]
-                S[FX, i], S[FY, i] = fx, fy
-                # Contact with the tip's own pad: n = (0, 1), t = (1, 0), q = (x, h).
-                d = R - (y - h[i])
-                S[DELTA, i] = d
-                if attached[i]:
-                    gone = False
-                    if not cand[i]:
-                        lost_idx[nl] = i
-                        nl += 1
-                        gone = True
-                    elif d < dc or (rate and S[AC, i] <= arel):
-                        gone_idx[ng] = i
-                        ng += 1
-                        gone = True
-                    if gone:  # snap-off: what the contact stored is dissipated
-                        attached[i] = False
-                        xs = S[XI, i]
-                        diss += energy(S[AC, i], d, k) + 0.5 * kt * xs * xs
-                elif cand[i] and d >= 0.0:
-                    attached[i] = True
-                    S[AX, i], S[AY, i] = x, h[i]
-                    S[XI, i] = np.inf  # marks an attachment for pass 3
-            # Pass 2: contact radius on the law's branch.
-            for i in range(b0, b1):
-                if attached[i]:
-                    a_old, d = S[AC, i], S[DELTA, i]
-                    a_new = radius(d, a_old, dt, k)
-                    S[AC, i] = a_new
-                    if rate and S[XI, i] != np.inf:  # work of the moving edge ≥ 0
-                        diss += energy(a_old, d, k) - energy(a_new, d, k)
-            # Pass 3: contact forces, stick/slip, release bookkeeping, dissipation, forces.
-            for i in range(b0, b1):
-                vx, vy, x = S[VX, i], S[VY, i], S[X, i]
-                fx, fy, fdx, fdy = S[FX, i], S[FY, i], S[FDX, i], S[FDY, i]
-                dmpx = dmpy = 0.0
-                if attached[i]:
-                    new = S[XI, i] == np.inf
-                    a = S[AC, i]
-                    P = force(a, S[DELTA, i], k)
-                    xi = x - S[AX, i]
-                    if paper:
-                        cap = (P if P > 0.0 else 0.0) * mu
-                    else:
-                        cap = abs(P + 2.0 * Fc) * mu
-                    trial = xi * -kt
-                    dtg = vx * -ct
-                    if abs(trial) > cap:
-                        xin = math.copysign(cap / kt, xi)
-                        diss += cap * abs(xi - xin)  # Coulomb work of the slip
-                        dtg = 0.0
-                        ft = -kt * xin + dtg
-                        sl = True
-                    else:
-                        xin = xi
-                        ft = trial + dtg
-                        sl = False
-                    S[AX, i] = x - xin
-                    dn = vy * -cn
-                    fx += ft
-                    fy += P + dn
-                    dmpx, dmpy = dtg, dn
-                    S[PN, i], S[FT, i], S[XI, i] = P, ft, xin
-                    slip[i] = sl
-                    if new:  # attachment starts the branch at U = 0
-                        diss -= energy(a, S[DELTA, i], k) + 0.5 * kt * xin * xin
-                    s2 = vx * vx + vy * vy
-                    if s2 > fast2:
-                        if math.isnan(S[JUMP, i]):
-                            S[JUMP, i] = S[DELTA, i]
-                    elif s2 < slow2:
-                        S[JUMP, i] = np.nan
-                S[FX, i], S[FY, i], S[DMPX, i], S[DMPY, i] = fx, fy, dmpx, dmpy
-                r = rows[i]
-                out[r, 0], out[r, 1] = fx, fy
-                vmx = fx * hm + vx
-                vmy = fy * hm + vy
-                dd += (fdx + dmpx) * vmx + (fdy + dmpy) * vmy
-                dr = abs(x - pad_c[i])
-                if dr > drift:
-                    drift = dr
+        n_blocks = (n + BLOCK - 1) // BLOCK
+        sums = np.zeros((max(n_blocks, 1), 10))
+        for b in blocks(n_blocks):
+            b0 = b * BLOCK
+            block(
+                b0,
+                min(n, b0 + BLOCK),
+                data,
+                rows,
+                out,
+                c,
+                k,
+                pnx,
+                pny,
+                vpx,
+                vpy,
+                fast2,
+                slow2,
+                has_ext,
+                h,
+                cand,
+                attached,
+                slip,
+                S,
+                ext,
+                pad_c,
+                rest,
+                root,
+                lost_idx,
+                gone_idx,
+                sums[b],
+            )
+        # Block sums in block order; detached tips moved down to the front, ascending.
+        tot = sums[0].copy()
+        nl, ng = int(sums[0, 8]), int(sums[0, 9])
+        for b in range(1, n_blocks):
+            for j in range(6):
+                tot[j] += sums[b, j]
+            tot[6] = max(tot[6], sums[b, 6])
+            tot[7] = max(tot[7], sums[b, 7])
+            b0 = b * BLOCK
+            for j in range(int(sums[b, 8])):
+                lost_idx[nl] = lost_idx[b0 + j]
+                nl += 1
+            for j in range(int(sums[b, 9])):
+                gone_idx[ng] = gone_idx[b0 + j]
+                ng += 1
+        opx, opy, diss, dd, sfdx, sfdy = tot[0], tot[1], tot[2], tot[3], tot[4], tot[5]
         res[0], res[1] = opx, opy
-        res[2] = diss - (dd - vpx * sfdx - vpy * sfdy) * dt
-        res[3], res[4], res[5], res[6] = nl, ng, max_u2, drift
+        res[2] = diss - (dd - vpx * sfdx - vpy * sfdy) * c.dt
+        res[3], res[4], res[5], res[6] = nl, ng, tot[6], tot[7]
 
     # (A closure is compiled anew in every process, ~2 s: numba cannot cache it on disk.)
-    return numba.njit(error_model="numpy")(loop) if compiled else loop
+    if not compiled:
+        return loop
+    return numba.njit(error_model="numpy", parallel=parallel)(loop)
 
 
 def _tangential_loop(law_type, compiled: bool):

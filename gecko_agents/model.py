@@ -44,8 +44,8 @@ from .floor import Profile
 from .floor import statistics as _floor_stats
 from .history import History, versions
 from .kernels import LoopConstants, NumpyStep
+from .loop import PARALLEL_MIN_SETAE, pad_loop
 from .loop import numba_available as _numba_installed
-from .loop import pad_loop
 from .params import SetaArray, check_seed
 from .protocol import DEFAULT_SPEED, Segment
 from .recorder import Recorder
@@ -84,6 +84,15 @@ def register_backing(kind: str):
 
 class SimulationUnstable(RuntimeError):
     """The run blew up (non-finite state or runaway kinetic energy)."""
+
+
+def _numba_threads() -> int:
+    """Threads numba may use (``NUMBA_NUM_THREADS``; 1 without numba)."""
+    try:
+        import numba
+    except ImportError:
+        return 1
+    return numba.get_num_threads()
 
 
 def numba_available() -> bool:
@@ -166,7 +175,9 @@ class Model:
         (vectorized) or ``"python"`` (the same loop run by the interpreter: fastest without
         numba for a handful of setae). ``"auto"`` (default): numba if installed, else python
         up to 6 setae and numpy above; other floors and paths always use numpy. All give the
-        same history to rounding; the one used is ``meta["kernel"]`` of the history.
+        same history to rounding; the one used is ``meta["kernel"]`` of the history. From
+        :data:`gecko_agents.loop.PARALLEL_MIN_SETAE` setae on, the numba loop runs on numba's
+        threads (``NUMBA_NUM_THREADS``; the same history bit for bit, ``meta["loop_threads"]``).
     floor_profile : a given floor (:class:`gecko_agents.floor.Profile`, e.g. a measured
         surface from :func:`gecko_agents.floor.from_profile`) instead of one drawn from
         ``params.floor``.
@@ -331,8 +342,13 @@ class Model:
             raise ValueError(
                 "kernel='numba' needs numba (pip install 'gecko_agents[fast]'); use kernel='numpy'"
             )
-        loop = None if kernel == "numpy" else pad_loop(type(self.law), kernel == "numba")
-        return kernel, loop
+        self.loop_threads = 1
+        if kernel == "numpy":
+            return kernel, None
+        # Threads only where a step is long enough to pay for them; same history either way.
+        if kernel == "numba" and self.n >= PARALLEL_MIN_SETAE and _numba_threads() > 1:
+            self.loop_threads = _numba_threads()
+        return kernel, pad_loop(type(self.law), kernel == "numba", self.loop_threads > 1)
 
     # ------------------------------------------------------------------ public state
     @property
@@ -634,7 +650,8 @@ class Model:
             "dt_us": self.dt, "n_steps": run.n_steps, "record_every": self.record_every,
             "n_sim": self.n, "scale_to_array": self.params.array.count / self.n,
             "protocol": [f"{seg!r}" for seg in segments], "contact_path": self.contact_path,
-            "kernel": self.kernel, "detection": self.world.detection,
+            "kernel": self.kernel, "loop_threads": self.loop_threads,
+            "detection": self.world.detection,
             "tip_law": self.law.name, "tip_bounds": tip_bounds(self.law),
             "energy_complete": self.energy_complete,
             "floor_statistics": floor_statistics(self.world.profile, self.params.floor),
