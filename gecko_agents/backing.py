@@ -33,11 +33,16 @@ Glassmaker, Tang & Jagota 2004, J R Soc Interface 1:35; Bacca, Booth, Turner & M
 J Mech Phys Solids 96:428).
 
 Time step: the chain's stiffest mode is the zig-zag of links turning about their centres,
-ω² = 4k_r/(mℓ²/12) = 48·EI/(ρA·ℓ⁴); the handle spring on a link adds ω² ≤ 4k/m. The model's
-time step is set by the setae; when the chain is stiffer, the strip's density is scaled up
-until ω·dt = 0.5 (explicit mass scaling: the strip's inertia plays no part in a quasi-static
-pull, and its slowest modes stay faster than the pull), recorded as
-``meta["backing"]["mass_scale"]``.
+ω² = 4k_r/I = 48·EI/(ρA·ℓ⁴); the handle spring on a link end adds ω² = k/m_eff with
+m_eff = 1/(1/m + (ℓ/2)²/I). The model's time step is set by the setae; when the chain is
+stiffer, the links' moment of inertia is scaled up until the zig-zag has ω·dt = 0.5
+(rotary-inertia scaling, as explicit beam codes do: bending waves longer than a link,
+ω² = EI·q⁴/ρA, keep the true mass), recorded as ``meta["backing"]["moment_scale"]``; then, if
+the handle is still too fast, the links' mass (``mass_scale``). Mass scaling is not harmless:
+a heavy strip's inertia shares the load it is pulled with (8 setae peeled at 0.05 µm/µs,
+β = 0.31: pull-off 0.44 N·Fc with the mass ×105 of whole-link scaling, 0.41 with ×27 for a
+1000 µN/µm handle, 0.34 with a 50 µN/µm handle and ×1.4, the same as at a quarter of the
+speed); keep the handle no stiffer than it needs to be (≫ k_f·λ for a peel).
 
 Energy: the history's energy columns hold the strip too. Elastic = setae + contacts + the
 strip's joints + the handle spring; kinetic = tips + links; dissipated = the setae's and
@@ -169,16 +174,16 @@ class Strip:
         self.k_clamp = 2.0 * self.k_rot
         self.rows = self.read()
 
-    def scale_mass(self, factor: float) -> None:
-        """Multiply every link's mass and moment of inertia by ``factor`` (the dampers keep
-        their damping ratio)."""
-        self.m *= factor
-        self.I_link *= factor
-        self.rho_A *= factor
-        self.c_rot *= math.sqrt(factor)
+    def scale_inertia(self, mass: float = 1.0, moment: float = 1.0) -> None:
+        """Multiply every link's mass by ``mass`` and its moment of inertia by ``mass`` ×
+        ``moment`` (the dampers keep their damping ratio on the zig-zag mode)."""
+        self.m *= mass
+        self.rho_A *= mass
+        self.I_link *= mass * moment
+        self.c_rot *= math.sqrt(mass * moment)
         for b in self.links:
             b.mass, b.moment = self.m, self.I_link
-        self.omega_max /= math.sqrt(factor)
+        self.omega_max /= math.sqrt(mass * moment)
 
     def read(self) -> np.ndarray:
         """(n, 6) rows (x, y, φ, vx, vy, ω) of the links, in link order (read from pymunk)."""
@@ -324,14 +329,19 @@ class ElasticModel(Model):
             self._h_dx, self._h_dy = self._h_dx * math.cos(alpha), self._h_dx * math.sin(alpha)
         self._k_h = k_each
         self._E_handle = 0.0
-        # Explicit spring on a link end: effective mass m/4 (ω² ≤ 4k/m).
-        omega_h = math.sqrt(4.0 * k_each / strip.m)
-        omega = max(strip.omega_max, omega_h)
-        scale = max(1.0, (omega * self.dt / OMEGA_DT) ** 2)
-        if scale > 1.0:
-            strip.scale_mass(scale)
-        # Damping ratio on the link end's effective mass m/4 (explicit: c·dt/(m/4) = 2ζ·ω·dt).
-        self._c_h = 2.0 * bk.damping_ratio * math.sqrt(k_each * 0.25 * strip.m)
+        # Rotary inertia first: the zig-zag mode is the links turning about their centres
+        # (ω² = 4k_r/I), slowed to ω·dt = OMEGA_DT by the links' moment of inertia alone,
+        # which leaves the bending waves longer than a link (ω² = EI·q⁴/ρA) at the true mass.
+        moment = max(1.0, (strip.omega_max * self.dt / OMEGA_DT) ** 2)
+        strip.scale_inertia(moment=moment)
+        # Then the handle spring on a link end, effective mass 1/(1/m + (ℓ/2)²/I) (m/4 for
+        # an unscaled link), by the translational mass where it is still too fast.
+        m_eff = 1.0 / (1.0 / strip.m + 0.25 * ell**2 / strip.I_link)
+        mass = max(1.0, k_each / m_eff * (self.dt / OMEGA_DT) ** 2)
+        strip.scale_inertia(mass=mass)
+        m_eff *= mass
+        # Damping ratio on the link end's effective mass (explicit: c·dt/m_eff = 2ζ·ω·dt).
+        self._c_h = 2.0 * bk.damping_ratio * math.sqrt(k_each * m_eff)
         self.strip = strip
         # Roots: link and abscissa from its centre on a straight strip.
         rx = w.root_dx
@@ -340,7 +350,8 @@ class ElasticModel(Model):
         self.backing_info = {
             "EI_uN_um2": EI, "width_um": pitch, "length_um": length, "n_links": n_links,
             "link_um": ell, "bending_length_um": lam, "foundation_uN_per_um2": k_f,
-            "mass_scale": scale, "handle_stiffness_each_uN_per_um": k_each,
+            "mass_scale": mass, "moment_scale": moment,
+            "handle_stiffness_each_uN_per_um": k_each,
         }  # fmt: skip
         self._rec = {"time_us": [], "front_x_um": [], "handle_fx_uN": [], "handle_fy_uN": [],
                      "setae_fx_uN": [], "setae_fy_uN": [], "nodes_x_um": [],
