@@ -41,11 +41,16 @@ from .contact import contact_law
 from .diagnostics import check_cost, diagnose, non_finite_report
 from .dynamics import DEFAULT_DAMPING, Damping, seta_mass, tangential_stiffness
 from .floor import Profile
-from .floor import statistics as _floor_stats
 from .history import History, versions
 from .kernels import LoopConstants, NumpyStep
-from .loop import PARALLEL_MIN_SETAE, pad_loop
-from .loop import numba_available as _numba_installed
+from .model_setup import (
+    KERNELS,
+    checked_arguments,
+    choose_kernel,
+    detection_mode,
+    floor_statistics,
+    numba_available,
+)
 from .params import SetaArray, check_seed
 from .protocol import DEFAULT_SPEED, Segment
 from .recorder import Recorder
@@ -61,10 +66,6 @@ __all__ = [
     "tangential_stiffness",
     "KERNELS",
 ]
-
-KERNELS = ("auto", "numpy", "numba", "python")
-_MAX_N = 200_000  # 10⁵ setae: ~0.7 GB peak RSS (python -m gecko_agents.bench)
-_PYTHON_MAX_N = 6  # below this many setae the interpreted loop beats numpy's call overhead
 
 
 BACKINGS: dict[str, type] = {}
@@ -84,55 +85,6 @@ def register_backing(kind: str):
 
 class SimulationUnstable(RuntimeError):
     """The run blew up (non-finite state or runaway kinetic energy)."""
-
-
-def _numba_threads() -> int:
-    """Threads numba may use (``NUMBA_NUM_THREADS``; 1 without numba)."""
-    try:
-        import numba
-    except ImportError:
-        return 1
-    return numba.get_num_threads()
-
-
-def numba_available() -> bool:
-    """Whether the optional numba kernel can be used (``pip install gecko_agents[fast]``)."""
-    return _numba_installed()
-
-
-def _checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile) -> int:
-    """Refuse bad Model arguments, naming them; returns the number of setae to simulate."""
-    if not isinstance(params, SetaArray):
-        raise TypeError(f"params must be a SetaArray, got {type(params).__name__}")
-    n = params.array.count if n_sim is None else n_sim
-    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= _MAX_N:
-        raise ValueError(
-            f"n_sim = {n!r} must be an integer in [1, {_MAX_N}] (~1.5 GB of pymunk bodies "
-            "at the top); simulate a patch of a large array with n_sim (the quasi-static "
-            "solver does 10⁷)"
-        )
-    if contact not in ("batch", "callback"):
-        raise ValueError(f"contact = {contact!r} must be 'batch' or 'callback'")
-    if record_every is not None and (not isinstance(record_every, int) or record_every < 1):
-        raise ValueError(f"record_every = {record_every!r} must be an integer ≥ 1")
-    if kernel not in KERNELS:
-        raise ValueError(f"kernel = {kernel!r} must be one of {KERNELS}")
-    if floor_profile is not None and not isinstance(floor_profile, Profile):
-        raise TypeError(
-            f"floor_profile must be a gecko_agents.floor.Profile, got "
-            f"{type(floor_profile).__name__}"
-        )
-    return int(n)
-
-
-def floor_statistics(profile: Profile, floor_params) -> dict:
-    """The floor's RMS height and slope, PSD and Hurst estimate for a run's metadata
-    (:func:`gecko_agents.floor.statistics`; a self-affine floor's Hurst exponent is fitted
-    between twice its short and half its long cutoff)."""
-    fit = None
-    if getattr(floor_params, "kind", "gaussian") == "self_affine":
-        fit = (2.0 * floor_params.short_cutoff, 0.5 * floor_params.long_cutoff)
-    return _floor_stats(profile, fit_wavelengths=fit)
 
 
 @dataclass
@@ -222,7 +174,7 @@ class Model:
         floor_profile: Profile | None = None,
         detection: str = "auto",
     ):
-        n = _checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
+        n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
         self.params, self.n, self.contact_path = params, int(n), contact
         if isinstance(seed, np.random.Generator):
             # Draw the run's seed from the caller's generator: the history records it, so the
@@ -266,7 +218,7 @@ class Model:
             params.contact.R + abs(law.detach_overlap),
             self.rng,
             floor_profile,
-            self._detection(detection, contact),
+            detection_mode(detection, contact),
         )
         self._constants = self._loop_constants()
         self.physics = NumpyStep(
@@ -275,7 +227,9 @@ class Model:
         if contact == "callback":
             self.world.on_pre_solve(self._pre_solve)
         self._fast_pads = self.world.pads and contact == "batch"
-        self.kernel, self._loop = self._choose_kernel(kernel)
+        self.kernel, self._loop, self.loop_threads = choose_kernel(
+            kernel, self._fast_pads, self.n, type(self.law)
+        )
         self.time = 0.0
         self._warned_linear = False
         self._lost_idx = np.zeros(self.n, dtype=np.int64)
@@ -285,17 +239,6 @@ class Model:
         self.reaction = (0.0, 0.0)
         self._work_step = 0.0
         self.reset_state_arrays()
-
-    @staticmethod
-    def _detection(detection, contact) -> str:
-        """The detection asked of the world ("auto": lazy on pad floors, World decides)."""
-        if detection not in ("auto", "full", "lazy"):
-            raise ValueError(f"detection = {detection!r} must be 'auto', 'full' or 'lazy'")
-        if contact == "callback":
-            if detection == "lazy":
-                raise ValueError("detection='lazy' needs contact='batch'; use 'full'")
-            return "full"
-        return detection
 
     def _loop_constants(self) -> LoopConstants:
         p, K = self.params, self.K
@@ -321,34 +264,6 @@ class Model:
                 f"{self.mass:.3g} ng needs ω·dt < 2"
             )
         return float(dt)
-
-    def _choose_kernel(self, kernel):
-        if kernel in ("numba", "python") and not self._fast_pads:
-            raise ValueError(
-                f"kernel={kernel!r} covers pad floors "
-                "(floor.correlation_length = 0) with contact='batch'"
-            )
-        if kernel == "auto":
-            kernel = "numpy"
-            if self._fast_pads:
-                kernel = (
-                    "numba"
-                    if numba_available()
-                    else "python"
-                    if self.n <= _PYTHON_MAX_N
-                    else "numpy"
-                )
-        if kernel == "numba" and not numba_available():
-            raise ValueError(
-                "kernel='numba' needs numba (pip install 'gecko_agents[fast]'); use kernel='numpy'"
-            )
-        self.loop_threads = 1
-        if kernel == "numpy":
-            return kernel, None
-        # Threads only where a step is long enough to pay for them; same history either way.
-        if kernel == "numba" and self.n >= PARALLEL_MIN_SETAE and _numba_threads() > 1:
-            self.loop_threads = _numba_threads()
-        return kernel, pad_loop(type(self.law), kernel == "numba", self.loop_threads > 1)
 
     # ------------------------------------------------------------------ public state
     @property

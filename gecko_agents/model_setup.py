@@ -1,0 +1,110 @@
+"""Choices :class:`gecko_agents.model.Model` makes once, when it is built: its arguments
+checked (naming each bad one), how contact is detected, which per-step kernel runs (and on how
+many threads) and the floor's statistics for a run's metadata.
+
+Units: µm, µN, µs, ng (:mod:`gecko_agents.params`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .floor import Profile
+from .floor import statistics as _floor_stats
+from .loop import PARALLEL_MIN_SETAE, pad_loop
+from .loop import numba_available as _numba_installed
+from .params import SetaArray
+
+__all__ = ["KERNELS", "MAX_N", "checked_arguments", "choose_kernel", "detection_mode",
+           "floor_statistics", "numba_available"]  # fmt: skip
+
+KERNELS = ("auto", "numpy", "numba", "python")
+MAX_N = 200_000  # 10⁵ setae: ~0.7 GB peak RSS (python -m gecko_agents.bench)
+_PYTHON_MAX_N = 6  # below this many setae the interpreted loop beats numpy's call overhead
+
+
+def numba_available() -> bool:
+    """Whether the optional numba kernel can be used (``pip install gecko_agents[fast]``)."""
+    return _numba_installed()
+
+
+def numba_threads() -> int:
+    """Threads numba may use (``NUMBA_NUM_THREADS``; 1 without numba)."""
+    try:
+        import numba
+    except ImportError:
+        return 1
+    return numba.get_num_threads()
+
+
+def checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile) -> int:
+    """Refuse bad Model arguments, naming them; returns the number of setae to simulate."""
+    if not isinstance(params, SetaArray):
+        raise TypeError(f"params must be a SetaArray, got {type(params).__name__}")
+    n = params.array.count if n_sim is None else n_sim
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= MAX_N:
+        raise ValueError(
+            f"n_sim = {n!r} must be an integer in [1, {MAX_N}] (~1.5 GB of pymunk bodies "
+            "at the top); simulate a patch of a large array with n_sim (the quasi-static "
+            "solver does 10⁷)"
+        )
+    if contact not in ("batch", "callback"):
+        raise ValueError(f"contact = {contact!r} must be 'batch' or 'callback'")
+    if record_every is not None and (not isinstance(record_every, int) or record_every < 1):
+        raise ValueError(f"record_every = {record_every!r} must be an integer ≥ 1")
+    if kernel not in KERNELS:
+        raise ValueError(f"kernel = {kernel!r} must be one of {KERNELS}")
+    if floor_profile is not None and not isinstance(floor_profile, Profile):
+        raise TypeError(
+            f"floor_profile must be a gecko_agents.floor.Profile, got "
+            f"{type(floor_profile).__name__}"
+        )
+    return int(n)
+
+
+def detection_mode(detection, contact) -> str:
+    """The detection asked of the world ("auto": lazy on pad floors, World decides)."""
+    if detection not in ("auto", "full", "lazy"):
+        raise ValueError(f"detection = {detection!r} must be 'auto', 'full' or 'lazy'")
+    if contact == "callback":
+        if detection == "lazy":
+            raise ValueError("detection='lazy' needs contact='batch'; use 'full'")
+        return "full"
+    return detection
+
+
+def choose_kernel(kernel: str, fast_pads: bool, n: int, law_type):
+    """``(kernel, loop, threads)``: the kernel that runs (``"auto"`` resolved: numba if
+    installed, else the interpreted loop up to a handful of setae, else numpy), its compiled
+    or interpreted pad loop (None for numpy) and the loop's threads. ``fast_pads``: a pad
+    floor with the batch contact path, the only case the loops cover."""
+    if kernel in ("numba", "python") and not fast_pads:
+        raise ValueError(
+            f"kernel={kernel!r} covers pad floors "
+            "(floor.correlation_length = 0) with contact='batch'"
+        )
+    if kernel == "auto":
+        kernel = "numpy"
+        if fast_pads:
+            kernel = "numba" if numba_available() else "python" if n <= _PYTHON_MAX_N else "numpy"
+    if kernel == "numba" and not numba_available():
+        raise ValueError(
+            "kernel='numba' needs numba (pip install 'gecko_agents[fast]'); use kernel='numpy'"
+        )
+    if kernel == "numpy":
+        return kernel, None, 1
+    # Threads only where a step is long enough to pay for them; same history either way.
+    threads = 1
+    if kernel == "numba" and n >= PARALLEL_MIN_SETAE and numba_threads() > 1:
+        threads = numba_threads()
+    return kernel, pad_loop(law_type, kernel == "numba", threads > 1), threads
+
+
+def floor_statistics(profile: Profile, floor_params) -> dict:
+    """The floor's RMS height and slope, PSD and Hurst estimate for a run's metadata
+    (:func:`gecko_agents.floor.statistics`; a self-affine floor's Hurst exponent is fitted
+    between twice its short and half its long cutoff)."""
+    fit = None
+    if getattr(floor_params, "kind", "gaussian") == "self_affine":
+        fit = (2.0 * floor_params.short_cutoff, 0.5 * floor_params.long_cutoff)
+    return _floor_stats(profile, fit_wavelengths=fit)
