@@ -100,76 +100,26 @@ PARALLEL_MIN_SETAE = 16_384
 numba's threads (below it a step is too short to pay for the threads)."""
 
 
-@functools.cache
-def pad_loop(law_type, compiled: bool, parallel: bool = False):
-    """The pad-floor step of every seta as one loop, for contact laws of class ``law_type``.
+def _jit(compiled: bool, **options):
+    """numba's ``njit`` with ``options`` when ``compiled`` (None if numba is missing), else the
+    identity: the interpreter runs the same function."""
+    if not compiled:
+        return lambda fn: fn
+    try:
+        import numba
+    except ImportError:
+        return None
+    return numba.njit(error_model="numpy", **options)
 
-    Returns ``loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand,
-    attached, slip, S, ext, pad_c, rest, root, lost_idx, gone_idx, res)``: reads the batch
-    rows ``data`` (x, y, vx, vy; seta i in row ``rows[i]``), writes the forces into ``out`` and
-    the state block ``S`` (rows as :mod:`gecko_agents.state`), the detached tips into
-    ``lost_idx``/``gone_idx`` (ascending) and into ``res``: plate force (x, y), dissipation,
-    #lost, #gone, max |u|², max pad-window drift. ``c`` is a :class:`LoopConstants`, ``k`` the
-    law's constants. ``compiled``: numba (None if numba is missing) or the interpreter.
-    ``parallel``: the blocks of :data:`BLOCK` setae run on numba's threads. Setae are
-    independent within a step and every sum is taken per block, then over the blocks in
-    their order, so the result is the same bit for bit with and without threads (and, for
-    N ≤ ``BLOCK``, the same as one running sum). Built once per law and mode.
-    """
-    if getattr(law_type, "tangential", False):
-        return _tangential_loop(law_type, compiled)
-    radius, force, energy = law_type.radius_scalar, law_type.force_scalar, law_type.energy_scalar
-    rate = law_type.rate_dependent  # a compile-time constant of the loop
-    blocks = range
-    if compiled:
-        try:
-            import numba
-        except ImportError:
-            return None
-        jit = numba.njit(cache=True, error_model="numpy")
-        radius, force, energy = jit(radius), jit(force), jit(energy)
-        blocks = numba.prange
 
-    def block(
-        b0,
-        b1,
-        data,
-        rows,
-        out,
-        c,
-        k,
-        pnx,
-        pny,
-        vpx,
-        vpy,
-        fast2,
-        slow2,
-        has_ext,
-        h,
-        cand,
-        attached,
-        slip,
-        S,
-        ext,
-        pad_c,
-        rest,
-        root,
-        lost_idx,
-        gone_idx,
-        sums,
-    ):
-        """Setae b0 ≤ i < b1; their sums into ``sums``, their detached tips into
-        ``lost_idx``/``gone_idx`` from b0 on."""
-        dt = c.dt
-        R, dc, cn, ct, kt = c.R, c.detach, c.c_n, c.c_t, c.k_t
-        mu, paper, Fc, hm, arel = c.mu, c.paper, c.Fc, c.hm, c.release
-        opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
+def _springs_pass(energy, rate: bool, jit):
+    """Pass 1 of a block: springs, damping, overlaps and contact state changes."""
+
+    def springs(b0, b1, data, rows, c, k, pnx, pny, vpx, vpy, has_ext, h, cand, attached, S,
+                ext, rest, root, lost_idx, gone_idx):  # fmt: skip
+        R, dc, kt, arel = c.R, c.detach, c.k_t, c.release
+        opx = opy = diss = sfdx = sfdy = max_u2 = 0.0
         nl = ng = 0
-        # Three passes: (1) springs, damping, overlaps, contact state changes; (2) contact
-        # radius; (3) contact forces and bookkeeping. The contact radius is a long chain of
-        # dependent sqrt/cbrt/divisions that overlaps between setae only in a short loop of
-        # its own; a block keeps the data of the three passes in cache.
-        # Pass 1: springs, damping, overlaps and contact state changes.
         for i in range(b0, b1):
             x, y, vx, vy, fx, fy, fdx, fdy, u2 = seta_spring(
                 i, rows[i], data, S, c, pnx, pny, vpx, vpy, rest, root
@@ -207,7 +157,18 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
                 attached[i] = True
                 S[AX, i], S[AY, i] = x, h[i]
                 S[XI, i] = np.inf  # marks an attachment for pass 3
-        # Pass 2: contact radius on the law's branch.
+        return opx, opy, sfdx, sfdy, max_u2, diss, nl, ng
+
+    return jit(springs)
+
+
+def _radius_pass(radius, energy, rate: bool, jit):
+    """Pass 2 of a block: the contact radius on the law's branch. It is a long chain of
+    dependent sqrt/cbrt/divisions that overlaps between setae only in a short loop of its
+    own."""
+
+    def radii(b0, b1, c, k, attached, S, diss):
+        dt = c.dt
         for i in range(b0, b1):
             if attached[i]:
                 a_old, d = S[AC, i], S[DELTA, i]
@@ -215,7 +176,18 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
                 S[AC, i] = a_new
                 if rate and S[XI, i] != np.inf:  # work of the moving edge ≥ 0
                     diss += energy(a_old, d, k) - energy(a_new, d, k)
-        # Pass 3: contact forces, stick/slip, release bookkeeping, dissipation, forces.
+        return diss
+
+    return jit(radii)
+
+
+def _force_pass(force, energy, jit):
+    """Pass 3 of a block: contact forces, stick/slip, release bookkeeping, dissipation and
+    the forces written for pymunk."""
+
+    def forces(b0, b1, rows, out, c, k, fast2, slow2, attached, slip, S, pad_c, diss):
+        cn, ct, kt, mu, paper, Fc, hm = c.c_n, c.c_t, c.k_t, c.mu, c.paper, c.Fc, c.hm
+        dd = drift = 0.0
         for i in range(b0, b1):
             vx, vy, x = S[VX, i], S[VY, i], S[X, i]
             fx, fy, fdx, fdy = S[FX, i], S[FY, i], S[FDX, i], S[FDY, i]
@@ -265,96 +237,92 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
             dr = abs(x - pad_c[i])
             if dr > drift:
                 drift = dr
-        sums[0], sums[1], sums[2], sums[3] = opx, opy, diss, dd
-        sums[4], sums[5], sums[6], sums[7] = sfdx, sfdy, max_u2, drift
-        sums[8], sums[9] = nl, ng
+        return diss, dd, drift
 
+    return jit(forces)
+
+
+def _gather(sums, n_blocks, lost_idx, gone_idx, vpx, vpy, dt, res):
+    """Block sums in block order into ``res``; each block's detached tips (stored from its
+    first seta on) moved down to the front, ascending."""
+    tot = sums[0].copy()
+    nl, ng = int(sums[0, 8]), int(sums[0, 9])
+    for b in range(1, n_blocks):
+        for j in range(6):
+            tot[j] += sums[b, j]
+        tot[6] = max(tot[6], sums[b, 6])
+        tot[7] = max(tot[7], sums[b, 7])
+        b0 = b * BLOCK
+        for j in range(int(sums[b, 8])):
+            lost_idx[nl] = lost_idx[b0 + j]
+            nl += 1
+        for j in range(int(sums[b, 9])):
+            gone_idx[ng] = gone_idx[b0 + j]
+            ng += 1
+    opx, opy, diss, dd, sfdx, sfdy = tot[0], tot[1], tot[2], tot[3], tot[4], tot[5]
+    res[0], res[1] = opx, opy
+    res[2] = diss - (dd - vpx * sfdx - vpy * sfdy) * dt
+    res[3], res[4], res[5], res[6] = nl, ng, tot[6], tot[7]
+
+
+@functools.cache
+def pad_loop(law_type, compiled: bool, parallel: bool = False):
+    """The pad-floor step of every seta as one loop, for contact laws of class ``law_type``.
+
+    Returns ``loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand,
+    attached, slip, S, ext, pad_c, rest, root, lost_idx, gone_idx, res)``: reads the batch
+    rows ``data`` (x, y, vx, vy; seta i in row ``rows[i]``), writes the forces into ``out`` and
+    the state block ``S`` (rows as :mod:`gecko_agents.state`), the detached tips into
+    ``lost_idx``/``gone_idx`` (ascending) and into ``res``: plate force (x, y), dissipation,
+    #lost, #gone, max |u|², max pad-window drift. ``c`` is a :class:`LoopConstants`, ``k`` the
+    law's constants. ``compiled``: numba (None if numba is missing) or the interpreter.
+    ``parallel``: the blocks of :data:`BLOCK` setae run on numba's threads. Setae are
+    independent within a step and every sum is taken per block, then over the blocks in
+    their order, so the result is the same bit for bit with and without threads (and, for
+    N ≤ ``BLOCK``, the same as one running sum). Built once per law and mode.
+    """
+    if getattr(law_type, "tangential", False):
+        return _tangential_loop(law_type, compiled)
+    jit = _jit(compiled)
+    if jit is None:
+        return None
+    laws = (law_type.radius_scalar, law_type.force_scalar, law_type.energy_scalar)
+    radius, force, energy = map(_jit(compiled, cache=True), laws)
+    rate = law_type.rate_dependent  # a compile-time constant of the loop
+    springs = _springs_pass(energy, rate, jit)
+    radii = _radius_pass(radius, energy, rate, jit)
+    forces = _force_pass(force, energy, jit)
+    gather = jit(_gather)
+    blocks = range
     if compiled:
-        block = numba.njit(error_model="numpy")(block)
+        import numba
 
-    def loop(
-        data,
-        rows,
-        out,
-        c,
-        k,
-        pnx,
-        pny,
-        vpx,
-        vpy,
-        vref,
-        has_ext,
-        h,
-        cand,
-        attached,
-        slip,
-        S,
-        ext,
-        pad_c,
-        rest,
-        root,
-        lost_idx,
-        gone_idx,
-        res,
-    ):
+        blocks = numba.prange
+
+    def loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand, attached, slip,
+             S, ext, pad_c, rest, root, lost_idx, gone_idx, res):  # fmt: skip
         n = S.shape[1]
         fast2, slow2 = 4.0 * vref * vref, vref * vref
         n_blocks = (n + BLOCK - 1) // BLOCK
         sums = np.zeros((max(n_blocks, 1), 10))
-        for b in blocks(n_blocks):
+        for b in blocks(n_blocks):  # the three passes over one block at a time (cache)
             b0 = b * BLOCK
-            block(
-                b0,
-                min(n, b0 + BLOCK),
-                data,
-                rows,
-                out,
-                c,
-                k,
-                pnx,
-                pny,
-                vpx,
-                vpy,
-                fast2,
-                slow2,
-                has_ext,
-                h,
-                cand,
-                attached,
-                slip,
-                S,
-                ext,
-                pad_c,
-                rest,
-                root,
-                lost_idx,
-                gone_idx,
-                sums[b],
+            b1 = min(n, b0 + BLOCK)
+            opx, opy, sfdx, sfdy, max_u2, diss, nl, ng = springs(
+                b0, b1, data, rows, c, k, pnx, pny, vpx, vpy, has_ext, h, cand, attached, S,
+                ext, rest, root, lost_idx, gone_idx,
+            )  # fmt: skip
+            diss = radii(b0, b1, c, k, attached, S, diss)
+            diss, dd, drift = forces(
+                b0, b1, rows, out, c, k, fast2, slow2, attached, slip, S, pad_c, diss
             )
-        # Block sums in block order; detached tips moved down to the front, ascending.
-        tot = sums[0].copy()
-        nl, ng = int(sums[0, 8]), int(sums[0, 9])
-        for b in range(1, n_blocks):
-            for j in range(6):
-                tot[j] += sums[b, j]
-            tot[6] = max(tot[6], sums[b, 6])
-            tot[7] = max(tot[7], sums[b, 7])
-            b0 = b * BLOCK
-            for j in range(int(sums[b, 8])):
-                lost_idx[nl] = lost_idx[b0 + j]
-                nl += 1
-            for j in range(int(sums[b, 9])):
-                gone_idx[ng] = gone_idx[b0 + j]
-                ng += 1
-        opx, opy, diss, dd, sfdx, sfdy = tot[0], tot[1], tot[2], tot[3], tot[4], tot[5]
-        res[0], res[1] = opx, opy
-        res[2] = diss - (dd - vpx * sfdx - vpy * sfdy) * c.dt
-        res[3], res[4], res[5], res[6] = nl, ng, tot[6], tot[7]
+            sb = sums[b]
+            sb[0], sb[1], sb[2], sb[3], sb[4], sb[5] = opx, opy, diss, dd, sfdx, sfdy
+            sb[6], sb[7], sb[8], sb[9] = max_u2, drift, nl, ng
+        gather(sums, n_blocks, lost_idx, gone_idx, vpx, vpy, c.dt, res)
 
     # (A closure is compiled anew in every process, ~2 s: numba cannot cache it on disk.)
-    if not compiled:
-        return loop
-    return numba.njit(error_model="numpy", parallel=parallel)(loop)
+    return _jit(compiled, parallel=parallel)(loop)
 
 
 def _tangential_loop(law_type, compiled: bool):
