@@ -524,13 +524,10 @@ class ElasticModel(Model):
         return self.strip.energy_bending + self._E_handle
 
     def spring_energies(self) -> np.ndarray:
-        """Elastic energy of every seta [pJ] at the last step's evaluation positions, plus an
-        equal share of :meth:`backing_energy` (so that their sum, which the recorder books as
-        the elastic energy, holds every spring of the model; the per-seta split of the
-        backing's energy has no meaning)."""
+        """Elastic energy of every seta [pJ] at the last step's evaluation positions (the
+        strip's and the handle's are :meth:`backing_energy`)."""
         root = np.column_stack(self._roots)
-        own = self.spring_force(self.state.xy.T, root)[1]
-        return own + self.backing_energy() / self.n
+        return self.spring_force(self.state.xy.T, root)[1]
 
     def kinetic_energy(self) -> float:
         """Kinetic energy of the tips and of the strip's links [pJ] (both in the form

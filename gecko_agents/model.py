@@ -349,6 +349,11 @@ class Model:
         root = np.asarray(self._pnext) + np.column_stack([self.world.root_dx, self.world.root_dy])
         return self.spring_force(self.state.xy.T, root)[1]
 
+    def backing_energy(self) -> float:
+        """Elastic energy of the backing [pJ]: 0 for the rigid plate (a subclass with a
+        compliant backing books its springs here)."""
+        return 0.0
+
     def contact_energies(self) -> np.ndarray:
         """Energy stored in each contact at the last step (0 for free tips) [pJ]."""
         U = np.zeros(self.n)

@@ -43,7 +43,7 @@ class Recorder:
         cumulative plate work and dissipated energy [pJ]. Returns the row."""
         s = m.state
         px, py = m.plate_position
-        el = float(np.sum(m.spring_energies()) + np.sum(m.contact_energies()))
+        el = float(np.sum(m.spring_energies()) + np.sum(m.contact_energies()) + m.backing_energy())
         ke = m.kinetic_energy()
         reaction = m.reaction
         row = {
