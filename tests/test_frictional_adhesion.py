@@ -57,3 +57,26 @@ def test_release_force_falls_as_the_pull_angle_rises_past_critical():
     """α* of this seta is ≈ 42° (scenario): pulls 60°, 90°, 120° from the shear axis."""
     forces = [_release_force(180.0 - a) for a in (60.0, 90.0, 120.0)]
     assert forces[0] > forces[1] > forces[2] > 0.0
+
+
+def test_a_film_pushed_over_its_pad_holds_at_most_its_180_degree_peel_force():
+    """Dragged +x past its lean (15 µm against a 10 µm lean), a spatula seta is pushed over its
+    pad: the film holds it back with at most Kendall's 180° force w·b/(1 − cos 180°) = w·b/2
+    (inextensible limit, an upper bound for the elastic film), so the tip slides along and the
+    seta never flips (its root stays behind the tip, on −x)."""
+    from gecko_agents.contact import contact_law
+
+    law = contact_law(SETA)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        h = Model(SETA, seed=1, record_every=1, record_setae=True).run(
+            protocol.drag_pull(0.2, 15.0, 90.0, speed=0.05), progress=False
+        )
+    px = h["plate_x_um"]
+    drag = (px > px[0] + 1e-9) & (
+        np.abs(h["plate_y_um"] - h["plate_y_um"][np.argmax(px > 0)]) < 1e-9
+    )
+    held_back = -h["force_tangential_uN"][drag]
+    assert held_back.max() <= 1.001 * law.w * law.b / 2.0
+    assert held_back.max() > 0.9 * law.w * law.b / 2.0  # the film does peel backwards
+    assert np.all(h.setae["tip_x_um"][drag, 0] > px[drag])  # root still behind the tip
