@@ -195,8 +195,7 @@ def _scaling(sizes, run_max, steps, repeats) -> list[dict]:
     return rows
 
 
-def main(argv=None) -> dict:
-    """Run the benchmark and print its table; returns the numbers."""
+def _arguments(argv):
     ap = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
     ap.add_argument(
         "--sizes", type=int, nargs="+", default=[1_000, 10_000], help="array sizes N to step"
@@ -222,86 +221,101 @@ def main(argv=None) -> dict:
     if args.quick:
         args.sizes, args.steps, args.repeats, args.qs_setae = [50, 200], 40, 2, 10**5
         args.scaling, args.run_max = [20, 200], 20
-    default = Model(PAPER_ARRAY, n_sim=max(args.sizes)).kernel
-    kernels = ["numpy"] + (["numba"] if numba_available() else [])
-    out = {
-        "sizes": args.sizes,
-        "kernels": kernels,
-        "default_kernel": default,
-        "agent": {},
-        "pymunk": {},
-        "bare": {},
-        "ratio": {},
-        "ratio_bare": {},
-    }
-    if args.qs_setae:
-        for n_blocks, split in ((2000, True), (20_000, True), (20_000, False)):
-            t_qs, pull, n_pos = quasistatic_time(args.qs_setae, n_blocks=n_blocks, split=split)
-            out.setdefault("quasistatic_s", t_qs)
-            print(
-                f"quasi-static press-and-pull of {args.qs_setae:.0e} setae, 1000 plate "
-                f"positions ({n_pos} before all let go), {n_blocks} blocks"
-                f"{' split at boundaries' if split else ' (plain means)'}, heights "
-                f"included: {t_qs:.2f} s, pull-off {pull:.7g} µN"
-            )
-    for n in args.sizes:
-        shaped, bare = pressed_model(n, detection="full"), bare_engine(n)
-        agents = {(k, "lazy"): pressed_model(n, kernel=k) for k in kernels}
-        agents[(default, "full")] = pressed_model(n, kernel=default, detection="full")
-        rp = rb = 0.0
-        ra = dict.fromkeys(agents, 0.0)
-        for _ in range(args.repeats):  # interleaved, best of each
-            rp = max(rp, pymunk_rate(shaped, args.steps))
-            rb = max(rb, pymunk_rate(bare, args.steps))
-            for key, m in agents.items():
-                ra[key] = max(ra[key], agent_rate(m, args.steps))
-        out["pymunk"][n], out["bare"][n] = rp, rb
-        print(f"N={n:>6}: pymunk with shapes  {rp:10.4g} seta-steps/s ({n / rp * 1e3:.3g} ms/step)")
+    return args
+
+
+def _quasistatic_section(n_setae: int, out: dict) -> None:
+    """The quasi-static press-and-pull of ``n_setae`` setae, three ways of blocking."""
+    for n_blocks, split in ((2000, True), (20_000, True), (20_000, False)):
+        t_qs, pull, n_pos = quasistatic_time(n_setae, n_blocks=n_blocks, split=split)
+        out.setdefault("quasistatic_s", t_qs)
         print(
-            f"          bare engine (bodies only, no shapes) {rb:10.4g} seta-steps/s "
-            f"({n / rb * 1e3:.3g} ms/step)"
+            f"quasi-static press-and-pull of {n_setae:.0e} setae, 1000 plate "
+            f"positions ({n_pos} before all let go), {n_blocks} blocks"
+            f"{' split at boundaries' if split else ' (plain means)'}, heights "
+            f"included: {t_qs:.2f} s, pull-off {pull:.7g} µN"
         )
-        for (k, det), r in ra.items():
-            print(
-                f"          agent[{k}, {det} detection] {r:10.4g} seta-steps/s "
-                f"({n / r * 1e3:.3g} ms/step)  agent/pymunk-with-shapes {r / rp:.2f}  "
-                f"agent/bare-engine {r / rb:.2f}"
-            )
-            if det == "lazy":
-                out["agent"][(n, k)] = r
-                out["ratio"][(n, k)], out["ratio_bare"][(n, k)] = r / rp, r / rb
-            else:
-                out["agent_full"] = {n: r}
-        del shaped, bare, agents
-    big = max(args.sizes)
-    # Crack kinetics (contact.crack_speed finite) against the elastic tip, same N, interleaved.
-    elastic = pressed_model(big)
-    rate = pressed_model(big, overrides={"contact.crack_speed": 1.0})
+
+
+def _engine_section(n: int, kernels, default: str, args, out: dict) -> None:
+    """Agent kernels against pymunk with shapes and against the bare engine at N = ``n``,
+    interleaved repeats, best of each."""
+    shaped, bare = pressed_model(n, detection="full"), bare_engine(n)
+    agents = {(k, "lazy"): pressed_model(n, kernel=k) for k in kernels}
+    agents[(default, "full")] = pressed_model(n, kernel=default, detection="full")
+    rp = rb = 0.0
+    ra = dict.fromkeys(agents, 0.0)
+    for _ in range(args.repeats):
+        rp = max(rp, pymunk_rate(shaped, args.steps))
+        rb = max(rb, pymunk_rate(bare, args.steps))
+        for key, m in agents.items():
+            ra[key] = max(ra[key], agent_rate(m, args.steps))
+    out["pymunk"][n], out["bare"][n] = rp, rb
+    print(f"N={n:>6}: pymunk with shapes  {rp:10.4g} seta-steps/s ({n / rp * 1e3:.3g} ms/step)")
+    print(
+        f"          bare engine (bodies only, no shapes) {rb:10.4g} seta-steps/s "
+        f"({n / rb * 1e3:.3g} ms/step)"
+    )
+    for (k, det), r in ra.items():
+        print(
+            f"          agent[{k}, {det} detection] {r:10.4g} seta-steps/s "
+            f"({n / r * 1e3:.3g} ms/step)  agent/pymunk-with-shapes {r / rp:.2f}  "
+            f"agent/bare-engine {r / rb:.2f}"
+        )
+        if det == "lazy":
+            out["agent"][(n, k)] = r
+            out["ratio"][(n, k)], out["ratio_bare"][(n, k)] = r / rp, r / rb
+        else:
+            out["agent_full"] = {n: r}
+
+
+def _crack_kinetics_section(n: int, args, out: dict) -> None:
+    """Crack kinetics (``contact.crack_speed`` finite) against the elastic tip, same N,
+    interleaved."""
+    elastic = pressed_model(n)
+    rate = pressed_model(n, overrides={"contact.crack_speed": 1.0})
     re = rr = 0.0
     for _ in range(args.repeats):
         re = max(re, agent_rate(elastic, args.steps))
         rr = max(rr, agent_rate(rate, args.steps))
     out["rate_dependent_cost"] = re / rr
-    print(f"N={big:>6}: crack-kinetics tip {rr:10.4g} seta-steps/s, elastic {re:10.4g}: "
+    print(f"N={n:>6}: crack-kinetics tip {rr:10.4g} seta-steps/s, elastic {re:10.4g}: "
           f"cost per seta-step ×{re / rr:.2f}")  # fmt: skip
-    del elastic, rate
+
+
+def _dask_section(out: dict) -> None:
+    try:
+        from .sweep_bench import benchmark_dask_scaling
+
+        d = benchmark_dask_scaling(n_points=8, work_s=0.5)
+    except ImportError as err:
+        print(f"sweep on Dask: skipped ({err})")
+        return
+    out["dask_speedup"] = d["speedup"]
+    print(
+        f"sweep on Dask, 8 CPU-bound points: 1 worker {d['t1_s']:.2f} s, 2 workers "
+        f"{d['t2_s']:.2f} s; 2-worker/1-worker throughput {d['speedup']:.2f} "
+        f"({os.cpu_count()} cores)"
+    )
+
+
+def main(argv=None) -> dict:
+    """Run the benchmark and print its table; returns the numbers."""
+    args = _arguments(argv)
+    default = Model(PAPER_ARRAY, n_sim=max(args.sizes)).kernel
+    kernels = ["numpy"] + (["numba"] if numba_available() else [])
+    out = {"sizes": args.sizes, "kernels": kernels, "default_kernel": default, "agent": {},
+           "pymunk": {}, "bare": {}, "ratio": {}, "ratio_bare": {}}  # fmt: skip
+    if args.qs_setae:
+        _quasistatic_section(args.qs_setae, out)
+    for n in args.sizes:
+        _engine_section(n, kernels, default, args, out)
+    big = max(args.sizes)
+    _crack_kinetics_section(big, args, out)
     if args.scaling:
         out["scaling"] = _scaling(args.scaling, args.run_max, args.steps, args.repeats)
     if not args.no_dask and not args.quick:
-        try:
-            from .sweep_bench import benchmark_dask_scaling
-
-            d = benchmark_dask_scaling(n_points=8, work_s=0.5)
-        except ImportError as err:
-            print(f"sweep on Dask: skipped ({err})")
-        else:
-            out["dask_speedup"] = d["speedup"]
-            print(
-                f"sweep on Dask, 8 CPU-bound points: 1 worker {d['t1_s']:.2f} s, 2 workers "
-                f"{d['t2_s']:.2f} s; 2-worker/1-worker throughput {d['speedup']:.2f} "
-                f"({os.cpu_count()} cores)"
-            )
-    big = max(args.sizes)
+        _dask_section(out)
     print(f"agent/pymunk-with-shapes ratio at N={big}: {out['ratio'][(big, default)]:.2f}")
     ratio = out["ratio_bare"][(big, default)]
     print(f"agent/bare-engine ratio at N={big}: {ratio:.2f}")
