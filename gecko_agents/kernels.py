@@ -315,6 +315,53 @@ class NumpyStep:
             return self.contact_pads_tangential()
         n = s.n
         h, x, d, cand, att = self._pad_overlaps()
+        all_att, new = self._pad_state_changes(x, h, d, cand, att)
+        n_att = n if all_att else int(np.count_nonzero(att))
+        Fdmp = s.F_damp_contact
+        if n_att == 0:
+            if self.any_contact_damping:
+                Fdmp.fill(0.0)
+                self.any_contact_damping = False
+            return
+        vx, vy = s.pv[2], s.pv[3]
+        if n_att == n:
+            ia = None
+            da, xa, vta, vna, anc = d, x, vx, vy, s.anchor[0]
+        else:
+            ia = np.flatnonzero(att)
+            da, xa, vta, vna, anc = d[ia], x[ia], vx[ia], vy[ia], s.anchor[0, ia]
+        a_old = s.a if ia is None else s.a[ia]
+        a = law.radius(da, a_old, c.dt)
+        P = law.force(a, da)
+        if law.rate_dependent:  # work of the moving edge, ∫(G − w)·2πa·|da| ≥ 0
+            was = np.ones(a.size, bool) if new is None else ~(new if ia is None else new[ia])
+            self.diss += float(np.sum((law.energy(a_old, da) - law.energy(a, da))[was]))
+        xi = xa - anc
+        xi_new, ft, dtg, sl = self._coulomb(P, xi, vta)
+        dn = vna * -c.c_n
+        if ia is None:
+            np.subtract(x, xi_new, out=s.anchor[0])
+            s.F[0] += ft
+            s.F[1] += P + dn
+            Fdmp[0], Fdmp[1] = dtg, dn
+            s.P[:], s.Ft[:], s.a[:], s.xi[:] = P, ft, a, xi_new
+            s.slip[:] = sl
+        else:
+            s.anchor[0, ia] = xa - xi_new
+            s.F[0, ia] += ft
+            s.F[1, ia] += P + dn
+            Fdmp.fill(0.0)
+            Fdmp[0, ia], Fdmp[1, ia] = dtg, dn
+            s.P[ia], s.Ft[ia], s.a[ia], s.xi[ia] = P, ft, a, xi_new
+            s.slip[ia] = sl
+        self.any_contact_damping = True
+        if new is not None:  # attachment starts the branch at U = 0: book the difference
+            self.diss -= float(np.sum(self.contact_energy(np.flatnonzero(new))))
+
+    def _pad_state_changes(self, x, h, d, cand, att):
+        """Snap-offs, lost candidates and attachments of a pad step (``att`` updated in
+        place); returns (every tip attached, the new attachments or None)."""
+        s, c, law = self.s, self.c, self.law
         all_att, all_cand = bool(att.all()), bool(cand.all())
         lo = d < c.detach
         if law.rate_dependent:  # the crack has run through
@@ -343,27 +390,14 @@ class NumpyStep:
                 s.anchor[1, new] = h[new]
             else:
                 new = None
-        n_att = n if all_att else int(np.count_nonzero(att))
-        Fdmp = s.F_damp_contact
-        if n_att == 0:
-            if self.any_contact_damping:
-                Fdmp.fill(0.0)
-                self.any_contact_damping = False
-            return
-        vx, vy = s.pv[2], s.pv[3]
-        if n_att == n:
-            ia = None
-            da, xa, vta, vna, anc = d, x, vx, vy, s.anchor[0]
-        else:
-            ia = np.flatnonzero(att)
-            da, xa, vta, vna, anc = d[ia], x[ia], vx[ia], vy[ia], s.anchor[0, ia]
-        a_old = s.a if ia is None else s.a[ia]
-        a = law.radius(da, a_old, c.dt)
-        P = law.force(a, da)
-        if law.rate_dependent:  # work of the moving edge, ∫(G − w)·2πa·|da| ≥ 0
-            was = np.ones(a.size, bool) if new is None else ~(new if ia is None else new[ia])
-            self.diss += float(np.sum((law.energy(a_old, da) - law.energy(a, da))[was]))
-        xi = xa - anc
+        return all_att, new
+
+    def _coulomb(self, P, xi, vta):
+        """Stick or slip of attached tips under normal forces ``P`` [µN] at tangential offsets
+        ``xi`` [µm] from their anchors, tangential speeds ``vta`` [µm/µs]: the friction cap
+        (the paper's μ·max(P, 0), eq 27, or μ·|P + 2Fc|), the new offsets, the tangential
+        forces, their damping and which tips slide; the slip's Coulomb work is dissipated."""
+        c = self.c
         k_t = c.k_t
         if c.paper:
             cap = np.maximum(P, 0.0)
@@ -387,25 +421,7 @@ class NumpyStep:
             xi_new = xi
             ft = trial
             ft += dtg
-        dn = vna * -c.c_n
-        if ia is None:
-            np.subtract(x, xi_new, out=s.anchor[0])
-            s.F[0] += ft
-            s.F[1] += P + dn
-            Fdmp[0], Fdmp[1] = dtg, dn
-            s.P[:], s.Ft[:], s.a[:], s.xi[:] = P, ft, a, xi_new
-            s.slip[:] = sl
-        else:
-            s.anchor[0, ia] = xa - xi_new
-            s.F[0, ia] += ft
-            s.F[1, ia] += P + dn
-            Fdmp.fill(0.0)
-            Fdmp[0, ia], Fdmp[1, ia] = dtg, dn
-            s.P[ia], s.Ft[ia], s.a[ia], s.xi[ia] = P, ft, a, xi_new
-            s.slip[ia] = sl
-        self.any_contact_damping = True
-        if new is not None:  # attachment starts the branch at U = 0: book the difference
-            self.diss -= float(np.sum(self.contact_energy(np.flatnonzero(new))))
+        return xi_new, ft, dtg, sl
 
     def contact_pads_tangential(self):
         """Pad floor, a law that takes the tip's tangential position (the spatula): per seta,
