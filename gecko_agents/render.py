@@ -46,11 +46,13 @@ from .force_plots import (
     touchdown_height,
 )
 from .history import History, load
-from .render_scene import Frame, Scene, frame_records, render_frame, window_range
+from .render_scene import MAX_FRAMES, Frame, Scene, frame_records, render_frame, window_range
 from .render_style import (
+    APPROACH_COLOUR,
     DPI,
     FIGSIZE,
     PNG_DPI,
+    RETRACT_COLOUR,
     STATE_COLOURS,
     STYLE_RC,
     annotate_points,
@@ -62,6 +64,9 @@ from .render_style import (
 __all__ = [
     "STYLE_RC",
     "STATE_COLOURS",
+    "APPROACH_COLOUR",
+    "RETRACT_COLOUR",
+    "MAX_FRAMES",
     "FIGSIZE",
     "DPI",
     "PNG_DPI",
