@@ -325,51 +325,75 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
     return _jit(compiled, parallel=parallel)(loop)
 
 
+def _film_contact(step, jit):
+    """The contact of one seta with a law that takes the tip's tangential position (the
+    spatula's ``step_scalar``): attachment, release and the film's forces, as
+    :meth:`gecko_agents.kernels.NumpyStep.contact_pads_tangential`."""
+
+    def film(i, x, y, vx, vy, d, c, k, h, cand, attached, slip, S, fast2, slow2, diss):
+        """Returns (tangential and normal contact force, their damping, dissipation so far,
+        0 or 1 lost candidate, 0 or 1 release) of seta i."""
+        fcx = fcy = dmpx = dmpy = 0.0
+        lost = gone = 0
+        new = False
+        if attached[i]:
+            if not cand[i]:
+                lost = 1
+                attached[i] = False
+                diss += S[UC, i]
+            elif d < c.detach:
+                gone = 1
+                attached[i] = False
+                diss += S[UC, i]
+        elif cand[i] and d >= 0.0:
+            attached[i] = True
+            new = True
+            S[AX, i], S[AY, i] = x, h[i]
+            S[AC, i], S[S0, i], S[P0, i], S[UC, i] = k[5], k[12], 0.0, 0.0
+        if attached[i]:
+            P, T, shift, ell, p0, s0, U, de, slid = step(
+                x - S[AX, i], y - h[i], S[AC, i], S[P0, i], S[S0, i], k
+            )
+            diss += -U if new else de
+            S[AX, i] += shift
+            S[AC, i], S[P0, i], S[S0, i], S[UC, i] = ell, p0, s0, U
+            if ell <= 0.0:  # the film has peeled off: what it stored is dissipated
+                gone = 1
+                attached[i] = False
+                diss += U
+            else:
+                dmpx, dmpy = vx * -c.c_t, vy * -c.c_n
+                fcx, fcy = T + dmpx, P + dmpy
+                S[PN, i], S[FT, i] = P, T
+                slip[i] = slid > 0.0
+                s2 = vx * vx + vy * vy
+                if s2 > fast2:
+                    if math.isnan(S[JUMP, i]):
+                        S[JUMP, i] = d
+                elif s2 < slow2:
+                    S[JUMP, i] = np.nan
+        return fcx, fcy, dmpx, dmpy, diss, lost, gone
+
+    return jit(film)
+
+
 def _tangential_loop(law_type, compiled: bool):
     """:func:`pad_loop` for a law that takes the tip's tangential position (``step_scalar``,
-    the spatula): the springs as the sphere's loop, the contact as
-    :meth:`gecko_agents.kernels.NumpyStep.contact_pads_tangential`, in the same order."""
-    step = law_type.step_scalar
-    if compiled:
-        try:
-            import numba
-        except ImportError:
-            return None
-        step = numba.njit(error_model="numpy")(step)
+    the spatula): the springs as the sphere's loop, the contact by :func:`_film_contact`, one
+    seta at a time in the order of :meth:`gecko_agents.kernels.NumpyStep.
+    contact_pads_tangential`."""
+    jit = _jit(compiled)
+    if jit is None:
+        return None
+    film = _film_contact(_jit(compiled)(law_type.step_scalar), jit)
 
-    def loop(
-        data,
-        rows,
-        out,
-        c,
-        k,
-        pnx,
-        pny,
-        vpx,
-        vpy,
-        vref,
-        has_ext,
-        h,
-        cand,
-        attached,
-        slip,
-        S,
-        ext,
-        pad_c,
-        rest,
-        root,
-        lost_idx,
-        gone_idx,
-        res,
-    ):
-        n = S.shape[1]
-        dt, R, dc, cn, ct = c.dt, c.R, c.detach, c.c_n, c.c_t
-        hm = c.hm
-        ell0 = k[5]
+    def loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand, attached, slip,
+             S, ext, pad_c, rest, root, lost_idx, gone_idx, res):  # fmt: skip
+        R, hm = c.R, c.hm
         fast2, slow2 = 4.0 * vref * vref, vref * vref
         opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0
         nl = ng = 0
-        for i in range(n):
+        for i in range(S.shape[1]):
             x, y, vx, vy, fx, fy, fdx, fdy, u2 = seta_spring(
                 i, rows[i], data, S, c, pnx, pny, vpx, vpy, rest, root
             )
@@ -386,53 +410,20 @@ def _tangential_loop(law_type, compiled: bool):
                 fy += ext[i, 1]
             d = R - (y - h[i])
             S[DELTA, i] = d
-            dmpx = dmpy = 0.0
-            new = False
+            fcx, fcy, dmpx, dmpy, diss, lost, gone = film(
+                i, x, y, vx, vy, d, c, k, h, cand, attached, slip, S, fast2, slow2, diss
+            )
+            if lost:
+                lost_idx[nl] = i
+                nl += 1
+            if gone:
+                gone_idx[ng] = i
+                ng += 1
             if attached[i]:
-                if not cand[i]:
-                    lost_idx[nl] = i
-                    nl += 1
-                    attached[i] = False
-                    diss += S[UC, i]
-                elif d < dc:
-                    gone_idx[ng] = i
-                    ng += 1
-                    attached[i] = False
-                    diss += S[UC, i]
-            elif cand[i] and d >= 0.0:
-                attached[i] = True
-                new = True
-                S[AX, i], S[AY, i] = x, h[i]
-                S[AC, i], S[S0, i], S[P0, i], S[UC, i] = ell0, k[12], 0.0, 0.0
-            if attached[i]:
-                P, T, shift, ell, p0, s0, U, de, slid = step(
-                    x - S[AX, i], y - h[i], S[AC, i], S[P0, i], S[S0, i], k
-                )
-                diss += -U if new else de
-                S[AX, i] += shift
-                S[AC, i], S[P0, i], S[S0, i], S[UC, i] = ell, p0, s0, U
-                if ell <= 0.0:  # the film has peeled off: what it stored is dissipated
-                    gone_idx[ng] = i
-                    ng += 1
-                    attached[i] = False
-                    diss += U
-                else:
-                    dtg = vx * -ct
-                    dn = vy * -cn
-                    fx += T + dtg
-                    fy += P + dn
-                    dmpx, dmpy = dtg, dn
-                    S[PN, i], S[FT, i] = P, T
-                    slip[i] = slid > 0.0
-                    s2 = vx * vx + vy * vy
-                    if s2 > fast2:
-                        if math.isnan(S[JUMP, i]):
-                            S[JUMP, i] = d
-                    elif s2 < slow2:
-                        S[JUMP, i] = np.nan
+                fx += fcx
+                fy += fcy
             S[FX, i], S[FY, i], S[DMPX, i], S[DMPY, i] = fx, fy, dmpx, dmpy
-            r = rows[i]
-            out[r, 0], out[r, 1] = fx, fy
+            out[rows[i], 0], out[rows[i], 1] = fx, fy
             vmx = fx * hm + vx
             vmy = fy * hm + vy
             dd += (fdx + dmpx) * vmx + (fdy + dmpy) * vmy
@@ -440,10 +431,10 @@ def _tangential_loop(law_type, compiled: bool):
             if dr > drift:
                 drift = dr
         res[0], res[1] = opx, opy
-        res[2] = diss - (dd - vpx * sfdx - vpy * sfdy) * dt
+        res[2] = diss - (dd - vpx * sfdx - vpy * sfdy) * c.dt
         res[3], res[4], res[5], res[6] = nl, ng, max_u2, drift
 
-    return numba.njit(error_model="numpy")(loop) if compiled else loop
+    return jit(loop)
 
 
 def numba_available() -> bool:
