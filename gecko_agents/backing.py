@@ -51,12 +51,16 @@ them within the history invariant's tolerance (:func:`gecko_agents.history.energ
 measured 0.2–0.3 % of the run's energy in ``tests/test_backing.py``). The dampers' dissipation
 is computed from the damping forces and moments this module applies (pymunk's
 ``DampedRotarySpring`` damps inside the constraint solver, where it cannot be read).
+
+Size limit: pymunk's Gauss–Seidel pivot solver does not hold chains longer than
+:data:`MAX_SOLVED_LINKS` links (the pivots open and their error correction feeds energy in), so
+longer strips are refused: at the default λ/4 spacing that is ≤ 548 stubby 5 µm setae or
+≤ 1 485 of the paper's 20 µm setae.
 """
 
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 import pymunk
@@ -71,14 +75,19 @@ __all__ = [
     "peel",
     "OMEGA_DT",
     "MIN_LINKS",
+    "MAX_SOLVED_LINKS",
     "SWEEPS_PER_LINK",
 ]
 
 MIN_LINKS = 4
 """Fewest links of a default chain (a strip shorter than λ bends little, but still bends)."""
 
-MAX_SOLVED_LINKS = 200
-"""Longest chain whose pivots the solver holds at SWEEPS_PER_LINK (165 links verified)."""
+MAX_SOLVED_LINKS = 225
+"""Longest chain the model builds: pymunk's pivot solver holds it at SWEEPS_PER_LINK (default
+strip under 490–730 stubby 5 µm setae, flat floor, uniform press 0.3 µm and pull at 0.05 µm/µs
+through the default handle: 202 links pull off at 1.003 N·Fc with the energy balance closed to
+0.30 %, 225 links at 1.003 N·Fc and 0.51 %; 251 links at 0.786 N·Fc, balance off by 88 %; 300
+links at 0.833 N·Fc, 92 %). Longer chains are refused, not warned about."""
 
 SWEEPS_PER_LINK = 4
 """pymunk solver iterations per link of the chain (at least 60)."""
@@ -323,13 +332,7 @@ class ElasticModel(Model):
         n_links = max(1, math.ceil(length / spacing - 1e-9))
         ell = length / n_links
         if n_links > MAX_SOLVED_LINKS:
-            warnings.warn(
-                f"the elastic strip has {n_links} links: pymunk's pivot solver does not "
-                f"converge on chains much longer than {MAX_SOLVED_LINKS} links at any affordable "
-                "iteration count (411 links at 4 sweeps per link: energy balance off by 93 %); "
-                "check the history's energy balance (gecko_agents.history.energy_balance_error)",
-                stacklevel=3,
-            )
+            raise ValueError(self._too_long(n_links, spacing, 0.25 * lam, length, pitch))
         rho_A = bk.density * pitch * bk.t_b
         alpha = math.radians(bk.misalignment_deg)
         if alpha:
@@ -387,6 +390,30 @@ class ElasticModel(Model):
         self.setae_force = (0.0, 0.0)
         self._n_adv = 0
         self._roots = (np.zeros(self.n), np.zeros(self.n))
+
+    def _too_long(self, n_links, spacing, max_spacing, length, pitch) -> str:
+        """Why a chain of ``n_links`` links cannot be built, naming the fields that set it."""
+        bk = self.params.backing
+        what = (
+            f"Backing.spacing = {bk.spacing:.4g} µm"
+            if bk.spacing
+            else f"the default spacing λ/4 = {spacing:.4g} µm"
+        )
+        fix = f"simulate ≤ {int(MAX_SOLVED_LINKS * spacing / pitch)} setae at this spacing"
+        if length / MAX_SOLVED_LINKS <= max_spacing:  # a coarser chain still resolves λ
+            fix += (
+                f", or set Backing.spacing ≥ {length / MAX_SOLVED_LINKS:.4g} µm (at most "
+                f"λ/4 = {max_spacing:.4g} µm)"
+            )
+        else:
+            fix += ", or stiffen the strip (Backing.E_b or t_b: a longer bending length λ)"
+        return (
+            f"the elastic strip under {self.n} setae (array.count = {self.params.array.count}, "
+            f"length {length:.4g} µm) with {what} has {n_links} links, more than "
+            f"MAX_SOLVED_LINKS = {MAX_SOLVED_LINKS}: pymunk's pivot solver does not hold longer "
+            "chains at any affordable iteration count (251 links: pull-off 0.79 N·Fc for 1.00, "
+            f"energy balance off by 88 %); {fix}, or use Backing.kind = 'rigid'"
+        )
 
     def _lift(self, lift, alpha):
         """A misaligned start: raise the handle by ``lift`` [µm] (the strip's lowest edge

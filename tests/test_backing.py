@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import history, protocol
-from gecko_agents.backing import ElasticModel, Strip
+from gecko_agents.backing import MAX_SOLVED_LINKS, ElasticModel, Strip
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY, Backing
 
@@ -128,6 +128,21 @@ def test_bad_backing_values_refused_naming_the_field(field, value):
 def test_chain_too_coarse_refused():
     p = STUBBY.replace(**{"backing.kind": "elastic", "backing.spacing": 40.0})
     with pytest.raises(ValueError, match="Backing.spacing"):
+        ElasticModel(p)
+
+
+@pytest.mark.parametrize("count, links", [(450, 225), (452, 226)])
+def test_chain_longer_than_the_solver_holds_refused(count, links):
+    """A strip of more than MAX_SOLVED_LINKS links is refused before any step, naming the
+    fields that set its length; one of MAX_SOLVED_LINKS links is built. Links = count·pitch /
+    spacing (4 µm pitch, 8 µm links: 2 setae per link)."""
+    p = STUBBY.replace(**{"array.count": count, "backing.kind": "elastic",
+                          "backing.spacing": 8.0})  # fmt: skip
+    assert p.array.pitch == 4.0 and MAX_SOLVED_LINKS == 225
+    if links <= MAX_SOLVED_LINKS:
+        assert ElasticModel(p).strip.n == links
+        return
+    with pytest.raises(ValueError, match=r"array.count = 452.*226 links.*Backing.spacing ≥ 8.0"):
         ElasticModel(p)
 
 
