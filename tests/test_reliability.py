@@ -162,7 +162,7 @@ def test_sweep_command_stops_cleanly_on_sigterm(tmp_path):
             """
         )
     )
-    argv = [sys.executable, "-m", "gecko_agents.sweep", str(spec), "--out", "out"]
+    argv = [sys.executable, "-m", "gecko_agents", "sweep", str(spec), "--out", "out"]
     proc, kids = _start_sweep(tmp_path, [*argv, "--workers", "2", "--no-progress"])
     try:
         os.kill(proc.pid, signal.SIGTERM)
@@ -228,12 +228,12 @@ def test_scenario_out_must_be_a_writable_folder(tmp_path, out):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["FILE"]  # nothing written
 
 
-# Defect 8: python -m gecko_agents.sweep --help ----------------------------------------------------
+# Defect 8: python -m gecko_agents sweep --help ----------------------------------------------------
 
 
 def test_sweep_module_help_prints_usage():
     res = subprocess.run(
-        [sys.executable, "-m", "gecko_agents.sweep", "--help"],
+        [sys.executable, "-m", "gecko_agents", "sweep", "--help"],
         capture_output=True,
         text=True,
         timeout=60,
