@@ -17,7 +17,7 @@ import warnings
 from dataclasses import dataclass
 from typing import Protocol
 
-from .params import _check
+from .param_checks import check as _check
 
 __all__ = [
     "Segment",
