@@ -17,9 +17,9 @@ peel, which hides any direction dependence; the scenario also runs a nearly bond
 
 The anisotropy map (full runs, or ``--map`` with ``--quick`` for a small one) repeats the 90°
 pull over drag distances of 0.25–2 × the seta's lean L cos θ, both ways, for θ = 55°, 60°, 75°:
-the gripping/releasing pull-off ratio, the peel angle φ at release (the angle of the release
-force from the shear axis, which for a film under tension is its peel angle; for a gripping
-drag it is α* read from that one pull) and the seta's lean after the drag (> 90°: flipped over
+the gripping/releasing pull-off ratio, the peel angle φ at the pull-off (the angle of the force
+from the shear axis, which for a film under tension is its peel angle; for a gripping drag it
+is α* read from that one pull) and the seta's lean after the drag (> 90°: flipped over
 its tip). Nothing is tuned: it maps the model.
 
 Outputs (``renders/frictional_adhesion/``): ``sweep.csv``, ``frictional_adhesion.png``
@@ -106,6 +106,16 @@ def lean_after_drag(h, drag: float) -> float:
     return math.degrees(math.atan2(py[k] - ty, tx - (px[k] + root_dx)))
 
 
+def pull_off_forces(h, drag: float) -> tuple[float, float]:
+    """(adhesion, shear) [µN] at the step of the largest adhesion of the pull phase (the
+    pull-off; a pushed-over seta's largest force can be a compression)."""
+    px = h["plate_x_um"]
+    k0 = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0])
+    normal, shear = -h["force_normal_uN"][k0:], h["force_tangential_uN"][k0:]
+    k = int(np.argmax(normal))
+    return float(max(0.0, normal[k])), float(shear[k])
+
+
 def map_point(tip: str, mu: float, theta: float, factor: float, sign: int) -> dict:
     """One 90° pull after a drag of ``sign``·``factor`` × the lean L cos θ (−1 gripping)."""
     lean = BASE.seta.L * math.cos(math.radians(theta))
@@ -115,12 +125,12 @@ def map_point(tip: str, mu: float, theta: float, factor: float, sign: int) -> di
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         h = Model(params, seed=1, record_setae=True, record_every=1).run(prot, progress=False)
-    adhesion, shear, pull_off = release_forces(h, drag)
+    adhesion, shear = pull_off_forces(h, drag)
     return {"tip": tip, "mu": mu, "theta_deg": theta, "drag_over_lean": factor,
             "direction": "gripping" if sign < 0 else "releasing", "drag_um": drag,
-            "lean_after_drag_deg": lean_after_drag(h, drag), "pull_off_uN": pull_off,
-            "adhesion_at_release_uN": adhesion, "shear_at_release_uN": shear,
-            "peel_angle_at_release_deg": math.degrees(math.atan2(adhesion, shear))}  # fmt: skip
+            "lean_after_drag_deg": lean_after_drag(h, drag), "pull_off_uN": adhesion,
+            "shear_at_pull_off_uN": shear,
+            "peel_angle_at_pull_off_deg": math.degrees(math.atan2(adhesion, shear))}  # fmt: skip
 
 
 def anisotropy_map(mcfg: dict) -> list[dict]:
@@ -165,7 +175,7 @@ def draw_map(rows: list[dict], mcfg: dict, out) -> None:
                 for way, mk in (("gripping", "o"), ("releasing", "^")):
                     d = [r for r in sel if r["direction"] == way]
                     ax_phi.plot([r["drag_over_lean"] for r in d],
-                                [r["peel_angle_at_release_deg"] for r in d], mk + ls, color=c,
+                                [r["peel_angle_at_pull_off_deg"] for r in d], mk + ls, color=c,
                                 label=f"{lab}, {way}")  # fmt: skip
         ax_r.axhline(2.0, color="0.6", lw=0.8)
         ax_r.set_xlabel("drag / lean (L cos θ)")
@@ -173,8 +183,8 @@ def draw_map(rows: list[dict], mcfg: dict, out) -> None:
         ax_r.set_title("anisotropy of the 90° pull-off")
         ax_phi.axhline(90.0, color="0.6", lw=0.8)
         ax_phi.set_xlabel("drag / lean (L cos θ)")
-        ax_phi.set_ylabel("force angle at release φ [deg] (> 90°: over the pad)")
-        ax_phi.set_title("peel angle at release (o gripping, ^ releasing)")
+        ax_phi.set_ylabel("force angle at pull-off φ [deg] (> 90°: over the pad)")
+        ax_phi.set_title("peel angle at pull-off (o gripping, ^ releasing)")
         for ax in (ax_r, ax_phi):
             render.apply_style(ax)
         ax_r.legend(fontsize=6)
@@ -290,10 +300,10 @@ def map_section(rows: list[dict]) -> list[str]:
         "### Anisotropy map: drag distance and seta angle",
         "",
         f"90° pull after a drag of {head} × the seta's lean L cos θ, gripping (−x) and "
-        "releasing (+x); ratio = gripping / releasing pull-off; φ = angle of the release force "
-        "from the gripping shear axis (the film's peel angle; for gripping drags α* read from "
-        "that one pull); lean = the seta's angle from the floor after the drag (θ at rest, "
-        "> 90° flipped over its tip, < 0° folded flat).",
+        "releasing (+x); ratio = gripping / releasing pull-off; φ = angle of the force at the "
+        "pull-off from the gripping shear axis (the film's peel angle; for gripping drags α* "
+        "read from that one pull); lean = the seta's angle from the floor after the drag (θ at "
+        "rest, > 90° flipped over its tip, < 0° folded flat).",
         "",
         f"| tip, μ | θ | ratio ({head}) | φ gripping [°] | φ releasing [°] | lean after the "
         "gripping drag [°] | lean after the releasing drag [°] |",
@@ -315,8 +325,8 @@ def map_section(rows: list[dict]) -> list[str]:
         lean = f"{seq(g, 'lean_after_drag_deg', '.0f')} | {seq(r_, 'lean_after_drag_deg', '.0f')}"
         lines.append(
             f"| {tip}, {mu:g} | {theta:g}° | {seq(g, 'gripping_over_releasing', '.2f')} | "
-            f"{seq(g, 'peel_angle_at_release_deg', '.0f')} | "
-            f"{seq(r_, 'peel_angle_at_release_deg', '.0f')} | {lean} |"
+            f"{seq(g, 'peel_angle_at_pull_off_deg', '.0f')} | "
+            f"{seq(r_, 'peel_angle_at_pull_off_deg', '.0f')} | {lean} |"
         )
     ratios = [
         r["gripping_over_releasing"] for r in rows if math.isfinite(r["gripping_over_releasing"])
@@ -330,12 +340,16 @@ def map_section(rows: list[dict]) -> list[str]:
         "whatever the shear, so its ratio stays 1. A spatula's film holds a push over its pad "
         "only up to w·b/2, its 180° peel force, and re-attaches under the pressed tip: its "
         "seta never flips, the releasing pull-off is that of a fresh pad at the preloaded lean "
-        "(it varies with where the last re-attachment left the pad), and the ratio comes only "
-        "from the gripping side, where the drag flattens the seta (smaller φ) until the pad "
-        "slides at its friction cap. Below the map, at θ = 30°, 45° and 50°, the spatula seta "
-        "folds flat under the preload already (the pressing shear pushes its tip over its pad, "
-        "which resists only w·b/2, and the flattening seta runs away), so the protocol has no "
-        "meaning there. Autumn et al. (2000)'s large gripping/releasing "
+        "(it varies with where the last re-attachment left the pad), and the ratio comes from "
+        "the gripping side, where the drag flattens the seta (smaller φ) until the pad slides "
+        "at its friction cap. Only at θ = 75° (little pressing shear) does a releasing drag of "
+        "1.5–2 × the lean flip the spatula seta, and even then the film, pulled over its pad, "
+        "peels backwards and lets the tip slide under the root until the pull is vertical: it "
+        "lets go at φ ≈ 90°, Kendall's w·b, never near w·b/2. Below the map, at θ = 30°, 45° "
+        "and 50°, the spatula seta folds flat under the preload already (the pressing shear "
+        "pushes its tip over its pad, which resists only w·b/2, and the flattening seta runs "
+        "away), so the protocol has no meaning there. Autumn et al. (2000)'s large "
+        "gripping/releasing "
         "contrast for a seta dragged against its curvature needs a tip that resists the push "
         "(the tip body's own friction under compression, which this film law lacks) and a "
         "release that sees the force direction (which the JKR sphere lacks).",
