@@ -185,23 +185,7 @@ class Model:
         self.damping = damping
         self.record_setae = record_setae
         self.law = law = contact_law(params)
-        s = params.seta
-        self.L, self.theta = s.L, s.theta
-        self.axis = np.array([math.cos(self.theta), -math.sin(self.theta)])
-        self.Ka, self.Kp = params.axial_stiffness, params.bending_stiffness
-        self.K = beam.stiffness_matrix(self.Ka, self.Kp, self.theta)
-        self.k_phi = self.Kp * self.L**2
-        self.mass = seta_mass(params)
-        self.k_t = law.tangential_stiffness
-        self.Fc = law.pull_off_force
-        # Slowest period of a free seta (normal mode, eq 20): the force servo averages over it.
-        self.settle_time = 2 * math.pi * math.sqrt(self.mass / params.Ky)
-        self.c_seta = 2 * damping.seta * math.sqrt(params.Ky * self.mass)
-        self.c_n = 2 * damping.normal * math.sqrt(law.zero_load_stiffness * self.mass)
-        self.c_t = 2 * damping.tangential * math.sqrt(self.k_t * self.mass)
-        # Stiffest spring a tip can meet: seta (Ka) + contact at 5 Fc of compression + stick.
-        self.k_max = self.Ka + law.stiffest(5 * params.contact.pull_off_force) + self.k_t
-        self.omega_max = math.sqrt(self.k_max / self.mass)
+        self._set_mechanics(params, law, damping)
         self.dt = self._time_step(dt)
         if verbose:
             print(
@@ -239,6 +223,27 @@ class Model:
         self.reaction = (0.0, 0.0)
         self._work_step = 0.0
         self.reset_state_arrays()
+
+    def _set_mechanics(self, params, law, damping) -> None:
+        """The seta's stiffnesses (eq 16–21), mass, damping coefficients and the stiffest
+        spring a tip can meet, which sets the time step."""
+        s = params.seta
+        self.L, self.theta = s.L, s.theta
+        self.axis = np.array([math.cos(self.theta), -math.sin(self.theta)])
+        self.Ka, self.Kp = params.axial_stiffness, params.bending_stiffness
+        self.K = beam.stiffness_matrix(self.Ka, self.Kp, self.theta)
+        self.k_phi = self.Kp * self.L**2
+        self.mass = seta_mass(params)
+        self.k_t = law.tangential_stiffness
+        self.Fc = law.pull_off_force
+        # Slowest period of a free seta (normal mode, eq 20): the force servo averages over it.
+        self.settle_time = 2 * math.pi * math.sqrt(self.mass / params.Ky)
+        self.c_seta = 2 * damping.seta * math.sqrt(params.Ky * self.mass)
+        self.c_n = 2 * damping.normal * math.sqrt(law.zero_load_stiffness * self.mass)
+        self.c_t = 2 * damping.tangential * math.sqrt(self.k_t * self.mass)
+        # Stiffest spring a tip can meet: seta (Ka) + contact at 5 Fc of compression + stick.
+        self.k_max = self.Ka + law.stiffest(5 * params.contact.pull_off_force) + self.k_t
+        self.omega_max = math.sqrt(self.k_max / self.mass)
 
     def _loop_constants(self) -> LoopConstants:
         p, K = self.params, self.K
