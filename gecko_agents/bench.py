@@ -124,14 +124,15 @@ def pymunk_rate(m: Model, steps: int) -> float:
     return m.n * steps / (time.perf_counter() - t)
 
 
-def press_pull_run(n: int) -> tuple[float, int]:
+def press_pull_run(n: int, progress: bool = False) -> tuple[float, int]:
     """Wall time [s] and steps of a full press-pull of ``n`` setae: the paper's array with rod
-    setae on a σ = 0.5 µm pad floor, ``protocol.press_pull(1.0)``, seed 1, no progress bar."""
+    setae on a σ = 0.5 µm pad floor, ``protocol.press_pull(1.0)``, seed 1 (``progress``: show
+    the run's progress bar)."""
     p = PAPER_ARRAY.replace(**{"floor.sigma": 0.5, "mechanics": "rod"})
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         m = Model(p, n_sim=int(n), seed=1)
-        h = m.run(protocol.press_pull(1.0), progress=False)
+        h = m.run(protocol.press_pull(1.0), progress=progress)
     return h.meta["wall_time_s"], h.meta["n_steps"]
 
 
@@ -181,7 +182,7 @@ def _scaling(sizes, run_max, steps, repeats) -> list[dict]:
         ms = min(n / agent_rate(m, steps) * 1e3 for _ in range(repeats))
         del m
         if n <= run_max or run_steps is None:
-            wall, run_steps = press_pull_run(n)
+            wall, run_steps = press_pull_run(n, progress=n >= 50_000)
             how = "run"
         else:
             wall, how = run_steps * ms * 1e-3, "extrapolated"
