@@ -151,6 +151,14 @@ def _worker_init(parent_pid: int) -> None:
     whole process group, and the sweep's process decides how to stop them.
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # The sweep's processes already share the cores: a model's loop threads would only
+    # compete with the other workers (gecko_agents.loop.PARALLEL_MIN_SETAE).
+    try:
+        import numba
+
+        numba.set_num_threads(1)
+    except ImportError:
+        pass
     if sys.platform.startswith("linux"):
         try:
             import ctypes
