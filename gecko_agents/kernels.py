@@ -428,9 +428,11 @@ class NumpyStep:
         the law's ``step_scalar`` at the tip's offset from its front and height above its pad,
         in the order of :func:`gecko_agents.loop.pad_loop` (which compiles the same loop).
 
-        Attachment at δ ≥ 0 puts the front under the tip (ℓ = ℓ0, s0 = h, no pre-tension); a tip
-        lets go when its film has peeled off (ℓ = 0), past δ_detach or without a candidate
-        floor, and its stored energy is dissipated. Contact damping acts on attached tips."""
+        Attachment at δ ≥ 0 puts the front and the tip body's stick anchor (``xi``, relative
+        to the front) under the tip (ℓ = ℓ0, s0 = h, no pre-tension, ξ = 0); a tip lets go
+        when its film has peeled off (ℓ = 0), past δ_detach or without a candidate floor, and
+        its stored energy (the stick spring's included) is dissipated. Contact damping acts
+        on attached tips."""
         s, c, law = self.s, self.c, self.law
         h, x, d, cand, att = self._pad_overlaps()
         lost = np.flatnonzero(att & ~cand)
@@ -442,6 +444,7 @@ class NumpyStep:
             att |= new
             s.anchor[0, new], s.anchor[1, new] = x[new], h[new]
             s.a[new], s.s0[new], s.p0[new], s.uc[new] = law.ell0, law.s_attach, 0.0, 0.0
+            s.xi[new] = 0.0  # the tip body's stick anchor, under the tip with the front
         Fdmp = s.F_damp_contact
         Fdmp.fill(0.0)
         self.any_contact_damping = True
@@ -449,13 +452,13 @@ class NumpyStep:
         step = law.step_scalar
         peeled = []
         for i in np.flatnonzero(att):
-            P, T, shift, ell, p0, s0, U, diss, slid = step(
-                x[i] - s.anchor[0, i], s.xy[1, i] - h[i], s.a[i], s.p0[i], s.s0[i], k
+            P, T, shift, ell, p0, s0, xa, U, diss, slid = step(
+                x[i] - s.anchor[0, i], s.xy[1, i] - h[i], s.a[i], s.p0[i], s.s0[i], s.xi[i], k
             )
             # Attachment starts the contact at U = 0: book the energy it starts with.
             self.diss += -U if new[i] else diss
             s.anchor[0, i] += shift
-            s.a[i], s.p0[i], s.s0[i], s.uc[i] = ell, p0, s0, U
+            s.a[i], s.p0[i], s.s0[i], s.xi[i], s.uc[i] = ell, p0, s0, xa, U
             if ell <= 0.0:
                 peeled.append(i)
                 continue

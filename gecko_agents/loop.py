@@ -327,7 +327,8 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
 
 def _film_contact(step, jit):
     """The contact of one seta with a law that takes the tip's tangential position (the
-    spatula's ``step_scalar``): attachment, release and the film's forces, as
+    spatula's ``step_scalar``): attachment, release, the film's forces and the tip body's
+    friction (its stick anchor in ``S[XI]``, relative to the front), as
     :meth:`gecko_agents.kernels.NumpyStep.contact_pads_tangential`."""
 
     def film(i, x, y, vx, vy, d, c, k, h, cand, attached, slip, S, fast2, slow2, diss):
@@ -350,13 +351,14 @@ def _film_contact(step, jit):
             new = True
             S[AX, i], S[AY, i] = x, h[i]
             S[AC, i], S[S0, i], S[P0, i], S[UC, i] = k[5], k[12], 0.0, 0.0
+            S[XI, i] = 0.0  # the tip body's stick anchor, under the tip with the front
         if attached[i]:
-            P, T, shift, ell, p0, s0, U, de, slid = step(
-                x - S[AX, i], y - h[i], S[AC, i], S[P0, i], S[S0, i], k
+            P, T, shift, ell, p0, s0, xa, U, de, slid = step(
+                x - S[AX, i], y - h[i], S[AC, i], S[P0, i], S[S0, i], S[XI, i], k
             )
             diss += -U if new else de
             S[AX, i] += shift
-            S[AC, i], S[P0, i], S[S0, i], S[UC, i] = ell, p0, s0, U
+            S[AC, i], S[P0, i], S[S0, i], S[XI, i], S[UC, i] = ell, p0, s0, xa, U
             if ell <= 0.0:  # the film has peeled off: what it stored is dissipated
                 gone = 1
                 attached[i] = False

@@ -10,6 +10,7 @@ import pytest
 from gecko_agents import protocol
 from gecko_agents.contact import contact_law
 from gecko_agents.contact.spatula import _film_force
+from gecko_agents.history import STATE_SLIP, STATE_STICK
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 
@@ -36,7 +37,7 @@ def peel_at_fixed_angle(law, phi, ds):
         s += ds
         dx, zf = -s * math.cos(phi), s * math.sin(phi)
         x = xf + dx
-        out = law.step_scalar(dx, zf + law.R, ell, p0, s0, k)
+        out = law.step_scalar(dx, zf + law.R, ell, p0, s0, dx, k)  # tip body not pressed
         _, _, shift, ell, p0, s0 = out[:6]
         if ell <= 0.0:
             return F
@@ -108,14 +109,14 @@ def test_pretension_is_kept_and_capped():
     R, s0, ell = law.R, 1.5, law.ell0
     k[9] = 1.0  # μ = 1: a cap of 2Fc ≈ 1 µN, above P0
     # Slack film (tip over the front): the locked pre-tension stays.
-    out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, k)
+    out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, 0.0, k)
     assert out[4] == pytest.approx(0.3)
     # A cap of μ·2Fc·ℓ/ℓ0 below P0: the pre-tension falls to the cap.
     k[9] = 0.05
     cap = 0.05 * 2.0 * law.pull_off_force
-    out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, k)
+    out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, 0.0, k)
     assert out[4] == pytest.approx(cap)
-    assert out[7] >= 0.0  # the contraction dissipates
+    assert out[8] >= 0.0  # the contraction dissipates
 
 
 @pytest.mark.parametrize("field", ["b", "h", "E_f", "length"])
@@ -153,3 +154,87 @@ def test_kernels_agree_and_drag_direction_matters():
     np.testing.assert_allclose(h1["force_normal_uN"], h2["force_normal_uN"], atol=1e-9)
     assert along == pytest.approx(along_np, rel=1e-9)
     assert along > 1.2 * against
+
+
+def hertz_compression(law, delta):
+    """Hertz (1882; Johnson, Contact Mechanics, 1985, eq 4.22): P = (4/3)E*√R·δ^(3/2) [µN]."""
+    return 4.0 / 3.0 * law.E_star * math.sqrt(law.R) * delta**1.5
+
+
+def test_pressed_tip_sticks_then_slides_at_its_coulomb_cap_plus_the_film():
+    """A tip pressed δ = 0.05 µm into the floor and driven along −x at constant speed from
+    where it attached: its body sticks on Mindlin's spring, T = k_t·|x|, up to μ·P_c; then
+    slides at T = μ·P_c while the film is slack (|x| < s0 = h), and at μ·P_c + K(|x| − s0)/s0
+    once the film, flat behind the tip (φ = 0, no peel below F²/2K = w·b), pulls it back. A
+    bonded pad far longer than ℓ0 never slides. The drive's work is stored or dissipated."""
+    law = contact_law(BONDED)
+    k = law.constants.copy()
+    mu, kt, s_attach, K = 10.0, law.tip_stiffness, law.s_attach, law.K
+    k[9] = mu
+    delta = 0.05
+    cap = mu * hertz_compression(law, delta)
+    assert cap / kt < 0.5 * s_attach  # it slides before the film is taut
+    ell, p0, s0, xa, xf = 1e3 * law.ell0, 0.0, s_attach, 0.0, 0.0
+    dx_step = 1e-3
+    work = dissipated = T_prev = 0.0
+    stored0 = law.step_scalar(0.0, law.R - delta, ell, p0, s0, xa, k)[7]  # on attachment
+    for j in range(1, 1401):
+        x = -j * dx_step
+        P, T, shift, ell, p0, s0, xa, U, de, slid = law.step_scalar(
+            x - xf, law.R - delta, ell, p0, s0, xa, k
+        )
+        xf += shift
+        work += 0.5 * (T + T_prev) * dx_step  # the drive pushes −x against T (> 0)
+        T_prev, stored, dissipated = T, U, dissipated + de
+        assert P == pytest.approx(hertz_compression(law, delta), rel=1e-12)
+        film = K * max(-x - s_attach, 0.0) / s_attach
+        if kt * -x <= cap * (1 - 1e-9):
+            assert T == pytest.approx(kt * -x, rel=1e-9) and slid == 0.0
+        else:
+            assert T == pytest.approx(cap + film, rel=1e-9, abs=1e-12) and slid == 1.0
+    assert shift == 0.0 and ell == 1e3 * law.ell0  # the pad held and did not peel
+    assert film > 0.3 * cap  # the drive went well into the taut film
+    assert work == pytest.approx(stored - stored0 + dissipated, rel=1e-3)
+
+
+def test_tip_friction_counted_once():
+    """The pad's cap holds only its adhesion, μ·2Fc·ℓ/ℓ0, whatever the tip's compression
+    (which the tip body's own friction carries), and none with the paper's law (eq 27)."""
+    from gecko_agents.contact.spatula import _friction_cap
+
+    law = contact_law(SPATULA)
+    k = law.constants.copy()
+    for z in (law.R - 0.2, law.R + 1.0):
+        assert _friction_cap(z, 0.5 * law.ell0, k) == pytest.approx(0.2 * 2.0 * law.w * law.b * 0.5)
+    k[10] = 1.0
+    assert _friction_cap(law.R - 0.2, law.ell0, k) == 0.0
+
+
+@pytest.mark.parametrize("kernel", ["python", "numba"])
+def test_kernels_agree_on_a_pressed_drag(kernel):
+    """Spatula setae pressed hard and dragged both ways (tip bodies stick, slide and pads peel),
+    then pulled off: the per-seta loop (compiled or interpreted) gives the numpy path's
+    history to rounding."""
+    from gecko_agents.model import numba_available
+
+    if kernel == "numba" and not numba_available():
+        pytest.skip("numba is not installed (optional extra 'fast')")
+    p = SPATULA.replace(**{"array.count": 3, "friction.mu": 1.0})
+    prot = [
+        *protocol.drag_pull(0.4, 6.0, 60.0, speed=0.05)[:-1],
+        protocol.Move(dx=-10.0, speed=0.05),
+        protocol.drag_pull(0.4, 6.0, 60.0, speed=0.05)[-1],
+    ]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ref = Model(p, kernel="numpy", record_setae=True).run(prot, progress=False)
+        h = Model(p, kernel=kernel, record_setae=True).run(prot, progress=False)
+    assert len(h) == len(ref)
+    for col in ref.scalars:
+        scale = np.abs(ref[col]).max() + 1e-300
+        assert np.abs(ref[col] - h[col]).max() <= 1e-9 * scale, col
+    for key in ref.setae:
+        a, b = (np.nan_to_num(np.asarray(x.setae[key], dtype=float)) for x in (ref, h))
+        assert np.abs(a - b).max() <= 1e-9 * (np.abs(a).max() + 1e-300), key
+    state = np.asarray(ref.setae["state"])
+    assert (state == STATE_STICK).any() and (state == STATE_SLIP).any()

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from .. import jkr
-from .base import ContactLaw
+from .base import ContactLaw, mindlin_stiffness
 
 __all__ = ["SpatulaTip"]
 
@@ -61,17 +61,38 @@ def _release_rate(dx, zf, p0, s0, k):
 
 
 @_njit(cache=True)
+def _hertz_compression(z, k):
+    """Hertz compression P_c = (4/3)E*√R·δ^(3/2) [µN] of the tip body at height z [µm] of its
+    centre above the floor, δ = R − z > 0 (Hertz 1882; Johnson, Contact Mechanics, 1985, eq
+    4.22); 0 while the body does not touch."""
+    d = k[0] - z
+    return k[7] * d * math.sqrt(d) if d > 0.0 else 0.0
+
+
+@_njit(cache=True)
 def _friction_cap(z, ell, k):
-    """Friction cap of the attached pad [µN]: ``adhesive`` μ(P_c + 2Fc·ℓ/ℓ0) (Thornton's
-    μ|P + 2Fc| with the adhesion of what is still attached) or ``paper`` μ·P_c (eq 27). P_c ≥ 0
-    is the compression of the tip body: the film's pull acts at the peel front (Kendall's
-    picture), the pad behind the front carries no normal load but its adhesion."""
-    R, ell0, hz_f, mu, paper, Fc = k[0], k[5], k[7], k[9], k[10], k[11]
-    d = R - z
-    Pc = hz_f * d * math.sqrt(d) if d > 0.0 else 0.0
+    """Friction cap of the attached pad [µN]: ``adhesive`` μ·2Fc·ℓ/ℓ0, the adhesion part of
+    Thornton's μ|P + 2Fc| for what is still attached (Fc = w·b), or ``paper`` 0 (eq 27's
+    μ·max(P, 0) with no load on the pad). The pad carries no normal load: the film's pull acts
+    at the peel front (Kendall's picture) and the Hertz compression P_c on the tip body, whose
+    own friction μ·P_c is :func:`_tip_stick`'s (counted once, there)."""
+    ell0, mu, paper, Fc = k[5], k[9], k[10], k[11]
     if paper > 0.0:
-        return mu * Pc
-    return mu * (Pc + 2.0 * Fc * ell / ell0)
+        return 0.0
+    return mu * 2.0 * Fc * ell / ell0
+
+
+@_njit(cache=True)
+def _tip_stick(xi, cap, kt):
+    """Coulomb stick/slip of the pressed tip body (return mapping, as the sphere's, kernels
+    module docstring): trial stick offset ξ [µm] from its anchor on a spring k_t [µN/µm]
+    (Mindlin 1949), cap μ·P_c [µN] (Amontons–Coulomb on the compressive Hertz load). Returns
+    (ξ_new, tangential force −k_t·ξ_new on the tip [µN], Coulomb work cap·|ξ − ξ_new| of the
+    slip [pJ], 1.0 if it slid while pressed else 0.0)."""
+    if abs(xi * kt) > cap:
+        xin = math.copysign(cap / kt, xi)
+        return xin, -kt * xin, cap * abs(xi - xin), (1.0 if cap > 0.0 else 0.0)
+    return xi, -kt * xi, 0.0, 0.0
 
 
 @_njit(cache=True)
@@ -181,23 +202,24 @@ class SpatulaTip(ContactLaw):
     while taut (0 while slack). The peel angle φ between the free film and the floor away from
     the pad is cos φ = −dx/s, dx = x_tip − x_front: a tip pulled back over −x peels at small φ,
     a tip pushed over its pad at φ > 90°. On attachment (δ ≥ 0) the front sits under the tip,
-    ℓ = ℓ0, s0 = h (the film turns under the tip body within its thickness), no pre-tension:
-    the film then holds the pressed tip tangentially with stiffness E_f·b (K/s0).
+    ℓ = ℓ0, s0 = h (the film turns under the tip body within its thickness), no pre-tension,
+    and so does the tip body's stick anchor (ξ = 0): the film (E_f·b = K/s0 once taut) and the
+    body's stick spring k_t then hold the pressed tip tangentially.
 
     Every step, at the tip's position (a quasi-static front: the energy balance holds at the
     end of each step):
 
     1. **Slide** (:func:`_slide`). The film pulls the front along the floor with H = F·|dx|/s
-       against the pad's friction cap: adhesive μ(P_c + 2Fc·ℓ/ℓ0) — friction acts on what is
-       still attached, at zero and tensile load too (Thornton's μ|P + 2Fc| with P_c ≥ 0 the tip
-       body's compression: the film's pull acts at the front, the pad behind it carries only
-       its adhesion; Fc = w·b), an adhesion-controlled friction τ_eff·b·ℓ with
-       τ_eff = 2μw/ℓ0 — or paper: μ·P_c (eq 27), none in tension. With
-       ``spatula.interface = "sliding"`` (default) a pull away from the pad stretches the
-       attached film (partial slip) until its tension at the front, the pre-tension P0,
-       balances H; friction keeps P0 when the pull falls. Past the cap the whole pad slides.
-       ``"bonded"`` (Kendall's film): no stretch, P0 = 0, the pad slides as a whole past the
-       cap.
+       against the pad's friction cap: adhesive μ·2Fc·ℓ/ℓ0 — friction acts on what is still
+       attached, at zero and tensile load too (the adhesion part of Thornton's μ|P + 2Fc|,
+       Fc = w·b: the film's pull acts at the front and the compression on the tip body, so the
+       pad behind the front carries only its adhesion), an adhesion-controlled friction
+       τ_eff·b·ℓ with τ_eff = 2μw/ℓ0 — or paper: none (eq 27's μ·max(P, 0), the pad carrying
+       no load). With ``spatula.interface = "sliding"`` (default) a pull away from the pad
+       stretches the attached film (partial slip) until its tension at the front, the
+       pre-tension P0, balances H; friction keeps P0 when the pull falls. Past the cap the
+       whole pad slides. ``"bonded"`` (Kendall's film): no stretch, P0 = 0, the pad slides as
+       a whole past the cap.
     2. **Peel.** The front advances by dc (ℓ −= dc, s0 += dc/(1 + ε0): the pre-strained
        attached film enters the free film) to where the energy release rate per width
        g = [−F cos φ + (F + F²/2K)/(1 + ε0) + P0²/(2K)]/b equals w; if it still exceeds w at
@@ -205,12 +227,22 @@ class SpatulaTip(ContactLaw):
        (F/b)(1 − cos φ) + (F/b)²/(2E_f·h) = w (eq 4 per width); to second order in the strains
        it is Chen, Wu & Gao's G = P(1 − cos φ) + (P − P0)²/(2E_f·h) (per width).
     3. **Forces.** On the tip: −F·(dx, z)/s from the film plus the Hertz compression
-       (4/3)E*√R·δ^(3/2) of the tip body while δ = R − z > 0 (pressing).
+       P_c = (4/3)E*√R·δ^(3/2) of the tip body while δ = R − z > 0 (pressing).
+    4. **Tip friction** (:func:`_tip_stick`). The pressed tip body holds tangentially by its
+       own Coulomb friction, capped at μ·P_c (Amontons–Coulomb on the compressive part of the
+       normal load, both friction laws), on a stick spring k_t = 8G*·a (Mindlin 1949, at the
+       radius of :class:`~gecko_agents.contact.HertzSphere`'s reference) from its anchor
+       (state ``xi``, relative to the front): the return mapping of the sphere's stick/slip.
+       It acts beside the film's force, as the compression acts beside the film's pull. The
+       friction of a spatula contact is thus split by where each load acts: the pad against
+       its adhesion, the tip body against its compression; neither is counted twice (together
+       they are the former single cap μ(P_c + 2Fc·ℓ/ℓ0)).
 
-    Stored energy U = ½K(s − s0)²/s0 + ℓP0²/(2K) + w·b(ℓ0 − ℓ) + (8/15)E*√R·δ^(5/2) [pJ] from
-    attachment (K = E_f·h·b); a step's slide and peel dissipate U_before − U_after ≥ 0 at the
-    tip's position (Coulomb work, and the release rate in excess of w), a release dissipates
-    what is left.
+    Stored energy U = ½K(s − s0)²/s0 + ℓP0²/(2K) + w·b(ℓ0 − ℓ) + (8/15)E*√R·δ^(5/2) + ½k_t·ξ²
+    [pJ] from attachment (K = E_f·h·b); a step's slide and peel dissipate the film's
+    U_before − U_after ≥ 0 at the tip's position (Coulomb work, and the release rate in excess
+    of w), the tip body's slip its Coulomb work μ·P_c·|Δξ| (as the sphere's); a release
+    dissipates what is left.
 
     Parameters
     ----------
@@ -236,12 +268,19 @@ class SpatulaTip(ContactLaw):
         self.detach_overlap = -3.0 * (ell0 + R)
         self.jump_radius = ell0
         self.a0 = ell0
-        # The film's stiffness on attachment, K/h = E_f·b: the stiffest it gets (s0 ≥ h).
+        # The tip body's stick spring: Mindlin's at the radius a Hertz contact of these
+        # materials has under the JKR pull-off force, as HertzSphere's (a Hertz contact has no
+        # zero-load radius). It sets how far the pressed body creeps before it slides
+        # (μ·P_c/k_t), not the force at which it slides.
+        a_ref = float(jkr.hertz_contact_radius(jkr.pull_off_force(R, w), R, E))
+        self.tip_stiffness = mindlin_stiffness(contact, a_ref)
+        # The film's stiffness on attachment, K/h = E_f·b, the stiffest it gets (s0 ≥ h), in
+        # parallel with the tip body's stick spring: the stiffest tangential spring of a tip.
         self.s_attach = h
-        self.tangential_stiffness = self.K / h
+        self.tangential_stiffness = self.K / h + self.tip_stiffness
         self.zero_load_stiffness = self.K / h
         # k = (R, b, h, E_f, w, ℓ0, K, (4/3)E*√R, (8/15)E*√R, μ, paper, Fc, s0 on attachment,
-        # bonded interface)
+        # bonded interface, the tip body's stick stiffness k_t)
         self.constants = np.array(
             [
                 R,
@@ -258,6 +297,7 @@ class SpatulaTip(ContactLaw):
                 self.pull_off_force,
                 h,
                 1.0 if getattr(spatula, "interface", "sliding") == "bonded" else 0.0,
+                self.tip_stiffness,
             ]
         )
 
@@ -275,14 +315,17 @@ class SpatulaTip(ContactLaw):
         raise NotImplementedError("SpatulaTip stores its energy in the state (state.uc)")
 
     @staticmethod
-    def step_scalar(dx, z, ell, p0, s0, k):
+    def step_scalar(dx, z, ell, p0, s0, xa, k):
         """One step of the film at the tip's offset dx = x_tip − x_front and height z = y_tip −
-        floor [µm] from state (ℓ, P0, s0). Returns (P, T, shift, ℓ, P0, s0, U, dissipation,
-        slid): normal force P [µN] (> 0 compressive), tangential force on the tip T [µN]
-        (along +x), front displacement along +x [µm], the new state, the stored energy U [pJ],
-        U_before − U_after [pJ] and whether the pad slid (1.0) or not (0.0)."""
-        R, K, hz_f = k[0], k[6], k[7]
+        floor [µm] from state (ℓ, P0, s0, xa), xa the tip body's stick anchor − x_front [µm]
+        (the stick offset is ξ = dx − xa). Returns (P, T, shift, ℓ, P0, s0, xa, U,
+        dissipation, slid): normal force P [µN] (> 0 compressive), tangential force on the tip
+        T [µN] (along +x: the film's and the tip body's friction), front displacement along +x
+        [µm], the new state, the stored energy U [pJ], the energy dissipated [pJ] and whether
+        the pad or the pressed tip body slid (1.0) or not (0.0)."""
+        R, K, mu, kt = k[0], k[6], k[9], k[14]
         zf = z - R if z > R else 0.0  # height of the film's end (the tip body's bottom)
+        xi = dx - xa  # the tip body's trial stick offset
         U0 = _film_energy(dx, z, ell, p0, s0, k)
         # 1. Slide: pre-tension by partial slip, then the whole pad while the cap is exceeded.
         dx, shift, p0, slid = _slide(dx, zf, z, ell, p0, s0, k)
@@ -307,13 +350,20 @@ class SpatulaTip(ContactLaw):
             ell -= dc
             if ell < 1e-9 * k[5]:
                 ell = 0.0
-        # 3. Forces on the tip and the energy left.
+        # 3. The film's forces on the tip and the tip body's compression.
         F, s = _film_force(dx, zf, s0, K)
-        d = R - z
-        P = hz_f * d * math.sqrt(d) if d > 0.0 else 0.0
+        Pc = _hertz_compression(z, k)
+        P = Pc
         T = 0.0
         if s > 0.0:
             P -= F * zf / s
             T = -F * dx / s
+        # 4. The pressed tip body's own friction, capped at μ·P_c.
+        xi, Tb, coulomb, body_slid = _tip_stick(xi, mu * Pc, kt)
+        T += Tb
+        if body_slid > 0.0:
+            slid = 1.0
         U = _film_energy(dx, z, ell, p0, s0, k)
-        return P, T, shift, ell, p0, s0, U, U0 - U, slid
+        de = U0 - U + coulomb
+        U += 0.5 * kt * xi * xi
+        return P, T, shift, ell, p0, s0, dx - xi, U, de, slid
