@@ -55,7 +55,7 @@ def _release_force(beta):
 
 
 def test_release_force_falls_as_the_pull_angle_rises_past_critical():
-    """α* of this seta is ≈ 42° (scenario): pulls 60°, 90°, 120° from the shear axis."""
+    """α* of this seta is ≈ 40° (scenario, full run): pulls 60°, 90°, 120° from the shear axis."""
     forces = [_release_force(180.0 - a) for a in (60.0, 90.0, 120.0)]
     assert forces[0] > forces[1] > forces[2] > 0.0
 
