@@ -67,7 +67,9 @@ class SetaState:
       [µm];
     * film tips (:class:`gecko_agents.contact.SpatulaTip`): ``anchor`` is the peel front,
       ``a`` the attached length ℓ [µm], ``s0`` the free film's unstretched length [µm], ``p0``
-      the pre-tension of the attached film [µN], ``uc`` the energy the contact stores [pJ].
+      the pre-tension of the attached film [µN], ``uc`` the energy the contact stores [pJ],
+      ``xi`` the tip body's stick anchor relative to the front [µm] (its Coulomb friction on
+      the Hertz compression; the stick offset is the tip's offset from the front minus it).
 
     Flags (bool (N,)): ``attached``, ``slip`` (attached and sliding), ``candidate`` (pymunk
     reports the tip's sensor touching its floor), ``candidate_step`` (the copy a step used).
