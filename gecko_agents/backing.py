@@ -478,16 +478,8 @@ class ElasticModel(Model):
         Fdx, Fdy = s.F_damp_seta
         dfx, dfy = np.bincount(link, Fdx, nl), np.bincount(link, Fdy, nl)
         dtq = np.bincount(link, ox * Fdy - oy * Fdx, nl)
-        # Handle spring: k·(handle point − link point) + c·(v_handle − v_point).
-        hl, hs = self._h_link, self._h_s
-        qx, qy, qvx, qvy, qox, qoy = st.points(data, hl, hs, dt)
-        ex, ey = hx + self._h_dx - qx, hy + self._h_dy - qy
-        self._E_handle = 0.5 * self._k_h * float(ex @ ex + ey @ ey)
-        Fcx, Fcy = self._c_h * (vpx - qvx), self._c_h * (vpy - qvy)
-        Fhx, Fhy = self._k_h * ex + Fcx, self._k_h * ey + Fcy
-        np.add.at(fx, hl, Fhx)
-        np.add.at(fy, hl, Fhy)
-        np.add.at(tq, hl, qox * Fhy - qoy * Fhx)
+        hl = self._h_link
+        Fhx, Fhy, Fcx, Fcy, qox, qoy = self._handle_forces(data, hx, hy, vpx, vpy, fx, fy, tq)
         self.setae_force = (float(fsx.sum()), float(fsy.sum()))
         if w.pads:
             w.recentre_pads(s.xy[0])
@@ -515,6 +507,21 @@ class ElasticModel(Model):
         self._n_adv += 1
         if self._n_adv % self.record_every == 0 or self._n_adv == 1:
             self._note()
+
+    def _handle_forces(self, data, hx, hy, vpx, vpy, fx, fy, tq):
+        """The handle spring k·(handle point − link point) + c·(v_handle − v_point) on the
+        links it holds, added to the links' forces ``fx``, ``fy`` and torques ``tq``; books its
+        energy ½k_h·|Δ|². Returns its force, its damper's share and the lever arms."""
+        hl = self._h_link
+        qx, qy, qvx, qvy, qox, qoy = self.strip.points(data, hl, self._h_s, self.dt)
+        ex, ey = hx + self._h_dx - qx, hy + self._h_dy - qy
+        self._E_handle = 0.5 * self._k_h * float(ex @ ex + ey @ ey)
+        Fcx, Fcy = self._c_h * (vpx - qvx), self._c_h * (vpy - qvy)
+        Fhx, Fhy = self._k_h * ex + Fcx, self._k_h * ey + Fcy
+        np.add.at(fx, hl, Fhx)
+        np.add.at(fy, hl, Fhy)
+        np.add.at(tq, hl, qox * Fhy - qoy * Fhx)
+        return Fhx, Fhy, Fcx, Fcy, qox, qoy
 
     def _note(self):
         r = self._rec
