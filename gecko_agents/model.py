@@ -27,33 +27,27 @@ and tips are moved rigidly up to where the first sensor would reach the floor.
 
 from __future__ import annotations
 
-import dataclasses
 import math
-import time
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 
 from . import beam
-from .contact import bounds as tip_bounds
 from .contact import contact_law
-from .diagnostics import check_cost, diagnose, non_finite_report
 from .dynamics import DEFAULT_DAMPING, Damping, seta_mass, tangential_stiffness
 from .floor import Profile
-from .history import History, versions
+from .history import History
 from .kernels import LoopConstants, NumpyStep
 from .model_setup import (
     KERNELS,
     checked_arguments,
     choose_kernel,
     detection_mode,
-    floor_statistics,
     numba_available,
 )
 from .params import SetaArray, check_seed
-from .protocol import DEFAULT_SPEED, Segment
-from .recorder import Recorder
+from .protocol import DEFAULT_SPEED
+from .runner import SimulationUnstable, run_protocol
 from .state import SetaState
 from .world import World
 
@@ -81,25 +75,6 @@ def register_backing(kind: str):
         return cls
 
     return register
-
-
-class SimulationUnstable(RuntimeError):
-    """The run blew up (non-finite state or runaway kinetic energy)."""
-
-
-@dataclass
-class _Run:
-    """Running totals of one :meth:`Model.run`: plate work and dissipation [pJ], steps, the
-    free travel skipped [µm], and the run's settings."""
-
-    recorder: Recorder
-    ke_bound: float | None
-    max_steps: int
-    fast_approach: bool
-    work: float = 0.0
-    dissipated: float = 0.0
-    skipped: float = 0.0
-    n_steps: int = 0
 
 
 class Model:
@@ -548,86 +523,7 @@ class Model:
             free seta's motion does not depend on where it is, so the history is the same but
             for the skipped rows; the travel skipped is ``meta["skipped_travel_um"]``.
         """
-        from tqdm.auto import tqdm
-
-        segments = list(protocol)
-        if not segments:
-            raise ValueError("protocol is empty: give at least one segment")
-        for seg in segments:
-            if not isinstance(seg, Segment):
-                raise TypeError(f"unknown protocol segment {seg!r}")
-        self.reset_state_arrays()
-        run = _Run(Recorder(self.record_setae), ke_bound, max_steps, fast_approach)
-        est = sum(seg.estimated_duration(self) for seg in segments)
-        check_cost(self.n, est, self.dt)  # refuse or warn before stepping when absurd
-        # Whole microseconds of simulated time; the total is an estimate and may be exceeded.
-        desc = f"gecko_agents (dt = {self.dt:.3g} µs)"
-        bar = tqdm(total=max(int(est), 1), unit="µs", disable=not progress, desc=desc,
-                   mininterval=0.5)  # fmt: skip
-        t_wall = time.perf_counter()
-        try:
-            for seg in segments:
-                self._run_segment(seg, run, bar)
-        finally:
-            bar.close()
-        run.recorder.record(self, run.work, run.dissipated)
-        meta = {
-            "dt_us": self.dt, "n_steps": run.n_steps, "record_every": self.record_every,
-            "n_sim": self.n, "scale_to_array": self.params.array.count / self.n,
-            "protocol": [f"{seg!r}" for seg in segments], "contact_path": self.contact_path,
-            "kernel": self.kernel, "loop_threads": self.loop_threads,
-            "detection": self.world.detection,
-            "tip_law": self.law.name, "tip_bounds": tip_bounds(self.law),
-            "energy_complete": self.energy_complete,
-            "floor_statistics": floor_statistics(self.world.profile, self.params.floor),
-            "skipped_travel_um": run.skipped,
-            "damping": dataclasses.asdict(self.damping), "mass_ng": self.mass,
-            "tangential_stiffness_uN_per_um": self.k_t,
-            "wall_time_s": time.perf_counter() - t_wall, "versions": versions(),
-        }  # fmt: skip
-        w = self.world
-        geometry = {"root_dx_um": w.root_dx, "root_dy_um": w.root_dy,
-                    "floor_x_um": w.profile.x, "floor_y_um": w.profile.y}  # fmt: skip
-        history = run.recorder.history(self.params, self.seed, geometry, meta)
-        history.meta["validity"] = diagnose(self, history, segments)
-        return history
-
-    def _run_segment(self, seg: Segment, run: _Run, bar) -> None:
-        """Step through one protocol segment, recording every ``record_every`` steps."""
-        state = {"start": self.plate_position, "t0": self.time}
-        may_skip = run.fast_approach and seg.skips_free_travel
-        every, rec = self.record_every, run.recorder
-        e_scale = self.n * max(self.Fc, 1e-300) * abs(self.law.detach_overlap)
-        while (vp := seg.velocity(self, state)) is not None:
-            if may_skip and run.n_steps % every == 0 and not self.state.attached.any():
-                run.skipped += self._skip_free_travel(seg, state, vp)
-            self._advance(vp[0], vp[1])
-            run.work += self._work_step
-            run.dissipated += self.physics.diss
-            if self.physics.events:
-                releases = self._releases(self.physics.events)
-                rec.note_detachments(self.time, self.plate_position, releases)
-            run.n_steps += 1
-            if run.n_steps % every == 0 or run.n_steps == 1:
-                row = rec.record(self, run.work, run.dissipated)
-                bound = run.ke_bound
-                if bound is None:
-                    bound = 100 * (e_scale + abs(run.work))
-                self._check_stable(row, bound)
-                bar.update(int(self.time) - bar.n)
-            if run.n_steps >= run.max_steps:
-                raise RuntimeError(f"max_steps = {run.max_steps} reached in segment {seg}")
-
-    def _releases(self, events):
-        """(seta, overlap, release overlap, force) of the tips that let go: the release overlap
-        is where the tip started to run away (its overlap at the step if it never did)."""
-        jump = self.state.jump
-        out = []
-        for i, d, force in events:
-            j = jump[i]
-            out.append((i, d, d if np.isnan(j) else float(j), force))
-            jump[i] = np.nan
-        return out
+        return run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
 
     def _skip_free_travel(self, seg, state, vp) -> float:
         """Move plate and tips rigidly along ``vp`` while nothing can touch
@@ -639,14 +535,3 @@ class Model:
         travel = self.world.skip_free_travel(vp, omega, self.dt, target)
         self.time += travel / math.hypot(*vp) if travel else 0.0
         return travel
-
-    def _check_stable(self, row, bound):
-        if not all(math.isfinite(v) for v in row.values()):
-            raise SimulationUnstable(non_finite_report(self, row))
-        if row["energy_kinetic_pJ"] > bound:
-            raise SimulationUnstable(
-                f"kinetic energy {row['energy_kinetic_pJ']:.3g} pJ exceeded {bound:.3g} pJ at "
-                f"t = {self.time:.4g} µs: the integration is unstable (reduce dt = "
-                f"{self.dt:.3g} µs) or the plate moves too fast for the setae to follow "
-                "(lower the protocol speed)"
-            )
