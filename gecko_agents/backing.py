@@ -52,10 +52,9 @@ measured 0.2–0.3 % of the run's energy in ``tests/test_backing.py``). The damp
 is computed from the damping forces and moments this module applies (pymunk's
 ``DampedRotarySpring`` damps inside the constraint solver, where it cannot be read).
 
-Size limit: pymunk's Gauss–Seidel pivot solver does not hold chains longer than
-:data:`MAX_SOLVED_LINKS` links (the pivots open and their error correction feeds energy in), so
-longer strips are refused: at the default λ/4 spacing that is ≤ 548 stubby 5 µm setae or
-≤ 1 485 of the paper's 20 µm setae.
+Pivots: the links' ends are held together by pivot forces solved directly each step, one
+banded solve, O(n) in the links (:mod:`gecko_agents.backing_pivots`; Baraff 1996), so any
+length of strip can be built; pymunk integrates the links, its space has no constraints.
 """
 
 from __future__ import annotations
@@ -64,14 +63,7 @@ import math
 
 import numpy as np
 
-from .backing_strip import (
-    MAX_SOLVED_LINKS,
-    MIN_LINKS,
-    OMEGA_DT,
-    SWEEPS_PER_LINK,
-    Strip,
-    bending_length,
-)
+from .backing_strip import MIN_LINKS, OMEGA_DT, Strip, bending_length
 from .model import Model, register_backing
 
 __all__ = [
@@ -81,8 +73,6 @@ __all__ = [
     "peel",
     "OMEGA_DT",
     "MIN_LINKS",
-    "MAX_SOLVED_LINKS",
-    "SWEEPS_PER_LINK",
 ]
 
 
@@ -122,19 +112,12 @@ class ElasticModel(Model):
             )
         n_links = max(1, math.ceil(length / spacing - 1e-9))
         ell = length / n_links
-        if n_links > MAX_SOLVED_LINKS:
-            raise ValueError(self._too_long(n_links, spacing, 0.25 * lam, length, pitch))
         rho_A = bk.density * pitch * bk.t_b
         alpha = math.radians(bk.misalignment_deg)
         if alpha:
             self._lift(0.5 * length * abs(math.sin(alpha)), alpha)
-        # The pivots are solved by Gauss–Seidel sweeps, which carry a load about one link per
-        # sweep: too few sweeps for the chain leave the pivots open and their error correction
-        # feeds energy in (165 links at 60 sweeps: pull-off 0.46 N·Fc for 1.00, the energy
-        # balance off by 100 %; at 4 sweeps per link: 1.00, 0.3 %).
         strip = Strip(-0.5 * length, ell, n_links, w.plate.position.y, EI, rho_A,
-                      bk.damping_ratio, iterations=max(60, SWEEPS_PER_LINK * n_links),
-                      angle=alpha)  # fmt: skip
+                      bk.damping_ratio, angle=alpha)  # fmt: skip
         # Handle spring: k_h/n per link (uniform) or k_h on the +x end (peel).
         if bk.drive == "uniform":
             self._h_link = np.arange(n_links)
@@ -181,30 +164,6 @@ class ElasticModel(Model):
         self.setae_force = (0.0, 0.0)
         self._n_adv = 0
         self._roots = (np.zeros(self.n), np.zeros(self.n))
-
-    def _too_long(self, n_links, spacing, max_spacing, length, pitch) -> str:
-        """Why a chain of ``n_links`` links cannot be built, naming the fields that set it."""
-        bk = self.params.backing
-        what = (
-            f"Backing.spacing = {bk.spacing:.4g} µm"
-            if bk.spacing
-            else f"the default spacing λ/4 = {spacing:.4g} µm"
-        )
-        fix = f"simulate ≤ {int(MAX_SOLVED_LINKS * spacing / pitch)} setae at this spacing"
-        if length / MAX_SOLVED_LINKS <= max_spacing:  # a coarser chain still resolves λ
-            fix += (
-                f", or set Backing.spacing ≥ {length / MAX_SOLVED_LINKS:.4g} µm (at most "
-                f"λ/4 = {max_spacing:.4g} µm)"
-            )
-        else:
-            fix += ", or stiffen the strip (Backing.E_b or t_b: a longer bending length λ)"
-        return (
-            f"the elastic strip under {self.n} setae (array.count = {self.params.array.count}, "
-            f"length {length:.4g} µm) with {what} has {n_links} links, more than "
-            f"MAX_SOLVED_LINKS = {MAX_SOLVED_LINKS}: pymunk's pivot solver does not hold longer "
-            "chains at any affordable iteration count (251 links: pull-off 0.79 N·Fc for 1.00, "
-            f"energy balance off by 88 %); {fix}, or use Backing.kind = 'rigid'"
-        )
 
     def _lift(self, lift, alpha):
         """A misaligned start: raise the handle by ``lift`` [µm] (the strip's lowest edge

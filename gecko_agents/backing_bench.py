@@ -3,10 +3,9 @@ set-up of :func:`gecko_agents.bench.pressed_model` with ``backing.kind = "elasti
 
 The issue's target: an elastic backing costs at most 2× the rigid plate per seta-step at
 N = 10 000 (``backing_rate(n, steps)`` beside :func:`gecko_agents.bench.agent_rate` of
-:func:`gecko_agents.bench.pressed_model`). Out of reach of this design: the chain's pivots need
-a solver sweep count that grows with the links (cost ∝ links²), and the model refuses strips of
-more than :data:`gecko_agents.backing.MAX_SOLVED_LINKS` links, so N = 10 000 (1 516 links of
-the default strip) raises ValueError; measure at N ≤ 1 485.
+:func:`gecko_agents.bench.pressed_model`; N = 10 000 is a strip of 1 516 links). The chain's
+pivots are solved directly, O(links) per step (:mod:`gecko_agents.backing_pivots`), so the
+strip adds a cost per step proportional to its links, not to their square.
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """The elastic strip of a compliant backing: a chain of rigid links in its own pymunk space,
-bent by joint springs and dampers this module applies (:class:`Strip`), and the bending length
-that sets how fine the chain must be.
+held together by pivot forces solved directly (:mod:`gecko_agents.backing_pivots`) and bent by
+joint springs and dampers this module applies (:class:`Strip`), and the bending length that
+sets how fine the chain must be.
 
 The bar-chain discretisation of the Euler–Bernoulli beam and its time-step and size limits are
 described in :mod:`gecko_agents.backing`, which builds the strip under the setae. Units: µm,
@@ -15,28 +16,13 @@ import numpy as np
 import pymunk
 import pymunk.batch as pb
 
-__all__ = [
-    "Strip",
-    "bending_length",
-    "OMEGA_DT",
-    "MIN_LINKS",
-    "MAX_SOLVED_LINKS",
-    "SWEEPS_PER_LINK",
-]
+from .backing_pivots import ChainPivots
+
+__all__ = ["Strip", "bending_length", "OMEGA_DT", "MIN_LINKS"]
 
 
 MIN_LINKS = 4
 """Fewest links of a default chain (a strip shorter than λ bends little, but still bends)."""
-
-MAX_SOLVED_LINKS = 225
-"""Longest chain the model builds: pymunk's pivot solver holds it at SWEEPS_PER_LINK (default
-strip under 490–730 stubby 5 µm setae, flat floor, uniform press 0.3 µm and pull at 0.05 µm/µs
-through the default handle: 202 links pull off at 1.003 N·Fc with the energy balance closed to
-0.30 %, 225 links at 1.003 N·Fc and 0.51 %; 251 links at 0.786 N·Fc, balance off by 88 %; 300
-links at 0.833 N·Fc, 92 %). Longer chains are refused, not warned about."""
-
-SWEEPS_PER_LINK = 4
-"""pymunk solver iterations per link of the chain (at least 60)."""
 
 OMEGA_DT = 0.5
 """ω·dt of the chain's stiffest mode after mass scaling (semi-implicit Euler is stable < 2)."""
@@ -58,15 +44,17 @@ def bending_length(EI: float, k_f: float) -> float:
 
 
 class Strip:
-    """A chain of ``n_links`` rigid links in its own pymunk space, bent by rotary springs and
-    dampers that this class applies itself (so that it can book their energy).
+    """A chain of ``n_links`` rigid links in its own pymunk space, held together at their ends
+    by pivot forces and bent by rotary springs and dampers, all of which this class applies
+    itself (the pivots solved directly, :class:`gecko_agents.backing_pivots.ChainPivots`; the
+    joints so that it can book their energy). pymunk integrates the links; its space has no
+    constraints.
 
     Parameters
     ----------
     x0 : abscissa of the left end [µm]. ell : link length [µm]. n_links : number of links.
     y0 : height of the strip's centre line [µm]. EI : bending stiffness [µN·µm²].
     rho_A : mass per length [ng/µm]. zeta : damping ratio of the rotary springs [-].
-    iterations : pymunk solver iterations (the pivots of a long chain need many).
     angle : the straight strip is turned by this angle [rad] about its centre (x0 + n·ℓ/2, y0),
         counter-clockwise (a misaligned backing); the joints' rest angles stay 0.
 
@@ -87,16 +75,18 @@ class Strip:
     * :attr:`rows`: the links' (x, y, φ, vx, vy, ω) after the step (those before it in
       :attr:`rows_before`).
 
-    The pivots' impulses are not booked: they do no work as long as the pivots hold.
+    The pivot forces are not booked: they do no work as long as the pivots hold (their gap,
+    :attr:`gap_max` [µm] at the positions each step reaches, stays at the one-step curvature
+    term, see :mod:`gecko_agents.backing_pivots`).
     """
 
-    def __init__(self, x0, ell, n_links, y0, EI, rho_A, zeta=0.3, iterations=60, angle=0.0):
+    def __init__(self, x0, ell, n_links, y0, EI, rho_A, zeta=0.3, angle=0.0):
         if n_links < 1:
             raise ValueError(f"n_links = {n_links!r} must be ≥ 1")
         self.ell, self.n, self.EI, self.rho_A = float(ell), int(n_links), float(EI), float(rho_A)
         self.space = space = pymunk.Space()
         space.gravity = (0.0, 0.0)
-        space.iterations = iterations
+        space.iterations = 1  # no constraints in the space: the pivots are solved here
         self.m = m = rho_A * ell
         self.I_link = inertia = m * ell * ell / 12.0
         self.k_rot = EI / ell  # [pJ/rad]
@@ -111,10 +101,7 @@ class Strip:
             b.angle = self.angle
             space.add(b)
             self.links.append(b)
-        for j in range(self.n - 1):
-            a, b = self.links[j], self.links[j + 1]
-            node = self._placed(x0 + (j + 1) * ell, x0, y0)
-            space.add(pymunk.PivotJoint(a, b, node))
+        self.pivots = ChainPivots(self.n, ell)
         self.x0, self.y0 = float(x0), float(y0)
         ids = np.array([b.id for b in self.links], dtype=np.uintp)
         self._id_sorted, self._id_to_link = np.sort(ids), np.argsort(ids)
@@ -139,8 +126,7 @@ class Strip:
     def clamp_left(self):
         """Clamp the left end to the static body: a pivot and the half-link rotary spring
         2EI/ℓ with damping 2c (the cantilever of the module docstring)."""
-        end = self._placed(self.x0, self.x0, self.y0)
-        self.space.add(pymunk.PivotJoint(self.space.static_body, self.links[0], end))
+        self.pivots.clamp(self._placed(self.x0, self.x0, self.y0))
         self.k_clamp = 2.0 * self.k_rot
         self.rows = self.read()
 
@@ -162,8 +148,7 @@ class Strip:
         pb.get_space_bodies(self.space, _READ, buf)
         ids = np.frombuffer(buf.int_buf(), dtype=np.uintp)
         if self._ids is None or not np.array_equal(ids, self._ids):
-            # Chipmunk's body order is internal (and a clamp adds the static body): map rows
-            # to links through the body ids.
+            # Chipmunk's body order is internal: map rows to links through the body ids.
             where = np.minimum(np.searchsorted(self._id_sorted, ids), self.n - 1)
             rows = np.flatnonzero(self._id_sorted[where] == ids)
             order = np.empty(self.n, dtype=np.int64)
@@ -197,13 +182,23 @@ class Strip:
     def step(self, dt, fx=0.0, fy=0.0, torque=0.0) -> np.ndarray:
         """One step of ``dt`` [µs] under external forces ``fx``, ``fy`` [µN] and torques
         ``torque`` [pJ] on the links (link order, evaluated at the positions the step
-        reaches) besides the joints' own; returns :attr:`rows` after the step."""
+        reaches) besides the joints' own and the pivots'; returns :attr:`rows` after it."""
         d = self.rows
+        n = self.n
+        fx = np.broadcast_to(np.asarray(fx, dtype=float), n)
+        fy = np.broadcast_to(np.asarray(fy, dtype=float), n)
         tq = self._joint_moments(d, dt) + torque
+        # Pivot forces from the velocities the step gives without them (pymunk: v⁺ = d·v +
+        # dt·f/m, d = damping^dt) at the positions it reaches (x + v·dt).
+        damp = self.space.damping**dt
+        pos = (d[:, 0] + d[:, 3] * dt, d[:, 1] + d[:, 4] * dt, d[:, 2] + d[:, 5] * dt)
+        a, b = dt / self.m, dt / self.I_link
+        vel = (damp * d[:, 3] + a * fx, damp * d[:, 4] + a * fy, damp * d[:, 5] + b * tq)
+        px, py, ptq = self.pivots.forces(pos, vel, self.m, self.I_link, dt)
         o = self.out
-        o[self._order, 0] = fx
-        o[self._order, 1] = fy
-        o[self._order, 2] = tq
+        o[self._order, 0] = fx + px
+        o[self._order, 1] = fy + py
+        o[self._order, 2] = tq + ptq
         pb.set_space_bodies(self.space, pb.BodyFields.FORCE | pb.BodyFields.TORQUE, self._fbuf)
         self.space.step(dt)
         new = self.read()
@@ -218,17 +213,24 @@ class Strip:
             self.dissipated += self._m_clamp * 0.5 * (d[0, 5] + new[0, 5]) * dt
         return new
 
+    @property
+    def gap_max(self) -> float:
+        """Largest pivot gap [µm] at the positions the last step reached, before its
+        correction (the constraint drift)."""
+        return self.pivots.gap_max
+
     @staticmethod
     def points(data, link, s, dt):
         """World positions at t + dt (x + v·dt, φ + ω·dt) and velocities of the material points
         at abscissa ``s`` [µm] from the centres of links ``link`` (rows of :meth:`read`)."""
-        d = data[link]
-        phi = d[:, 2] + d[:, 5] * dt
-        rx, ry = s * np.cos(phi), s * np.sin(phi)
-        px = d[:, 0] + d[:, 3] * dt + rx
-        py = d[:, 1] + d[:, 4] * dt + ry
-        vx = d[:, 3] - d[:, 5] * ry
-        vy = d[:, 4] + d[:, 5] * rx
+        # Per link first (fewer links than points), then gathered: the same numbers.
+        phi = data[:, 2] + data[:, 5] * dt
+        rx, ry = s * np.cos(phi)[link], s * np.sin(phi)[link]
+        px = (data[:, 0] + data[:, 3] * dt)[link] + rx
+        py = (data[:, 1] + data[:, 4] * dt)[link] + ry
+        w = data[link, 5]
+        vx = data[link, 3] - w * ry
+        vy = data[link, 4] + w * rx
         return px, py, vx, vy, rx, ry
 
     def nodes(self, data=None) -> tuple[np.ndarray, np.ndarray]:
