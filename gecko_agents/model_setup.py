@@ -7,6 +7,8 @@ Units: µm, µN, µs, ng (:mod:`gecko_agents.params`).
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from .floor import Profile
@@ -15,12 +17,13 @@ from .loop import PARALLEL_MIN_SETAE, pad_loop
 from .loop import numba_available as _numba_installed
 from .params import SetaArray
 
-__all__ = ["KERNELS", "MAX_N", "checked_arguments", "choose_kernel", "detection_mode",
-           "floor_statistics", "numba_available"]  # fmt: skip
+__all__ = ["KERNELS", "MAX_N", "MAX_THREADS", "checked_arguments", "choose_kernel",
+           "choose_threads", "detection_mode", "floor_statistics", "numba_available"]  # fmt: skip
 
 KERNELS = ("auto", "numpy", "numba", "python")
 MAX_N = 200_000  # 10⁵ setae: ~0.7 GB peak RSS (python -m gecko_agents.bench)
 _PYTHON_MAX_N = 6  # below this many setae the interpreted loop beats numpy's call overhead
+MAX_THREADS = 64
 
 
 def numba_available() -> bool:
@@ -73,11 +76,36 @@ def detection_mode(detection, contact) -> str:
     return detection
 
 
-def choose_kernel(kernel: str, fast_pads: bool, n: int, law_type):
+def choose_threads(threads, n: int, contact: str = "batch") -> int:
+    """Threads of a model of ``n`` setae: ``threads`` if given (an integer in [1,
+    MAX_THREADS], refused otherwise, naming it), else (None) numba's thread count
+    (``NUMBA_NUM_THREADS``; the machine's cores without numba) from
+    :data:`gecko_agents.loop.PARALLEL_MIN_SETAE` setae on, where a step is long enough to pay
+    for them, and 1 below. The per-contact reference path (``contact = "callback"``) runs on
+    one: its callbacks add up the dissipation in the order pymunk calls them."""
+    if threads is not None:
+        if isinstance(threads, bool) or not isinstance(threads, int | np.integer):
+            raise ValueError(f"threads = {threads!r} must be None or an integer ≥ 1")
+        if not 1 <= threads <= MAX_THREADS:
+            raise ValueError(f"threads = {threads!r} must be in [1, {MAX_THREADS}] (or None)")
+        if threads > 1 and contact == "callback":
+            raise ValueError(
+                f"threads = {threads!r}: contact='callback' (the per-contact reference path) "
+                "runs on one thread; use threads=1 or contact='batch'"
+            )
+        return int(threads)
+    if n < PARALLEL_MIN_SETAE or contact == "callback":
+        return 1
+    cores = numba_threads() if _numba_installed() else (os.cpu_count() or 1)
+    return max(1, min(cores, MAX_THREADS))
+
+
+def choose_kernel(kernel: str, fast_pads: bool, n: int, law_type, threads: int = 1):
     """``(kernel, loop, threads)``: the kernel that runs (``"auto"`` resolved: numba if
     installed, else the interpreted loop up to a handful of setae, else numpy), its compiled
-    or interpreted pad loop (None for numpy) and the loop's threads. ``fast_pads``: a pad
-    floor with the batch contact path, the only case the loops cover."""
+    or interpreted pad loop (None for numpy) and the loop's threads (numba's, when
+    ``threads`` > 1). ``fast_pads``: a pad floor with the batch contact path, the only case
+    the loops cover."""
     if kernel in ("numba", "python") and not fast_pads:
         raise ValueError(
             f"kernel={kernel!r} covers pad floors "
@@ -93,11 +121,9 @@ def choose_kernel(kernel: str, fast_pads: bool, n: int, law_type):
         )
     if kernel == "numpy":
         return kernel, None, 1
-    # Threads only where a step is long enough to pay for them; same history either way.
-    threads = 1
-    if kernel == "numba" and n >= PARALLEL_MIN_SETAE and numba_threads() > 1:
-        threads = numba_threads()
-    return kernel, pad_loop(law_type, kernel == "numba", threads > 1), threads
+    # The blocks on numba's threads: the same history either way.
+    loop_threads = numba_threads() if kernel == "numba" and threads > 1 else 1
+    return kernel, pad_loop(law_type, kernel == "numba", loop_threads > 1), loop_threads
 
 
 def floor_statistics(profile: Profile, floor_params) -> dict:

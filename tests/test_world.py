@@ -110,3 +110,53 @@ def test_bad_detection_is_refused_naming_it(kw, match):
     kw.setdefault("n_sim", 5)
     with pytest.raises(ValueError, match=match):
         Model(p, **kw)
+
+
+def _same_history(a, b):
+    assert a.meta["n_steps"] == b.meta["n_steps"]
+    assert a.scalars.keys() == b.scalars.keys()
+    for k in a.scalars:
+        assert np.array_equal(a.scalars[k], b.scalars[k], equal_nan=True), k
+    for k in a.setae:
+        assert np.array_equal(a.setae[k], b.setae[k], equal_nan=True), k
+    for k in a.detachments:
+        assert np.array_equal(a.detachments[k], b.detachments[k], equal_nan=True), k
+
+
+@pytest.mark.parametrize(
+    ("case", "kw"),
+    [
+        ("pads, lazy, default kernel", {}),
+        ("pads, full, numpy kernel", {"detection": "full", "kernel": "numpy"}),
+        ("continuous floor", {"floor": 3.0, "drag": 1.0}),
+    ],
+)
+def test_tips_split_over_spaces_on_threads_give_the_same_history(case, kw):
+    """threads > 1 puts blocks of tips in separate pymunk spaces stepped on threads: every
+    body meets the same arithmetic, so press, drag (tips slide) and pull-off are the same bit
+    for bit as in one space, on every floor and contact path."""
+    kw = dict(kw)
+    p = ROUGH.replace(**{"array.count": 40})
+    if "floor" in kw:
+        p = p.replace(**{"floor.correlation_length": kw.pop("floor")})
+    drag = kw.pop("drag", 6.0)  # µm; on the continuous floor 1 µm keeps its energy balance
+    runs = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for threads in (1, 3):
+            m = Model(p, seed=3, record_setae=True, threads=threads, **kw)
+            assert len(m.world.spaces) == threads
+            runs[threads] = m.run(protocol.drag_pull(1.0, drag, 60.0, speed=SPEED), progress=False)
+    a, b = runs[1], runs[3]
+    assert (a.meta["engine_threads"], b.meta["engine_threads"]) == (1, 3)
+    assert np.max(a.scalars["n_attached"]) > 0
+    _same_history(a, b)
+
+
+@pytest.mark.parametrize(
+    ("threads", "kw"),
+    [(0, {}), (-1, {}), (2.0, {}), (True, {}), ("2", {}), (65, {}), (2, {"contact": "callback"})],
+)
+def test_bad_threads_refused_naming_it(threads, kw):
+    with pytest.raises(ValueError, match="threads = "):
+        Model(ROUGH, n_sim=5, threads=threads, **kw)
