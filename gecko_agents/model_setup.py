@@ -18,12 +18,14 @@ from .loop import numba_available as _numba_installed
 from .params import SetaArray
 
 __all__ = ["KERNELS", "MAX_N", "MAX_THREADS", "checked_arguments", "choose_kernel",
-           "choose_threads", "detection_mode", "floor_statistics", "numba_available"]  # fmt: skip
+           "choose_threads", "detection_mode", "floor_statistics", "idle_cores",
+           "numba_available"]  # fmt: skip
 
 KERNELS = ("auto", "numpy", "numba", "python")
 MAX_N = 200_000  # 10⁵ setae: ~0.7 GB peak RSS (python -m gecko_agents.bench)
 _PYTHON_MAX_N = 6  # below this many setae the interpreted loop beats numpy's call overhead
 MAX_THREADS = 64
+_LOADAVG = "/proc/loadavg"  # Linux: its fourth field is runnable/total scheduling entities
 
 
 def numba_available() -> bool:
@@ -81,8 +83,10 @@ def choose_threads(threads, n: int, contact: str = "batch") -> int:
     MAX_THREADS], refused otherwise, naming it), else (None) numba's thread count
     (``NUMBA_NUM_THREADS``; the machine's cores without numba) from
     :data:`gecko_agents.loop.PARALLEL_MIN_SETAE` setae on, where a step is long enough to pay
-    for them, and 1 below. The per-contact reference path (``contact = "callback"``) runs on
-    one: its callbacks add up the dissipation in the order pymunk calls them."""
+    for them, and 1 below; at most the cores that other processes leave idle when the model is
+    built (:func:`idle_cores`: threads that wait for a busy core make a step 2–3× slower).
+    The per-contact reference path (``contact = "callback"``) runs on one: its callbacks add
+    up the dissipation in the order pymunk calls them."""
     if threads is not None:
         if isinstance(threads, bool) or not isinstance(threads, int | np.integer):
             raise ValueError(f"threads = {threads!r} must be None or an integer ≥ 1")
@@ -97,7 +101,20 @@ def choose_threads(threads, n: int, contact: str = "batch") -> int:
     if n < PARALLEL_MIN_SETAE or contact == "callback":
         return 1
     cores = numba_threads() if _numba_installed() else (os.cpu_count() or 1)
-    return max(1, min(cores, MAX_THREADS))
+    return max(1, min(cores, idle_cores(), MAX_THREADS))
+
+
+def idle_cores() -> int:
+    """Cores not running another thread now: the machine's cores minus the runnable threads
+    of ``/proc/loadavg`` other than the caller's (Linux), else minus the 1-minute load
+    average."""
+    cores = os.cpu_count() or 1
+    try:
+        with open(_LOADAVG) as f:
+            busy = int(f.read().split()[3].split("/")[0]) - 1
+    except (OSError, IndexError, ValueError):
+        busy = os.getloadavg()[0]
+    return max(1, round(cores - busy))
 
 
 def choose_kernel(kernel: str, fast_pads: bool, n: int, law_type, threads: int = 1):

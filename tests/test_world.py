@@ -160,3 +160,19 @@ def test_tips_split_over_spaces_on_threads_give_the_same_history(case, kw):
 def test_bad_threads_refused_naming_it(threads, kw):
     with pytest.raises(ValueError, match="threads = "):
         Model(ROUGH, n_sim=5, threads=threads, **kw)
+
+
+def test_automatic_threads_only_for_large_models_and_only_on_idle_cores(tmp_path, monkeypatch):
+    from gecko_agents import model_setup as ms
+
+    monkeypatch.setattr(ms.os, "cpu_count", lambda: 4)
+    monkeypatch.setattr(ms, "numba_threads", lambda: 4)
+    loadavg = tmp_path / "loadavg"
+    monkeypatch.setattr(ms, "_LOADAVG", str(loadavg))
+    big = ms.PARALLEL_MIN_SETAE
+    for runnable, idle in [(1, 4), (2, 3), (4, 1), (9, 1)]:  # the caller is one of them
+        loadavg.write_text(f"0.50 0.40 0.30 {runnable}/210 4242\n")
+        assert ms.idle_cores() == idle
+        assert ms.choose_threads(None, big) == idle
+        assert ms.choose_threads(None, big - 1) == 1
+        assert ms.choose_threads(3, 10) == 3  # asked for: always given
