@@ -32,6 +32,19 @@ def _trajectory(m):
     )
 
 
+def _same_history(a, b):
+    """Two histories are the same bit for bit: every scalar, per-seta array and detachment."""
+    assert a.meta["n_steps"] == b.meta["n_steps"]
+    assert a.scalars.keys() == b.scalars.keys()
+    for k in a.scalars:
+        assert np.array_equal(a.scalars[k], b.scalars[k], equal_nan=True), k
+    for k in a.setae:
+        assert np.array_equal(a.setae[k], b.setae[k], equal_nan=True), k
+    assert a.detachments.keys() == b.detachments.keys()
+    for k in a.detachments:
+        assert np.array_equal(a.detachments[k], b.detachments[k], equal_nan=True), k
+
+
 def test_lazy_detection_has_full_detections_flags_and_state_on_every_step():
     full = Model(ROUGH, seed=7, detection="full")
     lazy = Model(ROUGH, seed=7, detection="lazy")
@@ -75,15 +88,7 @@ def test_lazy_and_full_detection_give_bit_identical_histories():
             runs[det] = m.run(protocol.drag_pull(1.0, 1.0, 60.0, speed=SPEED), progress=False)
     a, b = runs["full"], runs["lazy"]
     assert (a.meta["detection"], b.meta["detection"]) == ("full", "lazy")
-    assert a.meta["n_steps"] == b.meta["n_steps"]
-    assert a.scalars.keys() == b.scalars.keys()
-    for k in a.scalars:
-        assert np.array_equal(a.scalars[k], b.scalars[k], equal_nan=True), k
-    for k in a.setae:
-        assert np.array_equal(a.setae[k], b.setae[k], equal_nan=True), k
-    assert a.detachments.keys() == b.detachments.keys()
-    for k in a.detachments:
-        assert np.array_equal(a.detachments[k], b.detachments[k], equal_nan=True), k
+    _same_history(a, b)
 
 
 def test_auto_detection_is_lazy_on_pads_and_full_elsewhere():
@@ -110,17 +115,6 @@ def test_bad_detection_is_refused_naming_it(kw, match):
     kw.setdefault("n_sim", 5)
     with pytest.raises(ValueError, match=match):
         Model(p, **kw)
-
-
-def _same_history(a, b):
-    assert a.meta["n_steps"] == b.meta["n_steps"]
-    assert a.scalars.keys() == b.scalars.keys()
-    for k in a.scalars:
-        assert np.array_equal(a.scalars[k], b.scalars[k], equal_nan=True), k
-    for k in a.setae:
-        assert np.array_equal(a.setae[k], b.setae[k], equal_nan=True), k
-    for k in a.detachments:
-        assert np.array_equal(a.detachments[k], b.detachments[k], equal_nan=True), k
 
 
 @pytest.mark.parametrize(
