@@ -80,9 +80,29 @@ __all__ = [
 class ElasticModel(Model):
     """:class:`gecko_agents.model.Model` with the elastic backing of ``params.backing``
     (built by ``Model(params)`` when ``params.backing.kind == "elastic"``). The numpy kernel
-    only; the free approach is stepped (no rigid skip: the strip is not rigid)."""
+    only; the free approach is stepped (no rigid skip: the strip is not rigid).
 
-    def __init__(self, params, **kwargs):
+    ``leader_arm`` [µm] > 0 (with ``backing.drive = "peel_end"``) adds a pre-peeled arm of
+    that length beyond the pad's +x edge: links of the same strip with no setae under them,
+    laid out at ``peel_angle_deg`` [deg] from the floor (+x, the pulled side; 90 = straight
+    up), stress-free in that shape (the kink's joint has that rest angle); the handle holds
+    the arm's end, so pulling the handle along the same angle peels the pad at a steady angle
+    (a handle pulled from the end of a flat strip drags it instead). Not with a misalignment.
+    """
+
+    def __init__(self, params, leader_arm: float = 0.0, peel_angle_deg: float = 90.0,
+                 **kwargs):  # fmt: skip
+        bk = params.backing
+        if not (math.isfinite(leader_arm) and leader_arm >= 0.0):
+            raise ValueError(f"leader_arm = {leader_arm!r} µm must be ≥ 0")
+        if leader_arm and (bk.drive != "peel_end" or bk.misalignment_deg):
+            raise ValueError(
+                f"leader_arm = {leader_arm!r} µm needs Backing.drive = 'peel_end' (got "
+                f"{bk.drive!r}) and Backing.misalignment_deg = 0 (got {bk.misalignment_deg!r})"
+            )
+        if not 0.0 < peel_angle_deg < 180.0:
+            raise ValueError(f"peel_angle_deg = {peel_angle_deg!r} must be in (0, 180)")
+        self.leader_arm, self.peel_angle_deg = float(leader_arm), float(peel_angle_deg)
         kernel = kwargs.get("kernel", "auto")
         if kernel in ("numba", "python"):
             raise ValueError(
@@ -116,20 +136,26 @@ class ElasticModel(Model):
         alpha = math.radians(bk.misalignment_deg)
         if alpha:
             self._lift(0.5 * length * abs(math.sin(alpha)), alpha)
-        strip = Strip(-0.5 * length, ell, n_links, w.plate.position.y, EI, rho_A,
+        n_arm = math.ceil(self.leader_arm / ell - 1e-9)  # links of the leader arm
+        strip = Strip(-0.5 * length, ell, n_links + n_arm, w.plate.position.y, EI, rho_A,
                       bk.damping_ratio, angle=alpha)  # fmt: skip
+        if n_arm:
+            strip.kink_up(n_links, math.radians(self.peel_angle_deg))
         # Handle spring: k_h/n per link (uniform) or k_h on the +x end (peel).
         if bk.drive == "uniform":
             self._h_link = np.arange(n_links)
             self._h_s = np.zeros(n_links)
             self._h_dx = strip.x_centre.copy()
             k_each = bk.handle_stiffness / n_links
-        else:
-            self._h_link = np.array([n_links - 1])
+        else:  # the +x end of the strip (of the arm, if any)
+            self._h_link = np.array([strip.n - 1])
             self._h_s = np.array([0.5 * ell])
             self._h_dx = np.array([0.5 * length])
             k_each = bk.handle_stiffness
         self._h_dy = np.zeros_like(self._h_dx)
+        if n_arm:  # the arm's end, where kink_up laid it
+            ex, ey = strip.nodes()
+            self._h_dx[0], self._h_dy[0] = ex[-1] - w.plate.position.x, ey[-1] - w.plate.position.y
         if alpha:  # the handle holds the strip turned: its attachment points turn with it
             self._h_dx, self._h_dy = self._h_dx * math.cos(alpha), self._h_dx * math.sin(alpha)
         self._k_h = k_each
@@ -153,7 +179,10 @@ class ElasticModel(Model):
         self._r_link = np.clip(((rx + 0.5 * length) // ell).astype(np.int64), 0, n_links - 1)
         self._r_s = rx - strip.x_centre[self._r_link]
         self.backing_info = {
-            "EI_uN_um2": EI, "width_um": pitch, "length_um": length, "n_links": n_links,
+            "EI_uN_um2": EI, "width_um": pitch, "length_um": length, "n_links": strip.n,
+            "pad_links": n_links, "leader_arm_um": n_arm * ell,
+            "node_abscissae_um": (-0.5 * length + ell * np.arange(strip.n + 1)).tolist(),
+            "peel_angle_deg": self.peel_angle_deg if n_arm else None,
             "link_um": ell, "bending_length_um": lam, "foundation_uN_per_um2": k_f,
             "mass_scale": mass, "moment_scale": moment,
             "handle_stiffness_each_uN_per_um": k_each,
@@ -328,7 +357,10 @@ class ElasticModel(Model):
         spring + damping force on the tips (= the force the setae pull the strip with, free of
         the strip's inertia) [µN], and ``nodes_x_um``, ``nodes_y_um``: the positions of the
         strip's n_links + 1 nodes (link ends, −x end first) in the floor's frame (the frame of
-        the tips and the floor profile) [µm], one list per record.
+        the tips and the floor profile) [µm], one list per record; ``node_abscissae_um``: the
+        nodes' abscissae on the straight strip (the roots' frame, the pad centred on 0: a
+        leader arm's nodes lie beyond ``length_um``/2), with ``pad_links``, ``leader_arm_um``
+        and ``peel_angle_deg`` (None without an arm).
 
         ``front_x_um`` is the front's abscissa on the undeformed strip (the root offset
         ``root_dx`` of the outermost attached seta); the strip moves sideways by no more than

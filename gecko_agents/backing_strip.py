@@ -68,7 +68,8 @@ class Strip:
     ½(ω_n + ω_{n+1}) times dt: the form in which semi-implicit Euler's energy identity closes
     (the same rule as the setae's damping in :mod:`gecko_agents.kernels`). After a step:
 
-    * :attr:`energy_bending` [pJ]: ½·k_r·Σ(φ_{j+1} − φ_j)² at the new angles;
+    * :attr:`energy_bending` [pJ]: ½·k_r·Σ(φ_{j+1} − φ_j − rest_j)² at the new angles
+      (rest angles 0 but where :meth:`kink_up` laid a leader arm);
     * :attr:`kinetic` [pJ]: Σ ½m·v_n·v_{n+1} + ½I·ω_n·ω_{n+1} (the form semi-implicit Euler
       conserves for a linear spring, as :meth:`gecko_agents.model.Model.kinetic_energy`);
     * :attr:`dissipated` [pJ]: the joint dampers' dissipation in the step;
@@ -92,6 +93,7 @@ class Strip:
         self.k_rot = EI / ell  # [pJ/rad]
         self.c_rot = 2.0 * zeta * math.sqrt(self.k_rot * inertia)  # [pJ·µs/rad]
         self.k_clamp = 0.0  # rotary spring of a clamped left end (clamp_left) [pJ/rad]
+        self.rest = np.zeros(self.n - 1)  # rest angles of the joints [rad] (kink_up)
         self.x_centre = x0 + (np.arange(self.n) + 0.5) * ell  # rest abscissae of link centres
         self.angle = float(angle)
         self.links = []
@@ -130,6 +132,20 @@ class Strip:
         self.k_clamp = 2.0 * self.k_rot
         self.rows = self.read()
 
+    def kink_up(self, first: int, psi: float) -> None:
+        """Turn links ``first``… (of a level strip) by ``psi`` [rad] about their −x node,
+        counter-clockwise, stress-free: the joint there gets the rest angle ψ (a leader arm
+        laid out at the peel angle)."""
+        if self.angle or not 0 < first < self.n:
+            raise ValueError(f"kink_up({first}, …) needs a level strip and 0 < first < {self.n}")
+        nx, ny = self.x0 + first * self.ell, self.y0
+        c, s = math.cos(psi), math.sin(psi)
+        for k, b in enumerate(self.links[first:]):
+            r = (k + 0.5) * self.ell
+            b.position, b.angle = (nx + r * c, ny + r * s), psi
+        self.rest[first - 1] = psi
+        self.rows = self.read()
+
     def scale_inertia(self, mass: float = 1.0, moment: float = 1.0) -> None:
         """Multiply every link's mass by ``mass`` and its moment of inertia by ``mass`` ×
         ``moment`` (the dampers keep their damping ratio on the zig-zag mode)."""
@@ -163,7 +179,7 @@ class Strip:
         """Moments [pJ] of the joint springs + dampers on the links, from rows ``d`` at the
         start of a step; sets :attr:`energy_bending` and keeps the dampers' moments."""
         phi = d[:, 2] + d[:, 5] * dt  # the angles the step will reach
-        bend = np.diff(phi)
+        bend = np.diff(phi) - self.rest
         self._w_rel = np.diff(d[:, 5])
         self._m_damp = self.c_rot * self._w_rel
         m = self.k_rot * bend + self._m_damp
