@@ -91,7 +91,7 @@ def bare_engine(n: int) -> Model:
     """:func:`pressed_model` with every shape taken out of its space: bodies only (the plate
     and N tips, pressed, at rest), for :func:`pymunk_rate`. The model itself is not meant to
     be stepped afterwards."""
-    m = pressed_model(n, detection="full", threads=1)
+    m = pressed_model(n, detection="full")
     m.space.remove(*m.space.shapes)
     return m
 

@@ -104,13 +104,12 @@ class Model:
         numba for a handful of setae). ``"auto"`` (default): numba if installed, else python
         up to 6 setae and numpy above; other floors and paths always use numpy. All give the
         same history to rounding; the one used is ``meta["kernel"]`` of the history.
-    threads : threads of a step (the same history bit for bit with any number): with more
-        than 1, the tips are split into as many pymunk spaces, read, written and stepped on a
-        thread each (:mod:`gecko_agents.world_shards`, ``meta["engine_threads"]``), and the
-        numba loop runs on numba's threads (``NUMBA_NUM_THREADS``, ``meta["loop_threads"]``).
-        None (default): numba's thread count from :data:`gecko_agents.loop.PARALLEL_MIN_SETAE`
-        setae on, 1 below. Threads pay on an idle machine and cost when other processes
-        share its cores: pass 1 then.
+    threads : with more than 1, the numba loop runs its blocks of setae on numba's threads
+        (``NUMBA_NUM_THREADS``; the same history bit for bit, ``meta["loop_threads"]``).
+        None (default): from :data:`gecko_agents.loop.PARALLEL_MIN_SETAE` setae on, as many as
+        the cores other processes leave idle when the model is built
+        (:func:`gecko_agents.model_setup.choose_threads`), 1 below. Threads pay on an idle
+        machine and cost 2–3× when they wait for a busy core.
     floor_profile : a given floor (:class:`gecko_agents.floor.Profile`, e.g. a measured
         surface from :func:`gecko_agents.floor.from_profile`) instead of one drawn from
         ``params.floor``.
@@ -157,7 +156,7 @@ class Model:
         threads: int | None = None,
     ):
         n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
-        self.engine_threads = choose_threads(threads, int(n), contact)
+        threads = choose_threads(threads, int(n), contact)
         self.params, self.n, self.contact_path = params, int(n), contact
         if isinstance(seed, np.random.Generator):
             # Draw the run's seed from the caller's generator: the history records it, so the
@@ -186,7 +185,6 @@ class Model:
             self.rng,
             floor_profile,
             detection_mode(detection, contact),
-            threads=self.engine_threads,
         )
         self._constants = self._loop_constants()
         self.physics = NumpyStep(
@@ -196,7 +194,7 @@ class Model:
             self.world.on_pre_solve(self._pre_solve)
         self._fast_pads = self.world.pads and contact == "batch"
         self.kernel, self._loop, self.loop_threads = choose_kernel(
-            kernel, self._fast_pads, self.n, type(self.law), self.engine_threads
+            kernel, self._fast_pads, self.n, type(self.law), threads
         )
         self.time = 0.0
         self._warned_linear = False

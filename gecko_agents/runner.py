@@ -74,7 +74,7 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         "dt_us": m.dt, "n_steps": run.n_steps, "record_every": m.record_every,
         "n_sim": m.n, "scale_to_array": m.params.array.count / m.n,
         "protocol": [f"{seg!r}" for seg in segments], "contact_path": m.contact_path,
-        "kernel": m.kernel, "loop_threads": m.loop_threads, "engine_threads": m.engine_threads,
+        "kernel": m.kernel, "loop_threads": m.loop_threads,
         "detection": m.world.detection,
         "tip_law": m.law.name, "tip_bounds": tip_bounds(m.law),
         "energy_complete": m.energy_complete,

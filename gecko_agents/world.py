@@ -10,9 +10,6 @@ Units: µm, µN, µs, ng (:mod:`gecko_agents.params`).
   tip–floor pairs; they fire only when a sensor starts or stops overlapping a floor segment.
   An optional ``pre_solve`` callback computes a contact per contact (the reference path).
 * Forces are read and written for all bodies at once with ``pymunk.batch``.
-* ``threads`` > 1 puts contiguous blocks of tips in as many spaces, each with its own floor
-  shapes and handlers (the plate in the first), whose batch I/O and steps run on a thread each
-  (:mod:`gecko_agents.world_shards`): the same history bit for bit.
 
 Detection (pad floors): ``"full"`` keeps every sensor in the space, so pymunk tests every tip
 against its pad every step (~90 % of a step at N = 10⁴ when every tip is pressed). ``"lazy"``
@@ -40,7 +37,6 @@ import pymunk
 import pymunk.batch as pb
 
 from . import beam, floor
-from .world_shards import Shards
 
 __all__ = ["World", "TIP", "FLOOR", "DETECTIONS"]
 
@@ -60,8 +56,6 @@ class World:
         still exist, R + |δ_detach| [µm]. rng : the run's Generator (draws the floor).
     floor_profile : a given floor (e.g. a measured surface) instead of one drawn from
         ``params.floor``.
-    threads : number of pymunk spaces the tips are split into, stepped on a thread each
-        (:mod:`gecko_agents.world_shards`); 1 (default): one space.
     detection : ``"full"`` (every sensor in the space every step: the reference),
         ``"lazy"`` (pad floors only: a sensor only near its edge, :meth:`update_sensors`; the
         same flags on every step) or ``"auto"`` (lazy on a pad floor, else full); the one used
@@ -81,20 +75,14 @@ class World:
         rng: np.random.Generator,
         floor_profile: floor.Profile | None = None,
         detection: str = "full",
-        threads: int = 1,
     ):
         if detection not in DETECTIONS:
             raise ValueError(f"detection = {detection!r} must be one of {DETECTIONS}")
         p = params
         self.state = state
         self.n = n
-        k = max(1, min(int(threads), n))
-        self.spaces = [pymunk.Space() for _ in range(k)]
-        for sp in self.spaces:
-            sp.gravity = (0.0, 0.0)
-        self.space = space = self.spaces[0]  # the plate's
-        # Space of every tip: contiguous blocks of setae (their pads go with them).
-        self.space_of = (np.arange(n) * k) // n
+        self.space = space = pymunk.Space()
+        space.gravity = (0.0, 0.0)
         L, theta, R = p.seta.L, p.seta.theta, p.contact.R
         rest_dx, rest_dy = (float(v) for v in beam.rest_tip_offset(L, theta))
         self.root_dx = (np.arange(n) - (n - 1) / 2.0) * p.array.pitch
@@ -128,12 +116,10 @@ class World:
         self.pairs: set[tuple[int, int]] = set()
         self.pairs_dirty = True
         self._pre_solve_fn = None
-        for sp in self.spaces:
-            sp.on_collision(TIP, FLOOR, begin=self._begin, separate=self._separate)
+        space.on_collision(TIP, FLOOR, begin=self._begin, separate=self._separate)
         self._read_buf = pb.Buffer()
         self._force_buf = pb.Buffer()
         self._ids_cached = None
-        self.shards = Shards(self.spaces, _FIELDS_READ, 4) if k > 1 else None
 
     # ------------------------------------------------------------------ construction
     def _build_floor(self, p, touch_x):
@@ -152,26 +138,20 @@ class World:
         self.seg_a, self.seg_b = seg_a, seg_b
         self._seg_index = {}
         self._pad_shapes = []
-        if self.pads:  # pad i in the space of tip i
-            for i, (a, b) in enumerate(zip(seg_a, seg_b, strict=True)):
-                space = self.spaces[self.space_of[i]]
-                seg = pymunk.Segment(space.static_body, tuple(a), tuple(b), 0.0)
-                seg.collision_type = FLOOR
+        space = self.space
+        for i, (a, b) in enumerate(zip(seg_a, seg_b, strict=True)):
+            seg = pymunk.Segment(space.static_body, tuple(a), tuple(b), 0.0)
+            seg.collision_type = FLOOR
+            if self.pads:
                 seg.filter = pymunk.ShapeFilter(categories=1 << (i % 32), mask=1 << (i % 32))
                 self._pad_shapes.append(seg)
-                if not self.lazy:  # lazy: a pad joins the space with its tip's sensor
-                    space.add(seg)
-                self._seg_index[seg] = i
-            return
-        for space in self.spaces:  # a continuous floor: every space has all of it
-            for i, (a, b) in enumerate(zip(seg_a, seg_b, strict=True)):
-                seg = pymunk.Segment(space.static_body, tuple(a), tuple(b), 0.0)
-                seg.collision_type = FLOOR
+            else:
                 prev = tuple(seg_a[i - 1]) if i > 0 else tuple(a)
                 nxt = tuple(seg_b[i + 1]) if i + 1 < len(seg_a) else tuple(b)
                 seg.set_neighbors(prev, nxt)
+            if not self.lazy:  # lazy: a pad joins the space with its tip's sensor
                 space.add(seg)
-                self._seg_index[seg] = i
+            self._seg_index[seg] = i
 
     def _build_tips(self, mass):
         # Point masses with sensor circles; a shared group stops tip–tip detection.
@@ -186,11 +166,10 @@ class World:
             shape.collision_type = TIP
             bit = 1 << (i % 32) if self.pads else pymunk.ShapeFilter.ALL_CATEGORIES()
             shape.filter = pymunk.ShapeFilter(group=1, categories=bit, mask=bit)
-            space = self.spaces[self.space_of[i]]
             if self.lazy:
-                space.add(body)  # sensors join while near their edge (update_sensors)
+                self.space.add(body)  # sensors join while near their edge (update_sensors)
             else:
-                space.add(body, shape)
+                self.space.add(body, shape)
             self.tips.append(body)
             self.sensors.append(shape)
             self._tip_index[shape] = i
@@ -239,10 +218,9 @@ class World:
         if self.lazy:
             raise ValueError("contact='callback' needs detection='full' (a sensor on every tip)")
         self._pre_solve_fn = fn
-        for sp in self.spaces:
-            sp.on_collision(
-                TIP, FLOOR, begin=self._begin, separate=self._separate, pre_solve=self._pre_solve
-            )
+        self.space.on_collision(
+            TIP, FLOOR, begin=self._begin, separate=self._separate, pre_solve=self._pre_solve
+        )
 
     def _pre_solve(self, arbiter, space, data):
         tip_shape, seg_shape = arbiter.shapes
@@ -269,17 +247,12 @@ class World:
             seg, c, h = self._pad_shapes[i], float(x[i]), float(self.h[i])
             seg.unsafe_set_endpoints((c - half, h), (c + half, h))
             if not self.lazy or self.in_space[i]:
-                self.spaces[self.space_of[i]].reindex_shape(seg)
+                self.space.reindex_shape(seg)
             self.pad_centre[i] = c
 
     # ------------------------------------------------------------------ batch I/O
     def read_raw(self) -> np.ndarray:
-        """One batch read: rows (x, y, vx, vy) of every body in Chipmunk's order (space by
-        space with several spaces)."""
-        if self.shards is not None:
-            ids, data = self.shards.read()
-            self._check_rows(ids)
-            return data
+        """One batch read: rows (x, y, vx, vy) of every body in Chipmunk's order."""
         buf = self._read_buf
         buf.clear()
         pb.get_space_bodies(self.space, _FIELDS_READ, buf)
@@ -323,10 +296,7 @@ class World:
         self.tip_slice = slice(first, first + self.n) if contiguous else None
         # Forces in Chipmunk's body order; rows that are not tips stay zero.
         self.out = np.zeros((ids.size, 2))
-        if self.shards is not None:
-            self.shards.set_out(self.out)
-        else:
-            self._force_buf.set_float_buf(self.out.reshape(-1))
+        self._force_buf.set_float_buf(self.out.reshape(-1))
 
     def write_forces(self, F=None) -> None:
         """Write the tip forces: ``F`` (2, N) in seta order, or ``self.out`` as it is."""
@@ -335,19 +305,13 @@ class World:
                 np.copyto(self.out[self.tip_slice], F.T)
             else:
                 self.out[self.order] = F.T
-        if self.shards is not None:  # written by the step, on the spaces' threads
-            self.shards.forces_pending = True
-            return
         pb.set_space_bodies(self.space, pb.BodyFields.FORCE, self._force_buf)
 
     def step(self, dt: float) -> None:
         """One pymunk step of ``dt`` [µs] (lazy detection: :meth:`update_sensors` first)."""
         if self.lazy:
             self.update_sensors(dt)
-        if self.shards is not None:
-            self.shards.step(dt)
-        else:
-            self.space.step(dt)
+        self.space.step(dt)
 
     def update_sensors(self, dt: float) -> None:
         """Lazy detection: before a step of ``dt`` [µs], give sensors to the tips near the
@@ -390,37 +354,26 @@ class World:
         np.less_equal(d, m, out=want)
         cand, have = s.candidate, self.in_space
         if not np.array_equal(want, have):
+            space, sensors, pads = self.space, self.sensors, self._pad_shapes
             leave = np.flatnonzero(have & ~want)
             join = np.flatnonzero(want & ~have)
-            cand[join] = False  # a begin in this step makes it True
-            for k, space in enumerate(self.spaces):
-                self._swap_sensors(space, *self._in_space_k(k, leave, join))
+            if leave.size:
+                self._quiet = True
+                try:
+                    space.remove(*(sensors[i] for i in leave))
+                    space.remove(*(pads[i] for i in leave))
+                finally:
+                    self._quiet = False
+            if join.size:
+                cand[join] = False  # a begin in this step makes it True
+                space.add(*(pads[i] for i in join))
+                space.add(*(sensors[i] for i in join))
             np.copyto(have, want)
         free = ~want
         if self._primed:  # the first step sets the flags pymunk's first begins would
             self.geometric_flips += int(np.count_nonzero((cand != inside) & free))
         self._primed = True
         np.copyto(cand, inside, where=free)
-
-    def _in_space_k(self, k, leave, join):
-        """The tips of ``leave`` and ``join`` that are in space k."""
-        if len(self.spaces) == 1:
-            return leave, join
-        return leave[self.space_of[leave] == k], join[self.space_of[join] == k]
-
-    def _swap_sensors(self, space, leave, join) -> None:
-        """Take the sensors and pads of tips ``leave`` out of ``space``, put ``join``'s in."""
-        sensors, pads = self.sensors, self._pad_shapes
-        if leave.size:
-            self._quiet = True
-            try:
-                space.remove(*(sensors[i] for i in leave))
-                space.remove(*(pads[i] for i in leave))
-            finally:
-                self._quiet = False
-        if join.size:
-            space.add(*(pads[i] for i in join))
-            space.add(*(sensors[i] for i in join))
 
     def skip_free_travel(self, vp, omega: float, dt: float, target=None) -> float:
         """Move plate and tips rigidly along the plate velocity ``vp`` [µm/µs] while nothing

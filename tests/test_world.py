@@ -7,6 +7,7 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.model import Model
+from gecko_agents.model_setup import numba_threads
 from gecko_agents.params import PAPER_ARRAY
 
 # Stubby setae (L = 5 µm) on a rough pad floor (σ = 0.5 µm): a press, a drag and a pull-off
@@ -117,33 +118,20 @@ def test_bad_detection_is_refused_naming_it(kw, match):
         Model(p, **kw)
 
 
-@pytest.mark.parametrize(
-    ("case", "kw"),
-    [
-        ("pads, lazy, default kernel", {}),
-        ("pads, full, numpy kernel", {"detection": "full", "kernel": "numpy"}),
-        ("continuous floor", {"floor": 3.0, "drag": 1.0}),
-    ],
-)
-def test_tips_split_over_spaces_on_threads_give_the_same_history(case, kw):
-    """threads > 1 puts blocks of tips in separate pymunk spaces stepped on threads: every
-    body meets the same arithmetic, so press, drag (tips slide) and pull-off are the same bit
-    for bit as in one space, on every floor and contact path."""
-    kw = dict(kw)
+def test_threads_give_the_same_history():
+    """threads > 1 runs the numba loop's blocks on numba's threads: press, drag (tips slide)
+    and pull-off are the same bit for bit as on one thread."""
     p = ROUGH.replace(**{"array.count": 40})
-    if "floor" in kw:
-        p = p.replace(**{"floor.correlation_length": kw.pop("floor")})
-    drag = kw.pop("drag", 6.0)  # µm; on the continuous floor 1 µm keeps its energy balance
     runs = {}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for threads in (1, 3):
-            m = Model(p, seed=3, record_setae=True, threads=threads, **kw)
-            assert len(m.world.spaces) == threads
-            runs[threads] = m.run(protocol.drag_pull(1.0, drag, 60.0, speed=SPEED), progress=False)
+            m = Model(p, seed=3, record_setae=True, threads=threads)
+            runs[threads] = m.run(protocol.drag_pull(1.0, 6.0, 60.0, speed=SPEED), progress=False)
     a, b = runs[1], runs[3]
-    assert (a.meta["engine_threads"], b.meta["engine_threads"]) == (1, 3)
-    assert np.max(a.scalars["n_attached"]) > 0
+    assert a.meta["loop_threads"] == 1
+    assert b.meta["loop_threads"] == (numba_threads() if a.meta["kernel"] == "numba" else 1)
+    assert np.max(a.scalars["n_sliding"]) > 0
     _same_history(a, b)
 
 
