@@ -40,8 +40,9 @@ class BackingTrack:
     Parameters
     ----------
     backing : ``history.meta["backing"]``: needs ``time_us`` [µs] and ``front_x_um`` [µm];
-        ``nodes_x_um`` and ``nodes_y_um`` [µm] (lists of node positions per backing record) and
-        ``length_um`` (strip length) are used when present.
+        ``nodes_x_um`` and ``nodes_y_um`` [µm] (lists of node positions per backing record),
+        ``node_abscissae_um`` (the nodes' material abscissae, recorded by a strip with a leader
+        arm) or else ``length_um`` (strip length) are used when present.
     times : the History's ``time_us`` [µs], one per record.
 
     Attributes
@@ -66,7 +67,15 @@ class BackingTrack:
                     f'history.meta["backing"]: nodes_x_um {self.nodes_x.shape} and nodes_y_um '
                     f"{self.nodes_y.shape} must both be (backing records = {t_b.size}, nodes)"
                 )
-            self.material = self._material_abscissae(backing.get("length_um"))
+            if "node_abscissae_um" in backing:  # a leader arm: links beyond the pad
+                self.material = np.asarray(backing["node_abscissae_um"], dtype=float)
+            else:
+                self.material = self._material_abscissae(backing.get("length_um"))
+            if self.material.shape != self.nodes_x.shape[1:]:
+                raise ValueError(
+                    f'history.meta["backing"]: {self.material.size} node abscissae for '
+                    f"{self.nodes_x.shape[1]} nodes"
+                )
 
     def _material_abscissae(self, length) -> np.ndarray:
         """Abscissae [µm] of the nodes on the straight strip, centred on 0 like the roots'.

@@ -429,6 +429,23 @@ def test_backing_strip_is_drawn_through_the_recorded_nodes(toy):
     assert _is(_colour_at(rgb, frame.pixel(nodes_x[j, 2], nodes_y[j, 2]), 1), "#444444")
 
 
+def test_backing_front_follows_recorded_node_abscissae(toy):
+    """A strip with a leader arm records its nodes' material abscissae (links beyond the
+    pad): the front is placed by those, not by equal links over ``length_um``."""
+    from dataclasses import replace
+
+    h, t_b, nodes_x, nodes_y = _with_backing(toy)
+    b = dict(h.meta["backing"])
+    b["node_abscissae_um"] = [-75.0, -45.0, -15.0, 15.0, 30.0, 45.0]  # front at node 5 now
+    h = replace(h, meta={**h.meta, "backing": b})
+    j = int(np.argmin(np.abs(t_b - h["time_us"][9])))
+    frame = render.render_frame(h, 9)
+    np.testing.assert_allclose(frame.front.get_xydata(), [[nodes_x[j, 5], nodes_y[j, 5]]])
+    b["node_abscissae_um"] = [0.0, 1.0]
+    with pytest.raises(ValueError, match="2 node abscissae for 6 nodes"):
+        render.render_frame(replace(h, meta={**h.meta, "backing": b}), 9)
+
+
 def test_backing_front_vanishes_once_nothing_is_attached(toy):
     h, t_b, *_ = _with_backing(toy)
     k = len(h) - 1  # nearest backing record is the last: front NaN
