@@ -25,21 +25,8 @@ at one end it tilts, its far half pushes into the floor and the end seta carries
 of the pull (Winkler foundation: pull-off N·Fc/4; 8 discrete setae: 0.27 N·Fc); the measured
 0.35 is higher because the end contact softens near pull-off (JKR) and hands load on.
 
-Misalignment (``backing.misalignment_deg``; measured once, not yet a mode of this script):
-400 setae (L_pad = 1600 µm), uniform drive through the default 1000 µN/µm handle, pressed to
-0.2 N·Fc and pulled straight up at 0.05 µm/µs; pull-off / (N·Fc) (setae attached at the
-preload):
-
-    misalignment   soft E_b = 1.413 MPa (β = 4e-7)   stiff E_b = 1e5 MPa (β = 0.025)
-    0°             1.002 (400)                        1.002 (400)
-    0.1°           0.905 (400)                        0.910 (400)
-    0.4°           0.347 (186)                        0.331 (177)
-
-A tenth of a degree costs 10 %, 0.4° two thirds, as Booth et al. saw; the soft strip is 5 %
-stronger at 0.4° (Booth et al.: 43 %) and no better at 0.1°: the handle springs (k_h/L_pad =
-0.63 µN/µm² against the setae's k_f = 0.11) hold either strip to the tilted holder, so the
-strip's bending has little to give (Bacca et al. 2016: compliance helps when it lets the
-backing conform).
+Misalignment of backing and floor is ``scenarios/misalignment.py``: there the compliance that
+keeps a tilted pad strong is the mount's (the handle), not the strip's bending.
 
 Pull-off is the largest total force the setae pull the strip with (``setae_fy_uN`` of
 ``meta["backing"]``: free of the strip's inertia, which the model scales up for the time step,

@@ -6,8 +6,8 @@ strip (:mod:`gecko_agents.backing`, ``drive = "uniform"``) tilted by ``misalignm
 pressed to 0.2 N·Fc and pulled straight up at 0.05 µm/µs. The uniform handle holds every link
 with k_h/n: per length of pad it is an elastic layer of stiffness k_h/L_pad [µN/µm²] between
 the rigid holder and the strip, the analogue of the compliant backing layer between glass and
-fibres in Booth et al.'s misalignment tests (Booth, Bacca, McMeeking & Foster 2018, ACS Appl
-Mater Interfaces 10; Bacca, Booth, Turner & McMeeking 2016, J Mech Phys Solids 96:428: a
+fibres in Booth et al.'s misalignment tests (Booth, Bacca, McMeeking & Foster 2018, Adv Mater
+Interfaces 5:1800272; Bacca, Booth, Turner & McMeeking 2016, J Mech Phys Solids 96:428: a
 compliant layer helps when it lets the array conform to the tilted floor). The strip's own
 bending stiffness E_b is the other compliance: soft (the paper's 1.413 MPa, bending length
 λ ≪ L_pad) or stiff (10⁵ MPa).
@@ -22,18 +22,19 @@ preload in brackets where fewer than 400):
     stiff strip, compliant   0.990  0.975  0.940        0.867
 
 The stiff mount is 1000 µN/µm (0.63 µN/µm² per length against the setae's foundation
-k_f = 0.11 µN/µm²), the compliant one 50 µN/µm (0.031 µN/µm²). A tenth of a degree costs 10 %
-on the stiff mount, as Booth et al. saw; at 0.4° the compliant mount keeps 2.4–2.6× the stiff
-one's pull-off, every seta attached. The compliance that helps is the mount's: it lets the
-pad turn onto the floor under the preload. The strip's bending compliance does not help on
+k_f = 0.11 µN/µm²), the compliant one 50 µN/µm (0.031 µN/µm²). A tenth of a degree already
+costs 10 % on the stiff mount (Booth et al. saw detachment turn peel-like at ~0.1°); at 0.4°
+the compliant mount keeps 2.4–2.6× the stiff one's pull-off, every seta attached. The
+compliance that helps is the mount's: it lets the pad turn onto the floor under the preload.
+The strip's bending compliance does not help on
 either mount (soft/stiff strip 1.05 on the stiff mount, 0.96 on the compliant one at 0.4°); a
 soft strip even loses where the mount per length approaches k_f, since it then conforms only
 near where it is pressed while a stiff one turns as a whole (quick run, 200 setae at 0.8°,
-mount 0.0625 µN/µm²: 0.36 soft against 0.80 stiff). Booth et al. found their most compliant
-backing 43 % stronger at 0.4°; the model's gain depends on how soft the mount is relative to
-the setae (Bacca et al.'s ratio of backing to fibre compliance), which their paper sets by
-layer thickness and this model by k_h: the two are not matched here, so only the direction of
-the effect is compared.
+mount 0.0625 µN/µm²: 0.36 soft against 0.80 stiff). Booth et al. found their thickest
+backing layer, 3.1× as compliant as the thinnest, 43 % stronger at 0.4°, by deformation of the
+layer at the detachment front; here a mount 20× as compliant keeps ×2.4–2.6. The direction
+agrees; the size is not compared, since their layers' stiffness relative to their fibres' is
+not matched here (Bacca et al.'s ratio of backing to fibre compliance sets it).
 
 ``--quick``: 200 setae at 0.8° (the same 11 µm rise across the pad as 400 setae at 0.4°),
 both strips, both mounts.
