@@ -19,17 +19,20 @@ from .params import PAPER_ARRAY
 __all__ = ["elastic_pressed_model", "backing_rate"]
 
 
-def elastic_pressed_model(n: int, depth: float = 0.3, settle: int = 200) -> ElasticModel:
-    """:func:`gecko_agents.bench.pressed_model` on an elastic strip (default
-    :class:`gecko_agents.params.Backing`, uniform drive): handle, strip and tips moved ``depth``
-    [µm] below touch-down, then ``settle`` steps of rest."""
-    p = PAPER_ARRAY.replace(
-        **{"array.count": int(n), "floor.sigma": 0.0, "backing.kind": "elastic"}
-    )
-    m = ElasticModel(p)
+def elastic_pressed_model(
+    n: int, depth: float = 0.3, settle: int = 200, params=None, **model_kw
+) -> ElasticModel:
+    """:func:`gecko_agents.bench.pressed_model` on an elastic strip: handle, strip and tips
+    moved ``depth`` [µm] below touch-down, then ``settle`` steps of rest, every tip attached.
+    ``params``: the array (default: the paper's on a flat floor with the default
+    :class:`gecko_agents.params.Backing`, uniform drive), with ``n`` setae; ``model_kw`` go to
+    :class:`gecko_agents.backing.ElasticModel` (``seed``, ``leader_arm``, ...)."""
+    if params is None:
+        params = PAPER_ARRAY.replace(**{"floor.sigma": 0.0, "backing.kind": "elastic"})
+    m = ElasticModel(params.replace(**{"array.count": int(n)}), **model_kw)
     plate_y = m.z_touch - depth
     drop = plate_y - m.plate.position.y
-    m.plate.position = (0.0, plate_y)
+    m.plate.position = (m.plate.position.x, plate_y)
     rest = np.column_stack([m.world.rest_dx, m.world.rest_dy + plate_y])
     for body, xy in zip(m.tips, rest, strict=True):
         body.position = (float(xy[0]), float(xy[1]))

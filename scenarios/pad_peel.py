@@ -65,6 +65,7 @@ from _common import GREY, output_dir, parse_args, write_json, write_table
 
 from gecko_agents import protocol, render
 from gecko_agents.backing import ElasticModel
+from gecko_agents.backing_bench import elastic_pressed_model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render_backing import BackingTrack
 
@@ -100,23 +101,8 @@ def preloaded_model(
     """A pad of ``n`` setae on the strip with a leader arm at ``psi`` [deg], handle, strip and
     tips put ``DEPTH`` below touch-down and left ``SETTLE`` steps to settle (every tip
     attached); ``record_setae`` for an animation."""
-    p = params.replace(**{"array.count": int(n)})
-    m = ElasticModel(p, seed=SEED, leader_arm=arm, peel_angle_deg=psi, record_setae=record_setae)
-    plate_y = m.z_touch - DEPTH
-    drop = plate_y - m.plate.position.y
-    m.plate.position = (m.plate.position.x, plate_y)
-    rest = np.column_stack([m.world.rest_dx, m.world.rest_dy + plate_y])
-    for body, xy in zip(m.tips, rest, strict=True):
-        body.position, body.velocity = (float(xy[0]), float(xy[1])), (0.0, 0.0)
-    for link in m.strip.links:
-        link.position = (link.position.x, link.position.y + drop)
-    m.strip.rows = m.strip.read()
-    m.reset_state_arrays()
-    for _ in range(SETTLE):
-        m.step((0.0, 0.0))
-    if not np.all(m.attached):
-        raise RuntimeError(f"only {int(m.attached.sum())} of {n} tips attached after the preload")
-    return m
+    return elastic_pressed_model(n, DEPTH, SETTLE, params, seed=SEED, leader_arm=arm,
+                                 peel_angle_deg=psi, record_setae=record_setae)  # fmt: skip
 
 
 def peel(m: ElasticModel, psi: float, speed: float, front_fraction: float = 1.0):
