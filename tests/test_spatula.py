@@ -70,15 +70,18 @@ def test_inextensible_limit(phi_deg):
 def chen_wu_gao_prestretched(phi, w, b, K):
     """Peel force F [µN] of a film whose attached part carries the pull's horizontal component
     as pre-tension, P0 = F cos φ, from the energy balance per unit of peeled floor length
-    (Kendall 1975 with a pre-strained attached film, ε0 = P0/K, K = E_f·h·b):
-    −F cos φ + (F + F²/2K)/(1 + ε0) + P0²/(2K) = w·b; to second order in the strains Chen, Wu
-    & Gao's F(1 − cos φ) + (F − P0)²/(2K) = w·b (2009, J R Soc Interface 6:529). Solved by
-    bisection here, independently of the code under test."""
+    (Kendall 1975 with a pre-strained attached film, ε0 = P0/K, K = E_f·h·b). The front's
+    advance dc frees the material dm = dc/(1 + ε0): the load point moves dc(1 − cos φ) plus
+    dm(ε − ε0) as that material goes from strain ε0 to ε = F/K (work F times that), the elastic
+    energy grows by dm·(F² − P0²)/(2K); so F(1 − cos φ) + (F(ε − ε0) − (F² − P0²)/2K)/(1 + ε0)
+    = w·b, i.e. −F cos φ + (F + (F² + P0²)/2K)/(1 + ε0) = w·b. To second order in the strains
+    it is Chen, Wu & Gao's F(1 − cos φ) + (F − P0)²/(2K) = w·b (2009, J R Soc Interface
+    6:529). Solved by bisection here, independently of the code under test."""
     c = math.cos(phi)
 
     def g(F):
         P0 = F * c
-        return -F * c + (F + F * F / (2 * K)) / (1 + P0 / K) + P0 * P0 / (2 * K) - w * b
+        return -F * c + (F + (F * F + P0 * P0) / (2 * K)) / (1 + P0 / K) - w * b
 
     lo, hi = 0.0, 1e3
     for _ in range(200):
@@ -111,11 +114,22 @@ def test_pretension_is_kept_and_capped():
     # Slack film (tip over the front): the locked pre-tension stays.
     out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, 0.0, k)
     assert out[4] == pytest.approx(0.3)
-    # A cap of μ·2Fc·ℓ/ℓ0 below P0: the pre-tension falls to the cap.
+    # A pre-tension below the cap μ·2Fc·ℓ/ℓ0 plus the front's adhesion w·b stays: receding
+    # would cost more adhesion energy than the pre-strain releases (Griffith).
     k[9] = 0.05
-    cap = 0.05 * 2.0 * law.pull_off_force
+    wb = law.w * law.b
     out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, 0.0, k)
-    assert out[4] == pytest.approx(cap)
+    assert 0.3 < 0.05 * 2.0 * law.pull_off_force + wb
+    assert (out[3], out[4]) == (ell, 0.3)
+    # Above it, the pad contracts from its front, its material kept, until the pre-tension
+    # equals the cap of the floor it still covers plus w·b.
+    out = law.step_scalar(0.0, R + 1.0, ell, 1.5, s0, 0.0, k)
+    ell_new, p0_new = out[3], out[4]
+    assert ell_new < ell
+    assert p0_new == pytest.approx(0.05 * 2.0 * law.pull_off_force * ell_new / law.ell0 + wb)
+    material = ell / (1.0 + 1.5 / law.K)
+    assert ell_new / (1.0 + p0_new / law.K) == pytest.approx(material, rel=1e-12)
+    assert out[2] == pytest.approx(ell - ell_new)  # the front moved back by the contraction
     assert out[8] >= 0.0  # the contraction dissipates
 
 
@@ -147,13 +161,15 @@ def _pull_off(drag, kernel, mu=10.0):
 
 def test_kernels_agree_and_drag_direction_matters():
     """Numba loop and numpy path give the same history to rounding; a seta dragged back along
-    its shaft (the plate to −x, small peel angle) holds more than one pushed over its pad."""
+    its shaft (the plate to −x, small peel angle) holds more than one pushed over its pad:
+    1.20 / 0.61 µN = ×1.98 at μ = 10 with the default geometry (the directional-adhesion
+    target is ×2; the margin below guards the measured factor, it is not a fit)."""
     along, h1 = _pull_off(-8.0, "numba")
     against, _ = _pull_off(8.0, "numba")
     along_np, h2 = _pull_off(-8.0, "numpy")
     np.testing.assert_allclose(h1["force_normal_uN"], h2["force_normal_uN"], atol=1e-9)
     assert along == pytest.approx(along_np, rel=1e-9)
-    assert along > 1.2 * against
+    assert along > 1.9 * against
 
 
 def hertz_compression(law, delta):
@@ -219,7 +235,7 @@ def test_kernels_agree_on_a_pressed_drag(kernel):
 
     if kernel == "numba" and not numba_available():
         pytest.skip("numba is not installed (optional extra 'fast')")
-    p = SPATULA.replace(**{"array.count": 3, "friction.mu": 1.0})
+    p = SPATULA.replace(**{"array.count": 3, "friction.mu": 0.5})
     prot = [
         *protocol.drag_pull(0.4, 6.0, 60.0, speed=0.05)[:-1],
         protocol.Move(dx=-10.0, speed=0.05),

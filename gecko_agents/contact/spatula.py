@@ -33,14 +33,15 @@ def _film_force(dx, zf, s0, K):
 @_njit(cache=True)
 def _film_energy(dx, z, ell, p0, s0, k):
     """Energy the spatula contact stores [pJ], counted from attachment: free film
-    ½K(s − s0)²/s0 + pre-strain of the attached film ℓ·P0²/(2K) + surface energy of the
-    peeled film w·b·(ℓ0 − ℓ) + Hertz compression of the tip (8/15)E*√R·δ^(5/2)."""
+    ½K(s − s0)²/s0 + pre-strain of the attached film m·P0²/(2K) over its material length
+    m = ℓ/(1 + ε0) = ℓK/(K + P0) (ℓ its floor length) + surface energy w·b·(ℓ0 − ℓ) of the
+    floor it no longer covers + Hertz compression of the tip (8/15)E*√R·δ^(5/2)."""
     R, b, w, ell0, K, hz_u = k[0], k[1], k[4], k[5], k[6], k[8]
     zf = z - R if z > R else 0.0
     s = math.sqrt(dx * dx + zf * zf)
     e = s - s0
     U = 0.5 * K * e * e / s0 if e > 0.0 else 0.0
-    U += ell * p0 * p0 / (2.0 * K) + w * b * (ell0 - ell)
+    U += ell * p0 * p0 / (2.0 * (K + p0)) + w * b * (ell0 - ell)
     d = R - z
     if d > 0.0:
         U += hz_u * d * d * math.sqrt(d)
@@ -50,14 +51,16 @@ def _film_energy(dx, z, ell, p0, s0, k):
 @_njit(cache=True)
 def _release_rate(dx, zf, p0, s0, k):
     """Energy release rate per width g [µN/µm] of the peel front (−∂U/∂c per width, c the
-    peeled length): g·b = −F cos φ + (F + F²/2K)/(1 + ε0) + P0²/(2K), ε0 = P0/K, cos φ = −dx/s.
-    P0 = 0 is Kendall's F(1 − cos φ) + F²/(2E_f·h·b) (Kendall 1975, J Phys D 8:1449, eq 4 per
-    width); to second order in the strains it is Chen, Wu & Gao's
-    F(1 − cos φ) + (F − P0)²/(2E_f·h·b) (2009, J R Soc Interface 6:529)."""
+    peeled floor length, the tip held): the front's advance dc hands the material
+    dc/(1 + ε0) of the pre-strained pad (ε0 = P0/K) to the free film, so
+    g·b = −F cos φ + (F + F²/2K + P0²/2K)/(1 + ε0), cos φ = −dx/s. P0 = 0 is Kendall's
+    F(1 − cos φ) + F²/(2E_f·h·b) (Kendall 1975, J Phys D 8:1449, eq 4 per width); to second
+    order in the strains it is Chen, Wu & Gao's F(1 − cos φ) + (F − P0)²/(2E_f·h·b) (2009,
+    J R Soc Interface 6:529)."""
     b, K = k[1], k[6]
     F, s = _film_force(dx, zf, s0, K)
     cos_phi = -dx / s if s > 0.0 else 0.0
-    return (-F * cos_phi + (F + F * F / (2.0 * K)) / (1.0 + p0 / K) + p0 * p0 / (2.0 * K)) / b
+    return (-F * cos_phi + (F + (F * F + p0 * p0) / (2.0 * K)) / (1.0 + p0 / K)) / b
 
 
 @_njit(cache=True)
@@ -119,74 +122,107 @@ def _slide_to_cap(dx, zf, s0, K, cap):
 
 
 @_njit(cache=True)
+def _stretch_to_balance(dx, zf, ell, p0, s0, K, v_max):
+    """Stretch v [µm] of the attached pad (material fixed, far end held) at which the free
+    film's horizontal pull on the front equals the pad's tension there,
+    H(dx + v) = P0 + (K + P0)·v/ℓ (bisection on [0, v_max])."""
+    lo, hi = 0.0, v_max
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if _pull_on_front(dx + mid, zf, s0, K) > p0 + (K + p0) * mid / ell:
+            lo = mid
+        else:
+            hi = mid
+    return hi
+
+
+@_njit(cache=True)
 def _slide(dx, zf, z, ell, p0, s0, k):
-    """The attached pad under the free film's horizontal pull H: returns (dx, shift, P0, slid).
+    """The attached pad under the free film's horizontal pull H: returns (dx, shift, ℓ, P0,
+    slid).
+
+    The pad is a length ℓ of floor [µm] covered by film material m = ℓ/(1 + ε0), uniformly
+    pre-strained ε0 = P0/K (K = E_f·h·b); its friction cap is proportional to the floor it
+    covers (:func:`_friction_cap`, c·ℓ).
 
     Partial slip (shear lag): a film held on the floor by friction, not bonded, carries the pull
     into its attached part, which stretches: the front is free to move and the attached film's
     tension at the front rises to H (Chen, Wu & Gao 2009, J R Soc Interface 6:529, their
     pre-tension P0 carried by the attached pad; Labonte & Federle 2016, J R Soc Interface
     13:20160373, and Gouravaraju, Sauer & Gautam 2021, J Adhes 97:952: sliding pre-stretches
-    the pad, which then peels like an inextensible tape). Stretched uniformly over ℓ (far end
-    held), the pre-tension is P0 = P0_old + K·v/ℓ after the front moved v towards the tip; v
-    solves H(dx + v) = P0 (bisection) while P0 stays under the friction cap. The stretch is
-    counted in the film's material: ℓ (the adhered material) is unchanged. Friction locks the
-    pre-tension when the pull falls (it is kept through the pull-off); a pad whose cap has
-    fallen below P0 (peeled shorter) contracts to the cap, the front moving back by
-    ℓ(P0 − cap)/K. Past the cap the whole pad slides towards the tip to where H = cap (Coulomb),
-    with P0 = cap pulled away from the pad and P0 = 0 pushed over it (the push releases it).
+    the pad, which then peels like an inextensible tape). Stretched uniformly (far end held),
+    the front moving v towards the tip, the pad covers ℓ + v of floor with the same material:
+    P0 = K((ℓ + v)/m − 1) = P0_old + (K + P0_old)·v/ℓ. v solves H(dx + v) = P0 (bisection)
+    while P0 stays under the cap c(ℓ + v). Past the cap the whole pad slides towards the tip to
+    where H = cap (Coulomb), with P0 = cap.
 
-    Energy: the film does work ∫H dv on the front, the attached film stores ∫P0 dv
-    (d(ℓP0²/2K) = P0·dv): the slip dissipates ∫(H − P0) dv ≥ 0.
+    Adhesion is per floor area (w, as in the peel): the floor the pad newly covers as it
+    stretches gives up w·b·v, which is dissipated (the stretch is driven by the pull, not by
+    the adhesion: an advancing edge keeps none of w), and a pad that contracts must pay w·b
+    per length of floor it uncovers, as a peel would (Griffith: its front recedes only if the
+    pre-strain energy released, P0 per length, exceeds w·b). So friction and the front's
+    adhesion lock the pre-tension when the pull falls (it is kept through the pull-off); a pad
+    whose P0 exceeds c·ℓ + w·b (its cap fallen as it peeled shorter) contracts from its front
+    to P0 = c·ℓ + w·b. Pushed over the pad past the cap, the pad slides towards +x; its
+    friction spent, only the front's adhesion holds it: P0 relaxes to w·b.
+
+    Energy: the film does work ∫H dv on the front, the attached film stores ∫P0 dv: a stretch
+    dissipates ∫(H − P0) dv + w·b·v ≥ 0; a contraction releases ∫P0 dv ≥ (c·ℓ + w·b)·v and
+    pays w·b·v (:func:`_film_energy` at the tip's position).
     """
     K = k[6]
-    cap = _friction_cap(z, ell, k)
+    c = _friction_cap(z, 1.0, k)  # the cap per floor length of pad [µN/µm] (it is ∝ ℓ)
     shift = 0.0
     slid = 0.0
     if ell <= 0.0:
-        return dx, shift, p0, slid
-    if p0 > cap:  # the pad can no longer hold its pre-tension: it contracts to the cap
-        v = ell * (p0 - cap) / K
+        return dx, shift, ell, p0, slid
+    m = ell * K / (K + p0)  # the pad's material (unstretched) length [µm]
+    wb = k[4] * k[1]  # what the front's adhesion holds against a recession [µN]
+    if p0 > c * ell + wb:  # friction and the front's adhesion can no longer hold P0
+        p0 = (c * m + wb) / (1.0 - c * m / K)  # P0 = c·ℓ + w·b with ℓ = m(1 + P0/K)
+        v = ell - m * (1.0 + p0 / K)
         dx -= v
         shift += v
-        p0 = cap
+        ell -= v
     H = _pull_on_front(dx, zf, s0, K)
     if k[13] > 0.0:  # bonded (Kendall): no stretch; the whole pad slides past the cap
-        if abs(H) > cap:
-            hi = _slide_to_cap(dx, zf, s0, K, cap)
+        if abs(H) > c * ell:
+            hi = _slide_to_cap(dx, zf, s0, K, c * ell)
             shift = -hi if dx < 0.0 else hi
             dx -= shift
             slid = 1.0
-        return dx, shift, p0, slid
+        return dx, shift, ell, p0, slid
     if H > p0:  # pulled away from the pad beyond the locked pre-tension: it stretches
-        v_max = ell * (cap - p0) / K  # stretch at which the pre-tension reaches the cap
-        if _pull_on_front(dx + v_max, zf, s0, K) >= cap:
-            dx += v_max
-            shift -= v_max
-            p0 = cap
-            hi = _slide_to_cap(dx, zf, s0, K, cap)
+        rate = (K + p0) / ell - c  # d(P0 − cap)/dv
+        v_cap = (c * ell - p0) / rate if rate > 0.0 else math.inf  # P0 reaches the cap
+        if v_cap < -dx and _pull_on_front(dx + v_cap, zf, s0, K) >= c * (ell + v_cap):
+            dx += v_cap
+            shift -= v_cap
+            ell += v_cap
+            p0 = c * ell
+            hi = _slide_to_cap(dx, zf, s0, K, p0)
             if hi > 0.0:
                 dx += hi
                 shift -= hi
                 slid = 1.0
         else:
-            lo, hi = 0.0, v_max
-            for _ in range(60):
-                mid = 0.5 * (lo + hi)
-                if _pull_on_front(dx + mid, zf, s0, K) > p0 + K * mid / ell:
-                    lo = mid
-                else:
-                    hi = mid
-            dx += hi
-            shift -= hi
-            p0 += K * hi / ell
-    elif H < 0.0 and -H > cap:  # pushed over the pad past the cap: it slides, unstretched
-        hi = _slide_to_cap(dx, zf, s0, K, cap)
+            v = _stretch_to_balance(dx, zf, ell, p0, s0, K, min(v_cap, -dx))
+            dx += v
+            shift -= v
+            p0 += (K + p0) * v / ell
+            ell += v
+    elif H < 0.0 and -H > c * ell:  # pushed over the pad past the cap: it slides
+        hi = _slide_to_cap(dx, zf, s0, K, c * ell)
         dx -= hi
         shift += hi
-        p0 = 0.0
         slid = 1.0
-    return dx, shift, p0, slid
+        if p0 > wb:  # sliding, only the front's adhesion holds the pre-tension: it relaxes
+            p0 = wb
+            v = ell - m * (1.0 + p0 / K)
+            dx -= v
+            shift += v
+            ell -= v
+    return dx, shift, ell, p0, slid
 
 
 class SpatulaTip(ContactLaw):
@@ -220,9 +256,9 @@ class SpatulaTip(ContactLaw):
        pre-tension P0, balances H; friction keeps P0 when the pull falls. Past the cap the
        whole pad slides. ``"bonded"`` (Kendall's film): no stretch, P0 = 0, the pad slides as
        a whole past the cap.
-    2. **Peel.** The front advances by dc (ℓ −= dc, s0 += dc/(1 + ε0): the pre-strained
-       attached film enters the free film) to where the energy release rate per width
-       g = [−F cos φ + (F + F²/2K)/(1 + ε0) + P0²/(2K)]/b equals w; if it still exceeds w at
+    2. **Peel.** The front advances by dc of floor (ℓ −= dc, s0 += dc/(1 + ε0): the
+       pre-strained attached film enters the free film) to where the energy release rate per
+       width g = [−F cos φ + (F + F²/2K + P0²/2K)/(1 + ε0)]/b equals w; if it still exceeds w at
        ℓ = 0 the film has peeled off: the tip lets go. With P0 = 0 the balance is Kendall's
        (F/b)(1 − cos φ) + (F/b)²/(2E_f·h) = w (eq 4 per width); to second order in the strains
        it is Chen, Wu & Gao's G = P(1 − cos φ) + (P − P0)²/(2E_f·h) (per width).
@@ -238,11 +274,11 @@ class SpatulaTip(ContactLaw):
        its adhesion, the tip body against its compression; neither is counted twice (together
        they are the former single cap μ(P_c + 2Fc·ℓ/ℓ0)).
 
-    Stored energy U = ½K(s − s0)²/s0 + ℓP0²/(2K) + w·b(ℓ0 − ℓ) + (8/15)E*√R·δ^(5/2) + ½k_t·ξ²
-    [pJ] from attachment (K = E_f·h·b); a step's slide and peel dissipate the film's
-    U_before − U_after ≥ 0 at the tip's position (Coulomb work, and the release rate in excess
-    of w), the tip body's slip its Coulomb work μ·P_c·|Δξ| (as the sphere's); a release
-    dissipates what is left.
+    Stored energy U = ½K(s − s0)²/s0 + mP0²/(2K) + w·b(ℓ0 − ℓ) + (8/15)E*√R·δ^(5/2) + ½k_t·ξ²
+    [pJ] from attachment (K = E_f·h·b; ℓ the floor the pad covers, m = ℓ/(1 + ε0) its
+    material); a step's slide and peel dissipate the film's U_before − U_after ≥ 0 at the
+    tip's position (Coulomb work, and the release rate in excess of w), the tip body's slip its
+    Coulomb work μ·P_c·|Δξ| (as the sphere's); a release dissipates what is left.
 
     Parameters
     ----------
@@ -328,7 +364,7 @@ class SpatulaTip(ContactLaw):
         xi = dx - xa  # the tip body's trial stick offset
         U0 = _film_energy(dx, z, ell, p0, s0, k)
         # 1. Slide: pre-tension by partial slip, then the whole pad while the cap is exceeded.
-        dx, shift, p0, slid = _slide(dx, zf, z, ell, p0, s0, k)
+        dx, shift, ell, p0, slid = _slide(dx, zf, z, ell, p0, s0, k)
         # 2. Peel: advance the front until g = w; a film still above w at ℓ = 0 has let go.
         w = k[4]
         if ell > 0.0 and _release_rate(dx, zf, p0, s0, k) > w:
