@@ -48,6 +48,9 @@ class RateJKRSphere(JKRSphere):
 
     name = "sphere (crack kinetics)"
     rate_dependent = True
+    # Its edge jumps closed during a jump-in's ring-down: a first-order error of 0.7–2 % of the
+    # run's energy at the default step, halving with dt.
+    energy_tolerance_factor = 2.0
 
     def __init__(self, contact):
         super().__init__(contact)

@@ -25,12 +25,14 @@ TIP_LAWS: dict[str, type[ContactLaw]] = {
 def bounds(law: ContactLaw) -> dict:
     """What :func:`gecko_agents.history.invariant_violations` may assume of a law's histories:
     the largest tension one tip holds [µN] (inf for a rate-dependent contact, whose crack lags),
-    the overlap below which no tip stays attached [µm], and whether the law is rate dependent."""
+    the overlap below which no tip stays attached [µm], whether the law is rate dependent and
+    its energy balance's tolerance in units of ``history.ENERGY_RTOL``."""
     tension = math.inf if law.rate_dependent else law.pull_off_force
     if not math.isnan(law.max_tension):  # the law's own bound (a film holds many w·b)
         tension = law.max_tension
     return {"max_tension_uN": tension, "detach_overlap_um": law.detach_overlap,
-            "rate_dependent": bool(law.rate_dependent)}  # fmt: skip
+            "rate_dependent": bool(law.rate_dependent),
+            "energy_tolerance_factor": float(law.energy_tolerance_factor)}  # fmt: skip
 
 
 def contact_law(params) -> ContactLaw:
