@@ -61,13 +61,16 @@ def config(quick: bool) -> dict:
 def release_forces(h, drag: float) -> tuple[float, float, float]:
     """(adhesion, shear, pull-off) [µN] of the pull phase (the rows after the drag): adhesion
     = −normal force (> 0 in tension) and shear = tangential force on the tips at the step of
-    the largest force the seta held in the pull, the limit it withstood (a film's last steps,
-    its pad nearly peeled and its friction gone with it, are a 90° peel of a sliver whatever
-    the pull); pull-off = the largest adhesion of the pull phase."""
+    the largest force the seta held in tension in the pull, the limit it withstood (a film's
+    last steps, its pad nearly peeled and its friction gone with it, are a 90° peel of a
+    sliver whatever the pull; a pushed-over seta's pull starts with a compression larger than
+    any tension it then holds, which is no release); the largest force of the pull if it never
+    pulls; pull-off = the largest adhesion of the pull phase."""
     px = h["plate_x_um"]
     k0 = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0]) if drag else 0
     normal, shear = -h["force_normal_uN"][k0:], h["force_tangential_uN"][k0:]
-    k = int(np.argmax(np.hypot(normal, shear)))
+    force = np.hypot(normal, shear)
+    k = int(np.argmax(np.where(normal > 0.0, force, -np.inf) if (normal > 0.0).any() else force))
     return float(normal[k]), float(shear[k]), float(max(0.0, normal.max()))
 
 

@@ -290,7 +290,7 @@ class SpatulaTip(ContactLaw):
     name = "spatula"
     tangential = True
     max_tension = math.inf  # a film at a small peel angle holds many w·b
-    # As the last of a stretched pad peels, the film's force falls by ~5 % a step while the
+    # As the last of a stretched pad peels, the film's force falls by 4–17 % a step while the
     # tip springs back fast: the explicit step's work on the tip, F·Δx with F from the step's
     # start, is off by ½ΔF·Δx a step, a first-order error of up to 2.1 % of the run's energy
     # at the default step that halves with dt (test_spatula).
