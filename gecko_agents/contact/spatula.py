@@ -159,8 +159,9 @@ def _slide(dx, zf, z, ell, p0, s0, k):
     Adhesion is per floor area (w, as in the peel): the floor the pad newly covers as it
     stretches gives up w·b·v, which is dissipated (the stretch is driven by the pull, not by
     the adhesion: an advancing edge keeps none of w), and a pad that contracts must pay w·b
-    per length of floor it uncovers, as a peel would (Griffith: its front recedes only if the
-    pre-strain energy released, P0 per length, exceeds w·b). So friction and the front's
+    per length of floor it uncovers, as a peel would (Griffith 1921, Phil Trans R Soc A
+    221:163: its front recedes only if the pre-strain energy released, P0 per length [µN],
+    exceeds w·b). So friction and the front's
     adhesion lock the pre-tension when the pull falls (it is kept through the pull-off); a pad
     whose P0 exceeds c·ℓ + w·b (its cap fallen as it peeled shorter) contracts from its front
     to P0 = c·ℓ + w·b. Pushed over the pad past the cap, the pad slides towards +x; its
