@@ -137,6 +137,30 @@ def _stretch_to_balance(dx, zf, ell, p0, s0, K, v_max):
 
 
 @_njit(cache=True)
+def _contract(ell, m, p_new, K):
+    """Floor length [µm] the pad uncovers as it contracts from its front, its material m
+    [µm] kept, to the pre-tension p_new [µN]: ℓ − m(1 + p_new/K)."""
+    return ell - m * (1.0 + p_new / K)
+
+
+@_njit(cache=True)
+def _stretch(dx, zf, ell, p0, s0, K, c):
+    """The pad pulled away from itself beyond its pre-tension (H > P0, dx < 0): it stretches
+    (material kept, far end held) until H = P0 or P0 reaches the cap c·ℓ, then the whole pad
+    slides towards the tip to where H = cap. Returns (stretch + slide [µm] towards the tip,
+    ℓ, P0, slid) (:func:`_slide`)."""
+    rate = (K + p0) / ell - c  # d(P0 − cap)/dv
+    v_cap = (c * ell - p0) / rate if rate > 0.0 else math.inf  # P0 reaches the cap
+    if v_cap < -dx and _pull_on_front(dx + v_cap, zf, s0, K) >= c * (ell + v_cap):
+        ell += v_cap
+        p0 = c * ell
+        hi = _slide_to_cap(dx + v_cap, zf, s0, K, p0)
+        return v_cap + hi, ell, p0, (1.0 if hi > 0.0 else 0.0)
+    v = _stretch_to_balance(dx, zf, ell, p0, s0, K, min(v_cap, -dx))
+    return v, ell + v, p0 + (K + p0) * v / ell, 0.0
+
+
+@_njit(cache=True)
 def _slide(dx, zf, z, ell, p0, s0, k):
     """The attached pad under the free film's horizontal pull H: returns (dx, shift, ℓ, P0,
     slid).
@@ -181,7 +205,7 @@ def _slide(dx, zf, z, ell, p0, s0, k):
     wb = k[4] * k[1]  # what the front's adhesion holds against a recession [µN]
     if p0 > c * ell + wb:  # friction and the front's adhesion can no longer hold P0
         p0 = (c * m + wb) / (1.0 - c * m / K)  # P0 = c·ℓ + w·b with ℓ = m(1 + P0/K)
-        v = ell - m * (1.0 + p0 / K)
+        v = _contract(ell, m, p0, K)
         dx -= v
         shift += v
         ell -= v
@@ -194,24 +218,9 @@ def _slide(dx, zf, z, ell, p0, s0, k):
             slid = 1.0
         return dx, shift, ell, p0, slid
     if H > p0:  # pulled away from the pad beyond the locked pre-tension: it stretches
-        rate = (K + p0) / ell - c  # d(P0 − cap)/dv
-        v_cap = (c * ell - p0) / rate if rate > 0.0 else math.inf  # P0 reaches the cap
-        if v_cap < -dx and _pull_on_front(dx + v_cap, zf, s0, K) >= c * (ell + v_cap):
-            dx += v_cap
-            shift -= v_cap
-            ell += v_cap
-            p0 = c * ell
-            hi = _slide_to_cap(dx, zf, s0, K, p0)
-            if hi > 0.0:
-                dx += hi
-                shift -= hi
-                slid = 1.0
-        else:
-            v = _stretch_to_balance(dx, zf, ell, p0, s0, K, min(v_cap, -dx))
-            dx += v
-            shift -= v
-            p0 += (K + p0) * v / ell
-            ell += v
+        v, ell, p0, slid = _stretch(dx, zf, ell, p0, s0, K, c)
+        dx += v
+        shift -= v
     elif H < 0.0 and -H > c * ell:  # pushed over the pad past the cap: it slides
         hi = _slide_to_cap(dx, zf, s0, K, c * ell)
         dx -= hi
@@ -219,7 +228,7 @@ def _slide(dx, zf, z, ell, p0, s0, k):
         slid = 1.0
         if p0 > wb:  # sliding, only the front's adhesion holds the pre-tension: it relaxes
             p0 = wb
-            v = ell - m * (1.0 + p0 / K)
+            v = _contract(ell, m, p0, K)
             dx -= v
             shift += v
             ell -= v
