@@ -122,6 +122,13 @@ def _slide_to_cap(dx, zf, s0, K, cap):
 
 
 @_njit(cache=True)
+def _stretched_pretension(ell, p0, K, v):
+    """Pre-tension [µN] of a pad of floor length ℓ and pre-tension P0 stretched by v [µm],
+    material m = ℓK/(K + P0) kept: K((ℓ + v)/m − 1) = P0 + (K + P0)·v/ℓ."""
+    return p0 + (K + p0) * v / ell
+
+
+@_njit(cache=True)
 def _stretch_to_balance(dx, zf, ell, p0, s0, K, v_max):
     """Stretch v [µm] of the attached pad (material fixed, far end held) at which the free
     film's horizontal pull on the front equals the pad's tension there,
@@ -129,7 +136,7 @@ def _stretch_to_balance(dx, zf, ell, p0, s0, K, v_max):
     lo, hi = 0.0, v_max
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        if _pull_on_front(dx + mid, zf, s0, K) > p0 + (K + p0) * mid / ell:
+        if _pull_on_front(dx + mid, zf, s0, K) > _stretched_pretension(ell, p0, K, mid):
             lo = mid
         else:
             hi = mid
@@ -157,7 +164,7 @@ def _stretch(dx, zf, ell, p0, s0, K, c):
         hi = _slide_to_cap(dx + v_cap, zf, s0, K, p0)
         return v_cap + hi, ell, p0, (1.0 if hi > 0.0 else 0.0)
     v = _stretch_to_balance(dx, zf, ell, p0, s0, K, min(v_cap, -dx))
-    return v, ell + v, p0 + (K + p0) * v / ell, 0.0
+    return v, ell + v, _stretched_pretension(ell, p0, K, v), 0.0
 
 
 @_njit(cache=True)
