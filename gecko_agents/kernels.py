@@ -208,7 +208,8 @@ class NumpyStep:
         s, c, law = self.s, self.c, self.law
         if law.tangential:
             raise ValueError(
-                f"tip = {law.name!r} needs a pad floor (floor.correlation_length = 0) and "
+                f"{law.label or f'tip = {law.name!r}'} needs a pad floor "
+                "(floor.correlation_length = 0) and "
                 "contact='batch'"
             )
         qx, qy, nx, ny, delta = self.geometry(ps, x, y)
@@ -462,7 +463,7 @@ class NumpyStep:
             if ell <= 0.0:
                 peeled.append(i)
                 continue
-            dtg = -c.c_t * s.pv[2, i]
+            dtg = -c.c_t * s.pv[2, i] if law.damp_sliding or slid == 0.0 else 0.0
             dn = -c.c_n * s.pv[3, i]
             s.F[0, i] += T + dtg
             s.F[1, i] += P + dn

@@ -325,11 +325,13 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
     return _jit(compiled, parallel=parallel)(loop)
 
 
-def _film_contact(step, jit):
+def _film_contact(step, jit, damp_sliding=True):
     """The contact of one seta with a law that takes the tip's tangential position (the
     spatula's ``step_scalar``): attachment, release, the film's forces and the tip body's
     friction (its stick anchor in ``S[XI]``, relative to the front), as
-    :meth:`gecko_agents.kernels.NumpyStep.contact_pads_tangential`."""
+    :meth:`gecko_agents.kernels.NumpyStep.contact_pads_tangential`. ``damp_sliding``: the
+    tangential contact damping also acts while the tip slides (else only while it sticks, as
+    the sphere's)."""
 
     def film(i, x, y, vx, vy, d, c, k, h, cand, attached, slip, S, fast2, slow2, diss):
         """Returns (tangential and normal contact force, their damping, dissipation so far,
@@ -365,6 +367,8 @@ def _film_contact(step, jit):
                 diss += U
             else:
                 dmpx, dmpy = vx * -c.c_t, vy * -c.c_n
+                if slid > 0.0 and not damp_sliding:
+                    dmpx = 0.0
                 fcx, fcy = T + dmpx, P + dmpy
                 S[PN, i], S[FT, i] = P, T
                 slip[i] = slid > 0.0
@@ -387,7 +391,7 @@ def _tangential_loop(law_type, compiled: bool):
     jit = _jit(compiled)
     if jit is None:
         return None
-    film = _film_contact(_jit(compiled)(law_type.step_scalar), jit)
+    film = _film_contact(_jit(compiled)(law_type.step_scalar), jit, law_type.damp_sliding)
 
     def loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand, attached, slip,
              S, ext, pad_c, rest, root, lost_idx, gone_idx, res):  # fmt: skip

@@ -46,6 +46,7 @@ from .param_checks import (
 
 MECHANICS = ("linear", "rod")
 DETACHMENT_RULES = ("fold", "delta_s", "load_control")
+SHEAR_COUPLINGS = ("none", "savkoor_briggs")
 TIPS = ("sphere", "hertz", "spatula")
 """Tip contact laws (:data:`gecko_agents.contact.TIP_LAWS`): the adhesive JKR sphere of the
 paper, a Hertz sphere without adhesion, or a thin-film spatula that peels (:class:`Spatula`)."""
@@ -84,6 +85,15 @@ class Contact:
         dynamically), ``"delta_s"`` (the paper's rule: δ < δs = −0.21·a0²/R, eq 8) or
         ``"load_control"`` (at P = −Fc, δ < −a_lc²/(3R)). Rate-dependent contacts let go
         when the crack has run through (``"fold"`` only).
+    shear_coupling : how the shear a sphere tip carries acts on its adhesion. ``"none"``
+        (default; the paper's JKR): the contact radius follows the overlap alone, as a sliding
+        contact's does (Vorvolakos & Chaudhury 2003, Langmuir 19:6778; Menga, Carbone & Dini
+        2018, J Mech Phys Solids 112:145). ``"savkoor_briggs"``: the stick spring's mode-II
+        release rate counts in Griffith's balance on a brittle interface (Savkoor & Briggs
+        1977, Proc R Soc A 356:103; :class:`gecko_agents.contact.ShearedJKRSphere`): shear
+        shrinks the contact and lowers the tension it holds, the strongest coupling (real
+        interfaces are tougher in shear, Johnson 1997, Proc R Soc A 453:163). Elastic contact
+        (``crack_speed = inf``) with the ``"fold"`` detachment and a pad floor only.
     """
 
     R: float = 4.0
@@ -98,8 +108,21 @@ class Contact:
     crack_exponent: float = 0.5
     crack_closing_speed: float = math.inf
     detachment: str = "fold"
+    shear_coupling: str = "none"
 
     def __post_init__(self):
+        if self.shear_coupling not in SHEAR_COUPLINGS:
+            raise ValueError(
+                f"Contact.shear_coupling = {self.shear_coupling!r} must be one of {SHEAR_COUPLINGS}"
+            )
+        if self.shear_coupling != "none" and (
+            math.isfinite(self.crack_speed) or self.detachment != "fold"
+        ):
+            raise ValueError(
+                f"Contact.shear_coupling = {self.shear_coupling!r} needs the elastic contact "
+                f"with the 'fold' detachment (crack_speed = inf, detachment = 'fold'); got "
+                f"crack_speed = {self.crack_speed}, detachment = {self.detachment!r}"
+            )
         _check(self, "crack_speed", 0.0, math.inf, hi_open=False)
         _check(self, "crack_exponent", 0.0, 1.0, hi_open=False)
         _check(self, "crack_closing_speed", 0.0, math.inf, hi_open=False)

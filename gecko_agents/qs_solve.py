@@ -25,10 +25,29 @@ from .qs_state import State
 def setup(
     params: SetaArray, lateral: str, stiffness_scale: float, tangential_stiffness: float
 ) -> Branches | RodSetup:
-    """The seta model of ``params.mechanics``: :class:`Branches` (linear) or :class:`RodSetup`."""
+    """The seta model of ``params.mechanics``: :class:`Branches` (linear) or :class:`RodSetup`.
+    The solver's tip is the paper's elastic JKR sphere: other tip laws are refused."""
+    require_paper_tip(params)
     if params.mechanics == "rod":
         return RodSetup.from_params(params, lateral, stiffness_scale, tangential_stiffness)
     return Branches.from_params(params, lateral, stiffness_scale, tangential_stiffness)
+
+
+def require_paper_tip(params: SetaArray) -> None:
+    """Refuse, naming the field, a parameter set whose tip the quasi-static solver does not
+    model: it solves the elastic JKR sphere (eq 1–15) whose radius follows the overlap alone."""
+    c = params.contact
+    checks = (
+        ("tip", params.tip, params.tip == "sphere", "'sphere'"),
+        ("contact.crack_speed", c.crack_speed, math.isinf(c.crack_speed), "inf (elastic)"),
+        ("contact.shear_coupling", c.shear_coupling, c.shear_coupling == "none", "'none'"),
+    )
+    for name, value, ok, allowed in checks:
+        if not ok:
+            raise ValueError(
+                f"the quasi-static solver models the elastic JKR sphere only: {name} = "
+                f"{value!r} must be {allowed}; run the time-stepped Model for this tip"
+            )
 
 
 def travel_up(params: SetaArray, br: Branches | RodSetup, heights, Z_from: float) -> float:

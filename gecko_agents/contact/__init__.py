@@ -19,12 +19,12 @@ sub-models do (``touch``, ``pulloff_distance``, ``calculate_forces``, ``set_fncr
 * :attr:`ContactLaw.tangential_stiffness` — the stick spring of Coulomb friction [µN/µm];
 * :attr:`ContactLaw.pull_off_force` — Fc [µN], which the adhesive friction cap μ|P + 2Fc| uses.
 
-A law that needs the tip's tangential position (:attr:`ContactLaw.tangential`, the thin-film
-:class:`SpatulaTip`) answers one question instead of ``radius``/``force``: ``step_scalar`` takes
-the tip's offset from its peel front along the floor and its height, and returns both force
-components and the new contact state (front shift, attached length, pre-tension, stored
-energy, dissipation); the kernels call it per seta on pad floors. The sphere laws never reach
-that branch, so their histories are unchanged.
+A law that needs the tip's tangential position (:attr:`ContactLaw.tangential`: the thin-film
+:class:`SpatulaTip`, the sheared sphere :class:`ShearedJKRSphere`) answers one question instead of
+``radius``/``force``: ``step_scalar`` takes the tip's offset from its peel front along the floor and
+its height, and returns both force components and the new contact state (front shift, attached
+length, pre-tension, stored energy, dissipation); the kernels call it per seta on pad floors. The
+JKR, crack-kinetics and Hertz spheres never reach that branch, so their histories are unchanged.
 
 Each law gives the same formulas twice, kept side by side so that they cannot drift apart:
 vectorized numpy methods (the general floor path, recording, energies) and scalar
@@ -34,9 +34,9 @@ or interpreted (:mod:`gecko_agents.kernels`). ``tests/test_contact.py`` pins bot
 law to its closed form (:mod:`gecko_agents.jkr`) point by point.
 
 Layout: :mod:`.base` (interface, shared scalar helpers), one module per law (:mod:`.jkr_sphere`,
-:mod:`.rate_jkr`, :mod:`.hertz`, :mod:`.spatula`) and :mod:`.registry` (names). Adding a law: write
-one module with a subclass of :class:`ContactLaw`, register it in :data:`TIP_LAWS`, add its tests.
-Nothing in the model changes.
+:mod:`.rate_jkr`, :mod:`.hertz`, :mod:`.spatula`, :mod:`.sheared_jkr`) and :mod:`.registry` (names).
+Adding a law: write one module with a subclass of :class:`ContactLaw`, register it in
+:data:`TIP_LAWS`, add its tests. Nothing in the model changes.
 """
 
 from .base import ContactLaw, branch_radius, mindlin_stiffness
@@ -44,6 +44,7 @@ from .hertz import HertzSphere
 from .jkr_sphere import JKRSphere
 from .rate_jkr import RateJKRSphere
 from .registry import TIP_LAWS, bounds, contact_law
+from .sheared_jkr import ShearedJKRSphere
 from .spatula import SpatulaTip
 
 __all__ = [
@@ -52,6 +53,7 @@ __all__ = [
     "RateJKRSphere",
     "HertzSphere",
     "SpatulaTip",
+    "ShearedJKRSphere",
     "TIP_LAWS",
     "contact_law",
     "bounds",

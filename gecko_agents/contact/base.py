@@ -9,6 +9,8 @@ import math
 
 import numpy as np
 
+from ..sheared_jkr import combined_shear_modulus, stick_stiffness
+
 __all__ = ["ContactLaw", "branch_radius", "jitable", "mindlin_stiffness"]
 
 
@@ -55,9 +57,8 @@ def mindlin_stiffness(contact, a: float) -> float:
     ----------
     contact : :class:`gecko_agents.params.Contact` (E in MPa). a : contact radius [µm].
     """
-    G1, G2 = contact.E1 / (2 * (1 + contact.nu1)), contact.E2 / (2 * (1 + contact.nu2))
-    G_star = 1.0 / ((2 - contact.nu1) / G1 + (2 - contact.nu2) / G2)
-    return 8.0 * G_star * a
+    G_star = combined_shear_modulus(contact.E1, contact.nu1, contact.E2, contact.nu2)
+    return float(stick_stiffness(a, G_star))
 
 
 class ContactLaw:
@@ -67,6 +68,10 @@ class ContactLaw:
     name: str = ""
     rate_dependent: bool = False  # the radius is a state variable (crack kinetics)
     tangential: bool = False  # the law takes the tip's tangential position (step_scalar)
+    # A tangential law's contact damping also acts while the tip slides (the spatula's film);
+    # False: only while it sticks, as the sphere's stick spring (kernels, :mod:`.loop`).
+    damp_sliding: bool = True
+    label: str = ""  # how error messages name the law's parameters ("tip = <name>" if empty)
     max_tension: float = math.nan  # largest tension a tip can hold [µN] (nan: Fc)
     # The energy balance's tolerance in units of history.ENERGY_RTOL: 1, or 2 for a law with a
     # known first-order (∝ dt) error in its energy books, stated where the law sets it.

@@ -9,6 +9,7 @@ from .base import ContactLaw
 from .hertz import HertzSphere
 from .jkr_sphere import JKRSphere
 from .rate_jkr import RateJKRSphere
+from .sheared_jkr import ShearedJKRSphere
 from .spatula import SpatulaTip
 
 __all__ = ["TIP_LAWS", "bounds", "contact_law"]
@@ -37,9 +38,12 @@ def bounds(law: ContactLaw) -> dict:
 
 def contact_law(params) -> ContactLaw:
     """The contact law of a :class:`gecko_agents.params.SetaArray`: ``params.tip``, with crack
-    kinetics (:class:`RateJKRSphere`) for a sphere of finite ``contact.crack_speed``."""
+    kinetics (:class:`RateJKRSphere`) for a sphere of finite ``contact.crack_speed`` and the
+    Savkoor–Briggs coupling (:class:`ShearedJKRSphere`) for ``contact.shear_coupling``."""
     if params.tip == "sphere" and math.isfinite(getattr(params.contact, "crack_speed", math.inf)):
         return RateJKRSphere(params.contact)
+    if params.tip == "sphere" and getattr(params.contact, "shear_coupling", "none") != "none":
+        return ShearedJKRSphere(params.contact, params.friction)
     if params.tip == "spatula":
         return SpatulaTip(params.contact, params.spatula, params.friction)
     return TIP_LAWS[params.tip](params.contact)

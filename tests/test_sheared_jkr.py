@@ -1,0 +1,247 @@
+"""The JKR sphere coupled to its shear (Savkoor & Briggs 1977): the closed forms of
+gecko_agents.sheared_jkr against JKR and against each other, the contact law against them, and
+a dragged-and-pulled seta against the load-controlled pull-off under shear."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq, minimize_scalar
+
+from gecko_agents import jkr, protocol, quasistatic
+from gecko_agents import sheared_jkr as sj
+from gecko_agents.contact import JKRSphere, ShearedJKRSphere, contact_law
+from gecko_agents.contact.sheared_jkr import _radius
+from gecko_agents.model import Model
+from gecko_agents.params import PAPER_ARRAY
+
+SHEARED = PAPER_ARRAY.replace(
+    **{"contact.shear_coupling": "savkoor_briggs", "mechanics": "rod", "floor.sigma": 0.0}
+)
+C = SHEARED.contact
+R, W, E = C.jkr_args()
+G = float(sj.combined_shear_modulus(C.E1, C.nu1, C.E2, C.nu2))
+
+
+def test_no_shear_is_jkr():
+    """T = 0: JKR's radius under load (eq 8) and its pull-off Fc = 1.5πwR."""
+    P = np.linspace(-0.99, 5.0, 13) * jkr.pull_off_force(R, W)
+    np.testing.assert_allclose(
+        sj.radius_from_loads(P, 0.0, R, W, E, G), jkr.contact_radius_from_force(P, R, W, E),
+        rtol=1e-12,
+    )  # fmt: skip
+    assert sj.pull_off_force(0.0, R, W, E, G) == pytest.approx(1.5 * math.pi * W * R, rel=1e-15)
+    assert sj.pull_off_force(sj.shear_to_free(R, W, E, G), R, W, E, G) == pytest.approx(
+        0.0, abs=1e-12
+    )
+
+
+@pytest.mark.parametrize("a_over_a0", [0.8, 1.0, 1.6])
+@pytest.mark.parametrize("xi", [0.0, 0.05, 0.2])
+def test_displacement_and_load_control_forms_agree(a_over_a0, xi):
+    """A contact of radius a at tangential displacement ξ, its overlap from the displacement
+    form, its loads P (Hertz + flat punch) and T = 8G*·a·ξ (Mindlin): the load-controlled
+    Savkoor–Briggs radius of (P, T) is a again (radii on its load-stable branch, above the
+    pull-off radius 0.63·a0). Two derivations, one contact."""
+    a = a_over_a0 * float(jkr.zero_load_contact_radius(R, W, E))
+    delta = sj.overlap_from_radius(a, xi, R, W, E, G)
+    assert np.isfinite(delta)
+    P = sj.force_from_state(a, delta, R, E)
+    T = sj.stick_stiffness(a, G) * xi
+    assert sj.radius_from_loads(P, T, R, W, E, G) == pytest.approx(a, rel=1e-10)
+
+
+def test_energy_derivatives_are_the_forces():
+    """U(a, δ, ξ): ∂U/∂δ = P, ∂U/∂ξ = 8G*·a·ξ (the stick spring), ∂U/∂a = 0 on the branch
+    (central differences)."""
+    a, xi = 2.0, 0.15
+    delta = float(sj.overlap_from_radius(a, xi, R, W, E, G))
+    h = 1e-6
+
+    def U(a_, d_, x_):
+        return float(sj.energy(a_, d_, x_, R, W, E, G))
+
+    dU_dd = (U(a, delta + h, xi) - U(a, delta - h, xi)) / (2 * h)
+    dU_dx = (U(a, delta, xi + h) - U(a, delta, xi - h)) / (2 * h)
+    dU_da = (U(a + h, delta, xi) - U(a - h, delta, xi)) / (2 * h)
+    assert dU_dd == pytest.approx(float(sj.force_from_state(a, delta, R, E)), rel=1e-7)
+    assert dU_dx == pytest.approx(8 * G * a * xi, rel=1e-7)
+    assert abs(dU_da) < 1e-7 * abs(dU_dd)
+
+
+@pytest.mark.parametrize("delta", [0.4, 0.0, -0.3])
+@pytest.mark.parametrize("xi", [0.0, 0.1, 0.3])
+def test_law_radius_is_the_stable_root(delta, xi):
+    """The law's radius at (δ, ξ) solves the displacement form and lies on its stable side
+    (dδ/da > 0); at ξ = 0 it is the JKR sphere's."""
+    law = contact_law(SHEARED)
+    a = _radius(delta, xi, law.constants)
+    if a <= 0.0:
+        pytest.skip("no contact at this (δ, ξ)")
+    assert float(sj.overlap_from_radius(a, xi, R, W, E, G)) == pytest.approx(delta, abs=1e-12)
+    slope = np.diff(sj.overlap_from_radius(np.array([a, a * (1 + 1e-6)]), xi, R, W, E, G))[0]
+    assert slope > 0.0
+    if xi == 0.0:
+        jkr_a = float(JKRSphere(SHEARED.contact).radius(np.array([delta]))[0])
+        assert a == pytest.approx(jkr_a, rel=1e-12)
+
+
+def fold_overlap(xi):
+    """Overlap at the end of the branch at ξ: the minimum over a of δ(a, ξ) (scipy)."""
+    a_min = 4 * G * xi * xi / (2 * math.pi * W)
+    res = minimize_scalar(
+        lambda a: float(sj.overlap_from_radius(a, xi, R, W, E, G)),
+        bounds=(a_min * (1 + 1e-12) + 1e-12, 10 * R), method="bounded",
+        options={"xatol": 1e-12},
+    )  # fmt: skip
+    return res.fun
+
+
+@pytest.mark.parametrize("delta", [0.2, 0.0, -0.4])
+def test_shear_that_ends_the_contact(delta):
+    """At fixed δ the contact exists up to the ξ where the branch's end reaches δ: the law's
+    boundary (bisection on its radius) against a scipy root of the fold overlap."""
+    law = contact_law(SHEARED)
+    xi_end = brentq(lambda x: fold_overlap(x) - delta, 0.0, 5.0, xtol=1e-12)
+    lo, hi = 0.0, 5.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if _radius(delta, mid, law.constants) > 0.0 else (lo, mid)
+    assert lo == pytest.approx(xi_end, rel=1e-5)
+
+
+def drive(law, k, delta, xs):
+    """Drive the tip along the floor at fixed δ through offsets ``xs`` from where it attached:
+    returns per step (P, T, a, slid) and the energy check (work, stored + dissipated)."""
+    xa, a, u, work, diss, T_prev = 0.0, law.jump_radius, 0.0, 0.0, 0.0, 0.0
+    z = law.R - delta
+    out = law.step_scalar(0.0, z, a, 0.0, u, xa, k)
+    a, u, xa, stored0 = out[3], out[5], out[6], out[7]
+    rows = []
+    for j in range(1, len(xs)):
+        P, T, _, a, _, u, xa, U, de, slid = law.step_scalar(xs[j], z, a, 0.0, u, xa, k)
+        work -= 0.5 * (T + T_prev) * (xs[j] - xs[j - 1])  # the drive works against T
+        T_prev, diss = T, diss + de
+        rows.append((P, T, a, slid))
+        if a <= 0.0:
+            break
+    return np.array(rows), work, U - stored0 + diss
+
+
+def test_tip_sticks_then_slides_at_the_cap_of_its_sheared_load():
+    """μ = 0.2: the tip sticks on its own Mindlin spring 8G*·a (the contact shrinking as ξ
+    grows), then slides at μ|P + 2Fc| with P the sheared contact's load; the drive's work is
+    stored or dissipated."""
+    law = contact_law(SHEARED)
+    k = law.constants
+    xs = np.linspace(0.0, 0.6, 3001)
+    rows, work, books = drive(law, k, 0.1, xs)
+    P, T, a, slid = rows.T
+    stick, sliding = slid == 0.0, slid == 1.0
+    assert stick.any() and sliding.any() and (a > 0).all()
+    np.testing.assert_allclose(-T[stick], 8 * G * a[stick] * xs[1:][stick], rtol=1e-9)
+    cap = 0.2 * np.abs(P[sliding] + 2 * law.pull_off_force)
+    np.testing.assert_allclose(-T[sliding], cap, rtol=1e-9)
+    assert np.all(np.diff(a[stick]) < 0)  # shear shrinks the sticking contact
+    assert work == pytest.approx(books, rel=2e-3)
+
+
+def test_sheared_alone_it_lets_go_where_the_branch_ends():
+    """μ = 10 (it never slides): driven sideways at δ = 0 the tip lets go at the ξ where the
+    branch ends (scipy), holding less tension than Fc on the way."""
+    law = contact_law(SHEARED.replace(**{"friction.mu": 10.0}))
+    xs = np.linspace(0.0, 3.0, 30001)
+    rows, _, _ = drive(law, law.constants, 0.0, xs)
+    released_at = xs[len(rows)]
+    assert rows[-1, 2] == 0.0 and (rows[:-1, 3] == 0.0).all()
+    xi_end = brentq(lambda x: fold_overlap(x) - 0.0, 0.0, 5.0, xtol=1e-12)
+    assert released_at == pytest.approx(xi_end, abs=2 * (xs[1] - xs[0]))
+
+
+def _drag_pull(params, drag, kernel="numba"):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = Model(params.replace(**{"array.count": 1}), seed=1, kernel=kernel, record_every=1)
+        return m.run(protocol.drag_pull(0.2, drag, 90.0, speed=0.05), progress=False)
+
+
+def test_pull_off_after_a_gripping_drag_is_savkoor_briggs():
+    """One rod seta (θ = 60°, μ = 10) pressed to 0.2 µN, dragged 8 µm back along its shaft and
+    pulled straight off: the soft seta loads its tip nearly as a dead load, so the pull-off is
+    the load-controlled Fc − E*T²/(24πwRG*) at the shear T it carries then (2.61 µN at
+    T = 2.25 µN, 16 % below Fc); without the coupling it is Fc whatever the shear."""
+    p = SHEARED.replace(**{"friction.mu": 10.0, "seta.theta_deg": 60.0})
+    h = _drag_pull(p, -8.0)
+    k0 = int(np.flatnonzero(h["plate_x_um"] <= h["plate_x_um"][0] - 8.0 + 1e-9)[0])
+    k = k0 + int(np.argmin(h["force_normal_uN"][k0:]))  # the pull-off, in the pull
+    pull_off, T = -h["force_normal_uN"][k], abs(h["force_tangential_uN"][k])
+    assert T > 0.5 * law_fc()
+    assert pull_off == pytest.approx(float(sj.pull_off_force(T, R, W, E, G)), rel=0.01)
+    plain = _drag_pull(p.replace(**{"contact.shear_coupling": "none"}), -8.0)
+    assert -plain["force_normal_uN"].min() == pytest.approx(law_fc(), rel=1e-3)
+
+
+def law_fc():
+    return float(jkr.pull_off_force(R, W))
+
+
+def test_without_friction_it_is_the_jkr_sphere():
+    """μ = 0 with the paper's friction law: the tip never carries shear (ξ = 0), and a
+    press–pull gives the JKR sphere's history to rounding."""
+    p = SHEARED.replace(**{"friction.mu": 0.0, "friction.law": "paper"})
+    sheared = _drag_pull(p, 0.0)
+    plain = _drag_pull(p.replace(**{"contact.shear_coupling": "none"}), 0.0)
+    assert len(sheared) == len(plain)
+    for col in ("force_normal_uN", "work_plate_pJ", "energy_dissipated_pJ"):
+        scale = np.abs(plain[col]).max()
+        assert np.abs(sheared[col] - plain[col]).max() <= 1e-6 * scale, col
+
+
+@pytest.mark.parametrize("kernel", ["python", "numba"])
+def test_kernels_agree(kernel):
+    """Three setae dragged both ways and pulled: the per-seta loop (compiled or interpreted)
+    gives the numpy path's history to rounding."""
+    from gecko_agents.model import numba_available
+
+    if kernel == "numba" and not numba_available():
+        pytest.skip("numba is not installed (optional extra 'fast')")
+    p = SHEARED.replace(**{"array.count": 3, "friction.mu": 0.5})
+    dp = protocol.drag_pull(0.4, 6.0, 60.0, speed=0.05)
+    prot = [*dp[:-1], protocol.Move(dx=-10.0, speed=0.05), dp[-1]]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ref = Model(p, kernel="numpy").run(prot, progress=False)
+        h = Model(p, kernel=kernel).run(prot, progress=False)
+    for col in ref.scalars:
+        scale = np.abs(ref[col]).max() + 1e-300
+        assert np.abs(ref[col] - h[col]).max() <= 1e-9 * scale, col
+
+
+@pytest.mark.parametrize(
+    "change, field",
+    [
+        ({"contact.shear_coupling": "mindlin"}, "shear_coupling"),
+        ({"contact.crack_speed": 1.0}, "shear_coupling"),
+        ({"contact.detachment": "delta_s"}, "shear_coupling"),
+    ],
+)
+def test_bad_values_refused_naming_the_field(change, field):
+    with pytest.raises(ValueError, match=field):
+        SHEARED.replace(**change)
+
+
+def test_refused_where_it_is_not_modelled():
+    """The quasi-static solver (JKR only) and a continuous floor refuse it, naming it."""
+    with pytest.raises(ValueError, match="shear_coupling"):
+        quasistatic.single_seta(SHEARED.replace(**{"array.count": 1}), [0.0])
+    p = SHEARED.replace(**{"floor.sigma": 0.1, "floor.correlation_length": 5.0})
+    with pytest.raises(ValueError, match="shear_coupling"):
+        Model(p.replace(**{"array.count": 1}), seed=1).run(
+            protocol.drag_pull(0.2, 1.0, 90.0), progress=False
+        )
+
+
+def test_law_is_chosen_by_the_coupling():
+    assert type(contact_law(SHEARED)) is ShearedJKRSphere
+    assert type(contact_law(PAPER_ARRAY)) is JKRSphere
