@@ -193,9 +193,16 @@ def test_without_friction_it_is_the_jkr_sphere():
     sheared = _drag_pull(p, 0.0)
     plain = _drag_pull(p.replace(**{"contact.shear_coupling": "none"}), 0.0)
     assert len(sheared) == len(plain)
-    for col in ("force_normal_uN", "work_plate_pJ", "energy_dissipated_pJ"):
+    for col in ("force_normal_uN", "work_plate_pJ"):
         scale = np.abs(plain[col]).max()
         assert np.abs(sheared[col] - plain[col]).max() <= 1e-6 * scale, col
+    # The JKR sphere counts its energy from the jump-in, this law from the free tip: the
+    # books split differently while attached, and agree in sum and once it has let go.
+    books = [h["energy_elastic_pJ"] + h["energy_dissipated_pJ"] for h in (sheared, plain)]
+    np.testing.assert_allclose(books[0], books[1], atol=1e-6 * np.abs(books[1]).max())
+    assert sheared["energy_dissipated_pJ"][-1] == pytest.approx(
+        plain["energy_dissipated_pJ"][-1], rel=1e-6
+    )
 
 
 @pytest.mark.parametrize("kernel", ["python", "numba"])
