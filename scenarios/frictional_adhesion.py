@@ -48,14 +48,22 @@ BASE = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.0, "array.cou
 PRELOAD = 0.2  # µN: a rod seta with a spatula folds flat under 1 µN at μ = 0.2
 DRAG = 8.0  # µm
 SPEED = 0.05  # µm/µs
+TIPS = {  # the scenario's tip names: parameters and labels
+    "sphere": ({"tip": "sphere"}, "sphere"),
+    "sphere_sb": (
+        {"tip": "sphere", "contact.shear_coupling": "savkoor_briggs"},
+        "sphere, Savkoor–Briggs",
+    ),
+    "spatula": ({"tip": "spatula"}, "spatula"),
+}
 
 
 def config(quick: bool) -> dict:
     if quick:
-        return {"angles": [90.0, 150.0], "tips": ["sphere", "spatula"], "mus": [10.0],
+        return {"angles": [90.0, 150.0], "tips": list(TIPS), "mus": [10.0],
                 "drags": [-DRAG, DRAG]}  # fmt: skip
     return {"angles": [15.0, 30.0, 45.0, 60.0, 75.0, 90.0, 105.0, 120.0, 135.0, 150.0, 165.0],
-            "tips": ["sphere", "spatula"], "mus": [0.2, 10.0], "drags": [-DRAG, DRAG]}  # fmt: skip
+            "tips": list(TIPS), "mus": [0.2, 10.0], "drags": [-DRAG, DRAG]}  # fmt: skip
 
 
 def release_forces(h, drag: float) -> tuple[float, float, float]:
@@ -75,7 +83,7 @@ def release_forces(h, drag: float) -> tuple[float, float, float]:
 
 
 def run_point(tip: str, mu: float, drag: float, beta: float, record: bool = False):
-    params = BASE.replace(**{"tip": tip, "friction.mu": mu})
+    params = BASE.replace(**TIPS[tip][0], **{"friction.mu": mu})
     prot = protocol.drag_pull(PRELOAD, drag, beta, speed=SPEED)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # validity diagnostics are in the histories' metadata
@@ -87,7 +95,7 @@ def run_point(tip: str, mu: float, drag: float, beta: float, record: bool = Fals
     return row, h
 
 
-MAP_CASES = (("spatula", 10.0), ("spatula", 0.2), ("sphere", 10.0))
+MAP_CASES = (("spatula", 10.0), ("spatula", 0.2), ("sphere", 10.0), ("sphere_sb", 10.0))
 MAP_FACTORS = (0.25, 0.5, 1.0, 1.5, 2.0)  # drag / lean
 
 
@@ -123,7 +131,7 @@ def map_point(tip: str, mu: float, theta: float, factor: float, sign: int) -> di
     """One 90° pull after a drag of ``sign``·``factor`` × the lean L cos θ (−1 gripping)."""
     lean = BASE.seta.L * math.cos(math.radians(theta))
     drag = sign * factor * lean
-    params = BASE.replace(**{"tip": tip, "friction.mu": mu, "seta.theta_deg": theta})
+    params = BASE.replace(**TIPS[tip][0], **{"friction.mu": mu, "seta.theta_deg": theta})
     prot = protocol.drag_pull(PRELOAD, drag, 90.0, speed=SPEED)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -160,13 +168,13 @@ def draw_map(rows: list[dict], mcfg: dict, out) -> None:
         fig = Figure(figsize=(11.0, 4.4), layout="constrained")
         ax_r, ax_phi = fig.subplots(1, 2)
         colours = {("spatula", 10.0): "#d62728", ("spatula", 0.2): "#fc9272",
-                   ("sphere", 10.0): "#1f77b4"}  # fmt: skip
+                   ("sphere", 10.0): "#1f77b4", ("sphere_sb", 10.0): "#2ca02c"}  # fmt: skip
         dashes = {55.0: ":", 60.0: "-", 75.0: "--"}
         for tip, mu in mcfg["cases"]:
             for theta in mcfg["thetas"]:
                 sel = [r for r in rows if (r["tip"], r["mu"], r["theta_deg"]) == (tip, mu, theta)]
                 c, ls = colours.get((tip, mu), "k"), dashes.get(theta, "-")
-                lab = f"{tip}, μ = {mu:g}, θ = {theta:g}°"
+                lab = f"{TIPS[tip][1]}, μ = {mu:g}, θ = {theta:g}°"
                 g = [r for r in sel if r["direction"] == "gripping"]
                 ax_r.plot(
                     [r["drag_over_lean"] for r in g],
@@ -201,12 +209,14 @@ def summarise(rows: list[dict], cfg: dict) -> dict:
     for tip in cfg["tips"]:
         for mu in cfg["mus"]:
             sel = [r for r in rows if r["tip"] == tip and r["mu"] == mu]
-            at90 = {r["drag_um"]: r["pull_off_uN"] for r in sel if r["pull_angle_deg"] == 90}
-            grip, rel = at90.get(-DRAG, math.nan), at90.get(DRAG, math.nan)
+            at90 = {r["drag_um"]: r for r in sel if r["pull_angle_deg"] == 90}
+            grip, rel = (at90[d]["pull_off_uN"] if d in at90 else math.nan for d in (-DRAG, DRAG))
+            shear = at90[-DRAG]["shear_at_release_uN"] if -DRAG in at90 else math.nan
             g = [r for r in sel if r["drag_um"] < 0]
-            out[f"{tip}, mu={mu:g}"] = {
+            out[f"{TIPS[tip][1]}, mu={mu:g}"] = {
                 "gripping_uN": grip,
                 "releasing_uN": rel,
+                "gripping_shear_at_release_uN": shear,
                 "gripping_over_releasing_at_90deg": grip / rel if rel > 0 else math.nan,
                 "critical_angle_deg": critical_angle(
                     [r["shear_at_release_uN"] for r in g], [r["adhesion_at_release_uN"] for r in g]
@@ -225,6 +235,8 @@ def draw(rows: list[dict], cfg: dict, out) -> None:
         styles = {
             ("sphere", -DRAG): ("o-", "#1f77b4"),
             ("sphere", DRAG): ("o--", "#9ecae1"),
+            ("sphere_sb", -DRAG): ("D-", "#2ca02c"),
+            ("sphere_sb", DRAG): ("D--", "#98df8a"),
             ("spatula", -DRAG): ("s-", "#d62728"),
             ("spatula", DRAG): ("s--", "#fc9272"),
         }
@@ -237,7 +249,7 @@ def draw(rows: list[dict], cfg: dict, out) -> None:
                 way = "gripping (−x)" if drag < 0 else "releasing (+x)"
                 ax.plot([r["shear_at_release_uN"] for r in sel],
                         [r["adhesion_at_release_uN"] for r in sel], st, color=c,
-                        label=f"{tip}, dragged {way}")  # fmt: skip
+                        label=f"{TIPS[tip][1]}, dragged {way}")  # fmt: skip
             ax.axhline(0.0, color="0.6", lw=0.8)
             ax.set_xlabel("shear force at release [µN] (+x)")
             ax.set_ylabel("adhesion (normal) force at release [µN]")
@@ -286,8 +298,7 @@ def beyond_the_paper(summary: dict, quick: bool, map_rows: list[dict]) -> str:
         "friction μ·P_c. At μ = 10 that holds the tip, the seta rotates over it towards "
         "upright and the 90° pull peels the film with the force turned away from the shaft "
         "(φ > 90° from the gripping shear axis), where it holds far less than the gripping "
-        "film. A sphere tip has no orientation to lose and its JKR release "
-        "is at the normal force −Fc whatever the shear: ×1.00. With the paper's μ = 0.2 the "
+        f"film. {sphere_sentence(summary)} With the paper's μ = 0.2 the "
         "pad's friction (2μw·b·ℓ/ℓ0 ≈ 0.2 µN) and the tip's (μ·P_c ≈ 0.1 µN) are below the "
         "seta's forces: pad and tip slide under the seta either way, the pad caps the "
         "pre-tension and both pulls let go where the pad slides (φ ≈ 72°). The ratio depends on "
@@ -297,6 +308,32 @@ def beyond_the_paper(summary: dict, quick: bool, map_rows: list[dict]) -> str:
     ]
     lines += map_section(map_rows) if map_rows else []
     return "\n".join(lines)
+
+
+def sphere_sentence(summary: dict) -> str:
+    """What the sphere tips give, with the Savkoor–Briggs sphere's numbers when it ran."""
+    text = (
+        "A sphere tip has no orientation to lose. With the paper's JKR contact (its radius "
+        "set by the overlap alone, as a sliding contact's is: Menga, Carbone & Dini 2018) it "
+        "lets go at the normal force −Fc whatever the shear: ×1.00."
+    )
+    sb = summary.get(f"{TIPS['sphere_sb'][1]}, mu=10")
+    if sb is None:
+        return text
+    return text + (
+        " Coupled to its shear as a brittle interface couples them (Savkoor & Briggs 1977: "
+        "the stick spring's mode-II release rate counts in Griffith's balance), a sphere "
+        "holds less the more shear it carries, whichever its sign: after the gripping drag the "
+        f"tip carries {sb['gripping_shear_at_release_uN']:.2f} µN of shear at the 90° "
+        f"pull-off and lets go at {sb['gripping_uN']:.2f} µN (the load-controlled "
+        "Fc − E*T²/(24πwRG*) at that shear), after the releasing drag at "
+        f"{sb['releasing_uN']:.2f} µN: ×{sb['gripping_over_releasing_at_90deg']:.2f}, the "
+        "opposite of frictional adhesion. Savkoor–Briggs is the strongest coupling (real "
+        "interfaces are tougher in shear, Johnson 1997), so a sphere on this seta gives "
+        f"×{sb['gripping_over_releasing_at_90deg']:.2f}–×1.00: shear does not make a sphere "
+        "grip; the directional effect needs a tip whose release depends on the force's "
+        "direction, the film."
+    )
 
 
 def map_section(rows: list[dict]) -> list[str]:
@@ -344,7 +381,9 @@ def map_section(rows: list[dict]) -> list[str]:
         "A sphere tip is held tangentially by its adhesive friction μ(P + 2Fc), so a "
         "releasing drag past the lean flips its seta (lean > 90°) and the release force "
         "points over the tip (φ > 90°) — yet the JKR tip lets go at the normal force −Fc "
-        "whatever the shear, so its ratio stays 1. A spatula's film holds a push over its pad "
+        "whatever the shear, so its ratio stays 1; the Savkoor–Briggs sphere lets go earlier "
+        "the more shear it carries, and the gripping drag loads it more, so its ratio is "
+        "below 1. A spatula's film holds a push over its pad "
         "only up to w·b/2, its 180° peel force, but its pressed tip body holds by its own "
         "friction μ·P_c. At μ = 10 the tip sticks: a releasing drag of about the lean stands "
         "the seta upright (lean ≈ 90°) and a longer one flips it, and the 90° pull then peels "
@@ -360,7 +399,8 @@ def map_section(rows: list[dict]) -> list[str]:
         "away), so the protocol has no meaning there. Autumn et al. (2000)'s large "
         "gripping/releasing contrast for a seta dragged against its curvature needs a tip "
         "that resists the push (here the tip body's friction, at a large μ) and a "
-        "release that sees the force direction (which the JKR sphere lacks).",
+        "release that sees the force direction (the JKR sphere's sees neither shear nor "
+        "direction; the Savkoor–Briggs sphere's sees the shear but not its sign).",
         "",
     ]
     return lines
