@@ -24,7 +24,8 @@ its tip). Nothing is tuned: it maps the model.
 
 Outputs (``renders/frictional_adhesion/``): ``sweep.csv``, ``frictional_adhesion.png``
 (adhesion vs shear at release, the style of Autumn 2006), ``anisotropy_map.csv``,
-``anisotropy_map.png``, ``beyond_the_paper.md``, ``metadata.json``; ``--animate`` adds
+``anisotropy_map.png``, ``patch.csv`` (the same load–drag–pull on a patch of setae on a rough
+floor), ``beyond_the_paper.md``, ``metadata.json``; ``--animate`` adds
 ``spatula_peel.gif``.
 """
 
@@ -97,6 +98,62 @@ def run_point(tip: str, mu: float, drag: float, beta: float, record: bool = Fals
 
 MAP_CASES = (("spatula", 10.0), ("spatula", 0.2), ("sphere", 10.0), ("sphere_sb", 10.0))
 MAP_FACTORS = (0.25, 0.5, 1.0, 1.5, 2.0)  # drag / lean
+
+
+PATCH_TIPS = ("spatula", "sphere_sb", "sphere")
+
+
+def patch_config(quick: bool) -> dict:
+    """The patch: setae N [-], floor RMS heights σ [µm] (each seta its own pad, eq 28), tips."""
+    if quick:
+        return {"count": 4, "sigmas": [1.0], "tips": ["spatula"]}
+    return {"count": 16, "sigmas": [0.3, 1.0], "tips": list(PATCH_TIPS)}
+
+
+def patch_point(tip: str, sigma: float, count: int, sign: int) -> dict:
+    """A patch of ``count`` setae on a rough floor, pressed to ``count`` × the preload, dragged
+    ``sign`` × DRAG (−1 gripping) and pulled at 90°: pull-off per seta [µN]."""
+    params = BASE.replace(**TIPS[tip][0], **{
+        "friction.mu": 10.0, "array.count": count, "floor.sigma": sigma,
+        "floor.correlation_length": 0.0,
+    })  # fmt: skip
+    drag = sign * DRAG
+    prot = protocol.drag_pull(PRELOAD * count, drag, 90.0, speed=SPEED)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        h = Model(params, seed=1, record_every=1).run(prot, progress=False)
+    px = h["plate_x_um"]
+    k0 = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0])
+    pull_off = max(0.0, float(-h["force_normal_uN"][k0:].min())) / count
+    return {"tip": tip, "sigma_um": sigma, "count": count,
+            "direction": "gripping" if sign < 0 else "releasing", "drag_um": drag,
+            "attached_after_drag": int(h["n_attached"][k0]),
+            "pull_off_per_seta_uN": pull_off}  # fmt: skip
+
+
+def patch_section(rows: list[dict]) -> list[str]:
+    """The patch table: per tip and σ, both drags' pull-off per seta and their ratio."""
+    lines = [
+        "### A patch on a rough floor",
+        "",
+        f"{rows[0]['count']} setae, each on its own pad at a Gaussian height (eq 28), pressed to "
+        f"{rows[0]['count']} × {PRELOAD} µN, dragged {DRAG:g} µm either way and pulled at 90°, "
+        "μ = 10 (`patch.csv`).",
+        "",
+        "| tip | σ [µm] | attached after the drag (gripping / releasing) | pull-off per seta, "
+        "gripping / releasing [µN] | ratio |",
+        "|---|---|---|---|---|",
+    ]
+    for tip, sigma in dict.fromkeys((r["tip"], r["sigma_um"]) for r in rows):
+        g, r_ = (next(r for r in rows if (r["tip"], r["sigma_um"], r["direction"]) ==
+                      (tip, sigma, way)) for way in ("gripping", "releasing"))  # fmt: skip
+        ratio = g["pull_off_per_seta_uN"] / r_["pull_off_per_seta_uN"]
+        lines.append(
+            f"| {TIPS[tip][1]} | {sigma:g} | {g['attached_after_drag']} / "
+            f"{r_['attached_after_drag']} | {g['pull_off_per_seta_uN']:.2f} / "
+            f"{r_['pull_off_per_seta_uN']:.2f} | ×{ratio:.2f} |"
+        )
+    return lines + [""]
 
 
 def map_config(quick: bool) -> dict:
@@ -439,7 +496,15 @@ def main(argv=None) -> dict:
         map_rows = anisotropy_map(mcfg)
         write_table(out / "anisotropy_map.csv", map_rows)
         draw_map(map_rows, mcfg, out)
-    text = beyond_the_paper(summary, args.quick, map_rows)
+    pcfg = patch_config(args.quick)
+    patch_rows = [patch_point(tip, sigma, pcfg["count"], sign) for tip in pcfg["tips"]
+                  for sigma in pcfg["sigmas"] for sign in (-1, 1)]  # fmt: skip
+    write_table(out / "patch.csv", patch_rows)
+    text = (
+        beyond_the_paper(summary, args.quick, map_rows)
+        + "\n"
+        + "\n".join(patch_section(patch_rows))
+    )
     atomic_write_bytes(out / "beyond_the_paper.md", text.encode())
     if args.animate:
         _, h = run_point("spatula", cfg["mus"][-1], -DRAG, 30.0, record=True)
@@ -453,7 +518,7 @@ def main(argv=None) -> dict:
     write_json(out / "metadata.json", {
         "scenario": NAME, "quick": args.quick, "params": BASE.to_dict(), "config": cfg,
         "preload_uN": PRELOAD, "drag_um": DRAG, "speed_um_per_us": SPEED, "seed": 1,
-        "map_config": mcfg,
+        "map_config": mcfg, "patch_config": pcfg,
         "results": results,
     })  # fmt: skip
     print(f"{NAME}: " + "; ".join(
