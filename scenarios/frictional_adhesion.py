@@ -434,8 +434,14 @@ def map_section(rows: list[dict]) -> list[str]:
     ]
     lines += [
         "",
-        f"Range of the ratio over the map: ×{min(ratios):.2f} to ×{max(ratios):.2f}. "
-        "A sphere tip is held tangentially by its adhesive friction μ(P + 2Fc), so a "
+        f"Range of the ratio over the map: ×{min(ratios):.2f} to ×{max(ratios):.2f}"
+        + (
+            " (0: a gripping drag sheared the tip off before the pull and it did not touch "
+            "again: shear with tension ends a Savkoor–Briggs contact below Fc). "
+            if min(ratios) == 0
+            else ". "
+        )
+        + "A sphere tip is held tangentially by its adhesive friction μ(P + 2Fc), so a "
         "releasing drag past the lean flips its seta (lean > 90°) and the release force "
         "points over the tip (φ > 90°) — yet the JKR tip lets go at the normal force −Fc "
         "whatever the shear, so its ratio stays 1; the Savkoor–Briggs sphere lets go earlier "
