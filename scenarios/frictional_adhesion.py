@@ -38,7 +38,8 @@ import warnings
 import numpy as np
 from _common import output_dir, parse_args, write_json, write_table
 
-from gecko_agents import protocol, render
+from gecko_agents import protocol, render, sheared_jkr
+from gecko_agents.contact import contact_law
 from gecko_agents.history import atomic_write_bytes
 from gecko_agents.limit_curve import critical_angle
 from gecko_agents.model import Model
@@ -307,6 +308,11 @@ def draw(rows: list[dict], cfg: dict, out) -> None:
                 ax.plot([r["shear_at_release_uN"] for r in sel],
                         [r["adhesion_at_release_uN"] for r in sel], st, color=c,
                         label=f"{TIPS[tip][1]}, dragged {way}")  # fmt: skip
+            if "sphere_sb" in cfg["tips"]:  # the closed form beside the coupled sphere
+                law = contact_law(BASE.replace(**TIPS["sphere_sb"][0]))
+                T = np.linspace(*ax.get_xlim(), 200)
+                Fc = sheared_jkr.pull_off_force(T, law.R, law.w, law.E_star, law.G_star)
+                ax.plot(T, Fc, ":", color="0.4", lw=1.0, label="Fc(T), Savkoor & Briggs 1977")
             ax.axhline(0.0, color="0.6", lw=0.8)
             ax.set_xlabel("shear force at release [µN] (+x)")
             ax.set_ylabel("adhesion (normal) force at release [µN]")
