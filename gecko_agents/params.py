@@ -87,13 +87,13 @@ class Contact:
         when the crack has run through (``"fold"`` only).
     shear_coupling : how the shear a sphere tip carries acts on its adhesion. ``"none"``
         (default; the paper's JKR): the contact radius follows the overlap alone, as a sliding
-        contact's does (Vorvolakos & Chaudhury 2003, Langmuir 19:6778; Menga, Carbone & Dini
-        2018, J Mech Phys Solids 112:145). ``"savkoor_briggs"``: the stick spring's mode-II
-        release rate counts in Griffith's balance on a brittle interface (Savkoor & Briggs
-        1977, Proc R Soc A 356:103; :class:`gecko_agents.contact.ShearedJKRSphere`): shear
-        shrinks the contact and lowers the tension it holds, the strongest coupling (real
-        interfaces are tougher in shear, Johnson 1997, Proc R Soc A 453:163). Elastic contact
-        (``crack_speed = inf``) with the ``"fold"`` detachment and a pad floor only.
+        contact's does (Vorvolakos & Chaudhury 2003, Langmuir 19:6778; Menga, Carbone & Dini 2018, J
+        Mech Phys Solids 112:145, as corrected). ``"savkoor_briggs"``: the stick spring's mode-II
+        release rate counts in Griffith's balance on a brittle interface (Savkoor & Briggs 1977,
+        Proc R Soc A 356:103; :class:`gecko_agents.contact.ShearedJKRSphere`): shear shrinks the
+        contact and lowers the tension it holds, the strongest coupling (real interfaces are tougher
+        in shear, Johnson 1997, Proc R Soc A 453:163). Elastic contact (``crack_speed = inf``) with
+        the ``"fold"`` detachment and a pad floor only.
     """
 
     R: float = 4.0

@@ -19,15 +19,18 @@ interface (toughness w in every mode) gives Savkoor & Briggs' contact (1977, Pro
 
 and, at fixed displacements δ and ξ (the model's: a seta holds its tip by a spring, as Popov,
 Lyashenko & Filippov 2017, R Soc Open Sci 4:161010, treat the tangential displacement), δ = a²/R −
-√((2πwa − 4G*ξ²)/E*), JKR's eq 10 with w → w − 2G*ξ²/(πa). Under load control the contact comes off
-where the root vanishes: P = −Fc + E*T²/(24πwRG*), no tension at all once T ≥ 4Fc·√(G*/E*).
+√((2πwa − 4G*ξ²)/E*), the paper's eq 10 with w → w − 2G*ξ²/(πa). Under load control the contact
+comes off where the root vanishes: P = −Fc + E*T²/(24πwRG*), no tension at all once T ≥
+4Fc·√(G*/E*).
 
-What it leaves out. Savkoor & Briggs' rubber-on-glass contacts shrank under shear less than
-this predicts; Johnson (1997, Proc R Soc A 453:163) and Papangelo et al. (2019, Phys Rev E
-99:053005) describe the difference with an interface toughness that rises with the mode
-mixity, and a sliding contact keeps its JKR area (Vorvolakos & Chaudhury 2003, Langmuir
-19:6778; Menga, Carbone & Dini 2018, J Mech Phys Solids 112:145). This brittle coupling is the
-strongest effect shear can have on the contact; no coupling (the paper's JKR) the weakest.
+What it leaves out. Savkoor & Briggs' rubber-on-glass contacts shrank under shear less than this
+predicts; Johnson (1997, Proc R Soc A 453:163) and Papangelo et al. (2019, Phys Rev E 99:053005)
+describe the difference with an interface toughness that rises with the mode mixity, and a sliding
+contact keeps its JKR area (Vorvolakos & Chaudhury 2003, Langmuir 19:6778; Menga, Carbone & Dini
+2018, J Mech Phys Solids 112:145, as corrected in its corrigendum). This brittle coupling is the
+strongest effect shear can have on the contact; no coupling (the paper's JKR) the weakest. The stick
+force 8G*·a·ξ is taken as path-independent: a bonded contact that grows under shear would carry
+nothing on its newly bonded ring, and that history is not followed.
 """
 
 from __future__ import annotations
@@ -79,7 +82,7 @@ def overlap_from_radius(a, xi, R, w, E_star, G_star):
 def radius_from_loads(P, T, R, w, E_star, G_star):
     """Contact radius a [length] on the stable branch under normal load P and tangential load T
     (Savkoor & Briggs 1977): a³ = 3R·P1/(4E*) with P1 = P + 3πwR + √(6πwRP + (3πwR)² −
-    E*T²/(4G*)); NaN past the pull-off (negative root). T = 0 is JKR's eq 8."""
+    E*T²/(4G*)); NaN past the pull-off (negative root). T = 0 is the paper's eq 8."""
     P = np.asarray(P, dtype=float)
     T = np.asarray(T, dtype=float)
     disc = 6.0 * np.pi * w * R * P + (3.0 * np.pi * w * R) ** 2 - E_star * T * T / (4 * G_star)
@@ -90,7 +93,9 @@ def radius_from_loads(P, T, R, w, E_star, G_star):
 def pull_off_force(T, R, w, E_star, G_star):
     """Load-controlled pull-off force magnitude under a tangential load T [force]:
     Fc(T) = Fc − E*T²/(24πwRG*), Fc = 1.5πwR, where the root of :func:`radius_from_loads`
-    vanishes; 0 once T ≥ 4Fc·√(G*/E*) (Savkoor & Briggs 1977)."""
+    vanishes (Savkoor & Briggs 1977); 0 once T ≥ 4Fc·√(G*/E*), where the contact needs a
+    compression of E*T²/(24πwRG*) − Fc to hold (this function reports no tension, not that
+    load)."""
     T = np.asarray(T, dtype=float)
     Fc = 1.5 * np.pi * w * R
     return np.maximum(Fc - E_star * T * T / (24.0 * np.pi * w * R * G_star), 0.0)

@@ -69,7 +69,11 @@ class SetaState:
       ``a`` the attached length ℓ [µm], ``s0`` the free film's unstretched length [µm], ``p0``
       the pre-tension of the attached film [µN], ``uc`` the energy the contact stores [pJ],
       ``xi`` the tip body's stick anchor relative to the front [µm] (its Coulomb friction on
-      the Hertz compression; the stick offset is the tip's offset from the front minus it).
+      the Hertz compression; the stick offset is the tip's offset from the front minus it);
+    * sheared spheres (:class:`gecko_agents.contact.ShearedJKRSphere`): ``anchor`` is where
+      the tip attached, ``a`` the contact radius, ``xi`` the stick anchor relative to it [µm],
+      ``p0`` the tip's tangential displacement ξ from that anchor [µm] and ``s0`` and ``uc``
+      the energy the contact stores [pJ].
 
     Flags (bool (N,)): ``attached``, ``slip`` (attached and sliding), ``candidate`` (pymunk
     reports the tip's sensor touching its floor), ``candidate_step`` (the copy a step used).

@@ -125,15 +125,16 @@ class ShearedJKRSphere(ContactLaw):
     Every step, at the tip's position: the tip first tries to stick (ξ = x_tip − anchor); if
     the contact then exceeds the Coulomb cap (μ|P + 2Fc|, Thornton 1991, or the paper's
     μ·max(P, 0), eq 27) or no contact can hold that ξ, the anchor slides to the largest ξ that
-    holds (bisection). If that boundary is the cap the tip slides, dissipating the Coulomb work
-    cap·|Δξ| (as the sphere's stick spring); if it is the end of the branch (the contact fails
-    below its cap) the tip lets go, its stored energy dissipated.
+    holds (bisection), dissipating the work of the shear held there (at the cap: the Coulomb
+    work cap·|Δξ|, as the sphere's stick spring). If that boundary is the end of the branch
+    (the contact fails below its cap) a tip off the floor (δ ≤ 0) lets go, its stored energy
+    dissipated; a pressed one slides there (:meth:`step_scalar`).
 
     With ξ = 0 the branch is JKR's; the law then follows :class:`JKRSphere`'s ``"fold"``
     detachment. Energy U = 8E*a⁵/(15R²) + P1·e + E*a·e² − πa²w + 4G*·a·ξ² [pJ]
     (e = δ − a²/R, P1 = 4E*a³/(3R)), from which P = ∂U/∂δ and the tangential force ∂U/∂ξ follow;
     the radius minimises it at fixed (δ, ξ), so the contact is elastic: a step at a fixed tip
-    position dissipates only the Coulomb work of a slip.
+    position dissipates only the work of a slip.
 
     Parameters
     ----------
@@ -176,15 +177,24 @@ class ShearedJKRSphere(ContactLaw):
         raise NotImplementedError("ShearedJKRSphere stores its energy in the state (state.uc)")
 
     @staticmethod
-    def step_scalar(dx, z, a_prev, p0, u_prev, xa, k):
+    def step_scalar(dx, z, a_prev, xi_prev, u_prev, xa, k):
         """One step of the contact at the tip's offset dx from its attachment point and height
-        z of its centre above the floor [µm], from state (a_prev [µm], unused, u_prev the
-        energy stored at the end of the previous step [pJ] (kept in the film-length slot, 0 on
-        attachment), xa the stick anchor − attachment point [µm]). Returns (P, T, shift, a, 0,
-        U, xa, U, dissipation, slid) as :meth:`SpatulaTip.step_scalar`: P [µN] > 0
-        compressive, T [µN] along +x on the tip, shift 0 (the attachment point stays), a = 0
-        when the tip lets go, U then what the contact stored when its force last acted, which
-        the kernels dissipate (as for :class:`JKRSphere`)."""
+        z of its centre above the floor [µm], from state (a_prev [µm], xi_prev the tip's
+        tangential displacement at the end of the previous step [µm], u_prev the energy stored
+        then [pJ], xa the stick anchor − attachment point [µm]; the kernels keep ξ and U in the
+        film's pre-tension and length slots, 0 on attachment). Returns (P, T, shift, a, ξ, U,
+        xa, U, dissipation, slid) as :meth:`SpatulaTip.step_scalar`: P [µN] > 0 compressive,
+        T [µN] along +x on the tip, shift 0 (the attachment point stays), a = 0 when the tip
+        lets go, U then what the contact stored when its force last acted, which the kernels
+        dissipate (as for :class:`JKRSphere`).
+
+        Past the cap, or where no contact holds the trial ξ, the anchor slides to the largest
+        ξ that holds (bisection from the last ξ, which held): at the cap, or at the end of the
+        branch. A tip whose branch ends there lets go if it no longer overlaps the floor
+        (δ ≤ 0); pressed into it (δ > 0) it keeps its contact and slides at the shear the
+        branch's end holds (shear has peeled the adhesive contact as far as it goes; Johnson
+        1997 has it drop to the Hertz area then, which is not modelled). A slip dissipates the
+        work of the shear it held, 8G*·a·|ξ| times the slip."""
         delta = k[0] - z
         xi = dx - xa
         s = abs(xi)
@@ -195,23 +205,27 @@ class ShearedJKRSphere(ContactLaw):
             released = _radius(delta, 0.0, k) <= 0.0  # past the fold even without shear
             if not released:
                 lo, hi = 0.0, s
+                last = abs(xi_prev)  # held last step: the first boundary lies beyond it
+                if xi_prev * xi > 0.0 and last < s and _holds(delta, last, k)[1] > 0.0:
+                    lo = last
                 for _ in range(60):
                     mid = 0.5 * (lo + hi)
                     if _holds(delta, mid, k)[1] > 0.0:
                         lo = mid
                     else:
                         hi = mid
-                released = _radius(delta, hi, k) <= 0.0  # the branch ends below the cap
+                # The branch ends below the cap: a tip off the floor lets go.
+                released = delta <= 0.0 and _radius(delta, hi, k) <= 0.0
             if released:  # what the contact stored when its force last acted is dissipated
                 return 0.0, 0.0, 0.0, 0.0, 0.0, u_prev, xa, u_prev, 0.0, 0.0
             a = _radius(delta, lo, k)
-            coulomb = _cap(_normal_force(a, delta, k), k) * (s - lo)
+            coulomb = 8.0 * k[4] * a * lo * (s - lo)
             xi = math.copysign(lo, xi)
             xa = dx - xi
             slid = 1.0
         P = _normal_force(a, delta, k)
         T = -8.0 * k[4] * a * xi
         # Elastic: the radius follows (δ, ξ) on the branch, so a step dissipates only the
-        # Coulomb work of a slip (the stick spring's release at fixed position, to first order).
+        # work of a slip (the stick spring's release at fixed position, to first order).
         U = _state_energy(a, delta, xi, k)
-        return P, T, 0.0, a, 0.0, U, xa, U, coulomb, slid
+        return P, T, 0.0, a, xi, U, xa, U, coulomb, slid
