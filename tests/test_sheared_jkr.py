@@ -202,11 +202,11 @@ def test_pressed_tip_slides_where_its_branch_ends():
     assert work == pytest.approx(books, rel=2e-3)
 
 
-def _drag_pull(params, drag, kernel="numba"):
+def _drag_pull(params, drag, kernel="numba", speed=0.05):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         m = Model(params.replace(**{"array.count": 1}), seed=1, kernel=kernel, record_every=1)
-        return m.run(protocol.drag_pull(0.2, drag, 90.0, speed=0.05), progress=False)
+        return m.run(protocol.drag_pull(0.2, drag, 90.0, speed=speed), progress=False)
 
 
 def test_pull_off_after_a_gripping_drag_is_savkoor_briggs():
@@ -221,7 +221,7 @@ def test_pull_off_after_a_gripping_drag_is_savkoor_briggs():
     pull_off, T = -h["force_normal_uN"][k], abs(h["force_tangential_uN"][k])
     assert T > 0.5 * law_fc()
     assert pull_off == pytest.approx(float(sj.pull_off_force(T, R, W, E, G)), rel=0.01)
-    plain = _drag_pull(p.replace(**{"contact.shear_coupling": "none"}), -8.0)
+    plain = _drag_pull(p.replace(**{"contact.shear_coupling": "none"}), -8.0, speed=0.2)
     assert -plain["force_normal_uN"].min() == pytest.approx(law_fc(), rel=1e-3)
 
 
@@ -233,8 +233,8 @@ def test_without_friction_it_is_the_jkr_sphere():
     """μ = 0 with the paper's friction law: the tip never carries shear (ξ = 0), and a
     press–pull gives the JKR sphere's history to rounding."""
     p = SHEARED.replace(**{"friction.mu": 0.0, "friction.law": "paper"})
-    sheared = _drag_pull(p, 0.0)
-    plain = _drag_pull(p.replace(**{"contact.shear_coupling": "none"}), 0.0)
+    sheared = _drag_pull(p, 0.0, speed=0.2)
+    plain = _drag_pull(p.replace(**{"contact.shear_coupling": "none"}), 0.0, speed=0.2)
     assert len(sheared) == len(plain)
     for col in ("force_normal_uN", "work_plate_pJ"):
         scale = np.abs(plain[col]).max()
