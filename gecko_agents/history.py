@@ -238,18 +238,20 @@ class History:
         df.attrs = json.loads(json.dumps(self.metadata(), default=_json_default))
         return df
 
-    def run_id(self) -> str:
+    def run_id(self, params_dict: dict | None = None) -> str:
         """16 hex digits identifying this run: sha256 of the parameters, seed, protocol, code
         version (``meta["versions"]["gecko_agents"]``) and the recorded scalar series (the
         same parameters and seed give the same series, so the series only tell apart a model
-        run twice or a history edited after the run)."""
+        run twice or a history edited after the run). ``params_dict``: the parameters as a
+        file recorded them, instead of ``params.to_dict()`` (a run saved before a parameter
+        field existed recorded fewer fields)."""
         meta = self.meta
         code = (meta.get("versions") or versions()).get("gecko_agents")
         digest = hashlib.sha256()
         for c in SCALAR_COLUMNS:
             digest.update(np.ascontiguousarray(self.scalars[c], dtype=np.float64).tobytes())
         ident = {
-            "params": self.params.to_dict(),
+            "params": self.params.to_dict() if params_dict is None else params_dict,
             "seed": int(self.seed),
             "protocol": meta.get("protocol"),
             "code_version": code,
@@ -343,7 +345,7 @@ def load(directory) -> History:
         if not (d / name).is_file():
             raise FileNotFoundError(f"{name} is missing from run directory {str(d)!r}")
     meta_path, csv_path, npz_path = d / "metadata.json", d / "history.csv", d / "setae.npz"
-    meta, params, seed, n_records = _read_metadata(meta_path)
+    meta, raw_params, params, seed, n_records = _read_metadata(meta_path)
     saved_id = meta.get("run_id")
     csv_id, table = _read_series(csv_path)
     if n_records is not None and len(table) != n_records:
@@ -378,7 +380,9 @@ def load(directory) -> History:
         )
     except ValueError as err:
         raise ValueError(f"{d}: {err}") from err
-    if saved_id is not None and h.run_id() != saved_id:
+    # The parameters as the file recorded them: a run saved before a field was added to the
+    # parameters (now at its default) is intact, and an edit still changes them.
+    if saved_id is not None and saved_id not in (h.run_id(), h.run_id(raw_params)):
         raise ValueError(
             f"{csv_path} does not hold the series run {saved_id} recorded (or "
             f"{meta_path.name}'s parameters, seed or protocol were edited): re-run to "
@@ -387,13 +391,15 @@ def load(directory) -> History:
     return h
 
 
-def _read_metadata(meta_path: Path) -> tuple[dict, SetaArray, int, int | None]:
-    """metadata.json as (the rest of its dict, params, seed, n_records or None)."""
+def _read_metadata(meta_path: Path) -> tuple[dict, dict, SetaArray, int, int | None]:
+    """metadata.json as (the rest of its dict, its params as recorded, params, seed,
+    n_records or None)."""
     try:
         meta = json.loads(meta_path.read_text(encoding="utf-8"))
         if not isinstance(meta, dict):
             raise TypeError(f"it holds a {type(meta).__name__}, not an object")
-        params = SetaArray.from_dict(meta.pop("params"))
+        raw_params = meta.pop("params")
+        params = SetaArray.from_dict(raw_params)
         seed = check_seed(meta.pop("seed"), "seed")
         n_records = meta.pop("n_records", None)
         if n_records is not None:
@@ -401,7 +407,7 @@ def _read_metadata(meta_path: Path) -> tuple[dict, SetaArray, int, int | None]:
     except (ValueError, KeyError, TypeError, AttributeError) as err:
         # UnicodeDecodeError and JSONDecodeError are ValueErrors: a binary or garbled file.
         raise ValueError(f"{meta_path} is not a gecko_agents metadata file: {err}") from err
-    return meta, params, seed, n_records
+    return meta, raw_params, params, seed, n_records
 
 
 def _read_series(csv_path: Path) -> tuple[str | None, np.ndarray]:

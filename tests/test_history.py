@@ -265,3 +265,29 @@ def test_quasistatic_results_speak_the_same_vocabulary(tmp_path):
     h.save(tmp_path / "run")
     g = hist.load(tmp_path / "run")
     np.testing.assert_array_equal(g["force_normal_uN"], h["force_normal_uN"])
+
+
+def test_runs_saved_before_a_parameter_field_existed_still_load(tmp_path, monkeypatch):
+    """A run saved by a version whose parameters lacked a field (here contact.shear_coupling,
+    added later) loads with the field at its default; editing its parameters is still
+    refused."""
+    from gecko_agents.params import SetaArray
+
+    real = SetaArray.to_dict
+
+    def older(self):
+        d = real(self)
+        del d["contact"]["shear_coupling"]
+        return d
+
+    monkeypatch.setattr(SetaArray, "to_dict", older)
+    d = _toy().save(tmp_path / "run")
+    monkeypatch.setattr(SetaArray, "to_dict", real)
+    assert "shear_coupling" not in json.loads((d / "metadata.json").read_text())["params"]
+    h = hist.load(d)
+    assert len(h) == 5 and h.params.contact.shear_coupling == "none"
+    meta = json.loads((d / "metadata.json").read_text())
+    meta["params"]["contact"]["R"] = 5.0
+    (d / "metadata.json").write_text(json.dumps(meta))
+    with pytest.raises(ValueError, match=r"history.csv does not hold the series"):
+        hist.load(d)
