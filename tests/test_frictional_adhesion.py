@@ -43,11 +43,12 @@ SETA = PAPER_ARRAY.replace(
 
 def _release_force(beta):
     """Largest force magnitude [µN] a gripping-dragged spatula seta holds in a pull at β [deg]
-    from +x (the pull's angle from the gripping shear axis is 180° − β)."""
+    from +x (the pull's angle from the gripping shear axis is 180° − β), the plate at the
+    quasi-static speed."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         h = Model(SETA, seed=1, record_every=1).run(
-            protocol.drag_pull(0.2, -8.0, beta, speed=0.05), progress=False
+            protocol.drag_pull(0.2, -8.0, beta, speed=protocol.DEFAULT_SPEED), progress=False
         )
     px = h["plate_x_um"]
     k0 = int(np.flatnonzero(np.abs(px - (px[0] - 8.0)) < 1e-6)[0])
@@ -55,7 +56,7 @@ def _release_force(beta):
 
 
 def test_release_force_falls_as_the_pull_angle_rises_past_critical():
-    """α* of this seta is ≈ 40° (scenario, full run): pulls 60°, 90°, 120° from the shear axis."""
+    """α* of this seta is ≈ 40° (scenario): pulls 60°, 90°, 120° from the shear axis."""
     forces = [_release_force(180.0 - a) for a in (60.0, 90.0, 120.0)]
     assert forces[0] > forces[1] > forces[2] > 0.0
 

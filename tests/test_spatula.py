@@ -150,26 +150,51 @@ def test_unknown_tip_refused():
         SPATULA.replace(tip="suction cup")
 
 
-def _pull_off(drag, kernel, mu=10.0):
+def _pull_off(drag, kernel="numba", mu=10.0, speed=protocol.DEFAULT_SPEED, damping=None):
+    """Largest tension [µN] of a spatula seta pressed to 0.2 µN, dragged ``drag`` [µm] and
+    pulled at 90°, the plate at ``speed`` [µm/µs]; and its history."""
     p = SPATULA.replace(**{"friction.mu": mu})
-    m = Model(p, n_sim=1, seed=7, kernel=kernel)
+    extra = {} if damping is None else {"damping": damping}
+    m = Model(p, n_sim=1, seed=7, kernel=kernel, **extra)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        h = m.run(protocol.drag_pull(0.2, drag, 90.0, speed=0.05), progress=False)
+        h = m.run(protocol.drag_pull(0.2, drag, 90.0, speed=speed), progress=False)
     return float(-h["force_normal_uN"].min()), h
 
 
-def test_kernels_agree_and_drag_direction_matters():
-    """Numba loop and numpy path give the same history to rounding; a seta dragged back along
-    its shaft (the plate to −x, small peel angle) holds more than one pushed over its pad:
-    1.20 / 0.61 µN = ×1.98 at μ = 10 with the default geometry (the directional-adhesion
-    target is ×2; the margin below guards the measured factor, it is not a fit)."""
-    along, h1 = _pull_off(-8.0, "numba")
-    against, _ = _pull_off(8.0, "numba")
-    along_np, h2 = _pull_off(-8.0, "numpy")
+def test_kernels_agree_on_a_drag_and_pull():
+    """Numba loop and numpy path give the same history to rounding (a fast plate: the kernels
+    are compared, not the physics)."""
+    along, h1 = _pull_off(-8.0, "numba", speed=0.05)
+    along_np, h2 = _pull_off(-8.0, "numpy", speed=0.05)
     np.testing.assert_allclose(h1["force_normal_uN"], h2["force_normal_uN"], atol=1e-9)
     assert along == pytest.approx(along_np, rel=1e-9)
-    assert along > 1.9 * against
+
+
+def test_gripping_drag_holds_at_least_twice_the_releasing_one():
+    """A seta dragged back along its shaft (the plate to −x, small peel angle) holds more than
+    one pushed over its pad, pulled at 90° quasi-statically: 1.185 / 0.566 µN = ×2.10 at μ = 10
+    with the default geometry and the scenario's 8 µm drag (the directional-adhesion target
+    is ×2)."""
+    along, _ = _pull_off(-8.0)
+    against, _ = _pull_off(8.0)
+    assert along >= 2.0 * against
+
+
+def test_pull_off_converges_as_the_plate_slows():
+    """A quasi-static pull-off must not depend on the plate speed. The film's contact dashpot
+    adds a force ∝ v to its final peel, so the releasing pull-off converges to first order:
+    halving the speed halves the change (ratio of successive changes 0.5 for an error ∝ v), and
+    without contact damping a fast plate already gives the slow plate's value."""
+    from gecko_agents.dynamics import Damping
+
+    f = [_pull_off(8.0, speed=v)[0] for v in (0.02, 0.01, 0.005)]
+    d1, d2 = f[0] - f[1], f[1] - f[2]
+    assert d1 > 0.0 and d2 > 0.0
+    assert d2 / d1 == pytest.approx(0.5, abs=0.1)
+    limit = f[2] - d2  # Richardson: first-order error, extrapolated to v → 0
+    undamped, _ = _pull_off(8.0, speed=0.02, damping=Damping(normal=0.0, tangential=0.0))
+    assert abs(undamped - limit) < 0.2 * (f[0] - limit)
 
 
 def hertz_compression(law, delta):
