@@ -29,9 +29,9 @@ have converged.
 
 Outputs (``renders/frictional_adhesion/``): ``sweep.csv``, ``frictional_adhesion.png``
 (adhesion vs shear at release, the style of Autumn 2006), ``anisotropy_map.csv``,
-``anisotropy_map.png``, ``patch.csv`` (the same load–drag–pull on a patch of setae on a rough
-floor), ``speed_convergence.csv``, ``beyond_the_paper.md``, ``metadata.json``; ``--animate``
-adds ``spatula_peel.gif``.
+``anisotropy_map.png``, ``below_map.csv`` (θ = 30°–50°), ``patch.csv`` (the same load–drag–pull
+on a patch of setae on a rough floor), ``speed_convergence.csv``, ``beyond_the_paper.md``,
+``metadata.json``; ``--animate`` adds ``spatula_peel.gif``.
 """
 
 from __future__ import annotations
@@ -550,12 +550,8 @@ def map_section(rows: list[dict]) -> list[str]:
         "flattens the seta (smaller φ) and stretches its pad, which covers more floor and so "
         "holds a larger pre-tension by friction: it still gains at two leans. At "
         "μ = 0.2 (μ·P_c ≈ 0.1 µN) the tip slides under the push, the seta flips only at "
-        "θ = 75°, and both pulls let go where the pad slides at its cap (φ ≈ 72°). Below the "
-        "map, at μ = 10 the seta stands at θ = 45° and 50° (after a drag of one lean: lean "
-        "23°/28° gripping, 90° releasing) and folds flat only at θ = 30°; at μ = 0.2 it "
-        "folds flat at θ = 30°–50° under the preload already (the pressing shear pushes its "
-        "tip over its pad against only μ·P_c and the pad's cap, and the flattening seta runs "
-        "away), so the protocol has no meaning there. Autumn et al. (2000)'s large "
+        "θ = 75°, and both pulls let go where the pad slides at its cap (φ ≈ 72°). Autumn "
+        "et al. (2000)'s large "
         "gripping/releasing contrast for a seta dragged against its curvature needs a tip "
         "that resists the push (here the tip body's friction, at a large μ) and a "
         "release that sees the force direction (the JKR sphere's sees neither shear nor "
@@ -563,6 +559,50 @@ def map_section(rows: list[dict]) -> list[str]:
         "",
     ]
     return lines
+
+
+BELOW_MAP_THETAS = (30.0, 45.0, 50.0)  # seta angles [deg] below the map's
+
+
+def below_map(quick: bool) -> list[dict]:
+    """Flatter setae than the map's: the spatula at μ = 10 and 0.2, θ = 30°, 45°, 50°, a drag
+    of one lean either way and a 90° pull (:func:`map_point` rows, with the ratio)."""
+    thetas, mus = ((45.0,), (10.0,)) if quick else (BELOW_MAP_THETAS, (10.0, 0.2))
+    rows = []
+    for mu in mus:
+        for theta in thetas:
+            grip, rel = (map_point("spatula", mu, theta, 1.0, sign) for sign in (-1, 1))
+            ratio = grip["pull_off_uN"] / rel["pull_off_uN"] if rel["pull_off_uN"] > 0 else math.nan
+            rows.append({"mu": mu, "theta_deg": theta, "ratio": ratio,
+                         "lean_gripping_deg": grip["lean_after_drag_deg"],
+                         "lean_releasing_deg": rel["lean_after_drag_deg"],
+                         "gripping_uN": grip["pull_off_uN"],
+                         "releasing_uN": rel["pull_off_uN"]})  # fmt: skip
+    return rows
+
+
+def below_map_section(rows: list[dict]) -> list[str]:
+    """The table of :func:`below_map` and what a negative lean means."""
+    lines = [
+        "### Below the map: flatter setae",
+        "",
+        "Spatula, a drag of one lean (L cos θ) either way, 90° pull (`below_map.csv`). Lean < 0: "
+        "the seta has folded flat, its root below its tip's centre (the pressing and dragging "
+        "shear pushed its tip over its pad against only μ·P_c and the pad's cap, and the "
+        "flattening seta ran away); then the protocol measures a folded seta, not a gripping or "
+        "releasing one.",
+        "",
+        "| μ | θ | lean after the drag, gripping / releasing [°] | pull-off, gripping / "
+        "releasing [µN] | ratio |",
+        "|---|---|---|---|---|",
+    ]
+    for r in rows:
+        lines.append(
+            f"| {r['mu']:g} | {r['theta_deg']:g}° | {r['lean_gripping_deg']:.0f} / "
+            f"{r['lean_releasing_deg']:.0f} | {r['gripping_uN']:.2f} / {r['releasing_uN']:.2f} "
+            f"| ×{r['ratio']:.2f} |"
+        )
+    return lines + [""]
 
 
 def _extra_args(p) -> None:
@@ -595,12 +635,14 @@ def main(argv=None) -> dict:
     draw(rows, cfg, out)
     summary = summarise(rows, cfg)
     t_sweep = time.perf_counter() - t0
-    map_rows, mcfg = [], None
+    map_rows, mcfg, below_rows = [], None, []
     if args.map or not args.quick:
         mcfg = map_config(args.quick)
         map_rows = anisotropy_map(mcfg)
         write_table(out / "anisotropy_map.csv", map_rows)
         draw_map(map_rows, mcfg, out)
+        below_rows = below_map(args.quick)
+        write_table(out / "below_map.csv", below_rows)
     conv_rows = []
     if args.convergence or not args.quick:
         speeds = CONVERGENCE_SPEEDS if not args.quick else CONVERGENCE_SPEEDS[::3]
@@ -614,6 +656,7 @@ def main(argv=None) -> dict:
         beyond_the_paper(summary, args.quick, map_rows)
         + "\n"
         + "\n".join(patch_section(patch_rows))
+        + ("\n" + "\n".join(below_map_section(below_rows)) if below_rows else "")
         + ("\n" + "\n".join(convergence_section(conv_rows)) if conv_rows else "")
     )
     atomic_write_bytes(out / "beyond_the_paper.md", text.encode())
@@ -629,7 +672,8 @@ def main(argv=None) -> dict:
     write_json(out / "metadata.json", {
         "scenario": NAME, "quick": args.quick, "params": BASE.to_dict(), "config": cfg,
         "preload_uN": PRELOAD, "drag_um": DRAG, "speed_um_per_us": SPEED, "seed": 1,
-        "map_config": mcfg, "patch_config": pcfg, "speed_convergence": conv_rows,
+        "map_config": mcfg, "patch_config": pcfg, "below_map": below_rows,
+        "speed_convergence": conv_rows,
         "results": results,
     })  # fmt: skip
     print(f"{NAME}: " + "; ".join(
