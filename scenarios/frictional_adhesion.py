@@ -287,9 +287,22 @@ def map_point(tip: str, mu: float, theta: float, factor: float, sign: int) -> di
     adhesion, shear = pull_off_forces(h, drag)
     return {"tip": tip, "mu": mu, "theta_deg": theta, "drag_over_lean": factor,
             "direction": "gripping" if sign < 0 else "releasing", "drag_um": drag,
+            "let_go_in_drag_at_um": let_go_in_drag(h, drag),
             "lean_after_drag_deg": lean_after_drag(h, drag), "pull_off_uN": adhesion,
             "shear_at_pull_off_uN": shear,
             "peel_angle_at_pull_off_deg": math.degrees(math.atan2(adhesion, shear))}  # fmt: skip
+
+
+def let_go_in_drag(h, drag: float) -> float:
+    """How far the plate had dragged [µm, > 0] when the tip first let go during the drag, or
+    nan if it held through the drag (the pull then starts from the dragged contact; otherwise
+    from wherever the tip touched again, or from no contact)."""
+    px = h["plate_x_um"]
+    k0 = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0])
+    attached = h["n_attached"][: k0 + 1]
+    first = int(np.argmax(attached > 0))
+    drops = np.flatnonzero(np.diff(attached[first:]) < 0)
+    return float(abs(px[first + drops[0] + 1] - px[0])) if len(drops) else math.nan
 
 
 def anisotropy_map(mcfg: dict) -> list[dict]:
@@ -532,11 +545,11 @@ def map_section(rows: list[dict]) -> list[str]:
         "",
         f"Range of the ratio over the map: ×{min(ratios):.2f} to ×{max(ratios):.2f}"
         + (
-            " (0: a gripping drag sheared the tip off before the pull and it did not touch "
-            "again: shear with tension ends a Savkoor–Briggs contact below Fc). "
+            " (0: the tip let go in the gripping drag and did not touch again). "
             if min(ratios) == 0
             else ". "
-        )
+        )  # fmt: skip
+        + let_go_sentence(rows)
         + "A sphere tip is held tangentially by its adhesive friction μ(P + 2Fc), so a "
         "releasing drag past the lean flips its seta (lean > 90°) and the release force "
         "points over the tip (φ > 90°) — yet the JKR tip lets go at the normal force −Fc "
@@ -548,7 +561,8 @@ def map_section(rows: list[dict]) -> list[str]:
         "the seta upright (lean ≈ 90°) and a longer one flips it, and the 90° pull then peels "
         "the film at φ ≈ 80–90°, near Kendall's w·b; the gripping side gains as the drag "
         "flattens the seta (smaller φ) and stretches its pad, which covers more floor and so "
-        "holds a larger pre-tension by friction: it still gains at two leans. At "
+        "holds a larger pre-tension by friction, until the flattening seta pulls the film off "
+        "in the drag itself. At "
         "μ = 0.2 (μ·P_c ≈ 0.1 µN) the tip slides under the push, the seta flips only at "
         "θ = 75°, and both pulls let go where the pad slides at its cap (φ ≈ 72°). Autumn "
         "et al. (2000)'s large "
@@ -603,6 +617,24 @@ def below_map_section(rows: list[dict]) -> list[str]:
             f"| ×{r['ratio']:.2f} |"
         )
     return lines + [""]
+
+
+def let_go_sentence(rows: list[dict]) -> str:
+    """Which map runs lost their tip in the drag (:func:`let_go_in_drag`), and what followed."""
+    lost = [r for r in rows if math.isfinite(r["let_go_in_drag_at_um"])]
+    if not lost:
+        return "Every tip held through its drag. "
+    cases = "; ".join(
+        f"{r['tip']}, μ = {r['mu']:g}, θ = {r['theta_deg']:g}°, {r['direction']} "
+        f"{r['drag_over_lean']:g} leans: at {r['let_go_in_drag_at_um']:.1f} of "
+        f"{abs(r['drag_um']):.1f} µm, lean {r['lean_after_drag_deg']:.0f}° after the drag"
+        for r in lost
+    )
+    return (
+        f"Tips that let go in the drag itself ({cases}): the flattening seta's pull on its tip "
+        "reached the release, the seta sprang back and its tip touched again standing up (or not "
+        "at all), so the 90° pull after those drags starts from a fresh contact. "
+    )
 
 
 def _extra_args(p) -> None:
