@@ -23,15 +23,17 @@ is α* read from that one pull) and the seta's lean after the drag (> 90°: flip
 its tip). Nothing is tuned: it maps the model.
 
 Every run moves the plate at the package's quasi-static speed (``protocol.DEFAULT_SPEED``,
-5·10⁻³ µm/µs); the full run (or ``--convergence`` with ``--quick``) repeats the spatula's 90°
-pulls from 0.05 down to 0.0025 µm/µs and once without contact damping, to show the pull-offs
-have converged.
+5·10⁻³ µm/µs). The full run repeats the 90° pulls of the spatula and the JKR sphere (μ = 10)
+from 0.05 down to 0.0025 µm/µs, and the spatula's once without contact damping, to show the
+pull-offs have converged (``--convergence`` with ``--quick``: 0.05 and 0.005 µm/µs only).
 
 Outputs (``renders/frictional_adhesion/``): ``sweep.csv``, ``frictional_adhesion.png``
 (adhesion vs shear at release, the style of Autumn 2006), ``anisotropy_map.csv``,
-``anisotropy_map.png``, ``below_map.csv`` (θ = 30°–50°), ``patch.csv`` (the same load–drag–pull
-on a patch of setae on a rough floor), ``speed_convergence.csv``, ``beyond_the_paper.md``,
-``metadata.json``; ``--animate`` adds ``spatula_peel.gif``.
+``anisotropy_map.png``, ``below_map.csv`` (θ = 30°–50°; these three in full runs or with
+``--map``), ``patch.csv`` (the same load–drag–pull on a patch of setae on a rough floor),
+``speed_convergence.csv`` (full runs or ``--convergence``), ``beyond_the_paper.md``,
+``metadata.json``; ``--animate`` adds ``spatula_peel.gif``. A run removes the optional files
+it does not write, so a folder never mixes a quick run's report with a full run's tables.
 """
 
 from __future__ import annotations
@@ -89,12 +91,24 @@ def release_forces(h, drag: float) -> tuple[float, float, float]:
     sliver whatever the pull; a pushed-over seta's pull starts with a compression larger than
     any tension it then holds, which is no release); the largest force of the pull if it never
     pulls; pull-off = the largest adhesion of the pull phase."""
-    px = h["plate_x_um"]
-    k0 = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0]) if drag else 0
+    k0 = drag_span(h, drag)[1] if drag else 0
     normal, shear = -h["force_normal_uN"][k0:], h["force_tangential_uN"][k0:]
     force = np.hypot(normal, shear)
     k = int(np.argmax(np.where(normal > 0.0, force, -np.inf) if (normal > 0.0).any() else force))
     return float(normal[k]), float(shear[k]), float(max(0.0, normal.max()))
+
+
+def drag_span(h, drag: float) -> tuple[int, int]:
+    """Indices of the records where the drag starts (the last before the plate moves along x)
+    and ends (the plate first at its start + ``drag`` [µm]); without a drag, both at the press's
+    largest force."""
+    px = h["plate_x_um"]
+    if drag == 0:
+        k = int(np.argmax(h["force_normal_uN"]))
+        return k, k
+    start = int(np.flatnonzero(np.abs(px - px[0]) > 1e-9)[0]) - 1
+    end = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0])
+    return start, end
 
 
 def run_point(
@@ -107,7 +121,9 @@ def run_point(
     damping: Damping = DEFAULT_DAMPING,
 ):
     """One load–drag–pull of the single seta at plate speed ``speed`` [µm/µs] with the model's
-    damping ratios ``damping``: (row, history)."""
+    damping ratios ``damping``: (row, history). The row has the release forces
+    (:func:`release_forces`), the force the press reached (its preload overshoot) and the
+    run's peak kinetic / peak elastic energy."""
     params = BASE.replace(**TIPS[tip][0], **{"friction.mu": mu})
     prot = protocol.drag_pull(PRELOAD, drag, beta, speed=speed)
     with warnings.catch_warnings():
@@ -115,74 +131,108 @@ def run_point(
         model = Model(params, seed=1, record_setae=record, record_every=1, damping=damping)
         h = model.run(prot, progress=False)
     adhesion, shear, pull_off = release_forces(h, drag)
+    start, _ = drag_span(h, drag)
     row = {"tip": tip, "mu": mu, "drag_um": drag, "pull_angle_deg": beta,
            "adhesion_at_release_uN": adhesion, "shear_at_release_uN": shear,
-           "pull_off_uN": pull_off}  # fmt: skip
+           "pull_off_uN": pull_off,
+           "pressed_to_uN": float(h["force_normal_uN"][: start + 1].max()),
+           "max_kinetic_to_elastic": h.meta.get("max_kinetic_to_elastic")}  # fmt: skip
     return row, h
 
 
+CONVERGENCE_TIPS = ("spatula", "sphere")  # the tips of the plate-speed check, μ = 10
+
+
 def speed_convergence(speeds=CONVERGENCE_SPEEDS) -> list[dict]:
-    """The 90° pull-off of the spatula seta at μ = 10 after both drags, at each plate speed
-    [µm/µs]: one row per speed with both pull-offs [µN] and their ratio, then one row at the
-    fastest speed without contact damping (normal and tangential ratios 0). A quasi-static result
-    must not depend on the speed; the film's contact dashpot (damping ratio 0.1 on its stiffness,
-    docs/physics.md "Time stepping") adds a force ∝ v, so the pull-offs converge to first order
-    as the plate slows, and without the dashpot they are near their slow values already."""
+    """The 90° pull-off of a seta at μ = 10 after both drags, per tip (spatula, JKR sphere) and
+    plate speed [µm/µs]: one row per tip and speed with both pull-offs [µN], their ratio, the
+    force the press reached [µN] and the peak kinetic/elastic energy ratios; then the spatula
+    once more at the fastest speed without contact damping (normal and tangential ratios 0,
+    :class:`gecko_agents.dynamics.Damping`). A quasi-static result must not depend on the
+    speed; a dashpot's force ∝ v vanishes as the plate slows."""
     rows = []
     undamped = Damping(seta=DEFAULT_DAMPING.seta, normal=0.0, tangential=0.0)
-    for v, damping in [(v, DEFAULT_DAMPING) for v in speeds] + [(speeds[0], undamped)]:
-        grip, rel = (run_point("spatula", 10.0, d, 90.0, speed=v, damping=damping)[0]
-                     ["pull_off_uN"] for d in (-DRAG, DRAG))  # fmt: skip
-        rows.append({"speed_um_per_us": v, "contact_damping": damping is DEFAULT_DAMPING,
-                     "gripping_uN": grip, "releasing_uN": rel,
-                     "gripping_over_releasing": grip / rel})  # fmt: skip
+    cases = [(tip, v, DEFAULT_DAMPING) for tip in CONVERGENCE_TIPS for v in speeds]
+    for tip, v, damping in cases + [("spatula", speeds[0], undamped)]:
+        grip, rel = (run_point(tip, 10.0, d, 90.0, speed=v, damping=damping)[0]
+                     for d in (-DRAG, DRAG))  # fmt: skip
+        rows.append({
+            "tip": tip, "speed_um_per_us": v, "contact_damping": damping is DEFAULT_DAMPING,
+            "gripping_uN": grip["pull_off_uN"], "releasing_uN": rel["pull_off_uN"],
+            "gripping_over_releasing": grip["pull_off_uN"] / rel["pull_off_uN"],
+            "pressed_to_uN": grip["pressed_to_uN"],
+            "max_kinetic_to_elastic_gripping": grip["max_kinetic_to_elastic"],
+            "max_kinetic_to_elastic_releasing": rel["max_kinetic_to_elastic"],
+        })  # fmt: skip
     return rows
 
 
 def convergence_section(rows: list[dict]) -> list[str]:
-    """The report's table of the 90° pull-offs against plate speed (:func:`speed_convergence`),
-    with the change between successive speeds and the run without contact damping."""
+    """The report's table of the 90° pull-offs against plate speed (:func:`speed_convergence`)
+    and what the numbers say: how the spatula's releasing pull-off changes per unit of speed
+    between successive speeds (first order if those slopes agree within 50 %), how far the
+    undamped run is from the slowest damped one, and the sphere's spread."""
     lines = [
         "### Quasi-static check: plate speed",
         "",
-        f"Spatula, μ = 10, 90° pull after the {DRAG:g} µm drag either way "
-        f"(`speed_convergence.csv`). The tables above use {SPEED:g} µm/µs, the package's "
-        "quasi-static plate speed.",
+        f"μ = 10, 90° pull after the {DRAG:g} µm drag either way (`speed_convergence.csv`); "
+        f"pressed to = the largest force of the press, whose target is the {PRELOAD} µN "
+        f"preload; KE/E = peak kinetic over peak elastic energy of the run. The tables above "
+        f"use {SPEED:g} µm/µs, the package's quasi-static plate speed.",
         "",
-        "| plate speed [µm/µs] | contact damping | gripping [µN] | releasing [µN] | ratio |",
-        "|---|---|---|---|---|",
+        "| tip | plate speed [µm/µs] | contact damping | gripping [µN] | releasing [µN] | ratio "
+        "| pressed to [µN] | KE/E gripping / releasing |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         lines.append(
-            f"| {r['speed_um_per_us']:g} | {'yes' if r['contact_damping'] else 'off'} | "
-            f"{r['gripping_uN']:.4f} | {r['releasing_uN']:.4f} | "
-            f"×{r['gripping_over_releasing']:.3f} |"
+            f"| {r['tip']} | {r['speed_um_per_us']:g} | "
+            f"{'yes' if r['contact_damping'] else 'off'} | {r['gripping_uN']:.4f} | "
+            f"{r['releasing_uN']:.4f} | ×{r['gripping_over_releasing']:.3f} | "
+            f"{r['pressed_to_uN']:.3f} | {r['max_kinetic_to_elastic_gripping']:.3f} / "
+            f"{r['max_kinetic_to_elastic_releasing']:.3f} |"
         )
-    damped = [r for r in rows if r["contact_damping"]]
+    damped = [r for r in rows if r["tip"] == "spatula" and r["contact_damping"]]
     off = next((r for r in rows if not r["contact_damping"]), None)
     fast, slow = damped[0], damped[-1]
+    change = 100 * (fast["releasing_uN"] / slow["releasing_uN"] - 1.0)
     text = (
-        f"From {fast['speed_um_per_us']:g} to {slow['speed_um_per_us']:g} µm/µs the releasing "
-        f"pull-off falls by {100 * (fast['releasing_uN'] / slow['releasing_uN'] - 1.0):.1f} % "
-        f"and the gripping one by {100 * (fast['gripping_uN'] / slow['gripping_uN'] - 1.0):.1f} %"
+        f"Spatula: from {fast['speed_um_per_us']:g} to {slow['speed_um_per_us']:g} µm/µs the "
+        f"releasing pull-off changes by {change:+.1f} % and the gripping one by "
+        f"{100 * (fast['gripping_uN'] / slow['gripping_uN'] - 1.0):+.1f} %"
     )
     if len(damped) > 2:
-        steps = ", ".join(
-            f"{1e3 * (r0['releasing_uN'] - r1['releasing_uN']):.1f}"
+        slopes = [
+            (r0["releasing_uN"] - r1["releasing_uN"])
+            / (r0["speed_um_per_us"] - r1["speed_um_per_us"])
             for r0, r1 in itertools.pairwise(damped)
-        )
-        text += (
-            f"; the releasing pull-off changes by {steps} nN between successive speeds: in "
-            "proportion to the change of speed, first order"
-        )
+        ]
+        text += "; per unit of speed between successive speeds the releasing pull-off changes by "
+        text += ", ".join(f"{x:.2f}" for x in slopes) + " µN per µm/µs"
+        same = min(slopes) > 0 and max(slopes) <= 1.5 * min(slopes)
+        text += ": first order in the speed" if same else " (not first order)"
     text += "."
     if off is not None:
+        gap = 100 * (off["releasing_uN"] / slow["releasing_uN"] - 1.0)
         text += (
-            f" Without contact damping the {off['speed_um_per_us']:g} µm/µs pulls give "
-            f"{off['gripping_uN']:.4f} / {off['releasing_uN']:.4f} µN "
-            f"(×{off['gripping_over_releasing']:.3f}): the speed dependence is the film's "
-            "contact dashpot (damping ratio 0.1, there to damp the contact's ringing), whose "
-            "force ∝ v adds to the final peel, not the peel's physics."
+            f" Without contact damping (normal and tangential ratios {DEFAULT_DAMPING.normal:g} "
+            f"and {DEFAULT_DAMPING.tangential:g} set to 0) the {off['speed_um_per_us']:g} µm/µs "
+            f"pulls give {off['gripping_uN']:.4f} / {off['releasing_uN']:.4f} µN "
+            f"(×{off['gripping_over_releasing']:.3f}), the releasing one {gap:+.1f} % from the "
+            f"slowest damped run against {change:+.1f} % with damping"
+        )
+        text += (
+            ": the speed dependence is mostly the contact dashpots' force ∝ v on the film, "
+            "there to damp the contact's ringing, not the peel's physics."
+            if abs(gap) < 0.25 * abs(change)
+            else "."
+        )
+    spheres = [r for r in rows if r["tip"] == "sphere"]
+    if spheres:
+        vals = [r[k] for r in spheres for k in ("gripping_uN", "releasing_uN")]
+        text += (
+            f" JKR sphere: its pull-offs span {min(vals):.4f}–{max(vals):.4f} µN over these "
+            "speeds (it lets go where its load-controlled branch ends, at −Fc)."
         )
     return lines + ["", text, ""]
 
@@ -213,8 +263,7 @@ def patch_point(tip: str, sigma: float, count: int, sign: int) -> dict:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         h = Model(params, seed=1, record_every=1).run(prot, progress=False)
-    px = h["plate_x_um"]
-    k0 = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0])
+    k0 = drag_span(h, drag)[1]
     pull_off = max(0.0, float(-h["force_normal_uN"][k0:].min())) / count
     return {"tip": tip, "sigma_um": sigma, "count": count,
             "direction": "gripping" if sign < 0 else "releasing", "drag_um": drag,
@@ -259,7 +308,7 @@ def lean_after_drag(h, drag: float) -> float:
     (θ at rest; > 90°: the root has passed over the tip, the seta flipped; < 0: folded flat,
     its root below the tip's centre). Needs per-seta records."""
     px, py = h["plate_x_um"], h["plate_y_um"]
-    k = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0])
+    k = drag_span(h, drag)[1]
     tx, ty = h.setae["tip_x_um"][k, 0], h.setae["tip_y_um"][k, 0]
     root_dx = float(h.geometry["root_dx_um"][0])
     return math.degrees(math.atan2(py[k] - ty, tx - (px[k] + root_dx)))
@@ -268,8 +317,7 @@ def lean_after_drag(h, drag: float) -> float:
 def pull_off_forces(h, drag: float) -> tuple[float, float]:
     """(adhesion, shear) [µN] at the step of the largest adhesion of the pull phase (the
     pull-off; a pushed-over seta's largest force can be a compression)."""
-    px = h["plate_x_um"]
-    k0 = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0])
+    k0 = drag_span(h, drag)[1]
     normal, shear = -h["force_normal_uN"][k0:], h["force_tangential_uN"][k0:]
     k = int(np.argmax(normal))
     return float(max(0.0, normal[k])), float(shear[k])
@@ -288,21 +336,19 @@ def map_point(tip: str, mu: float, theta: float, factor: float, sign: int) -> di
     return {"tip": tip, "mu": mu, "theta_deg": theta, "drag_over_lean": factor,
             "direction": "gripping" if sign < 0 else "releasing", "drag_um": drag,
             "let_go_in_drag_at_um": let_go_in_drag(h, drag),
+            "attached_after_drag": int(h["n_attached"][drag_span(h, drag)[1]]),
             "lean_after_drag_deg": lean_after_drag(h, drag), "pull_off_uN": adhesion,
             "shear_at_pull_off_uN": shear,
             "peel_angle_at_pull_off_deg": math.degrees(math.atan2(adhesion, shear))}  # fmt: skip
 
 
 def let_go_in_drag(h, drag: float) -> float:
-    """How far the plate had dragged [µm, > 0] when the tip first let go during the drag, or
-    nan if it held through the drag (the pull then starts from the dragged contact; otherwise
-    from wherever the tip touched again, or from no contact)."""
-    px = h["plate_x_um"]
-    k0 = int(np.flatnonzero(np.abs(px - (px[0] + drag)) < 1e-6)[0])
-    attached = h["n_attached"][: k0 + 1]
-    first = int(np.argmax(attached > 0))
-    drops = np.flatnonzero(np.diff(attached[first:]) < 0)
-    return float(abs(px[first + drops[0] + 1] - px[0])) if len(drops) else math.nan
+    """How far the plate had dragged [µm, > 0] when the tip first let go during the drag (from
+    its start, :func:`drag_span`), or nan if it held through the drag."""
+    start, end = drag_span(h, drag)
+    px, attached = h["plate_x_um"], h["n_attached"]
+    drops = np.flatnonzero(np.diff(attached[start : end + 1]) < 0)
+    return float(abs(px[start + drops[0] + 1] - px[start])) if len(drops) else math.nan
 
 
 def anisotropy_map(mcfg: dict) -> list[dict]:
@@ -561,8 +607,7 @@ def map_section(rows: list[dict]) -> list[str]:
         "the seta upright (lean ≈ 90°) and a longer one flips it, and the 90° pull then peels "
         "the film at φ ≈ 80–90°, near Kendall's w·b; the gripping side gains as the drag "
         "flattens the seta (smaller φ) and stretches its pad, which covers more floor and so "
-        "holds a larger pre-tension by friction, until the flattening seta pulls the film off "
-        "in the drag itself. At "
+        f"holds a larger pre-tension by friction{film_lost_clause(rows)}. At "
         "μ = 0.2 (μ·P_c ≈ 0.1 µN) the tip slides under the push, the seta flips only at "
         "θ = 75°, and both pulls let go where the pad slides at its cap (φ ≈ 72°). Autumn "
         "et al. (2000)'s large "
@@ -619,6 +664,19 @@ def below_map_section(rows: list[dict]) -> list[str]:
     return lines + [""]
 
 
+def film_lost_clause(rows: list[dict]) -> str:
+    """ ", until …" when a spatula at μ = 10 lost its film in a gripping drag of the map."""
+    lost = [r for r in rows if (r["tip"], r["mu"], r["direction"]) == ("spatula", 10.0, "gripping")
+            and math.isfinite(r["let_go_in_drag_at_um"])]  # fmt: skip
+    if not lost:
+        return ""
+    first = min(lost, key=lambda r: r["drag_over_lean"])
+    return (
+        ", until the flattening seta pulls the film off in the drag itself (from "
+        f"{first['drag_over_lean']:g} leans at θ = {first['theta_deg']:g}°)"
+    )
+
+
 def let_go_sentence(rows: list[dict]) -> str:
     """Which map runs lost their tip in the drag (:func:`let_go_in_drag`), and what followed."""
     lost = [r for r in rows if math.isfinite(r["let_go_in_drag_at_um"])]
@@ -626,14 +684,18 @@ def let_go_sentence(rows: list[dict]) -> str:
         return "Every tip held through its drag. "
     cases = "; ".join(
         f"{r['tip']}, μ = {r['mu']:g}, θ = {r['theta_deg']:g}°, {r['direction']} "
-        f"{r['drag_over_lean']:g} leans: at {r['let_go_in_drag_at_um']:.1f} of "
-        f"{abs(r['drag_um']):.1f} µm, lean {r['lean_after_drag_deg']:.0f}° after the drag"
+        f"{r['drag_over_lean']:g} leans: let go at {r['let_go_in_drag_at_um']:.1f} of "
+        f"{abs(r['drag_um']):.1f} µm, "
+        + (
+            f"touched again, lean {r['lean_after_drag_deg']:.0f}° after the drag"
+            if r["attached_after_drag"]
+            else "did not touch again"
+        )
         for r in lost
     )
     return (
-        f"Tips that let go in the drag itself ({cases}): the flattening seta's pull on its tip "
-        "reached the release, the seta sprang back and its tip touched again standing up (or not "
-        "at all), so the 90° pull after those drags starts from a fresh contact. "
+        f"Tips that let go in the drag itself ({cases}): the pull after such a drag starts from "
+        "the contact the tip made again, or from none. "
     )
 
 
@@ -657,6 +719,13 @@ def main(argv=None) -> dict:
         extra=_extra_args,
     )  # fmt: skip
     out = output_dir(NAME, args)
+    with_map = args.map or not args.quick
+    with_convergence = args.convergence or not args.quick
+    optional = {"anisotropy_map.csv": with_map, "anisotropy_map.png": with_map,
+                "below_map.csv": with_map, "speed_convergence.csv": with_convergence,
+                "spatula_peel.gif": args.animate}  # fmt: skip
+    for name in (n for n, written in optional.items() if not written):
+        (out / name).unlink(missing_ok=True)  # an earlier run's, which this report won't describe
     cfg = config(args.quick)
     t0 = time.perf_counter()
     points = list(itertools.product(cfg["tips"], cfg["mus"], cfg["drags"], cfg["angles"]))
@@ -668,7 +737,7 @@ def main(argv=None) -> dict:
     summary = summarise(rows, cfg)
     t_sweep = time.perf_counter() - t0
     map_rows, mcfg, below_rows = [], None, []
-    if args.map or not args.quick:
+    if with_map:
         mcfg = map_config(args.quick)
         map_rows = anisotropy_map(mcfg)
         write_table(out / "anisotropy_map.csv", map_rows)
@@ -676,7 +745,7 @@ def main(argv=None) -> dict:
         below_rows = below_map(args.quick)
         write_table(out / "below_map.csv", below_rows)
     conv_rows = []
-    if args.convergence or not args.quick:
+    if with_convergence:
         speeds = CONVERGENCE_SPEEDS if not args.quick else CONVERGENCE_SPEEDS[::3]
         conv_rows = speed_convergence(speeds)
         write_table(out / "speed_convergence.csv", conv_rows)
