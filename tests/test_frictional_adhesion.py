@@ -113,3 +113,43 @@ def test_a_pressed_tip_sticks_and_its_seta_flips_over_it():
     assert np.ptp(tip_x) < 0.3
     px = h["plate_x_um"][drag]
     assert tip_x[0] > px[0] and tip_x[-1] < px[-1]  # the root has passed over the tip
+
+
+def _convergence_rows(releasing, undamped_releasing):
+    """Synthetic rows of the scenario's plate-speed check: speeds 0.04, 0.02, 0.01 µm/µs with
+    the given releasing pull-offs [µN], then one undamped row at 0.04."""
+    speeds = (0.04, 0.02, 0.01)
+    rows = [
+        {"tip": "spatula", "speed_um_per_us": v, "contact_damping": True, "gripping_uN": 1.0,
+         "releasing_uN": r, "gripping_over_releasing": 1.0 / r, "pressed_to_uN": 0.2,
+         "max_kinetic_to_elastic_gripping": 0.1, "max_kinetic_to_elastic_releasing": 0.1}
+        for v, r in zip(speeds, releasing, strict=True)
+    ]  # fmt: skip
+    undamped = dict(rows[0], contact_damping=False, releasing_uN=undamped_releasing)
+    return rows + [dict(undamped, gripping_over_releasing=1.0 / undamped_releasing)]
+
+
+@pytest.fixture
+def frictional_adhesion_scenario(monkeypatch):
+    import importlib
+    from pathlib import Path
+
+    monkeypatch.syspath_prepend(str(Path(__file__).resolve().parents[1] / "scenarios"))
+    return importlib.import_module("frictional_adhesion")
+
+
+def test_convergence_report_claims_first_order_only_when_the_numbers_show_it(
+    frictional_adhesion_scenario,
+):
+    section = frictional_adhesion_scenario.convergence_section
+    # An error ∝ v: 0.5 + 2v gives equal slopes (2 µN per µm/µs) between successive speeds.
+    linear = "\n".join(section(_convergence_rows([0.58, 0.54, 0.52], 0.518)))
+    assert "first order in the speed" in linear
+    assert "mostly the contact dashpots'" in linear  # undamped 0.4 % from the slowest, not 11.5 %
+    # An error ∝ v²: slopes 2.4 and 1.2 differ by ×2: no first-order claim.
+    quadratic = "\n".join(section(_convergence_rows([0.5 + 400 * v**2 for v in (0.04, 0.02, 0.01)],
+                                                    0.5)))  # fmt: skip
+    assert "(not first order)" in quadratic
+    # An undamped run as far from the slowest as the damped one: no dashpot explanation.
+    far = "\n".join(section(_convergence_rows([0.58, 0.54, 0.52], 0.58)))
+    assert "dashpots'" not in far
