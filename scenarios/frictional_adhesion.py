@@ -755,9 +755,9 @@ def main(argv=None) -> dict:
     write_table(out / "patch.csv", patch_rows)
     text = (
         beyond_the_paper(summary, args.quick, map_rows)
+        + ("\n" + "\n".join(below_map_section(below_rows)) if below_rows else "")
         + "\n"
         + "\n".join(patch_section(patch_rows))
-        + ("\n" + "\n".join(below_map_section(below_rows)) if below_rows else "")
         + ("\n" + "\n".join(convergence_section(conv_rows)) if conv_rows else "")
     )
     atomic_write_bytes(out / "beyond_the_paper.md", text.encode())
