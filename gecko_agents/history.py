@@ -44,6 +44,7 @@ __all__ = [
     "History",
     "SCALAR_COLUMNS",
     "PER_SETA_FIELDS",
+    "FILM_FIELDS",
     "STATE_FREE",
     "STATE_STICK",
     "STATE_SLIP",
@@ -96,6 +97,15 @@ PER_SETA_FIELDS = (
     "state",
 )
 """Per-seta arrays of shape (n_records, N) in ``setae.npz`` (optional)."""
+
+FILM_FIELDS = (
+    "film_front_x_um",
+    "film_attached_um",
+)
+"""Per-seta arrays recorded beside :data:`PER_SETA_FIELDS` for film tips
+(:class:`gecko_agents.contact.SpatulaTip`): the peel front's x [µm] and the floor length ℓ the
+pad still covers [µm], NaN while the tip is free. Runs of other tips, and runs saved before
+these fields existed, have none."""
 
 
 def versions() -> dict:

@@ -9,7 +9,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from .history import PER_SETA_FIELDS, SCALAR_COLUMNS, STATE_FREE, STATE_SLIP, STATE_STICK, History
+from .history import (
+    FILM_FIELDS,
+    PER_SETA_FIELDS,
+    SCALAR_COLUMNS,
+    STATE_FREE,
+    STATE_SLIP,
+    STATE_STICK,
+    History,
+)
 
 __all__ = ["Recorder", "DETACHMENT_FIELDS"]
 
@@ -30,11 +38,14 @@ class Recorder:
     Parameters
     ----------
     per_seta : also record the per-seta arrays :data:`~gecko_agents.history.PER_SETA_FIELDS`.
+    film : with ``per_seta``, also the film tip's :data:`~gecko_agents.history.FILM_FIELDS`
+        (its peel front is the state's ``anchor``, its attached length the state's ``a``).
     """
 
-    def __init__(self, per_seta: bool):
+    def __init__(self, per_seta: bool, film: bool = False):
         self.rows = {c: [] for c in SCALAR_COLUMNS}
-        self.per = {f: [] for f in PER_SETA_FIELDS} if per_seta else {}
+        fields = PER_SETA_FIELDS + (FILM_FIELDS if film else ())
+        self.per = {f: [] for f in fields} if per_seta else {}
         self.det = {k: [] for k in DETACHMENT_FIELDS}
         self.max_ke = self.max_el = 0.0
 
@@ -75,8 +86,11 @@ class Recorder:
                 "overlap_um": m.overlaps(),
                 "state": state.astype(np.int8),
             }
-            for f in PER_SETA_FIELDS:
-                self.per[f].append(np.array(vals[f]))
+            if "film_front_x_um" in self.per:
+                vals["film_front_x_um"] = np.where(s.attached, s.anchor[0], np.nan)
+                vals["film_attached_um"] = np.where(s.attached, s.a, np.nan)
+            for f, series in self.per.items():
+                series.append(np.array(vals[f]))
         return row
 
     def note_detachments(self, time: float, plate_position, events) -> None:

@@ -29,6 +29,8 @@ __all__ = ["MAX_FRAMES", "Frame", "Scene", "render_frame", "frame_records", "win
 MAX_FRAMES = 300
 FRONT_COLOUR = "#9467bd"
 """Colour of the detachment-front marker of an elastic backing."""
+FILM_COLOUR = "#1b9e77"
+"""Colour of a film tip's free film and attached pad."""
 _CURVE_POINTS = 16  # points per drawn seta: enough for a smooth cubic
 
 
@@ -87,6 +89,9 @@ class Frame:
     strip : the elastic backing's line through its nodes [µm] (None: a rigid plate is drawn,
         or the backing's nodes were not recorded).
     front : the marker of the backing's detachment front (None without an elastic backing).
+    films, pads : film tips' free films (peel front to the tip body's bottom) and attached pads
+        (front to front + ℓ) [µm]; None unless the run recorded
+        :data:`~gecko_agents.history.FILM_FIELDS`.
     """
 
     figure: Figure
@@ -97,6 +102,8 @@ class Frame:
     window_text: str
     strip: Line2D | None = None
     front: Line2D | None = None
+    films: LineCollection | None = None
+    pads: LineCollection | None = None
 
     def rgb(self) -> np.ndarray:
         """The frame as an (height, width, 3) uint8 array, row 0 at the top."""
@@ -142,6 +149,12 @@ class Scene:
         self.tip_y = np.asarray(s["tip_y_um"], dtype=float)[:, sel]
         self.force = np.asarray(s["force_normal_uN"], dtype=float)[:, sel]
         self.state = np.asarray(s["state"])[:, sel]
+        # Film tips: peel front x and attached length ℓ [µm] (NaN while free), when recorded.
+        self.film = (
+            (np.asarray(s["film_front_x_um"], dtype=float)[:, sel],
+             np.asarray(s["film_attached_um"], dtype=float)[:, sel])
+            if "film_front_x_um" in s else None
+        )  # fmt: skip
         self.plate_x = np.asarray(history["plate_x_um"], dtype=float)
         self.plate_y = np.asarray(history["plate_y_um"], dtype=float)
         self.disp = pressing_displacement(history, self.plate_y)
@@ -229,6 +242,13 @@ class Scene:
             )  # fmt: skip
         self.rods = LineCollection([], colors="#5a5a5a", linewidths=lw, capstyle="butt", zorder=4)
         side.add_collection(self.rods)
+        self.films = self.pads = None
+        if self.film is not None:  # the free film (thin) and the attached pad (thick)
+            self.films = LineCollection([], colors=FILM_COLOUR, linewidths=1.2, zorder=4.5)
+            self.pads = LineCollection([], colors=FILM_COLOUR, linewidths=3.0, zorder=4.5,
+                                       capstyle="butt")  # fmt: skip
+            side.add_collection(self.films)
+            side.add_collection(self.pads)
         n = len(self.shown)
         self.tips = EllipseCollection(
             np.full(n, 2 * self.R),
@@ -253,7 +273,8 @@ class Scene:
         )
         self.side, self.force_ax = side, force
         # What changes from frame to frame, in drawing (zorder) order; the rest is drawn once.
-        self.moving = [body, self.rods, self.tips, self.front, self.marker, self.caption]
+        self.moving = [body, self.rods, self.films, self.pads, self.tips, self.front,
+                       self.marker, self.caption]  # fmt: skip
         self.moving = [a for a in self.moving if a is not None]
         self.background = None
 
@@ -268,6 +289,8 @@ class Scene:
                 ("sliding", STATE_COLOURS["sliding"]),
             )
         ]
+        if self.film is not None:
+            handles.append(Line2D([], [], color=FILM_COLOUR, lw=2.0, label="film, pad"))
         if self.front is not None:
             handles.append(
                 Line2D([], [], ls="", marker="v", markersize=8, color=FRONT_COLOUR,
@@ -344,6 +367,27 @@ class Scene:
         else:
             self.front.set_data([self.plate_x[k] + a], [self.plate_y[k] + self.root_dy.max()])
 
+    def _draw_films(self, k: int) -> None:
+        """Each attached film tip's free film, a chord from its peel front on the floor to the
+        bottom of its tip body (:class:`~gecko_agents.contact.SpatulaTip`'s geometry), and its
+        pad, the floor it covers from the front towards +x."""
+        front, ell = self.film[0][k], self.film[1][k]
+        on = np.isfinite(front)
+        x0, length = front[on], ell[on]
+        floor_x, floor_y = self._floor(float(self.side.get_xlim()[0]),
+                                       float(self.side.get_xlim()[1]))  # fmt: skip
+        y0 = np.interp(x0, floor_x, floor_y)
+        x1 = x0 + length
+        y1 = np.interp(x1, floor_x, floor_y)
+        tip_x, tip_y = self.tip_x[k][on], self.tip_y[k][on] - self.R
+        tip_y = np.maximum(tip_y, y0)  # a pressed tip body: the film turns under it
+        self.films.set_segments(
+            [[(a, b), (c, d)] for a, b, c, d in zip(x0, y0, tip_x, tip_y, strict=True)]
+        )
+        self.pads.set_segments(
+            [[(a, b), (c, d)] for a, b, c, d in zip(x0, y0, x1, y1, strict=True)]
+        )
+
     def draw(self, k: int) -> None:
         """Move every artist to record ``k``."""
         root_x = self.plate_x[k] + self.root_dx
@@ -352,6 +396,8 @@ class Scene:
         if self.backing is not None:
             self._draw_backing(k)
         self.rods.set_segments(list(self._segments(k)))
+        if self.film is not None:
+            self._draw_films(k)
         self.tips.set_offsets(np.stack([self.tip_x[k], self.tip_y[k]], -1))
         self.tips.set_facecolor(_tip_colours(self.state[k], self.force[k]))
         self.marker.set_data([self.disp[k]], [self.h["force_normal_uN"][k]])
@@ -386,4 +432,6 @@ def render_frame(history: History, k: int, *, window: int = 40, dpi: float = DPI
         scene.window_text,
         scene.strip,
         scene.front,
+        scene.films,
+        scene.pads,
     )

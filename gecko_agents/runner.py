@@ -56,7 +56,7 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         if not isinstance(seg, Segment):
             raise TypeError(f"unknown protocol segment {seg!r}")
     m.reset_state_arrays()
-    run = _Run(Recorder(m.record_setae), ke_bound, max_steps, fast_approach)
+    run = _Run(Recorder(m.record_setae, film=m.law.film), ke_bound, max_steps, fast_approach)
     est = sum(seg.estimated_duration(m) for seg in segments)
     check_cost(m.n, est, m.dt)  # refuse or warn before stepping when absurd
     # Whole microseconds of simulated time; the total is an estimate and may be exceeded.

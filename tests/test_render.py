@@ -466,3 +466,47 @@ def test_backing_animation_is_written(toy, tmp_path):
     h, *_ = _with_backing(toy)
     out = render.animate(h, tmp_path / "strip.gif", frames=4, dpi=40)
     assert len(_gif_frames(out)) == 4
+
+
+def _with_film(toy):
+    """``toy`` with film-tip records: each attached tip's peel front 5 µm beyond its centre
+    (+x) and a pad of ℓ = 3 µm, NaN while free."""
+    from dataclasses import replace
+
+    attached = toy.setae["state"] != hist.STATE_FREE
+    front = np.where(attached, toy.setae["tip_x_um"] + 5.0, np.nan)
+    ell = np.where(attached, 3.0, np.nan)
+    setae = {**toy.setae, "film_front_x_um": front, "film_attached_um": ell}
+    return replace(toy, setae=setae)
+
+
+def test_film_and_pad_are_drawn_from_the_recorded_front():
+    """Each attached film tip: the free film from its front on the floor to its tip body's
+    bottom, the pad from the front over ℓ of floor; nothing for a free tip; the pad's colour
+    where it lies."""
+    from gecko_agents.render_scene import FILM_COLOUR
+
+    h = _with_film(_toy())
+    k, i = TENSION_RECORD, TENSION_SETA
+    frame = render.render_frame(h, k)
+    attached = np.flatnonzero(h.setae["state"][k] != hist.STATE_FREE)
+    assert len(frame.films.get_segments()) == len(attached) == len(frame.pads.get_segments())
+    j = list(attached).index(i)
+    x0 = h.setae["tip_x_um"][k, i] + 5.0
+    floor_x = h.geometry["floor_x_um"]
+
+    def floor(x):  # the toy's floor polyline, as stored
+        return np.interp(x, floor_x, 0.3 * np.sin(floor_x / 7.0))
+
+    y0 = floor(x0)
+    film = frame.films.get_segments()[j]
+    np.testing.assert_allclose(film[0], [x0, y0])
+    bottom = h.setae["tip_y_um"][k, i] - h.params.contact.R
+    np.testing.assert_allclose(film[1], [h.setae["tip_x_um"][k, i], max(bottom, y0)])
+    pad = frame.pads.get_segments()[j]
+    np.testing.assert_allclose(pad[:, 0], [x0, x0 + 3.0])
+    rgb = frame.rgb()
+    mid = x0 + 1.5
+    assert _is(_colour_at(rgb, frame.pixel(mid, floor(mid)), 0), FILM_COLOUR)
+    plain = render.render_frame(_toy(), k)
+    assert plain.films is None and plain.pads is None

@@ -299,3 +299,35 @@ def test_energy_error_of_the_final_peel_is_first_order_in_dt():
             errs.append(energy_balance_error(m.run(prot, progress=False)))
     assert errs[0] > 0.2 * ENERGY_RTOL  # a measurable error, not rounding
     assert errs[1] == pytest.approx(0.5 * errs[0], rel=0.15)
+
+
+def test_film_front_and_pad_length_are_recorded_for_film_tips_only(tmp_path):
+    """A spatula run with per-seta records carries the peel front x and the attached length ℓ
+    (NaN exactly while free; ℓ = ℓ0 with the front under the tip at attachment, as the law
+    places them; never below 0); they survive a
+    save and load; a sphere run has neither."""
+    from gecko_agents import history as hist
+
+    p = SPATULA.replace(**{"friction.mu": 10.0})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        h = Model(p, n_sim=1, seed=7, record_setae=True).run(
+            protocol.drag_pull(0.2, -8.0, 90.0, speed=0.05), progress=False
+        )
+    free = h.setae["state"][:, 0] == hist.STATE_FREE
+    front, ell = h.setae["film_front_x_um"][:, 0], h.setae["film_attached_um"][:, 0]
+    assert np.all(np.isnan(front[free])) and np.all(np.isnan(ell[free]))
+    assert np.all(np.isfinite(front[~free])) and np.all(ell[~free] >= 0.0)
+    first = int(np.flatnonzero(~free)[0])
+    assert ell[first] == pytest.approx(p.spatula.length, rel=1e-3)
+    assert front[first] == pytest.approx(h.setae["tip_x_um"][first, 0], abs=0.05)
+    h.save(tmp_path / "run")
+    back = hist.load(tmp_path / "run")
+    np.testing.assert_array_equal(back.setae["film_attached_um"], h.setae["film_attached_um"])
+    sphere = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.0})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        hs = Model(sphere, n_sim=1, seed=7, record_setae=True).run(
+            protocol.press_pull(0.5, speed=0.05), progress=False
+        )
+    assert not any(f in hs.setae for f in hist.FILM_FIELDS)

@@ -306,6 +306,7 @@ class SpatulaTip(ContactLaw):
 
     name = "spatula"
     tangential = True
+    film = True
     max_tension = math.inf  # a film at a small peel angle holds many w·b
     # As the last of a stretched pad peels, the film's force falls by 4–17 % a step while the
     # tip springs back fast: the explicit step's work on the tip, F·Δx with F from the step's
