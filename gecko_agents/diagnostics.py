@@ -279,12 +279,23 @@ def _linear_deflection(model, history) -> dict:
 
 def _quasi_static(model, history, f: _Run) -> dict:
     q = f.v * model.settle_time / f.stroke if f.stroke else None
+    if f.stroke:
+        meaning = (
+            f"plate speed {f.v:.3g} µm/µs × free seta period {model.settle_time:.3g} µs / JKR "
+            f"stroke |δc| = {f.stroke:.3g} µm: a critically damped seta lags the plate by "
+            "v·T/π, which must stay within the stroke between jump-in and snap-off"
+        )
+    else:  # a film or non-adhesive tip has no snap-off stroke to compare the lag with
+        meaning = (
+            f"not judged: tip = {model.params.tip!r} has no JKR snap-off stroke; halve the "
+            f"plate speed ({f.v:.3g} µm/µs) until the forces stop moving (a spatula's "
+            "pull-off is first order in the speed: scenarios/frictional_adhesion.py's "
+            "plate-speed table)"
+        )
     item = _item(
         "quasi_static",
         q,
-        f"plate speed {f.v:.3g} µm/µs × free seta period {model.settle_time:.3g} µs / JKR "
-        f"stroke |δc| = {f.stroke or 0:.3g} µm: a critically damped seta lags the plate by "
-        "v·T/π, which must stay within the stroke between jump-in and snap-off",
+        meaning,
         "docs/physics.md 'Time stepping' (seta damping, settle period) and 'JKR contact' (δc)",
         applies=f.adhesive and f.v > 0,
     )

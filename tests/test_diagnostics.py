@@ -121,6 +121,7 @@ def test_hertz_tip_has_no_adhesion_items():
         h = Model(p, n_sim=1, seed=1).run(PROT, progress=False)
     items = h.meta["validity"]["items"]
     assert items["tabor"]["ok"] is None and items["quasi_static"]["ok"] is None
+    assert items["quasi_static"]["meaning"].startswith("not judged: tip = 'hertz'")
     assert items["touched"]["ok"] is True
 
 
