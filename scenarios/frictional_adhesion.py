@@ -395,6 +395,14 @@ def draw_map(rows: list[dict], mcfg: dict, out) -> None:
                     ax_phi.plot([r["drag_over_lean"] for r in d],
                                 [r["peel_angle_at_pull_off_deg"] for r in d], mk + ls, color=c,
                                 label=f"{lab}, {way}")  # fmt: skip
+        # Runs whose tip let go in the drag itself: their pull starts from a fresh contact.
+        # (Each map row carries its pair's ratio, so a lost run marks that ratio.)
+        lost = [r for r in rows if math.isfinite(r["let_go_in_drag_at_um"])]
+        for ax, key in ((ax_r, "gripping_over_releasing"), (ax_phi, "peel_angle_at_pull_off_deg")):
+            if lost:
+                ax.plot([r["drag_over_lean"] for r in lost], [r[key] for r in lost], "x",
+                        color="k", ms=9, mew=1.5, zorder=5,
+                        label="tip let go in the drag")  # fmt: skip
         ax_r.axhline(2.0, color="0.6", lw=0.8)
         ax_r.set_xlabel("drag / lean (L cos θ)")
         ax_r.set_ylabel("pull-off at 90°: gripping / releasing")
