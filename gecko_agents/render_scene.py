@@ -217,6 +217,7 @@ class Scene:
         side.set_aspect("equal")  # to scale: 1 µm is as long across as up
         side.set(xlabel="x [µm]", ylabel="y [µm]")
         fx, fy = self._floor(xlo, xhi)
+        self.floor_line = fx, fy  # drawn once; films and pads lie on it
         side.fill_between(fx, fy, ylo, color="#e8dcc0", zorder=1, lw=0)
         side.plot(fx, fy, color="#8b6f47", lw=1.2, zorder=2)
         self.plate = Rectangle((0.0, 0.0), 1.0, self.plate_h, color="#444444", zorder=3)
@@ -374,8 +375,7 @@ class Scene:
         front, ell = self.film[0][k], self.film[1][k]
         on = np.isfinite(front)
         x0, length = front[on], ell[on]
-        floor_x, floor_y = self._floor(float(self.side.get_xlim()[0]),
-                                       float(self.side.get_xlim()[1]))  # fmt: skip
+        floor_x, floor_y = self.floor_line
         y0 = np.interp(x0, floor_x, floor_y)
         x1 = x0 + length
         y1 = np.interp(x1, floor_x, floor_y)

@@ -351,6 +351,12 @@ def let_go_in_drag(h, drag: float) -> float:
     return float(abs(px[start + drops[0] + 1] - px[start])) if len(drops) else math.nan
 
 
+def pull_off_ratio(grip: dict, rel: dict) -> float:
+    """Gripping over releasing pull-off of two :func:`map_point` rows (nan if the releasing
+    seta held no tension)."""
+    return grip["pull_off_uN"] / rel["pull_off_uN"] if rel["pull_off_uN"] > 0 else math.nan
+
+
 def anisotropy_map(mcfg: dict) -> list[dict]:
     """Per case, θ and drag/lean: both drags' runs and the gripping/releasing pull-off ratio."""
     rows = []
@@ -358,9 +364,7 @@ def anisotropy_map(mcfg: dict) -> list[dict]:
         for theta in mcfg["thetas"]:
             for factor in mcfg["factors"]:
                 grip, rel = (map_point(tip, mu, theta, factor, sign) for sign in (-1, 1))
-                ratio = (
-                    grip["pull_off_uN"] / rel["pull_off_uN"] if rel["pull_off_uN"] > 0 else math.nan
-                )
+                ratio = pull_off_ratio(grip, rel)
                 rows += [{**grip, "gripping_over_releasing": ratio},
                          {**rel, "gripping_over_releasing": ratio}]  # fmt: skip
     return rows
@@ -639,7 +643,7 @@ def below_map(quick: bool) -> list[dict]:
     for mu in mus:
         for theta in thetas:
             grip, rel = (map_point("spatula", mu, theta, 1.0, sign) for sign in (-1, 1))
-            ratio = grip["pull_off_uN"] / rel["pull_off_uN"] if rel["pull_off_uN"] > 0 else math.nan
+            ratio = pull_off_ratio(grip, rel)
             rows.append({"mu": mu, "theta_deg": theta, "ratio": ratio,
                          "lean_gripping_deg": grip["lean_after_drag_deg"],
                          "lean_releasing_deg": rel["lean_after_drag_deg"],
