@@ -12,4 +12,4 @@ except PackageNotFoundError:  # running from a source tree that is not installed
 
 # Backing models register themselves with gecko_agents.model (Model(params) picks one by
 # params.backing.kind); importing the module here makes every kind available.
-from . import backing as _backing  # noqa: E402, F401
+from gecko_agents.backing import elastic as _backing  # noqa: E402, F401

@@ -26,7 +26,7 @@ Run ``python -m gecko_agents.bench`` (``--quick`` for a seconds-long smoke run).
   are split at jump-in / stick-slide / release boundaries; heights drawn inside the timing),
   for 2000 and 20 000 blocks, and for 20 000 plain block means;
 * the throughput of a sweep of CPU-bound points on a Dask LocalCluster with 2 workers
-  relative to 1 (:func:`gecko_agents.sweep_bench.benchmark_dask_scaling`; skip with
+  relative to 1 (:func:`gecko_agents.sweep.benchmark.benchmark_dask_scaling`; skip with
   ``--no-dask``).
 
 The last line is always ``agent/bare-engine ratio at N=<largest N>: X.XX`` (the default
@@ -45,11 +45,11 @@ import warnings
 import numpy as np
 import pymunk.batch as pb
 
-from . import protocol
-from . import quasistatic as qs
-from .model import Model, numba_available
-from .params import PAPER_ARRAY
-from .protocol import DEFAULT_SPEED, Move
+from gecko_agents import protocol
+from gecko_agents import quasistatic as qs
+from gecko_agents.model import Model, numba_available
+from gecko_agents.params import PAPER_ARRAY
+from gecko_agents.protocol import DEFAULT_SPEED, Move
 
 __all__ = [
     "pressed_model",
@@ -286,7 +286,7 @@ def _crack_kinetics_section(n: int, args, out: dict) -> None:
 
 def _dask_section(out: dict) -> None:
     try:
-        from .sweep_bench import benchmark_dask_scaling
+        from gecko_agents.sweep.benchmark import benchmark_dask_scaling
 
         d = benchmark_dask_scaling(n_points=8, work_s=0.5)
     except ImportError as err:

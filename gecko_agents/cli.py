@@ -10,8 +10,8 @@
     gecko-agents params [PRESET]
     gecko-agents calibrate ...        (when gecko_agents/calibrate.py is present)
 
-Run files are described in :mod:`gecko_agents.runfile`, sweep files in
-:mod:`gecko_agents.sweepfile`; ``examples/`` holds one of each kind of study. ``python -m
+Run files are described in :mod:`gecko_agents.runfiles.run`, sweep files in
+:mod:`gecko_agents.runfiles.sweep`; ``examples/`` holds one of each kind of study. ``python -m
 gecko_agents`` is this command line too. Exit codes: 0 success, 1 the run failed, 2 a usage
 or input error (nothing was run), 130 interrupted (Ctrl-C; nothing half-written).
 
@@ -30,8 +30,8 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from . import __version__
-from .param_table import parameter_table
+from gecko_agents import __version__
+from gecko_agents.params.table import parameter_table
 
 __all__ = [
     "main",
@@ -89,7 +89,7 @@ def _add_run(p: argparse.ArgumentParser) -> None:
 
 
 def _default_run_dir(runfile: Path) -> Path:
-    from .runfile import RUN_FILE_NAME
+    from gecko_agents.runfiles.run import RUN_FILE_NAME
 
     if runfile.name == RUN_FILE_NAME:  # the copy inside a run directory: do not overwrite it
         return Path("runs") / f"{runfile.resolve().parent.name}-rerun"
@@ -97,7 +97,7 @@ def _default_run_dir(runfile: Path) -> Path:
 
 
 def _cmd_run(args, extra) -> int:
-    from . import runfile
+    from gecko_agents.runfiles import run as runfile
 
     spec = runfile.load_run(args.runfile, quick=args.quick)
     out = args.out if args.out is not None else _default_run_dir(args.runfile)
@@ -145,7 +145,7 @@ def _cmd_run(args, extra) -> int:
 
 # sweep -------------------------------------------------------------------------------------------
 def _add_sweep(p: argparse.ArgumentParser) -> None:
-    from .sweep import parse_dask_arg
+    from gecko_agents.sweep import parse_dask_arg
 
     p.add_argument("sweepfile", type=Path, help="sweep file (TOML; see examples/)")
     p.add_argument(
@@ -179,8 +179,9 @@ def _add_sweep(p: argparse.ArgumentParser) -> None:
 
 
 def _cmd_sweep(args, extra) -> int:
-    from . import sweep, sweepfile
-    from .history import atomic_write_bytes
+    from gecko_agents import sweep
+    from gecko_agents.history import atomic_write_bytes
+    from gecko_agents.runfiles import sweep as sweepfile
 
     spec = sweepfile.load_sweep(args.sweepfile, quick=args.quick)
     out = args.out if args.out is not None else spec.out_dir
@@ -246,11 +247,6 @@ def _cmd_sweep(args, extra) -> int:
 
 
 # reproduce ---------------------------------------------------------------------------------------
-def scenarios_dir() -> Path:
-    """The repository's ``scenarios/`` folder (next to the package in a source checkout)."""
-    return Path(__file__).resolve().parents[1] / "scenarios"
-
-
 def _add_reproduce(p: argparse.ArgumentParser) -> None:
     p.add_argument("--quick", action="store_true", help="the one-minute version")
     p.add_argument("--out", type=Path, default=None, help="output folder (default renders/)")
@@ -258,22 +254,12 @@ def _add_reproduce(p: argparse.ArgumentParser) -> None:
 
 
 def _cmd_reproduce(args, extra) -> int:
-    script = scenarios_dir() / "reproduce_paper.py"
-    if not script.is_file():
-        raise UsageError(
-            f"the paper reproduction needs the repository's scenarios/ folder, "
-            f"which is not at {scenarios_dir()} (this is an installed copy of the "
-            f"package): clone the repository and `pip install -e .` there"
-        )
-    if str(script.parent) not in sys.path:
-        sys.path.insert(0, str(script.parent))  # scenarios import their shared _common module
-    spec = importlib.util.spec_from_file_location("reproduce_paper", script)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    from gecko_agents.studies import reproduce_paper
+
     argv = (["--quick"] if args.quick else []) + (["--out", str(args.out)] if args.out else [])
     argv += (["--no-progress"] if args.no_progress else []) + list(extra)
     try:
-        module.main(argv)
+        reproduce_paper.main(argv)
     except KeyboardInterrupt:
         _err(
             "interrupted: scenarios that finished keep their outputs (each file is written "
@@ -285,13 +271,13 @@ def _cmd_reproduce(args, extra) -> int:
 
 # render ------------------------------------------------------------------------------------------
 def _add_render(p: argparse.ArgumentParser) -> None:
-    from . import render
+    from gecko_agents import render
 
     render.add_arguments(p)
 
 
 def _cmd_render(args, extra) -> int:
-    from . import render
+    from gecko_agents import render
 
     return render.run(args)
 
@@ -305,7 +291,7 @@ def _add_bench(p: argparse.ArgumentParser) -> None:
 
 
 def _cmd_bench(args, extra) -> int:
-    from . import bench
+    from gecko_agents import bench
 
     bench.main(
         (["--quick"] if args.quick else []) + (["--no-dask"] if args.no_dask else []) + list(extra)
@@ -324,7 +310,7 @@ def _add_params(p: argparse.ArgumentParser) -> None:
 
 
 def _cmd_params(args, extra) -> int:
-    from .runfile import PRESETS, preset_docs
+    from gecko_agents.runfiles.run import PRESETS, preset_docs
 
     docs = preset_docs()
     if args.preset is None:
@@ -484,7 +470,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     """Run the command line on ``argv`` (default ``sys.argv[1:]``); returns the exit code."""
-    from .runfile import RunFileError
+    from gecko_agents.runfiles.run import RunFileError
 
     parser = build_parser()
     try:

@@ -81,7 +81,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import jkr
+from gecko_agents.physics import jkr
 
 __all__ = [
     "ValidityWarning",
@@ -289,7 +289,7 @@ def _quasi_static(model, history, f: _Run) -> dict:
         meaning = (
             f"not judged: tip = {model.params.tip!r} has no JKR snap-off stroke; halve the "
             f"plate speed ({f.v:.3g} µm/µs) until the forces stop moving (a spatula's "
-            "pull-off is first order in the speed: scenarios/frictional_adhesion.py's "
+            "pull-off is first order in the speed: the frictional-adhesion study's "
             "plate-speed table)"
         )
     item = _item(
@@ -421,7 +421,7 @@ def _fmt(value) -> str:
 def non_finite_report(model, row: dict) -> str:
     """Say what went non-finite in a model's state and where (which quantity, which setae),
     and whether an input (an external force) or the integration is to blame."""
-    from .state import ROWS
+    from gecko_agents.model.state import ROWS
 
     s = model.state
     t = f"t = {model.time:.4g} µs"

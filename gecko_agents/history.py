@@ -38,7 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .params import SetaArray, check_seed
+from gecko_agents.params import SetaArray, check_seed
 
 __all__ = [
     "History",

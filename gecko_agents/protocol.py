@@ -17,7 +17,7 @@ import warnings
 from dataclasses import dataclass
 from typing import Protocol
 
-from .param_checks import check as _check
+from gecko_agents.params.checks import check as _check
 
 __all__ = [
     "Segment",

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import history, protocol
-from gecko_agents.backing import ElasticModel, Strip
+from gecko_agents.backing.elastic import ElasticModel, Strip
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY, Backing
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.backing import ElasticModel
+from gecko_agents.backing.elastic import ElasticModel
 from gecko_agents.history import STATE_FREE
 from gecko_agents.params import PAPER_ARRAY, Backing
 

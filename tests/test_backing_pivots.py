@@ -1,13 +1,13 @@
-"""The strip's pivots, solved directly (:mod:`gecko_agents.backing_pivots`): internal forces
+"""The strip's pivots, solved directly (:mod:`gecko_agents.backing.pivots`): internal forces
 (momentum conserved), no work (a free chain keeps its energy), the gap closed, and the compiled
 loop equal to the numpy/LAPACK path."""
 
 import numpy as np
 import pytest
 
-from gecko_agents.backing_pivots import ChainPivots
-from gecko_agents.backing_pivots_loop import compiled
-from gecko_agents.backing_strip import Strip
+from gecko_agents.backing.pivots import ChainPivots
+from gecko_agents.backing.pivots_loop import compiled
+from gecko_agents.backing.strip import Strip
 
 ELL = 2.0  # µm
 

@@ -3,8 +3,8 @@
 import numpy as np
 from numpy.testing import assert_allclose
 
-from gecko_agents import beam
 from gecko_agents.params import PAPER_TABLE1
+from gecko_agents.physics import beam
 
 
 def test_table1_values_from_notes():

@@ -11,8 +11,9 @@ from pathlib import Path
 
 import pytest
 
-from gecko_agents import cli, history, runfile, sweep
+from gecko_agents import cli, history, sweep
 from gecko_agents.model import Model
+from gecko_agents.runfiles import run as runfile
 
 EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.toml"))
 RUN_EXAMPLES = [p for p in EXAMPLES if "point" not in tomllib.loads(p.read_text())]
@@ -283,12 +284,6 @@ def test_bad_sweep_file_refused(text, key, tmp_path, capsys):
 
 
 # delegated subcommands -------------------------------------------------------------------------
-def test_reproduce_without_scenarios_folder(tmp_path, monkeypatch, capsys):
-    monkeypatch.setattr(cli, "scenarios_dir", lambda: tmp_path / "scenarios")
-    assert cli.main(["reproduce", "--quick"]) == 2
-    assert "scenarios" in capsys.readouterr().err
-
-
 def test_render_delegates(tmp_path, capsys):
     src = tmp_path / "study.toml"
     src.write_text(GOOD.replace("seed = 1", "seed = 1\nrecord_setae = true"))

@@ -7,9 +7,10 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from gecko_agents import contact, jkr, protocol
+from gecko_agents import contact, protocol
 from gecko_agents.model import Model, numba_available
 from gecko_agents.params import PAPER_TABLE1, TIPS
+from gecko_agents.physics import jkr
 
 RATE = PAPER_TABLE1.replace(**{"contact.crack_speed": 0.5}).contact
 

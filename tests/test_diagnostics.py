@@ -11,9 +11,10 @@ from numpy.testing import assert_allclose
 
 from gecko_agents import diagnostics as dg
 from gecko_agents import history as hist
-from gecko_agents import jkr, protocol
+from gecko_agents import protocol
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_TABLE1, Contact
+from gecko_agents.physics import jkr
 
 STIFF = PAPER_TABLE1.replace(**{"seta.L": 5.0})  # a short seta: quick runs
 PROT = protocol.press_pull(0.3, speed=0.05)

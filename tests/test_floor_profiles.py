@@ -2,15 +2,16 @@
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from gecko_agents import floor, profiles
+from gecko_agents import floor
+from gecko_agents.data import SURFACES
+from gecko_agents.floor import readers as profiles
 from gecko_agents.params import PAPER_ARRAY, Floor
 
-DATA = Path(__file__).resolve().parents[1] / "data" / "surfaces"
+DATA = SURFACES
 DEKTAK = DATA / "dektak_profile.csv"
 WSXM = DATA / "wsxm_afm.top"
 NEEDS_ST = "needs the optional extra: pip install 'gecko_agents[topography]' (SurfaceTopography)"
@@ -364,7 +365,7 @@ def test_statistics_closed_forms_and_json():
 
 
 def test_floor_panel_is_written(tmp_path):
-    from gecko_agents.floor_plots import plot_floor
+    from gecko_agents.render.floor_plots import plot_floor
 
     out = plot_floor(_synth(0), tmp_path / "floor.png", title="self-affine")
     assert (tmp_path / "floor.png").stat().st_size > 10_000 and len(out.axes) == 2

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
+from gecko_agents.analysis.limit_curve import critical_angle
 from gecko_agents.history import STATE_STICK
-from gecko_agents.limit_curve import critical_angle
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 
@@ -130,12 +130,10 @@ def _convergence_rows(releasing, undamped_releasing):
 
 
 @pytest.fixture
-def frictional_adhesion_scenario(monkeypatch):
-    import importlib
-    from pathlib import Path
+def frictional_adhesion_scenario():
+    from gecko_agents.studies import frictional_adhesion
 
-    monkeypatch.syspath_prepend(str(Path(__file__).resolve().parents[1] / "scenarios"))
-    return importlib.import_module("frictional_adhesion")
+    return frictional_adhesion
 
 
 def test_convergence_report_claims_first_order_only_when_the_numbers_show_it(

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from gecko_agents import jkr
+from gecko_agents.physics import jkr
 
 R, W, ES = 4.0, 0.08, 1.553  # µm, µN/µm, MPa (the Fig 5 reading)
 FC = 1.5 * np.pi * R * W

@@ -1,4 +1,5 @@
-"""The per-seta pad loop (gecko_agents.loop): blocks, threads and the order of detachments."""
+"""The per-seta pad loop (gecko_agents.model.step_loop): blocks, threads and the order of
+detachments."""
 
 import warnings
 
@@ -6,8 +7,8 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.loop import BLOCK, pad_loop
 from gecko_agents.model import Model, numba_available
+from gecko_agents.model.step_loop import BLOCK, pad_loop
 from gecko_agents.params import PAPER_ARRAY
 
 pytestmark = pytest.mark.skipif(not numba_available(), reason="numba (optional extra 'fast')")

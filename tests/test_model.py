@@ -7,11 +7,12 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from gecko_agents import jkr, protocol
+from gecko_agents import protocol
 from gecko_agents import quasistatic as qs
 from gecko_agents.history import STATE_FREE
 from gecko_agents.model import Model, SimulationUnstable, numba_available
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
+from gecko_agents.physics import jkr
 
 # A stubby seta (L = 5 µm) so a press-and-pull takes a few thousand steps; everything else is
 # the paper's array (θ = 60°, E = 1.413 MPa, w = 2√(γ1γ2), μ = 0.2).

@@ -1,24 +1,21 @@
-"""Peeling a pad through a pre-peeled leader arm (``scenarios/pad_peel.py``): the arm is laid
-out at the peel angle without stress, a shallow peel needs more force than a steep one as
+"""Peeling a pad through a pre-peeled leader arm (:mod:`gecko_agents.studies.pad_peel`): the arm
+is laid out at the peel angle without stress, a shallow peel needs more force than a steep one as
 Kendall's tape law says, and the detachment front starts at the pulled edge and runs across."""
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from gecko_agents.backing import ElasticModel
+from gecko_agents.backing.elastic import ElasticModel
 from gecko_agents.params import PAPER_ARRAY
 
-SCEN = Path(__file__).resolve().parents[1] / "scenarios"
 N = 100  # setae: a 400 µm pad, 10 bending lengths (the 90° start-up transient takes ~5)
 
 
 @pytest.fixture
-def pad_peel(monkeypatch):
-    monkeypatch.syspath_prepend(str(SCEN))
-    import pad_peel
+def pad_peel():
+    from gecko_agents.studies import pad_peel
 
     return pad_peel
 

@@ -4,9 +4,10 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from gecko_agents import beam, jkr
 from gecko_agents import quasistatic as qs
+from gecko_agents.history import STATE_FREE, STATE_SLIP, STATE_STICK
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
+from gecko_agents.physics import beam, jkr
 
 P1 = PAPER_TABLE1
 RWE = P1.contact.jkr_args()
@@ -118,19 +119,19 @@ def test_friction_invariants_on_every_step(law):
     r = qs.press_pull(p, h, 1.5, record_setae=True)
     P, state, u = r.per_seta["force"], r.per_seta["state"], r.per_seta["tip_dx"]
     # Tangential force recomputed from the spring: K·(p − p0) with p − p0 = (u, −D).
-    dy = np.where(state == qs.STICK, (P - br.Kxy * u) / br.Kyy, 0.0)
+    dy = np.where(state == STATE_STICK, (P - br.Kxy * u) / br.Kyy, 0.0)
     Ft = br.Kxx * u + br.Kxy * dy
-    stick = state == qs.STICK
+    stick = state == STATE_STICK
     assert np.all(np.abs(Ft[stick]) <= br.cap(P[stick]) * (1 + 1e-9) + 1e-12)
     # A sticking tip does not move sideways between two sticking steps.
     both = stick[1:] & stick[:-1]
     assert_allclose(u[1:][both], u[:-1][both], atol=1e-12)
-    assert np.any(state == qs.SLIP)
+    assert np.any(state == STATE_SLIP)
     if law == "paper":  # eq 27: no friction without compression, so a tip in tension slides
         assert np.all(P[stick] >= 0)
     else:  # the adhesive cap μ|P + 2Fc| lets tips in tension stick
         assert np.any(stick & (P < 0))
-    assert np.all(P[state == qs.FREE] == 0)
+    assert np.all(P[state == STATE_FREE] == 0)
     # Tension never exceeds Fc per seta nor n_attached·Fc in total.
     assert P.min() >= -FC * (1 + 1e-9)
     assert np.all(-r.force_normal <= r.n_attached * FC * (1 + 1e-9))

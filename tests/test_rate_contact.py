@@ -8,9 +8,10 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
-from gecko_agents import contact, jkr, protocol
+from gecko_agents import contact, protocol
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_TABLE1
+from gecko_agents.physics import jkr
 
 STUBBY = PAPER_TABLE1.replace(**{"mechanics": "rod", "seta.L": 5.0})
 

@@ -75,7 +75,7 @@ from gecko_agents import sweep
 from gecko_agents.params import PAPER_TABLE1
 
 if __name__ == "__main__":
-    sweep.run_sweep("gecko_agents.sweep_bench:cpu_bound_point", PAPER_TABLE1,
+    sweep.run_sweep("gecko_agents.sweep.points:cpu_bound_point", PAPER_TABLE1,
                     {"contact.R": [1.0, 2.0, 3.0, 4.0]}, [0], sys.argv[1],
                     fn_kwargs={"repeats": 10**6}, n_workers=2, progress=False)
 """

@@ -7,9 +7,10 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from gecko_agents import force_plots, render
 from gecko_agents import history as hist
+from gecko_agents import render
 from gecko_agents.params import PAPER_TABLE1
+from gecko_agents.render import force_plots
 
 N_REC = 30
 TENSION_SETA, TENSION_RECORD = 2, 22  # seta 2 holds on in tension while the plate rises
@@ -308,7 +309,7 @@ def _imports_of(module: str, seen=None) -> set[str]:
 
 def test_render_imports_no_pymunk_and_no_pyplot():
     imported = _imports_of("gecko_agents.render")
-    assert {"gecko_agents.force_plots", "gecko_agents.render_scene"} <= imported  # it works
+    assert {"gecko_agents.render.force_plots", "gecko_agents.render.scene"} <= imported  # it works
     assert not {m for m in imported if m.split(".")[0] == "pymunk"}
     assert "matplotlib.pyplot" not in imported
     # Drawing reads a History only: no arrow back to the model, its world or the command line.
@@ -400,7 +401,7 @@ def _with_backing(toy, nodes=True):
 
 
 def test_nearest_backing_record():
-    from gecko_agents.render_backing import nearest_records
+    from gecko_agents.render.backing import nearest_records
 
     t = np.array([0.0, 1.0, 2.0, 4.0])
     got = nearest_records(t, [0.2, 0.5, 0.6, 2.9, 3.1, 10.0, -1.0])
@@ -484,7 +485,7 @@ def test_film_and_pad_are_drawn_from_the_recorded_front():
     """Each attached film tip: the free film from its front on the floor to its tip body's
     bottom, the pad from the front over ℓ of floor; nothing for a free tip; the pad's colour
     where it lies."""
-    from gecko_agents.render_scene import FILM_COLOUR
+    from gecko_agents.render.scene import FILM_COLOUR
 
     h = _with_film(_toy())
     k, i = TENSION_RECORD, TENSION_SETA

@@ -1,13 +1,16 @@
 """Every scenario in --quick mode: it runs, writes its files, and its histories are sound.
 
-Scenarios are found by glob: every ``scenarios/*.py`` whose name does not start with ``_``
-(shared modules). ``reproduce_paper`` runs all the paper-figure scenarios and has its own test.
+Studies are found by glob: every module of ``gecko_agents.studies`` with a ``main`` (not the
+shared ``common`` and ``preload``). ``reproduce_paper`` runs all the paper-figure studies and has
+its own test. Each ``scenarios/<study>.py`` is a thin command line over its study.
 Outputs differ between scenarios; each one must write a figure (PNG), ``metadata.json`` and at
 least one CSV table into its ``--out`` folder and nothing elsewhere. Also here: the sweep points
-of the shared scenario module ``_preload`` (Fig 11a/11b).
+of Fig 11a/11b (:mod:`gecko_agents.sweep.points`).
 """
 
+import importlib
 import json
+import pkgutil
 import runpy
 import sys
 from pathlib import Path
@@ -16,21 +19,28 @@ import numpy as np
 import pytest
 
 from gecko_agents import history as hist
-from gecko_agents import sweep
+from gecko_agents import studies, sweep
+from gecko_agents.sweep import points
 
 SCEN = Path(__file__).resolve().parents[1] / "scenarios"
 AGGREGATE = "reproduce_paper"
-NAMES = sorted(p.stem for p in SCEN.glob("*.py") if not p.name.startswith("_"))
-
-
-@pytest.fixture(autouse=True)
-def _scenarios_on_path(monkeypatch):
-    monkeypatch.syspath_prepend(str(SCEN))
+NAMES = sorted(
+    m.name
+    for m in pkgutil.iter_modules(studies.__path__)
+    if hasattr(importlib.import_module(f"gecko_agents.studies.{m.name}"), "main")
+)
 
 
 def _run(name, out):
-    mod = runpy.run_path(str(SCEN / f"{name}.py"), run_name="scenario_under_test")
-    return mod["main"](["--quick", "--out", str(out), "--no-progress"])
+    study = importlib.import_module(f"gecko_agents.studies.{name}")
+    return study.main(["--quick", "--out", str(out), "--no-progress"])
+
+
+def test_every_study_has_a_thin_script_and_every_script_a_study():
+    assert sorted(p.stem for p in SCEN.glob("*.py")) == NAMES
+    for name in NAMES:
+        script = runpy.run_path(str(SCEN / f"{name}.py"), run_name="not_main")
+        assert script["main"] is importlib.import_module(f"gecko_agents.studies.{name}").main
 
 
 def test_discovery_finds_the_paper_figures():
@@ -85,27 +95,23 @@ def test_reproduce_paper_quick_writes_the_report(tmp_path, monkeypatch):
         assert fig in report
 
 
-# Sweep points of scenarios/_preload.py (Fig 11) ---------------------------------------------
+# Sweep points of Fig 11 (gecko_agents.sweep.points) ------------------------------------------
 
 
 def test_preload_points_are_importable_by_name():
-    import _preload
-
     for name in ("quasistatic_preload_point", "agent_preload_point"):
-        fn = getattr(_preload, name)
-        assert sweep._resolve_point_fn(fn) == (fn, f"_preload:{name}")
-        assert sweep._resolve_point_fn(f"_preload:{name}")[0] is fn
-        assert getattr(sweep, name) is fn  # the name sweep files use (gecko-agents sweep)
+        fn = getattr(points, name)
+        assert sweep._resolve_point_fn(fn) == (fn, f"gecko_agents.sweep.points:{name}")
+        assert sweep._resolve_point_fn(f"gecko_agents.sweep.points:{name}")[0] is fn
+        assert points.POINT_FUNCTIONS[name] is fn  # the name sweep files use (gecko-agents sweep)
 
 
 def test_quasistatic_preload_point_blocks_of_one_are_brute_force(tmp_path):
-    import _preload
-
     from gecko_agents import quasistatic
     from gecko_agents.params import PAPER_ARRAY
 
     p = PAPER_ARRAY.replace(**{"array.count": 300})
-    row = _preload.quasistatic_preload_point(p, 5, preload_uN=30.0, n_blocks=300)
+    row = points.quasistatic_preload_point(p, 5, preload_uN=30.0, n_blocks=300)
     heights = p.floor.sigma * np.random.default_rng(5).standard_normal(300)
     brute = quasistatic.preload_pull(p, heights, 30.0)
     assert row["preload_uN"] == pytest.approx(30.0, rel=1e-8)
@@ -114,16 +120,16 @@ def test_quasistatic_preload_point_blocks_of_one_are_brute_force(tmp_path):
     assert 0 < row["pull_off_over_ideal"] <= 1
     assert row["attached_fraction"] == brute.n_attached.max() / 300
     # the seed draws the floor; a larger preload attaches more setae
-    other = _preload.quasistatic_preload_point(p, 6, preload_uN=30.0, n_blocks=300)
+    other = points.quasistatic_preload_point(p, 6, preload_uN=30.0, n_blocks=300)
     assert other["pull_off_uN"] != row["pull_off_uN"]
-    more = _preload.quasistatic_preload_point(p, 5, preload_uN=300.0, n_blocks=300)
+    more = points.quasistatic_preload_point(p, 5, preload_uN=300.0, n_blocks=300)
     assert more["attached_fraction"] > row["attached_fraction"]
     assert more["pull_off_uN"] > row["pull_off_uN"]
     with pytest.raises(ValueError, match="preload"):
-        _preload.quasistatic_preload_point(p, 5, preload_uN=0.0)
+        points.quasistatic_preload_point(p, 5, preload_uN=0.0)
     # through run_sweep, the preload as an "fn." axis of the grid
     rows = sweep.run_sweep(
-        _preload.quasistatic_preload_point,
+        points.quasistatic_preload_point,
         p,
         {"fn.preload_uN": [30.0, 300.0]},
         [5],
@@ -139,12 +145,10 @@ def test_quasistatic_preload_point_blocks_of_one_are_brute_force(tmp_path):
 
 
 def test_agent_preload_point_holds_its_share_of_the_preload():
-    import _preload
-
     from gecko_agents.params import PAPER_ARRAY
 
     p = PAPER_ARRAY.replace(**{"mechanics": "rod", "array.count": 1000, "floor.sigma": 0.2})
-    row = _preload.agent_preload_point(p, 3, preload_uN=200.0, n_sim=2, speed=0.05)
+    row = points.agent_preload_point(p, 3, preload_uN=200.0, n_sim=2, speed=0.05)
     fc = p.contact.pull_off_force
     assert row["preload_patch_uN"] == pytest.approx(200 * 2 / 1000)
     assert row["preload_held_uN"] >= 0.99 * row["preload_patch_uN"]
@@ -153,4 +157,4 @@ def test_agent_preload_point_holds_its_share_of_the_preload():
     assert row["pull_off_per_seta_uN"] == pytest.approx(row["pull_off_patch_uN"] / 2)
     assert 0 < row["attached_fraction"] <= 1 and row["n_steps"] > 0
     with pytest.raises(ValueError, match="n_sim"):
-        _preload.agent_preload_point(p, 3, preload_uN=200.0, n_sim=0)
+        points.agent_preload_point(p, 3, preload_uN=200.0, n_sim=0)

@@ -1,5 +1,6 @@
 """The JKR sphere coupled to its shear (Savkoor & Briggs 1977): the closed forms of
-gecko_agents.sheared_jkr against JKR and against each other, the contact law against them, and
+gecko_agents.physics.savkoor_briggs against JKR and against each other, the contact law against
+them, and
 a dragged-and-pulled seta against the load-controlled pull-off under shear."""
 
 import math
@@ -9,12 +10,13 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, minimize_scalar
 
-from gecko_agents import jkr, protocol, quasistatic
-from gecko_agents import sheared_jkr as sj
+from gecko_agents import protocol, quasistatic
 from gecko_agents.contact import JKRSphere, ShearedJKRSphere, contact_law
 from gecko_agents.contact.sheared_jkr import _radius
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
+from gecko_agents.physics import jkr
+from gecko_agents.physics import savkoor_briggs as sj
 
 SHEARED = PAPER_ARRAY.replace(
     **{"contact.shear_coupling": "savkoor_briggs", "mechanics": "rod", "floor.sigma": 0.0}

@@ -186,7 +186,7 @@ def test_pull_off_converges_as_the_plate_slows():
     adds a force ∝ v to its final peel, so the releasing pull-off converges to first order:
     halving the speed halves the change (ratio of successive changes 0.5 for an error ∝ v), and
     without contact damping a fast plate already gives the slow plate's value."""
-    from gecko_agents.dynamics import Damping
+    from gecko_agents.model.mass_damping import Damping
 
     f = [_pull_off(8.0, speed=v)[0] for v in (0.02, 0.01, 0.005)]
     d1, d2 = f[0] - f[1], f[1] - f[2]

@@ -16,8 +16,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gecko_agents import cli, provenance, sweep, sweep_bench, sweep_store
+from gecko_agents import cli, provenance, sweep
 from gecko_agents.params import PAPER_TABLE1
+from gecko_agents.runfiles import sweep as runfiles_sweep
+from gecko_agents.sweep import points as sweep_bench
+from gecko_agents.sweep import store as sweep_store
 
 HERE = Path(__file__).resolve().parent
 ROUGH_SIGMA = 1.0  # counted_point refuses floors rougher than this [µm]
@@ -131,7 +134,7 @@ def test_bad_specs_refused_before_anything_runs(tmp_path, grid, seeds, match):
 @pytest.mark.parametrize(
     "kwargs,match",
     [
-        ({"point_fn": "gecko_agents.sweep_bench.analytic_point"}, "'module:function'"),
+        ({"point_fn": "gecko_agents.sweep.points.analytic_point"}, "'module:function'"),
         ({"point_fn": "gecko_agents.sweep:no_such_point"}, "cannot be imported"),
         ({"point_fn": "no_such_module:f"}, "cannot be imported"),
         ({"point_fn": lambda params, seed: {}}, "top-level function"),
@@ -311,7 +314,7 @@ def test_point_file_contents(tmp_path):
     assert (
         path.stem
         == record["key"]
-        == sweep.point_key("gecko_agents.sweep_bench:analytic_point", {}, p, 4)
+        == sweep.point_key("gecko_agents.sweep.points:analytic_point", {}, p, 4)
     )
     assert record["overrides"] == {"floor.sigma": 0.5} and record["seed"] == 4
     assert record["params"] == p.to_dict() and record["status"] == "ok"
@@ -416,9 +419,13 @@ def test_the_sweep_command_lives_above_the_engine(capsys):
     assert old.returncode == 2 and "python -m gecko_agents sweep" in old.stderr
 
 
-def test_point_names_of_sweep_files_resolve_to_their_homes():
-    for name in ("analytic_point", "cpu_bound_point"):
-        assert name in sweep.__all__
-        assert getattr(sweep, name) is getattr(sweep_bench, name)
-    with pytest.raises(AttributeError, match="no_such_point"):
-        sweep.no_such_point  # noqa: B018
+def test_point_names_of_sweep_files_are_the_library_point_functions():
+    assert set(runfiles_sweep.point_functions()) == {
+        "analytic_point",
+        "cpu_bound_point",
+        "quasistatic_preload_point",
+        "agent_preload_point",
+    }
+    for name, fn in runfiles_sweep.point_functions().items():
+        assert fn is getattr(sweep_bench, name)
+        assert fn.__module__ == "gecko_agents.sweep.points"

@@ -7,7 +7,7 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.model import Model
-from gecko_agents.model_setup import numba_threads
+from gecko_agents.model.setup import numba_threads
 from gecko_agents.params import PAPER_ARRAY
 
 # Stubby setae (L = 5 µm) on a rough pad floor (σ = 0.5 µm): a press, a drag and a pull-off
@@ -145,7 +145,7 @@ def test_bad_threads_refused_naming_it(threads, kw):
 
 
 def test_automatic_threads_only_for_large_models_and_only_on_idle_cores(tmp_path, monkeypatch):
-    from gecko_agents import model_setup as ms
+    from gecko_agents.model import setup as ms
 
     monkeypatch.setattr(ms.os, "cpu_count", lambda: 4)
     monkeypatch.setattr(ms, "numba_threads", lambda: 4)

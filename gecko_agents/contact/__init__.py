@@ -30,8 +30,9 @@ Each law gives the same formulas twice, kept side by side so that they cannot dr
 vectorized numpy methods (the general floor path, recording, energies) and scalar
 ``@staticmethod`` functions with ``k``, the law's constants, as last argument
 (:attr:`ContactLaw.constants`, a float64 array) that the per-seta loop calls, compiled by numba
-or interpreted (:mod:`gecko_agents.kernels`). ``tests/test_contact.py`` pins both forms of every
-law to its closed form (:mod:`gecko_agents.jkr`) point by point.
+or interpreted (:mod:`gecko_agents.model.step_numpy`). ``tests/test_contact.py`` pins both forms of
+every
+law to its closed form (:mod:`gecko_agents.physics.jkr`) point by point.
 
 Layout: :mod:`.base` (interface, shared scalar helpers), one module per law (:mod:`.jkr_sphere`,
 :mod:`.rate_jkr`, :mod:`.hertz`, :mod:`.spatula`, :mod:`.sheared_jkr`) and :mod:`.registry` (names).
@@ -39,13 +40,13 @@ Adding a law: write one module with a subclass of :class:`ContactLaw`, register 
 :data:`TIP_LAWS`, add its tests. Nothing in the model changes.
 """
 
-from .base import ContactLaw, branch_radius, mindlin_stiffness
-from .hertz import HertzSphere
-from .jkr_sphere import JKRSphere
-from .rate_jkr import RateJKRSphere
-from .registry import TIP_LAWS, bounds, contact_law
-from .sheared_jkr import ShearedJKRSphere
-from .spatula import SpatulaTip
+from gecko_agents.contact.base import ContactLaw, branch_radius, mindlin_stiffness
+from gecko_agents.contact.hertz import HertzSphere
+from gecko_agents.contact.jkr_sphere import JKRSphere
+from gecko_agents.contact.rate_jkr import RateJKRSphere
+from gecko_agents.contact.registry import TIP_LAWS, bounds, contact_law
+from gecko_agents.contact.sheared_jkr import ShearedJKRSphere
+from gecko_agents.contact.spatula import SpatulaTip
 
 __all__ = [
     "ContactLaw",

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from ..sheared_jkr import combined_shear_modulus, stick_stiffness
+from gecko_agents.physics.savkoor_briggs import combined_shear_modulus, stick_stiffness
 
 __all__ = ["ContactLaw", "branch_radius", "jitable", "mindlin_stiffness"]
 

@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
-from .. import jkr
-from .base import ContactLaw, branch_radius, mindlin_stiffness
+from gecko_agents.contact.base import ContactLaw, branch_radius, mindlin_stiffness
+from gecko_agents.physics import jkr
 
 __all__ = ["JKRSphere"]
 

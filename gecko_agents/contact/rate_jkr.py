@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 
-from .. import jkr
-from .base import branch_radius
-from .jkr_sphere import JKRSphere
+from gecko_agents.contact.base import branch_radius
+from gecko_agents.contact.jkr_sphere import JKRSphere
+from gecko_agents.physics import jkr
 
 __all__ = ["RateJKRSphere"]
 

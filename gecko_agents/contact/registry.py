@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import math
 
-from .base import ContactLaw
-from .hertz import HertzSphere
-from .jkr_sphere import JKRSphere
-from .rate_jkr import RateJKRSphere
-from .sheared_jkr import ShearedJKRSphere
-from .spatula import SpatulaTip
+from gecko_agents.contact.base import ContactLaw
+from gecko_agents.contact.hertz import HertzSphere
+from gecko_agents.contact.jkr_sphere import JKRSphere
+from gecko_agents.contact.rate_jkr import RateJKRSphere
+from gecko_agents.contact.sheared_jkr import ShearedJKRSphere
+from gecko_agents.contact.spatula import SpatulaTip
 
 __all__ = ["TIP_LAWS", "bounds", "contact_law"]
 

@@ -7,8 +7,9 @@ import math
 
 import numpy as np
 
-from .. import jkr, sheared_jkr
-from .base import ContactLaw, branch_radius, mindlin_stiffness
+from gecko_agents.contact.base import ContactLaw, branch_radius, mindlin_stiffness
+from gecko_agents.physics import jkr
+from gecko_agents.physics import savkoor_briggs as sheared_jkr
 
 __all__ = ["ShearedJKRSphere"]
 
@@ -57,7 +58,8 @@ def _gap(a, delta, c2, k):
 @_njit(cache=True)
 def _radius(delta, xi, k):
     """Contact radius [µm] on the stable branch at overlap δ and tangential displacement ξ [µm]
-    (:func:`gecko_agents.sheared_jkr.overlap_from_radius` inverted); 0 where none exists (past
+    (:func:`gecko_agents.physics.savkoor_briggs.overlap_from_radius` inverted); 0 where none exists
+    (past
     the fold). g(a) is convex, so Newton from JKR's radius at δ (where g ≥ 0, right of the
     fold whenever the contact exists) falls monotonically onto the largest root."""
     c2 = 4.0 * k[4] * xi * xi
@@ -79,7 +81,7 @@ def _radius(delta, xi, k):
 
 @_njit(cache=True)
 def _state_energy(a, delta, xi, k):
-    """:func:`gecko_agents.sheared_jkr.energy` [pJ] of radius a at (δ, ξ)."""
+    """:func:`gecko_agents.physics.savkoor_briggs.energy` [pJ] of radius a at (δ, ξ)."""
     R, w, E, G = k[0], k[2], k[3], k[4]
     e = delta - a * a / R
     U = 8.0 * E * a**5 / (15.0 * R * R) + 4.0 * E * a**3 / (3.0 * R) * e + E * a * e * e
@@ -88,7 +90,7 @@ def _state_energy(a, delta, xi, k):
 
 @_njit(cache=True)
 def _normal_force(a, delta, k):
-    """:func:`gecko_agents.sheared_jkr.force_from_state` [µN]."""
+    """:func:`gecko_agents.physics.savkoor_briggs.force_from_state` [µN]."""
     R, E = k[0], k[3]
     return 4.0 * E * a**3 / (3.0 * R) + 2.0 * E * a * (delta - a * a / R)
 
@@ -118,7 +120,7 @@ class ShearedJKRSphere(ContactLaw):
     radius, and the contact radius solves Griffith's balance with both release rates,
     G_I + G_II = w (Savkoor & Briggs 1977, Proc R Soc A 356:103), at the tip's overlap δ and
     tangential displacement ξ from its stick anchor: δ = a²/R − √((2πwa − 4G*ξ²)/E*)
-    (:mod:`gecko_agents.sheared_jkr`, the closed forms this law is tested against). Shear
+    (:mod:`gecko_agents.physics.savkoor_briggs`, the closed forms this law is tested against). Shear
     shrinks the contact and lowers the tension it holds; the tip lets go where the branch at
     its (δ, ξ) ends, which a sheared tip reaches at a smaller pull, or sheared alone.
 

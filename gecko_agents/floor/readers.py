@@ -1,0 +1,271 @@
+"""Measured surface profiles from files: plain two-column text, or every SurfaceTopography format.
+
+* :func:`read_columns` / :func:`read_text` — a plain reader for two-column text or CSV files
+  (instrument exports with a header block, such as a Dektak CSV). Units come from the column
+  header (``Lateral um``, ``Raw Micrometer``, ``x [nm]``, ``# x_um h_um`` …) or from the
+  ``unit`` argument. Needs only numpy.
+* :func:`write_text` — the inverse: a profile as ``x [um], h [um]`` text (exact round trip).
+* :func:`read_topography` / :func:`read_map` — any file the ContactEngineering
+  `SurfaceTopography <https://github.com/ContactEngineering/SurfaceTopography>`_ package reads
+  (``read_topography``: x3p, opd, sdf, datx, di, ibw, plux, WSxM, Dektak, …): a line scan, or
+  one row of a 2-D map. Optional: ``pip install 'gecko_agents[topography]'``; imported only
+  when called.
+* :func:`load` — the plain reader for text files, SurfaceTopography for everything else.
+
+Every reader converts to µm and returns a :class:`gecko_agents.floor.Profile` through
+:func:`gecko_agents.floor.from_profile` (detrended, uniformly resampled), except the raw
+:func:`read_columns` and :func:`read_map`.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+from gecko_agents.floor import LENGTH_UNITS, Profile, from_profile, length_factor
+
+__all__ = [
+    "read_columns",
+    "read_text",
+    "write_text",
+    "read_topography",
+    "read_map",
+    "load",
+    "TEXT_SUFFIXES",
+]
+
+TEXT_SUFFIXES = (".csv", ".txt", ".dat", ".asc", ".xy", ".tsv")
+"""File name endings :func:`load` reads with the plain text reader."""
+
+_INSTALL = "pip install 'gecko_agents[topography]'"
+# Unit words in a column header: longest first so 'micrometer' wins over 'm'.
+_UNIT_WORDS = sorted(LENGTH_UNITS, key=len, reverse=True)
+_UNIT_RE = re.compile(
+    r"(?<![a-zµμå])(" + "|".join(re.escape(u) for u in _UNIT_WORDS) + r")(?![a-zµμå])",
+    re.IGNORECASE,
+)
+
+
+def _fields(line: str) -> list[str]:
+    return [f for f in re.split(r"[\s,;]+", line.strip().strip(",;")) if f != ""]
+
+
+def _is_data(line: str, columns: tuple[int, int]) -> bool:
+    """Whether the ``columns`` of a line are numbers (NaN and inf count: refused later)."""
+    f = _fields(line)
+    if len(f) <= max(columns):
+        return False
+    try:
+        [float(f[c]) for c in columns]
+    except ValueError:
+        return False
+    return True
+
+
+def _header_units(header: str, columns: tuple[int, int]) -> tuple[str | None, str | None]:
+    """Units of the two columns named in a header line, or None where none is given."""
+    text = header.lstrip("#% ").strip()
+    names = [n for n in re.split(r"\s*[,;\t]\s*", text) if n != ""]
+    if len(names) <= max(columns):  # whitespace-separated names
+        names = text.split()
+    units = []
+    for c in columns:
+        m = _UNIT_RE.findall(names[c].replace("_", " ")) if c < len(names) else []
+        units.append(m[-1] if m else None)
+    return units[0], units[1]
+
+
+def read_columns(
+    path,
+    *,
+    columns: tuple[int, int] = (0, 1),
+    unit: str | None = None,
+    height_unit: str | None = None,
+) -> tuple[np.ndarray, np.ndarray, str, str]:
+    """The raw two columns of a text/CSV profile file, as written: (x, h, x_unit, h_unit).
+
+    The data block is the run of lines, up to the end of the file, whose ``columns`` are
+    numbers (separators: comma, semicolon, tab or spaces; trailing empty fields allowed); the
+    line just above it is read as the column header. Units come from that header (``Lateral
+    um``, ``Raw Micrometer``, ``x [nm]``, ``h_um`` …) or from ``unit`` / ``height_unit``; a
+    header unit that contradicts the argument is refused. The file is decoded as UTF-8, else
+    latin-1 (instrument exports often write µ as byte 0xB5).
+
+    Parameters
+    ----------
+    path : the file.
+    columns : indices of the x and height columns (0-based).
+    unit : length unit of x (and of h unless ``height_unit``), if the header gives none.
+    height_unit : length unit of h, if the header gives none.
+    """
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as err:
+        raise ValueError(f"cannot read profile file {str(path)!r}: {err}") from err
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        text = raw.decode("latin-1")
+    lines = text.splitlines()
+    end = len(lines)
+    while end > 0 and not lines[end - 1].strip():
+        end -= 1
+    start = end
+    while start > 0 and _is_data(lines[start - 1], columns):
+        start -= 1
+    if end - start < 2:
+        raise ValueError(
+            f"{str(path)!r} is not a two-column profile: found {end - start} "
+            f"numeric rows in columns {columns} at its end"
+        )
+    header = next((ln for ln in reversed(lines[:start]) if ln.strip()), "")
+    hx, hh = _header_units(header, columns) if header else (None, None)
+    arg_x = unit
+    arg_h = height_unit if height_unit is not None else unit
+    x_unit = _pick_unit(path, "unit", hx, arg_x)
+    h_unit = _pick_unit(path, "height_unit", hh, arg_h, fallback=x_unit)
+    data = np.array([[float(_fields(ln)[c]) for c in columns] for ln in lines[start:end]])
+    return data[:, 0], data[:, 1], x_unit, h_unit
+
+
+def _pick_unit(
+    path: Path,
+    name: str,
+    from_header: str | None,
+    from_arg: str | None,
+    fallback: str | None = None,
+) -> str:
+    if from_header is not None and from_arg is not None:
+        if length_factor(from_header) != length_factor(from_arg, name):
+            raise ValueError(
+                f"{name} = {from_arg!r} contradicts the unit {from_header!r} in "
+                f"the header of {str(path)!r}"
+            )
+    unit = from_header or from_arg or fallback
+    if unit is None:
+        raise ValueError(
+            f"no length unit in the header of {str(path)!r}: pass {name}='um' (or 'nm', 'mm', …)"
+        )
+    length_factor(unit, name)
+    return unit
+
+
+def read_text(
+    path,
+    *,
+    columns: tuple[int, int] = (0, 1),
+    unit: str | None = None,
+    height_unit: str | None = None,
+    **kwargs,
+) -> Profile:
+    """A floor profile from a two-column text/CSV file (:func:`read_columns`), converted to µm,
+    detrended and resampled by :func:`gecko_agents.floor.from_profile` (``kwargs``:
+    ``spacing``, ``detrend``, ``x_range``)."""
+    x, h, ux, uh = read_columns(path, columns=columns, unit=unit, height_unit=height_unit)
+    return from_profile(x, h, unit=ux, height_unit=uh, source=Path(path).name, **kwargs)
+
+
+def write_text(path, profile: Profile) -> Path:
+    """Write a profile as text: a ``x [um], h [um]`` header, then one ``x, h`` row per vertex
+    (17 significant digits, so :func:`read_columns` gives back the same floats)."""
+    path = Path(path)
+    rows = np.column_stack([np.asarray(profile.x, float), np.asarray(profile.y, float)])
+    with path.open("w", encoding="utf-8") as f:
+        if profile.source:
+            f.write(f"# {profile.source}\n")
+        f.write("x [um], h [um]\n")
+        np.savetxt(f, rows, fmt="%.17g", delimiter=", ")
+    return path
+
+
+def _surface_topography():
+    try:
+        import SurfaceTopography
+    except ImportError as err:
+        raise ImportError(
+            f"reading this file needs the optional SurfaceTopography package: {_INSTALL}"
+        ) from err
+    return SurfaceTopography
+
+
+def _open(path, channel: int | None):
+    st = _surface_topography()
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"cannot read {str(path)!r}: no such file")
+    try:
+        reader = st.open_topography(str(path))
+        kw = {} if channel is None else {"channel_index": int(channel)}
+        topo = reader.topography(**kw)
+    except Exception as err:  # SurfaceTopography raises many kinds for unreadable files
+        raise ValueError(
+            f"SurfaceTopography cannot read {str(path)!r}: {type(err).__name__}: {err}"
+        ) from err
+    if topo.unit is None:
+        raise ValueError(f"{str(path)!r} gives no length unit; SurfaceTopography needs one")
+    return topo, length_factor(topo.unit, f"unit of {path.name}")
+
+
+def read_map(path, *, channel: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A 2-D topography map through SurfaceTopography, in µm, as stored (no detrending):
+    (x [µm] shape (nx,), y [µm] shape (ny,), heights [µm] shape (nx, ny), heights[i, j] at
+    (x_i, y_j)). ``channel``: the data channel (default: the file's default)."""
+    topo, f = _open(path, channel)
+    if topo.dim != 2:
+        raise ValueError(f"{str(path)!r} is a line scan, not a 2-D map: use read_topography")
+    xg, yg = topo.positions()
+    h = np.ma.filled(np.ma.asarray(topo.heights(), dtype=float), np.nan)
+    return np.asarray(xg)[:, 0] * f, np.asarray(yg)[0, :] * f, h * f
+
+
+def read_topography(
+    path, *, row: int | None = None, channel: int | None = None, **kwargs
+) -> Profile:
+    """A floor profile from any file SurfaceTopography's ``read_topography`` reads.
+
+    A line scan is used whole; of a 2-D map the profile along x at the y index ``row`` is
+    taken (required for maps; heights[:, row] of :func:`read_map`). Heights and positions are
+    converted from the file's unit to µm and passed to
+    :func:`gecko_agents.floor.from_profile` (``kwargs``: ``spacing``, ``detrend``,
+    ``x_range``). Needs ``pip install 'gecko_agents[topography]'``.
+    """
+    path = Path(path)
+    topo, f = _open(path, channel)
+    if topo.dim == 1:
+        if row is not None:
+            raise ValueError(f"row = {row!r} given but {str(path)!r} is a line scan")
+        x, h = topo.positions_and_heights()
+        h = np.ma.filled(np.ma.asarray(h, dtype=float), np.nan)
+        name = path.name
+    else:
+        nx, ny = topo.nb_grid_pts
+        if (
+            row is None
+            or isinstance(row, bool)
+            or not isinstance(row, int | np.integer)
+            or not 0 <= row < ny
+        ):
+            raise ValueError(
+                f"row = {row!r}: {str(path)!r} is a {nx} × {ny} map; choose the "
+                f"row (y index) in [0, {ny - 1}]"
+            )
+        xg, _ = topo.positions()
+        x = np.asarray(xg)[:, 0]
+        h = np.ma.filled(np.ma.asarray(topo.heights(), dtype=float), np.nan)[:, row]
+        name = f"{path.name} row {row}"
+    return from_profile(np.asarray(x, float) * f, h * f, unit="um", source=name, **kwargs)
+
+
+def load(path, **kwargs) -> Profile:
+    """Any profile file: the plain reader for text files (:data:`TEXT_SUFFIXES`), otherwise
+    SurfaceTopography (:func:`read_topography`; ``row`` for maps)."""
+    if (
+        Path(path).suffix.lower() in TEXT_SUFFIXES
+        and "row" not in kwargs
+        and "channel" not in kwargs
+    ):
+        return read_text(path, **kwargs)
+    return read_topography(path, **kwargs)

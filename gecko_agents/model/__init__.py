@@ -1,0 +1,553 @@
+"""The time-stepped agent model: setae on a moving plate over a rough floor, in pymunk.
+
+Units: µm, µN, µs, ng (:mod:`gecko_agents.params`); a seta's mass is then O(0.1–1). Sign
+conventions: :mod:`gecko_agents.contact` and ``docs/physics.md``.
+
+:class:`Model` builds a run from parameters and conducts it; the pieces live in their own
+modules:
+
+* :mod:`gecko_agents.model.world` — the pymunk space (tips, plate, floor, collision events, batch
+I/O);
+* :mod:`gecko_agents.model.state` — per-seta state as named arrays;
+* :mod:`gecko_agents.contact` — the tip law (JKR sphere by default), chosen by ``params.tip``;
+* :mod:`gecko_agents.model.step_numpy`, :mod:`gecko_agents.model.step_loop` — the per-step forces
+(numpy, or one
+  loop compiled by numba);
+* :mod:`gecko_agents.protocol` — what the plate does; :mod:`gecko_agents.model.recorder` — what is
+  recorded into a :class:`~gecko_agents.history.History`.
+
+Contact state machine per tip: free → attached when the overlap δ ≥ δ_attach (0 for the JKR
+sphere: it jumps in, no long-range force), attached → free when δ < δ_detach (δc, the end of the
+JKR branch). A soft seta leaves its equilibrium earlier (at the fold of the spring–contact
+system, see :mod:`gecko_agents.quasistatic`) and then runs to δc by itself; the overlap where
+its tip started to jump away is recorded as ``release_overlap_um``.
+
+:meth:`Model.run` skips the free approach: while no tip is attached and every tip follows the
+plate at rest relative to it (a free seta's dynamics do not depend on where it is), the plate
+and tips are moved rigidly up to where the first sensor would reach the floor.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from gecko_agents.contact import contact_law
+from gecko_agents.floor import Profile
+from gecko_agents.history import History
+from gecko_agents.model.mass_damping import (
+    DEFAULT_DAMPING,
+    Damping,
+    seta_mass,
+    tangential_stiffness,
+)
+from gecko_agents.model.runner import SimulationUnstable, run_protocol
+from gecko_agents.model.setup import (
+    KERNELS,
+    checked_arguments,
+    choose_kernel,
+    choose_threads,
+    detection_mode,
+    numba_available,
+)
+from gecko_agents.model.state import SetaState
+from gecko_agents.model.step_numpy import LoopConstants, NumpyStep
+from gecko_agents.model.world import World
+from gecko_agents.params import SetaArray, check_seed
+from gecko_agents.physics import beam
+from gecko_agents.protocol import DEFAULT_SPEED
+
+__all__ = [
+    "Damping",
+    "Model",
+    "SimulationUnstable",
+    "numba_available",
+    "seta_mass",
+    "tangential_stiffness",
+    "KERNELS",
+]
+
+
+BACKINGS: dict[str, type] = {}
+"""Model subclass for each backing kind other than the rigid plate (``params.backing.kind``)."""
+
+
+def register_backing(kind: str):
+    """Class decorator: ``Model(params)`` with ``params.backing.kind == kind`` builds the
+    decorated subclass of :class:`Model` (e.g.
+    :class:`gecko_agents.backing.elastic.ElasticModel`)."""
+
+    def register(cls):
+        BACKINGS[kind] = cls
+        return cls
+
+    return register
+
+
+class Model:
+    """A pymunk world of ``n_sim`` setae on a kinematic plate above a rough floor.
+
+    Parameters
+    ----------
+    params : the array. ``params.array.count`` is the physical array; the model simulates
+        ``n_sim`` setae of it (default: all of them, refused above 20 000) in one row at
+        ``params.array.pitch`` and reports ``scale = count / n_sim`` in the metadata.
+    seed : seed of the run's single ``numpy.random.Generator`` (default ``params.floor.seed``):
+        an integer ≥ 0 (Python or numpy; bool, float and str are refused, naming ``seed``), or
+        a ``numpy.random.Generator`` from which the seed is drawn (recorded in the history).
+    dt : time step [µs]; default 0.75/ω_max from the stiffest spring and the tip mass (0.375/ω_max
+        with crack kinetics, :class:`gecko_agents.contact.RateJKRSphere`). A dt at or above the
+        stability bound 2/ω_max is refused.
+    contact : ``"batch"`` (fast, default) or ``"callback"`` (per-contact reference path).
+    damping : :class:`Damping` ratios.
+    record_every : record every this many steps (default: every 0.02 µm of plate travel at the
+        default speed, about 20 steps).
+    record_setae : also record per-seta arrays (needed for animations).
+    verbose : print the chosen time step.
+    kernel : how a pad-floor step with the batch contact path is computed: ``"numba"`` (one
+        compiled loop; needs numba, ``pip install 'gecko_agents[fast]'``), ``"numpy"``
+        (vectorized) or ``"python"`` (the same loop run by the interpreter: fastest without
+        numba for a handful of setae). ``"auto"`` (default): numba if installed, else python
+        up to 6 setae and numpy above; other floors and paths always use numpy. All give the
+        same history to rounding; the one used is ``meta["kernel"]`` of the history.
+    threads : with more than 1, the numba loop runs its blocks of setae on numba's threads
+        (``NUMBA_NUM_THREADS``; the same history bit for bit, ``meta["loop_threads"]``).
+        None (default): from :data:`gecko_agents.model.step_loop.PARALLEL_MIN_SETAE` setae on, as
+        many as
+        the cores other processes leave idle when the model is built
+        (:func:`gecko_agents.model.setup.choose_threads`), 1 below. Threads pay on an idle
+        machine and cost 2–3× when they wait for a busy core.
+    floor_profile : a given floor (:class:`gecko_agents.floor.Profile`, e.g. a measured
+        surface from :func:`gecko_agents.floor.from_profile`) instead of one drawn from
+        ``params.floor``.
+    detection : how pymunk finds tip–floor contact candidates: ``"full"`` (every tip's sensor
+        tested every step: the reference), ``"lazy"`` (pad floors with ``contact="batch"``: a
+        tip has its sensor only near the sensor's edge, where events happen,
+        :meth:`gecko_agents.model.world.World.update_sensors`; the same flags every step, so the
+        same history) or ``"auto"`` (default: lazy where it applies). ``meta["detection"]``.
+    """
+
+    energy_complete = True
+    """Whether the energy columns book every energy of the world (plate work = elastic +
+    kinetic + dissipated); a model with parts whose energy it does not book says False and
+    its histories skip the energy-balance invariant."""
+
+    def __new__(cls, params=None, *args, **kwargs):
+        # A backing other than the rigid plate is a subclass registered by its module
+        # (:func:`register_backing`), so this module imports no backing.
+        kind = getattr(getattr(params, "backing", None), "kind", "rigid")
+        if cls is Model and kind != "rigid":
+            if kind not in BACKINGS:
+                raise ValueError(
+                    f"backing.kind = {kind!r}: no model registered for it "
+                    f"(registered: {['rigid', *sorted(BACKINGS)]}); import its module first"
+                )
+            return super().__new__(BACKINGS[kind])
+        return super().__new__(cls)
+
+    def __init__(
+        self,
+        params: SetaArray,
+        *,
+        n_sim: int | None = None,
+        seed: int | None = None,
+        dt: float | None = None,
+        contact: str = "batch",
+        damping: Damping = DEFAULT_DAMPING,
+        record_every: int | None = None,
+        record_setae: bool = False,
+        verbose: bool = False,
+        kernel: str = "auto",
+        floor_profile: Profile | None = None,
+        detection: str = "auto",
+        threads: int | None = None,
+    ):
+        n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
+        threads = choose_threads(threads, int(n), contact)
+        self.params, self.n, self.contact_path = params, int(n), contact
+        if isinstance(seed, np.random.Generator):
+            # Draw the run's seed from the caller's generator: the history records it, so the
+            # run stays reproducible, and successive models from one generator differ.
+            seed = int(seed.integers(2**63))
+        self.seed = params.floor.seed if seed is None else check_seed(seed)
+        self.rng = np.random.default_rng(self.seed)
+        self.damping = damping
+        self.record_setae = record_setae
+        self.law = law = contact_law(params)
+        self._set_mechanics(params, law, damping)
+        self.dt = self._time_step(dt)
+        if verbose:
+            print(
+                f"gecko_agents: dt = {self.dt:.4g} µs (ω_max·dt = {self.omega_max * self.dt:.2f}"
+                f"; stable below {2.0 / self.omega_max:.4g} µs)"
+            )
+        self.record_every = record_every or max(1, round(0.02 / DEFAULT_SPEED / self.dt))
+        self.state = SetaState(self.n)
+        self.world = World(
+            params,
+            self.n,
+            self.state,
+            self.mass,
+            params.contact.R + abs(law.detach_overlap),
+            self.rng,
+            floor_profile,
+            detection_mode(detection, contact),
+        )
+        self._constants = self._loop_constants()
+        self.physics = NumpyStep(
+            self._constants, law, self.state, self.world, self.K, params.friction
+        )
+        if contact == "callback":
+            self.world.on_pre_solve(self._pre_solve)
+        self._fast_pads = self.world.pads and contact == "batch"
+        self.kernel, self._loop, self.loop_threads = choose_kernel(
+            kernel, self._fast_pads, self.n, type(self.law), threads
+        )
+        self.time = 0.0
+        self._warned_linear = False
+        self._lost_idx = np.zeros(self.n, dtype=np.int64)
+        self._gone_idx = np.zeros(self.n, dtype=np.int64)
+        self._res = np.zeros(7)
+        self._pnext = (0.0, self.world.plate_start)
+        self.reaction = (0.0, 0.0)
+        self._work_step = 0.0
+        self.reset_state_arrays()
+
+    def _set_mechanics(self, params, law, damping) -> None:
+        """The seta's stiffnesses (eq 16–21), mass, damping coefficients and the stiffest
+        spring a tip can meet, which sets the time step."""
+        s = params.seta
+        self.L, self.theta = s.L, s.theta
+        self.axis = np.array([math.cos(self.theta), -math.sin(self.theta)])
+        self.Ka, self.Kp = params.axial_stiffness, params.bending_stiffness
+        self.K = beam.stiffness_matrix(self.Ka, self.Kp, self.theta)
+        self.k_phi = self.Kp * self.L**2
+        self.mass = seta_mass(params)
+        self.k_t = law.tangential_stiffness
+        self.Fc = law.pull_off_force
+        # Slowest period of a free seta (normal mode, eq 20): the force servo averages over it.
+        self.settle_time = 2 * math.pi * math.sqrt(self.mass / params.Ky)
+        self.c_seta = 2 * damping.seta * math.sqrt(params.Ky * self.mass)
+        self.c_n = 2 * damping.normal * math.sqrt(law.zero_load_stiffness * self.mass)
+        self.c_t = 2 * damping.tangential * math.sqrt(self.k_t * self.mass)
+        # Stiffest spring a tip can meet: seta (Ka) + contact at 5 Fc of compression + stick.
+        self.k_max = self.Ka + law.stiffest(5 * params.contact.pull_off_force) + self.k_t
+        self.omega_max = math.sqrt(self.k_max / self.mass)
+
+    def _loop_constants(self) -> LoopConstants:
+        p, K = self.params, self.K
+        return LoopConstants(
+            dt=self.dt, rod=p.mechanics == "rod", k00=-K[0, 0], k01=-K[0, 1], k10=-K[1, 0],
+            k11=-K[1, 1], L=self.L, Ka=self.Ka, k_phi=self.k_phi, theta=self.theta,
+            c_seta=self.c_seta, R=p.contact.R, detach=self.law.detach_overlap, c_n=self.c_n,
+            c_t=self.c_t, k_t=self.k_t, mu=p.friction.mu, paper=p.friction.law == "paper",
+            Fc=self.Fc, hm=0.5 * self.dt / self.mass, release=self.law.release_radius,
+        )  # fmt: skip
+
+    def _time_step(self, dt) -> float:
+        bound = 2.0 / self.omega_max
+        if dt is None:
+            # A rate-dependent contact switches between its opening and closing branches within
+            # a step during a jump-in's ring-down: half the step keeps that first-order error
+            # (energy balance 3.8 % → 1.5 % of the run's energy on a stubby seta) in bounds.
+            return (0.375 if self.law.rate_dependent else 0.75) / self.omega_max
+        if not (isinstance(dt, int | float) and math.isfinite(dt) and 0 < dt < bound):
+            raise ValueError(
+                f"dt = {dt!r} µs is outside the stable range (0, {bound:.4g}) µs: "
+                f"the stiffest spring ({self.k_max:.3g} µN/µm) on a tip of "
+                f"{self.mass:.3g} ng needs ω·dt < 2"
+            )
+        return float(dt)
+
+    # ------------------------------------------------------------------ public state
+    @property
+    def plate(self):
+        """The plate's pymunk body (kinematic)."""
+        return self.world.plate
+
+    @property
+    def plate_position(self) -> tuple[float, float]:
+        """Plate (x, y) [µm]."""
+        pos = self.world.plate.position
+        return pos.x, pos.y
+
+    @property
+    def attached(self) -> np.ndarray:
+        """Which tips are attached (bool (N,))."""
+        return self.state.attached
+
+    @property
+    def external_force(self) -> np.ndarray:
+        """Extra force on each tip (N, 2) [µN] (probing and tests); the plate does not see it."""
+        return self.state.external_force
+
+    @property
+    def profile(self) -> Profile:
+        """The floor under the array."""
+        return self.world.profile
+
+    @property
+    def z_touch(self) -> float:
+        """Plate height at which a resting tip touches the floor's mean plane h = 0 [µm]."""
+        return self.world.z_touch
+
+    @property
+    def plate_start(self) -> float:
+        """Plate height at the start of a run [µm]."""
+        return self.world.plate_start
+
+    @property
+    def root_dx(self) -> np.ndarray:
+        """Root abscissae relative to the plate [µm]."""
+        return self.world.root_dx
+
+    @property
+    def tips(self) -> list:
+        """The tips' pymunk bodies, in seta order."""
+        return self.world.tips
+
+    @property
+    def space(self):
+        """The pymunk space."""
+        return self.world.space
+
+    @property
+    def pull_travel(self) -> float:
+        """Plate travel a pull-off typically needs [µm] (progress estimates)."""
+        if self.params.mechanics == "linear":
+            return self.Fc / self.params.Ky
+        return self.L
+
+    def normal_force(self) -> float:
+        """Total normal contact force [µN] (> 0 compressive)."""
+        return float(self.state.P.sum())
+
+    def n_attached(self) -> int:
+        return int(self.state.attached.sum())
+
+    def spring_force(self, x, root):
+        """Seta spring force on the tips [µN], elastic energies [pJ] and (linear) deflections.
+
+        Parameters
+        ----------
+        x : tip positions (N, 2) [µm]. root : root positions (N, 2) [µm].
+        """
+        d = x - root
+        if self.params.mechanics == "linear":
+            u = d - self.L * self.axis
+            return (*beam.linear_spring_force(u, self.K), u)
+        return (*beam.rod_spring_force(d, self.L, self.Ka, self.k_phi, self.theta), None)
+
+    def spring_energies(self) -> np.ndarray:
+        """Elastic energy of every seta [pJ] at the last step's evaluation positions."""
+        root = np.asarray(self._pnext) + np.column_stack([self.world.root_dx, self.world.root_dy])
+        return self.spring_force(self.state.xy.T, root)[1]
+
+    def backing_energy(self) -> float:
+        """Elastic energy of the backing [pJ]: 0 for the rigid plate (a subclass with a
+        compliant backing books its springs here)."""
+        return 0.0
+
+    def contact_energies(self) -> np.ndarray:
+        """Energy stored in each contact at the last step (0 for free tips) [pJ]."""
+        U = np.zeros(self.n)
+        idx = np.flatnonzero(self.state.attached)
+        U[idx] = self.physics.contact_energy(idx)
+        return U
+
+    def kinetic_energy(self) -> float:
+        """Kinetic energy at the recorded positions [pJ]: ½m·v(n−½)·v(n+½), the form that
+        semi-implicit Euler conserves exactly for a linear spring."""
+        v = self.state.pv[2:4]
+        return 0.5 * self.mass * float(np.sum(v * (v + self.state.F * (self.dt / self.mass))))
+
+    def overlaps(self) -> np.ndarray:
+        """Overlap δ of every tip with a candidate floor at the last step, NaN elsewhere."""
+        if self._fast_pads:
+            return np.where(self.state.candidate_step, self.state.delta, np.nan)
+        return self.state.delta.copy()
+
+    # ------------------------------------------------------------------ stepping
+    def _pre_solve(self, i, body):
+        """Reference path: the contact force of one tip, computed and applied per contact."""
+        pos = body.position
+        s = self.state
+        fx, fy = self.physics.contact(
+            np.array([i]),
+            np.array([pos.x]),
+            np.array([pos.y]),
+            s.pv[2, i : i + 1],
+            s.pv[3, i : i + 1],
+            np.array([i]),
+        )
+        body.force = (body.force.x + float(fx[0]), body.force.y + float(fy[0]))
+
+    def _advance(self, vpx, vpy):
+        """One time step with the plate at velocity (vpx, vpy) [µm/µs]; leaves the step's
+        reaction, work and dissipation in ``reaction``, ``_work_step``, ``physics.diss``."""
+        dt, s, ph, w = self.dt, self.state, self.physics, self.world
+        w.plate.velocity = (vpx, vpy)
+        pp = w.plate.position
+        pnx, pny = pp.x + vpx * dt, pp.y + vpy * dt
+        self._pnext = (pnx, pny)
+        ph.events = []
+        ph.diss = 0.0
+        if self._loop is not None:
+            opx, opy = self._advance_loop(pnx, pny, vpx, vpy)
+        else:
+            w.read()
+            x, y = s.xy
+            np.multiply(s.pv[2], dt, out=x)
+            x += s.pv[0]  # where pymunk will evaluate forces
+            np.multiply(s.pv[3], dt, out=y)
+            y += s.pv[1]
+            opx, opy = ph.spring_damp(pnx, pny, vpx, vpy)
+            if not self._constants.rod:
+                self._check_linear(ph.max_u2)
+            if self._fast_pads:
+                ph.contact_pads()
+            elif self.contact_path == "batch":
+                ph.contact_general()
+            else:
+                s.F_damp_contact.fill(0.0)
+                s.delta.fill(np.nan)
+                ph.any_contact_damping = True
+            w.write_forces(s.F)
+            if self.contact_path == "callback":
+                # Tips that lost their candidate while attached (no pre_solve will come).
+                np.copyto(s.candidate_step, s.candidate)
+                ph.lost(s.candidate_step)
+        if w.pads and (self._loop is None or self._res[6] > w.pad_slack):
+            w.recentre_pads(s.xy[0])
+        w.step(dt)
+        self.time += dt
+        if self._loop is None:
+            ph.bookkeeping(vpx, vpy)
+        ppx, ppy = self._on_plate_prev
+        self._work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
+        self._on_plate_prev = (opx, opy)
+        self.reaction = (-opx, -opy)
+
+    def _advance_loop(self, pnx, pny, vpx, vpy):
+        s, w, ph = self.state, self.world, self.physics
+        data = w.read_raw()
+        np.copyto(s.candidate_step, s.candidate)
+        res = self._res
+        ext = s.external_force
+        self._loop(
+            data,
+            w.order,
+            w.out,
+            self._constants,
+            self.law.constants,
+            pnx,
+            pny,
+            vpx,
+            vpy,
+            max(math.hypot(vpx, vpy), 1e-4),
+            bool(ext.any()),
+            w.h,
+            s.candidate_step,
+            s.attached,
+            s.slip,
+            s.block,
+            ext,
+            w.pad_centre,
+            ph.rest,
+            ph.root,
+            self._lost_idx,
+            self._gone_idx,
+            res,
+        )
+        w.write_forces()
+        ph.diss += float(res[2])
+        n_lost, n_gone = int(res[3]), int(res[4])
+        if n_lost or n_gone:
+            lost, gone = self._lost_idx[:n_lost].copy(), self._gone_idx[:n_gone].copy()
+            d, P = s.delta, s.P
+            ph.events.extend((int(i), -np.inf, float(P[i])) for i in lost)
+            ph.events.extend((int(i), float(d[i]), float(P[i])) for i in gone)
+            idx = np.concatenate([lost, gone])
+            P[idx] = 0.0
+            s.Ft[idx] = 0.0
+            s.slip[idx] = False
+        if not self._constants.rod:
+            self._check_linear(float(res[5]))
+        ph.any_contact_damping = True
+        return float(res[0]), float(res[1])
+
+    def _check_linear(self, max_u2):
+        if max_u2 > (0.1 * self.L) ** 2 and not self._warned_linear:
+            self._warned_linear = True
+            most = math.sqrt(max_u2) / self.L
+            warnings.warn(
+                f"a seta deflected by {most:.2f} L under the linear beam model "
+                "(eq 16–21 assume small deflection); mechanics='rod' stays physical",
+                stacklevel=5,
+            )
+
+    def step(self, plate_velocity):
+        """Advance one time step with the plate moving at ``plate_velocity`` (vx, vy) [µm/µs].
+
+        Returns the plate's reaction (force of the setae on the plate) [µN], the work the
+        plate did on the system during the step [pJ], the elastic energy of every seta [pJ]
+        and the tip positions (N, 2) at which the forces were evaluated [µm].
+        """
+        vx, vy = (float(v) for v in plate_velocity)
+        self._advance(vx, vy)
+        return (
+            np.array(self.reaction),
+            self._work_step,
+            self.spring_energies(),
+            self.state.xy.T.copy(),
+        )
+
+    def reset_state_arrays(self):
+        """Start the energy and force bookkeeping afresh (as at the start of :meth:`run`)."""
+        self._on_plate_prev = (0.0, 0.0)
+        self.state.P[:] = 0.0
+        # Nothing stored in the contacts counts as dissipated at a first-step snap-off.
+        self.state.a[:] = self.law.jump_radius
+        self.state.xi[:] = 0.0
+
+    # ------------------------------------------------------------------ protocol runner
+    def run(
+        self,
+        protocol,
+        *,
+        progress: bool = True,
+        max_steps: int = 50_000_000,
+        ke_bound: float | None = None,
+        fast_approach: bool = True,
+    ) -> History:
+        """Run a protocol (list of :mod:`protocol` segments) and return its :class:`History`.
+
+        Parameters
+        ----------
+        protocol : list of :class:`~gecko_agents.protocol.Segment` (Move, PressTo, Press,
+            Hold, PullOff, or your own).
+        progress : tqdm progress bar over simulated time.
+        max_steps : hard cap on time steps.
+        ke_bound : kinetic energy [pJ] beyond which the run is declared unstable (default:
+            100 × the adhesion energy of all setae, N·Fc·|δ_detach|, plus the plate work).
+        fast_approach : in segments that allow it (Move, PressTo, Press), while no tip is
+            attached and every tip rests relative to the plate (within 1e-3 of the plate speed
+            and of the lag that speed causes), move plate and tips rigidly to where the first
+            sensor reaches the floor (:meth:`_skip_free_travel`) instead of stepping there. A
+            free seta's motion does not depend on where it is, so the history is the same but
+            for the skipped rows; the travel skipped is ``meta["skipped_travel_um"]``.
+        """
+        return run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
+
+    def _skip_free_travel(self, seg, state, vp) -> float:
+        """Move plate and tips rigidly along ``vp`` while nothing can touch
+        (:meth:`gecko_agents.model.world.World.skip_free_travel`); returns the travel [µm]."""
+        if self.state.attached.any():
+            return 0.0
+        target = seg.target(self, state)
+        omega = math.sqrt(self.params.Ky / self.mass)
+        travel = self.world.skip_free_travel(vp, omega, self.dt, target)
+        self.time += travel / math.hypot(*vp) if travel else 0.0
+        return travel

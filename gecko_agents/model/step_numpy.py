@@ -1,0 +1,515 @@
+"""The per-step force computation of the time-stepped model.
+
+Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`); sign conventions in
+:mod:`gecko_agents.contact`.
+
+Every step, all forces are computed at the positions pymunk is about to integrate velocities
+with (x + v·dt): the seta spring (``linear``: −K·u with eq 20–21's 2×2 stiffness; ``rod``: a
+rigid rod on a rotary spring Kp·L² plus an axial spring Ka,
+:func:`gecko_agents.physics.beam.rod_spring_force`),
+damping relative to the plate, and the contact (the normal force of the tip law,
+:mod:`gecko_agents.contact`; a stick spring with a Coulomb cap tangentially). Two ways:
+
+* :class:`NumpyStep` — vectorized over setae; any floor, and the per-contact reference path;
+* :func:`gecko_agents.model.step_loop.pad_loop` — pad floors: the same formulas and the same order
+of
+  operations as one loop
+  over setae, compiled with numba when installed (``kernel="numba"``) or run by the interpreter
+  (``kernel="python"``, the fastest for a handful of setae). Built once per contact law by a
+  factory; both give the numpy path's history to rounding.
+
+Stick/slip (return mapping): the trial stretch ξ of the stick spring k_t is the tip's
+tangential displacement from its anchor; if k_t|ξ| exceeds the cap, the anchor slides so that
+the spring holds exactly the cap, and the slip |ξ − ξ_new| dissipates the Coulomb work
+cap·|ξ − ξ_new|.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+__all__ = ["LoopConstants", "NumpyStep"]
+
+
+class LoopConstants(NamedTuple):
+    """Fixed scalars of the per-seta loop (units as in :class:`NumpyStep`)."""
+
+    dt: float
+    rod: bool
+    k00: float  # −K[0, 0] … −K[1, 1] [µN/µm] (linear seta)
+    k01: float
+    k10: float
+    k11: float
+    L: float
+    Ka: float
+    k_phi: float  # Kp·L² [pJ/rad²]
+    theta: float
+    c_seta: float
+    R: float
+    detach: float  # δ below which a tip lets go [µm]
+    c_n: float
+    c_t: float
+    k_t: float
+    mu: float
+    paper: bool  # friction cap μ·max(P, 0) (eq 27) instead of μ|P + 2Fc|
+    Fc: float
+    hm: float  # dt / (2m) [µs/ng]
+    release: float  # a rate-dependent tip lets go at a ≤ this radius [µm]
+
+
+class NumpyStep:
+    """Vectorized forces of one step on a :class:`~gecko_agents.model.state.SetaState`.
+
+    Parameters
+    ----------
+    c : :class:`LoopConstants`. law : the :class:`~gecko_agents.contact.ContactLaw`.
+    state : per-seta state. world : the :class:`~gecko_agents.model.world.World` (floor geometry).
+    K : the linear seta's 2×2 stiffness [µN/µm]. friction : ``params.friction``.
+    """
+
+    def __init__(self, c: LoopConstants, law, state, world, K, friction):
+        self.c, self.law, self.s, self.world, self.K, self.friction = (
+            c,
+            law,
+            state,
+            world,
+            K,
+            friction,
+        )
+        n = state.n
+        self.tmp = np.zeros((6, n))
+        self.root = np.vstack([world.root_dx, world.root_dy])
+        self.rest = np.vstack([world.rest_dx, world.rest_dy])
+        self.any_contact_damping = False
+        self.diss = 0.0  # energy dissipated in the current step [pJ]
+        self.events = []  # (seta, overlap, force) of the tips that let go this step
+        self.max_u2 = 0.0  # largest |u|² of a linear seta this step [µm²]
+
+    # ------------------------------------------------------------------ seta springs
+    def spring_damp(self, pnx, pny, vpx, vpy):
+        """Seta spring + damping into ``state.F``; returns their sums (the force on the
+        plate's setae) [µN]."""
+        s, c = self.s, self.c
+        x, y = s.xy
+        Fx, Fy = s.F
+        t0, t1 = self.tmp[0], self.tmp[1]
+        if not c.rod:
+            ux, uy = s.u
+            np.subtract(x, pnx, out=ux)
+            ux -= self.world.rest_dx
+            np.subtract(y, pny, out=uy)
+            uy -= self.world.rest_dy
+            K = self.K
+            np.multiply(ux, -K[0, 0], out=Fx)
+            np.multiply(uy, -K[0, 1], out=t0)
+            Fx += t0
+            np.multiply(ux, -K[1, 0], out=Fy)
+            np.multiply(uy, -K[1, 1], out=t0)
+            Fy += t0
+            np.multiply(ux, ux, out=t0)
+            np.multiply(uy, uy, out=t1)
+            t0 += t1
+            self.max_u2 = float(t0.max())
+        else:
+            dx, dy = s.u
+            np.subtract(x, pnx, out=dx)
+            dx -= self.world.root_dx
+            np.subtract(y, pny, out=dy)
+            dy -= self.world.root_dy
+            ell, dphi, t2 = self.tmp[2], self.tmp[3], self.tmp[4]
+            np.multiply(dx, dx, out=ell)
+            np.multiply(dy, dy, out=t0)
+            ell += t0
+            np.sqrt(ell, out=ell)
+            np.arctan2(dy, dx, out=dphi)
+            dphi += c.theta + math.pi
+            np.remainder(dphi, 2 * math.pi, out=dphi)
+            dphi -= math.pi
+            # F = −Ka(ℓ − L)·e − (kφ·Δφ/ℓ)·e⊥, e = d/ℓ, e⊥ = (−e_y, e_x)
+            np.subtract(ell, c.L, out=t0)
+            t0 *= -c.Ka
+            t0 /= ell  # −Ka(ℓ − L)/ℓ
+            np.multiply(dphi, c.k_phi, out=t1)
+            t1 /= ell
+            t1 /= ell  # kφ·Δφ/ℓ²
+            np.multiply(t0, dx, out=Fx)
+            np.multiply(t1, dy, out=t2)
+            Fx += t2
+            np.multiply(t0, dy, out=Fy)
+            np.multiply(t1, dx, out=t2)
+            Fy -= t2
+        vx, vy = s.pv[2], s.pv[3]
+        Fdx, Fdy = s.F_damp_seta
+        np.subtract(vx, vpx, out=Fdx)
+        Fdx *= -c.c_seta
+        np.subtract(vy, vpy, out=Fdy)
+        Fdy *= -c.c_seta
+        Fx += Fdx
+        Fy += Fdy
+        on_plate = (float(Fx.sum()), float(Fy.sum()))
+        if s.external_force.any():
+            s.F += s.external_force.T
+        return on_plate
+
+    # ------------------------------------------------------------------ contact
+    def contact_energy(self, idx):
+        """Energy stored in the contacts of tips ``idx`` [pJ]: tip law + stick spring (a
+        tangential law keeps its own in ``state.uc``)."""
+        if self.law.tangential:
+            return self.s.uc[idx]
+        xi = self.s.xi[idx]
+        return self.law.energy(self.s.a[idx], self.s.delta[idx]) + 0.5 * self.c.k_t * xi * xi
+
+    def detach(self, lost, gone, delta):
+        """Tips that let go this step: ``lost`` (no candidate floor left, overlap −∞) and
+        ``gone`` (overlap past δ_detach). Books the energy their contacts stored as dissipated."""
+        s = self.s
+        idx = np.concatenate([lost, gone])
+        self.events.extend((int(i), -np.inf, float(s.P[i])) for i in lost)
+        self.events.extend((int(i), float(delta[i]), float(s.P[i])) for i in gone)
+        self.diss += float(np.sum(self.contact_energy(idx)))
+        s.attached[idx] = False
+        s.P[idx] = 0.0
+        s.Ft[idx] = 0.0
+        s.slip[idx] = False
+
+    def lost(self, cand):
+        """Tips that lost every candidate while attached are beyond δ_detach: they let go."""
+        lost = np.flatnonzero(self.s.attached & ~cand)
+        if lost.size:
+            self.detach(lost, lost[:0], self.s.delta)
+
+    def geometry(self, ps, x, y):
+        """Nearest floor point (qx, qy), unit normal (nx, ny) from floor to tip and overlap δ
+        of tip centres (x, y) (each (k,)) against floor segments ``ps`` [µm]."""
+        w, R = self.world, self.c.R
+        if w.pads:  # horizontal pads: the normal is vertical
+            qy = w.h[ps]
+            return x, qy, np.zeros(ps.size), np.ones(ps.size), R - (y - qy)
+        A, B = w.seg_a[ps], w.seg_b[ps]
+        abx, aby = B[:, 0] - A[:, 0], B[:, 1] - A[:, 1]
+        t = ((x - A[:, 0]) * abx + (y - A[:, 1]) * aby) / (abx * abx + aby * aby)
+        t = np.clip(t, 0.0, 1.0)
+        qx, qy = A[:, 0] + t * abx, A[:, 1] + t * aby
+        dx, dy = x - qx, y - qy
+        dist = np.sqrt(dx * dx + dy * dy)
+        inv = 1.0 / np.maximum(dist, 1e-300)
+        return qx, qy, dx * inv, dy * inv, R - dist
+
+    def contact(self, tips, x, y, vx, vy, ps):
+        """Contact of ``tips`` (positions x, y, velocities vx, vy, each (k,)) with segments
+        ``ps``: the general (and reference) form, any floor, one or many tips.
+
+        Updates the attach/detach state, stick anchors and per-seta records of those tips and
+        adds the contact force to ``state.F``; returns it (fx, fy). Tangent t = (n_y, −n_x).
+        """
+        s, c, law = self.s, self.c, self.law
+        if law.tangential:
+            raise ValueError(
+                f"{law.label or f'tip = {law.name!r}'} needs a pad floor "
+                "(floor.correlation_length = 0) and "
+                "contact='batch'"
+            )
+        qx, qy, nx, ny, delta = self.geometry(ps, x, y)
+        att0 = s.attached[tips]
+        new = ~att0 & (delta >= law.attach_overlap)
+        gone = att0 & (delta < c.detach)
+        if law.rate_dependent:  # the crack has run through
+            gone |= att0 & (s.a[tips] <= c.release)
+        att = (att0 | new) & ~gone
+        s.delta[tips] = delta
+        if np.any(gone):
+            self.detach(tips[:0], tips[gone], s.delta)
+        if np.any(new):
+            s.anchor[0, tips[new]] = qx[new]
+            s.anchor[1, tips[new]] = qy[new]
+        k = tips.size
+        fx, fy = np.zeros(k), np.zeros(k)
+        i = np.flatnonzero(att)
+        if i.size:
+            ti = tips[i]
+            n_x, n_y = nx[i], ny[i]
+            a_old = s.a[ti]
+            a = law.radius(delta[i], a_old, c.dt)
+            Pi = law.force(a, delta[i])
+            if law.rate_dependent:  # work of the moving edge, ∫(G − w)·2πa·|da| ≥ 0
+                was = ~new[i]
+                self.diss += float(
+                    np.sum((law.energy(a_old, delta[i]) - law.energy(a, delta[i]))[was])
+                )
+            vn = vx[i] * n_x + vy[i] * n_y
+            vt = vx[i] * n_y - vy[i] * n_x
+            ax, ay = s.anchor[0, ti], s.anchor[1, ti]
+            xi = (qx[i] - ax) * n_y - (qy[i] - ay) * n_x
+            cap = self.friction.cap(Pi, c.Fc)
+            trial = -c.k_t * xi
+            sl = np.abs(trial) > cap
+            xi_new = np.where(sl, np.sign(xi) * cap / c.k_t, xi)
+            # Return mapping: slide the anchor so the stick spring holds exactly the cap.
+            s.anchor[0, ti] = qx[i] - xi_new * n_y
+            s.anchor[1, ti] = qy[i] + xi_new * n_x
+            # Coulomb work of the slip: the anchor slides |ξ − ξ_new| against the cap.
+            self.diss += float(np.sum(cap * np.abs(xi - xi_new)))
+            dn = -c.c_n * vn
+            dt_ = np.where(sl, 0.0, -c.c_t * vt)
+            ft = np.where(sl, -c.k_t * xi_new, trial) + dt_
+            fn = Pi + dn
+            fx[i] = fn * n_x + ft * n_y
+            fy[i] = fn * n_y - ft * n_x
+            s.F_damp_contact[0, ti] += dn * n_x + dt_ * n_y
+            s.F_damp_contact[1, ti] += dn * n_y - dt_ * n_x
+            s.P[ti], s.Ft[ti], s.slip[ti] = Pi, ft, sl
+            s.a[ti], s.xi[ti] = a, xi_new
+            # Attachment starts the branch at U = 0: book the difference.
+            jumped = ti[new[i]]
+            if jumped.size:
+                self.diss -= float(np.sum(self.contact_energy(jumped)))
+        s.attached[tips] = att
+        s.F[0, tips] += fx
+        s.F[1, tips] += fy
+        return fx, fy
+
+    def contact_general(self):
+        """Continuous floor: the contact of every tip that has a candidate segment, in bulk."""
+        s = self.s
+        s.F_damp_contact.fill(0.0)
+        self.any_contact_damping = True
+        s.delta.fill(np.nan)
+        pt, ps, dup = self.world.pair_arrays()
+        cand = s.candidate_step
+        cand.fill(False)
+        cand[pt] = True
+        self.lost(cand)
+        if pt.size == 0:
+            return
+        x, y = s.xy
+        if dup:
+            # Several candidate segments: keep each tip's nearest floor point.
+            delta = self.geometry(ps, x[pt], y[pt])[4]
+            order = np.lexsort((-delta, pt))
+            keep = order[np.unique(pt[order], return_index=True)[1]]
+            pt, ps = pt[keep], ps[keep]
+        self.contact(pt, x[pt], y[pt], s.pv[2, pt], s.pv[3, pt], ps)
+
+    def _pad_overlaps(self):
+        """Every tip against its own horizontal pad: (pad heights, tip x, overlap δ = R − (y − h)
+        written into ``state.delta``, this step's candidate flags, attached flags)."""
+        s = self.s
+        h = self.world.h
+        x, y = s.xy
+        d = s.delta
+        np.subtract(y, h, out=d)
+        np.subtract(self.c.R, d, out=d)  # δ = R − (y − h)
+        cand = s.candidate_step
+        np.copyto(cand, s.candidate)
+        return h, x, d, cand, s.attached
+
+    def contact_pads(self):
+        """Pad floor, batch path: every tip against its own horizontal pad, in bulk.
+
+        The same physics as :meth:`contact` with n = (0, 1), t = (1, 0), q = (x, h): works on
+        whole rows when every tip is attached and gathers the attached tips otherwise."""
+        s, c, law = self.s, self.c, self.law
+        if law.tangential:
+            return self.contact_pads_tangential()
+        n = s.n
+        h, x, d, cand, att = self._pad_overlaps()
+        all_att, new = self._pad_state_changes(x, h, d, cand, att)
+        n_att = n if all_att else int(np.count_nonzero(att))
+        Fdmp = s.F_damp_contact
+        if n_att == 0:
+            if self.any_contact_damping:
+                Fdmp.fill(0.0)
+                self.any_contact_damping = False
+            return
+        vx, vy = s.pv[2], s.pv[3]
+        if n_att == n:
+            ia = None
+            da, xa, vta, vna, anc = d, x, vx, vy, s.anchor[0]
+        else:
+            ia = np.flatnonzero(att)
+            da, xa, vta, vna, anc = d[ia], x[ia], vx[ia], vy[ia], s.anchor[0, ia]
+        a_old = s.a if ia is None else s.a[ia]
+        a = law.radius(da, a_old, c.dt)
+        P = law.force(a, da)
+        if law.rate_dependent:  # work of the moving edge, ∫(G − w)·2πa·|da| ≥ 0
+            was = np.ones(a.size, bool) if new is None else ~(new if ia is None else new[ia])
+            self.diss += float(np.sum((law.energy(a_old, da) - law.energy(a, da))[was]))
+        xi = xa - anc
+        xi_new, ft, dtg, sl = self._coulomb(P, xi, vta)
+        dn = vna * -c.c_n
+        if ia is None:
+            np.subtract(x, xi_new, out=s.anchor[0])
+            s.F[0] += ft
+            s.F[1] += P + dn
+            Fdmp[0], Fdmp[1] = dtg, dn
+            s.P[:], s.Ft[:], s.a[:], s.xi[:] = P, ft, a, xi_new
+            s.slip[:] = sl
+        else:
+            s.anchor[0, ia] = xa - xi_new
+            s.F[0, ia] += ft
+            s.F[1, ia] += P + dn
+            Fdmp.fill(0.0)
+            Fdmp[0, ia], Fdmp[1, ia] = dtg, dn
+            s.P[ia], s.Ft[ia], s.a[ia], s.xi[ia] = P, ft, a, xi_new
+            s.slip[ia] = sl
+        self.any_contact_damping = True
+        if new is not None:  # attachment starts the branch at U = 0: book the difference
+            self.diss -= float(np.sum(self.contact_energy(np.flatnonzero(new))))
+
+    def _pad_state_changes(self, x, h, d, cand, att):
+        """Snap-offs, lost candidates and attachments of a pad step (``att`` updated in
+        place); returns (every tip attached, the new attachments or None)."""
+        s, c, law = self.s, self.c, self.law
+        all_att, all_cand = bool(att.all()), bool(cand.all())
+        lo = d < c.detach
+        if law.rate_dependent:  # the crack has run through
+            lo |= s.a <= c.release
+        gone = lo if all_att else lo & att
+        if all_cand:
+            lost = None
+        else:
+            lost = att & ~cand
+            gone &= cand
+        if gone.any() or (lost is not None and lost.any()):
+            self.detach(
+                np.flatnonzero(lost) if lost is not None else np.zeros(0, np.int64),
+                np.flatnonzero(gone),
+                d,
+            )
+            all_att = False
+        new = None
+        if not all_att:
+            new = d >= law.attach_overlap
+            new &= cand
+            new &= ~att
+            if new.any():
+                att |= new
+                s.anchor[0, new] = x[new]
+                s.anchor[1, new] = h[new]
+            else:
+                new = None
+        return all_att, new
+
+    def _coulomb(self, P, xi, vta):
+        """Stick or slip of attached tips under normal forces ``P`` [µN] at tangential offsets
+        ``xi`` [µm] from their anchors, tangential speeds ``vta`` [µm/µs]: the friction cap
+        (the paper's μ·max(P, 0), eq 27, or μ·|P + 2Fc|), the new offsets, the tangential
+        forces, their damping and which tips slide; the slip's Coulomb work is dissipated."""
+        c = self.c
+        k_t = c.k_t
+        if c.paper:
+            cap = np.maximum(P, 0.0)
+            cap *= c.mu
+        else:
+            cap = P + 2.0 * c.Fc
+            np.abs(cap, out=cap)
+            cap *= c.mu
+        trial = xi * -k_t
+        sl = np.abs(trial) > cap
+        any_sl = bool(sl.any())
+        dtg = vta * -c.c_t
+        if any_sl:
+            xi_new = np.where(sl, np.copysign(cap / k_t, xi), xi)
+            # Coulomb work of the slip: the anchor slides |ξ − ξ_new| against the cap.
+            self.diss += float(np.sum((cap * np.abs(xi - xi_new))[sl]))
+            dtg[sl] = 0.0
+            ft = np.where(sl, -k_t * xi_new, trial)
+            ft += dtg
+        else:
+            xi_new = xi
+            ft = trial
+            ft += dtg
+        return xi_new, ft, dtg, sl
+
+    def contact_pads_tangential(self):
+        """Pad floor, a law that takes the tip's tangential position (the spatula): per seta,
+        the law's ``step_scalar`` at the tip's offset from its front and height above its pad,
+        in the order of :func:`gecko_agents.model.step_loop.pad_loop` (which compiles the same
+        loop).
+
+        Attachment at δ ≥ 0 puts the front and the tip body's stick anchor (``xi``, relative
+        to the front) under the tip (ℓ = ℓ0, s0 = h, no pre-tension, ξ = 0); a tip lets go
+        when its film has peeled off (ℓ = 0), past δ_detach or without a candidate floor, and
+        its stored energy (the stick spring's included) is dissipated. Contact damping acts
+        on attached tips."""
+        s, c, law = self.s, self.c, self.law
+        h, x, d, cand, att = self._pad_overlaps()
+        lost = np.flatnonzero(att & ~cand)
+        gone = np.flatnonzero(att & cand & (d < c.detach))
+        if lost.size or gone.size:
+            self.detach(lost, gone, d)
+        new = ~att & cand & (d >= law.attach_overlap)
+        if new.any():
+            att |= new
+            s.anchor[0, new], s.anchor[1, new] = x[new], h[new]
+            s.a[new], s.s0[new], s.p0[new], s.uc[new] = law.ell0, law.s_attach, 0.0, 0.0
+            s.xi[new] = 0.0  # the tip body's stick anchor, under the tip with the front
+        Fdmp = s.F_damp_contact
+        Fdmp.fill(0.0)
+        self.any_contact_damping = True
+        k = law.constants
+        step = law.step_scalar
+        peeled = []
+        for i in np.flatnonzero(att):
+            P, T, shift, ell, p0, s0, xa, U, diss, slid = step(
+                x[i] - s.anchor[0, i], s.xy[1, i] - h[i], s.a[i], s.p0[i], s.s0[i], s.xi[i], k
+            )
+            # Attachment starts the contact at U = 0: book the energy it starts with.
+            self.diss += -U if new[i] else diss
+            s.anchor[0, i] += shift
+            s.a[i], s.p0[i], s.s0[i], s.xi[i], s.uc[i] = ell, p0, s0, xa, U
+            if ell <= 0.0:
+                peeled.append(i)
+                continue
+            dtg = -c.c_t * s.pv[2, i] if law.damp_sliding or slid == 0.0 else 0.0
+            dn = -c.c_n * s.pv[3, i]
+            s.F[0, i] += T + dtg
+            s.F[1, i] += P + dn
+            Fdmp[0, i], Fdmp[1, i] = dtg, dn
+            s.P[i], s.Ft[i], s.slip[i] = P, T, slid > 0.0
+        if peeled:
+            self.detach(np.zeros(0, np.int64), np.array(peeled), d)
+
+    # ------------------------------------------------------------------ after the forces
+    def bookkeeping(self, vpx, vpy):
+        """Damping dissipation and the release bookkeeping, once the forces are known."""
+        s, c = self.s, self.c
+        vm = self.tmp[0:2]
+        np.multiply(s.F, c.hm, out=vm)
+        vm += s.pv[2:4]  # mid-step velocity ½(v + v_next)
+        Fd = s.F_damp_seta
+        # −dt·[Σ Fd·(v_mid − vp) + Σ F_contact_damping·v_mid]. (Products and sums rather than
+        # np.dot/vdot: BLAS threads that spin-wait on a busy machine cost milliseconds.)
+        prod = self.tmp[3:5]
+        if self.any_contact_damping:
+            np.add(Fd, s.F_damp_contact, out=prod)
+            prod *= vm
+        else:
+            np.multiply(Fd, vm, out=prod)
+        sm = float(prod.sum()) - vpx * float(Fd[0].sum()) - vpy * float(Fd[1].sum())
+        self.diss -= sm * c.dt
+        # Release bookkeeping: where a tip began to run away from the plate.
+        # A tip following its branch moves slower than the plate; past the fold it runs away.
+        att = s.attached
+        if not att.any():
+            return
+        v_ref = max(math.hypot(vpx, vpy), 1e-4)
+        s2 = self.tmp[2]
+        vx, vy = s.pv[2], s.pv[3]
+        np.multiply(vx, vx, out=s2)
+        s2 += vy * vy
+        fast = s2 > 4.0 * v_ref * v_ref
+        fast &= att
+        jump = s.jump
+        jn = np.isnan(jump)
+        set_ = fast & jn
+        if set_.any():
+            jump[set_] = s.delta[set_]
+        if not jn.all():
+            slow = s2 < v_ref * v_ref
+            slow &= att
+            jump[slow] = np.nan

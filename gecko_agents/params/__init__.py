@@ -1,0 +1,611 @@
+"""Validated, frozen parameter sets and the paper's named presets.
+
+Unit system (the one used everywhere in gecko_agents)
+-----------------------------------------------------
+========================  =========  ==================================================
+quantity                  unit       note
+========================  =========  ==================================================
+length                    µm
+force                     µN
+time                      µs
+mass                      ng         = µN·µs²/µm, so F = m·a holds without factors
+elastic modulus, pressure MPa        = µN/µm²
+stiffness                 µN/µm      = N/m
+surface / adhesion energy µN/µm      = J/m²  (40 mJ/m² is 0.04)
+energy                    pJ         = µN·µm
+density                   ng/µm³     = 10⁶ kg/m³  (polyurethane 1200 kg/m³ is 1.2e-3)
+angles                    degrees in parameter sets, radians inside formulas
+========================  =========  ==================================================
+
+The pure functions in :mod:`gecko_agents.physics.jkr` and :mod:`gecko_agents.physics.beam` hold in
+any
+consistent unit set; the parameter sets and the pymunk model use the table above.
+
+Every dataclass validates itself on construction: a bad value raises ``ValueError`` naming the
+field, the value and the allowed range, before anything is simulated.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from gecko_agents.params.checks import (
+    COUNT_MAX,
+    DENSITY_RANGE,
+    FRICTION_MAX,
+    LENGTH_RANGE,
+    MODULUS_RANGE,
+    ROUGHNESS_MAX,
+    SURFACE_ENERGY_MAX,
+    check,
+)
+from gecko_agents.physics import beam, jkr
+
+MECHANICS = ("linear", "rod")
+DETACHMENT_RULES = ("fold", "delta_s", "load_control")
+SHEAR_COUPLINGS = ("none", "savkoor_briggs")
+TIPS = ("sphere", "hertz", "spatula")
+"""Tip contact laws (:data:`gecko_agents.contact.TIP_LAWS`): the adhesive JKR sphere of the
+paper, a Hertz sphere without adhesion, or a thin-film spatula that peels (:class:`Spatula`)."""
+FRICTION_LAWS = ("adhesive", "paper")
+FLOOR_KINDS = ("gaussian", "self_affine")
+
+
+# The range check and the physical ranges live in param_checks (one home, used by protocol too).
+_check = check
+
+
+@dataclass(frozen=True)
+class Contact:
+    """The tip sphere against the floor (JKR, paper eq 1–15).
+
+    Attributes
+    ----------
+    R : tip sphere radius [µm] (the floor is flat, so R is also the equivalent radius).
+    E1 : Young's modulus of the seta material (tip and rod) [MPa].
+    nu1 : Poisson's ratio of the seta material [-], in [0, 0.5).
+    E2 : Young's modulus of the floor [MPa].
+    nu2 : Poisson's ratio of the floor [-], in [0, 0.5).
+    gamma1, gamma2 : surface energies of tip and floor [µN/µm = J/m²].
+    w : work of adhesion [µN/µm]; ``None`` means the paper's rule w = 2√(γ1γ2) (eq 5 text).
+    crack_speed : reference crack speed v* of the contact edge [µm/µs] (1 µm/µs = 1 m/s);
+        ``inf`` (default) is the elastic JKR contact, exactly. Finite: the contact radius
+        follows crack kinetics, G − w = w·(|ȧ|/v*)^n while the edge opens (Maugis & Barquins
+        1978, J Phys D 11:1989; :class:`gecko_agents.contact.RateJKRSphere`).
+    crack_exponent : n [-] in (0, 1]; 0.5 by default, the exponent of Greenwood & Johnson's
+        (1981, Phil Mag A 43:697) viscoelastic crack theory, inside the 0.1–0.8 that elastomers
+        show (Ciavarella 2021, J Adhes Sci Technol, reviews them).
+    crack_closing_speed : speed at which the contact edge closes while G < w [µm/µs]; ``inf``
+        (default) closes it at once, onto the equilibrium radius.
+    detachment : where an elastic tip lets go: ``"fold"`` (default: past δc, the end of the
+        stable JKR branch; a soft seta leaves at the fold of the spring–contact system, found
+        dynamically), ``"delta_s"`` (the paper's rule: δ < δs = −0.21·a0²/R, eq 8) or
+        ``"load_control"`` (at P = −Fc, δ < −a_lc²/(3R)). Rate-dependent contacts let go
+        when the crack has run through (``"fold"`` only).
+    shear_coupling : how the shear a sphere tip carries acts on its adhesion. ``"none"``
+        (default; the paper's JKR): the contact radius follows the overlap alone, as a sliding
+        contact's does (Vorvolakos & Chaudhury 2003, Langmuir 19:6778; Menga, Carbone & Dini 2018, J
+        Mech Phys Solids 112:145, as corrected). ``"savkoor_briggs"``: the stick spring's mode-II
+        release rate counts in Griffith's balance on a brittle interface (Savkoor & Briggs 1977,
+        Proc R Soc A 356:103; :class:`gecko_agents.contact.ShearedJKRSphere`): shear shrinks the
+        contact and lowers the tension it holds, the strongest coupling (real interfaces are tougher
+        in shear, Johnson 1997, Proc R Soc A 453:163). Elastic contact (``crack_speed = inf``) with
+        the ``"fold"`` detachment and a pad floor only.
+    """
+
+    R: float = 4.0
+    E1: float = 1.413
+    nu1: float = 0.3
+    E2: float = 55_000.0
+    nu2: float = 0.25
+    gamma1: float = 0.040
+    gamma2: float = 0.170
+    w: float | None = None
+    crack_speed: float = math.inf
+    crack_exponent: float = 0.5
+    crack_closing_speed: float = math.inf
+    detachment: str = "fold"
+    shear_coupling: str = "none"
+
+    def __post_init__(self):
+        if self.shear_coupling not in SHEAR_COUPLINGS:
+            raise ValueError(
+                f"Contact.shear_coupling = {self.shear_coupling!r} must be one of {SHEAR_COUPLINGS}"
+            )
+        if self.shear_coupling != "none" and (
+            math.isfinite(self.crack_speed) or self.detachment != "fold"
+        ):
+            raise ValueError(
+                f"Contact.shear_coupling = {self.shear_coupling!r} needs the elastic contact "
+                f"with the 'fold' detachment (crack_speed = inf, detachment = 'fold'); got "
+                f"crack_speed = {self.crack_speed}, detachment = {self.detachment!r}"
+            )
+        _check(self, "crack_speed", 0.0, math.inf, hi_open=False)
+        _check(self, "crack_exponent", 0.0, 1.0, hi_open=False)
+        _check(self, "crack_closing_speed", 0.0, math.inf, hi_open=False)
+        if self.detachment not in DETACHMENT_RULES:
+            raise ValueError(
+                f"Contact.detachment = {self.detachment!r} must be one of {DETACHMENT_RULES}"
+            )
+        if self.detachment != "fold" and math.isfinite(self.crack_speed):
+            raise ValueError(
+                f"Contact.detachment = {self.detachment!r} applies to the elastic "
+                "contact (crack_speed = inf); a rate-dependent contact lets go "
+                "when its crack has run through: use 'fold'"
+            )
+        _check(self, "R", *LENGTH_RANGE, lo_open=False, hi_open=False)
+        for name in ("E1", "E2"):
+            _check(self, name, *MODULUS_RANGE, lo_open=False, hi_open=False)
+        for name in ("gamma1", "gamma2"):
+            _check(self, name, 0.0, SURFACE_ENERGY_MAX, hi_open=False)
+        for name in ("nu1", "nu2"):
+            _check(self, name, 0.0, 0.5, lo_open=False)
+        if self.w is not None:
+            _check(self, "w", 0.0, 2 * SURFACE_ENERGY_MAX, hi_open=False)
+
+    @property
+    def work_of_adhesion(self) -> float:
+        """w [µN/µm]: the override if given, else 2√(γ1γ2)."""
+        if self.w is not None:
+            return self.w
+        return float(jkr.work_of_adhesion(self.gamma1, self.gamma2))
+
+    @property
+    def E_star(self) -> float:
+        """Effective modulus E* [MPa] (paper, below eq 3)."""
+        return float(jkr.effective_modulus(self.E1, self.nu1, self.E2, self.nu2))
+
+    @property
+    def pull_off_force(self) -> float:
+        """Load-controlled JKR pull-off magnitude Fc = 1.5πRw [µN]."""
+        return float(jkr.pull_off_force(self.R, self.work_of_adhesion))
+
+    @property
+    def snap_off_overlap(self) -> float:
+        """Displacement-controlled end of the stable branch δc < 0 [µm]."""
+        return float(jkr.snap_off_overlap(self.R, self.work_of_adhesion, self.E_star))
+
+    def jkr_args(self) -> tuple[float, float, float]:
+        """(R, w, E*) in the order the :mod:`jkr` functions take them."""
+        return self.R, self.work_of_adhesion, self.E_star
+
+
+@dataclass(frozen=True)
+class Seta:
+    """One seta: an inclined cantilever rod (paper eq 16–21), material E1 from :class:`Contact`.
+
+    Attributes
+    ----------
+    r : rod **radius** [µm] (Table 1 gives a 3 µm diameter; NOTES.md on eq 16–19).
+    L : rod length [µm].
+    theta_deg : angle between the seta and the backing plate [degrees], in (0, 90).
+    density : material density [ng/µm³]; polyurethane ≈ 1.2e-3 (1200 kg/m³).
+    """
+
+    r: float = 1.5
+    L: float = 20.0
+    theta_deg: float = 30.0
+    density: float = 1.2e-3
+
+    def __post_init__(self):
+        _check(self, "r", *LENGTH_RANGE, lo_open=False, hi_open=False)
+        _check(self, "L", *LENGTH_RANGE, lo_open=False, hi_open=False)
+        _check(self, "theta_deg", 0.0, 90.0)
+        _check(self, "density", *DENSITY_RANGE, lo_open=False, hi_open=False)
+
+    @property
+    def theta(self) -> float:
+        """θ [rad]."""
+        return math.radians(self.theta_deg)
+
+
+@dataclass(frozen=True)
+class Array:
+    """The array on the backing plate.
+
+    Attributes
+    ----------
+    count : number of setae N [-] in the physical array (10⁷ in the paper, section 3.3.2).
+    pitch : spacing between neighbouring roots [µm] (4 µm in the paper).
+    """
+
+    count: int = 1
+    pitch: float = 4.0
+
+    def __post_init__(self):
+        _check(self, "count", 1, COUNT_MAX, lo_open=False, hi_open=False, integer=True)
+        _check(self, "pitch", *LENGTH_RANGE, lo_open=False, hi_open=False)
+
+
+@dataclass(frozen=True)
+class Floor:
+    """Rough floor: Gaussian heights (paper eq 28) or a self-affine (fractal) profile.
+
+    Attributes
+    ----------
+    sigma : RMS height σ [µm], ≥ 0 (0 is a flat floor).
+    correlation_length : Gaussian correlation length of the profile [µm], ≥ 0; 0 means an
+        independent height under every seta, as in the paper. Only for ``kind="gaussian"``.
+    seed : seed of the floor's ``numpy.random.Generator``.
+    kind : ``"gaussian"`` (default; eq 28, :func:`gecko_agents.floor.make_profile`) or
+        ``"self_affine"``: a continuous profile with PSD C(q) ∝ q^−(1+2H) between the cutoffs
+        and flat below the long one (:func:`gecko_agents.floor.self_affine`; Persson et al.
+        2005, J Phys Condens Matter 17:R1). A measured profile is not a parameter: pass it to
+        the model as an object (``floor.for_array(..., measured=profile)``).
+    hurst : Hurst exponent H [-], in (0, 1) (self-affine only).
+    short_cutoff : short-wavelength cutoff λs [µm], > 0: no roughness below it; the profile's
+        vertex spacing is λs/4 (self-affine only).
+    long_cutoff : long-wavelength cutoff λL [µm], > short_cutoff: the PSD is flat (roll-off)
+        for wavelengths above it (self-affine only).
+    rms_slope : RMS slope of the self-affine profile [-], > 0, used instead of ``sigma``
+        (then ``sigma`` must be 0); ``None`` (default): the profile has RMS height ``sigma``.
+
+    The self-affine fields are ignored for ``kind="gaussian"``, so the defaults leave the
+    Gaussian floor (and every history made with it) exactly as before.
+    """
+
+    sigma: float = 0.0
+    correlation_length: float = 0.0
+    seed: int = 0
+    kind: str = "gaussian"
+    hurst: float = 0.8
+    short_cutoff: float = 2.0
+    long_cutoff: float = 50.0
+    rms_slope: float | None = None
+
+    def __post_init__(self):
+        _check(self, "sigma", 0.0, ROUGHNESS_MAX, lo_open=False, hi_open=False)
+        _check(self, "correlation_length", 0.0, ROUGHNESS_MAX, lo_open=False, hi_open=False)
+        _check(self, "seed", 0, 2**63, lo_open=False, integer=True)
+        if self.kind not in FLOOR_KINDS:
+            raise ValueError(f"Floor.kind = {self.kind!r} must be one of {FLOOR_KINDS}")
+        _check(self, "hurst", 0.0, 1.0)
+        _check(self, "short_cutoff", LENGTH_RANGE[0], ROUGHNESS_MAX, lo_open=False)
+        # A profile spans a few long cutoffs at λs/4 vertex spacing: cap the ratio at 10⁶.
+        _check(self, "long_cutoff", self.short_cutoff, 1e6 * self.short_cutoff, hi_open=False)
+        if self.rms_slope is not None:
+            _check(self, "rms_slope", 0.0)
+            if self.kind != "self_affine":
+                raise ValueError(
+                    f"Floor.rms_slope = {self.rms_slope!r} applies to "
+                    "kind='self_affine' only; use None"
+                )
+            if self.sigma != 0:
+                raise ValueError(
+                    f"Floor.rms_slope = {self.rms_slope!r} and Floor.sigma = "
+                    f"{self.sigma!r}: give one of RMS height or RMS slope (set "
+                    "sigma = 0 to use rms_slope)"
+                )
+        if self.kind == "self_affine" and self.correlation_length != 0:
+            raise ValueError(
+                f"Floor.correlation_length = {self.correlation_length!r} applies "
+                "to kind='gaussian' only; it must be 0 for kind='self_affine'"
+            )
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Coulomb friction at the tip.
+
+    Attributes
+    ----------
+    mu : friction coefficient [-], ≥ 0 (0.2 in the paper, section 3.3.2).
+    law : ``"adhesive"`` caps the tangential force at μ|P + 2Fc| (Thornton's JKR convention:
+        a contact in tension still holds shear) or ``"paper"``: μ·max(P, 0) (eq 27).
+    """
+
+    mu: float = 0.2
+    law: str = "adhesive"
+
+    def __post_init__(self):
+        _check(self, "mu", 0.0, FRICTION_MAX, lo_open=False, hi_open=False)
+        if self.law not in FRICTION_LAWS:
+            raise ValueError(f"Friction.law = {self.law!r} must be one of {FRICTION_LAWS}")
+
+    def cap(self, P, Fc):
+        """Largest tangential force magnitude [µN] for normal force(s) ``P`` [µN] (≥ 0)."""
+        import numpy as np
+
+        if self.law == "paper":
+            return self.mu * np.maximum(P, 0.0)
+        return self.mu * np.abs(np.asarray(P) + 2.0 * Fc)
+
+
+@dataclass(frozen=True)
+class Spatula:
+    """A thin-film spatula tip (``tip = "spatula"``, :class:`gecko_agents.contact.SpatulaTip`):
+    an elastic film of width b and thickness h hanging from the tip centre and attached to the
+    floor over a length ℓ, peeling by Kendall's energy balance (Kendall 1975, J Phys D 8:1449)
+    with the pre-tension of Chen, Wu & Gao (2009, J R Soc Interface 6:529). Its work of adhesion
+    is the contact's w (:class:`Contact`).
+
+    Attributes
+    ----------
+    b : film width [µm]; default 3.0 µm = the seta's diameter 2r (Table 1: the film is as wide
+        as the seta it ends).
+    h : film thickness [µm]; default 1.0 µm, an assumption (no source gives the thickness of a
+        spatula on this seta; a third of its width). b·h·E_f sets how far the film stretches.
+    E_f : film modulus [MPa]; default 1.413 MPa, the paper's polyurethane (Table 1's E).
+    length : attached length ℓ0 at first contact [µm]; default 3.0 µm, an assumption (a square
+        pad b × b).
+    interface : how the attached film holds on the floor. ``"sliding"`` (default): by friction
+        (the pad's friction cap, :class:`Friction`), so a pull away from the pad stretches the
+        attached film up to the cap and leaves it pre-tensioned (partial slip; Chen, Wu & Gao
+        2009, J R Soc Interface 6:529; Labonte & Federle 2016, J R Soc Interface 13:20160373).
+        ``"bonded"``: Kendall's (1975) assumption, the attached film never stretches (no
+        pre-tension) until the whole pad slides past the cap.
+    """
+
+    b: float = 3.0
+    h: float = 1.0
+    E_f: float = 1.413
+    length: float = 3.0
+    interface: str = "sliding"
+
+    def __post_init__(self):
+        _check(self, "b", *LENGTH_RANGE)
+        _check(self, "h", *LENGTH_RANGE)
+        _check(self, "E_f", *MODULUS_RANGE)
+        _check(self, "length", *LENGTH_RANGE)
+        if self.interface not in ("sliding", "bonded"):
+            raise ValueError(
+                f"Spatula.interface = {self.interface!r} must be 'sliding' or 'bonded'"
+            )
+
+
+BACKING_KINDS = ("rigid", "elastic")
+BACKING_DRIVES = ("uniform", "peel_end")
+
+
+@dataclass(frozen=True)
+class Backing:
+    """The backing the setae stand on (:mod:`gecko_agents.backing.elastic`).
+
+    ``kind = "rigid"`` (default) is the kinematic plate of the paper: every root follows the
+    plate's motion (equal load sharing). ``kind = "elastic"`` is a strip in plane strain made of
+    a chain of rigid links joined by pivots and rotary springs (Euler–Bernoulli bending), the
+    roots riding on the chain; it is pulled through a handle spring by the protocol's plate
+    motion, at one end (``drive = "peel_end"``) or over its whole length (``"uniform"``).
+
+    Width convention: the simulated row of setae is one row of a square lattice, so the strip is
+    as wide as the row spacing, b = ``array.pitch``; its bending stiffness is
+    EI = E_b·b·t_b³ / (12(1 − ν_b²)) [µN·µm²] (plane strain plate, Timoshenko & Woinowsky-Krieger
+    1959, Theory of Plates and Shells, eq 3) and its mass per length ρ_b·b·t_b [ng/µm].
+
+    Attributes
+    ----------
+    kind : ``"rigid"`` or ``"elastic"``.
+    t_b : strip thickness [µm]; default 50 µm, an assumption in the range of the backing layers
+        of polyurethane microfibre adhesives (tens to hundreds of µm, Murphy, Aksak & Sitti 2009,
+        Small 5:170).
+    E_b : strip modulus [MPa]; default 1.413 MPa, the paper's polyurethane (Table 1's E), the
+        setae and backing being cast in one piece.
+    nu_b : strip Poisson ratio [-]; default 0.3 (Table 1's ν).
+    density : strip density [ng/µm³]; polyurethane ≈ 1.2e-3 (1200 kg/m³).
+    spacing : link length ℓ of the chain [µm]; 0 (default) means the coarsest allowed, λ/4
+        (and at least 4 links). Refused by the model when coarser than a quarter of the bending
+        length
+        λ = (4EI/k_f)^(1/4) (beam on an elastic foundation of the setae, k_f = K_y/pitch
+        [µN/µm²]; Hetényi 1946, Beams on Elastic Foundation, ch. 2).
+    handle_stiffness : stiffness k_h of the handle spring [µN/µm] (the machine or tendon
+        compliance), total over the strip; default 1000 µN/µm (a load cell much stiffer than
+        the array).
+    drive : ``"uniform"`` (the handle pulls every link with k_h/n_links) or ``"peel_end"`` (the
+        handle pulls the +x end of the strip).
+    damping_ratio : damping ratio of the rotary springs and the handle spring [-]; default 0.3.
+    misalignment_deg : angle between backing and floor at contact [degrees]; default 0
+        (aligned). The strip and the handle that holds it are turned by it about the strip's
+        centre, counter-clockwise: a positive angle lifts the +x end, so the −x edge touches
+        first. A few tenths of a degree turn a pull into a peel (Booth et al. found ~0.1°
+        enough; Bacca, Booth, Turner & McMeeking 2016, J Mech Phys Solids 96:428). Within
+        ±10° (the setae keep their rest direction in the floor's frame, a small-angle
+        assumption); only with ``kind = "elastic"``.
+    """
+
+    kind: str = "rigid"
+    t_b: float = 50.0
+    E_b: float = 1.413
+    nu_b: float = 0.3
+    density: float = 1.2e-3
+    spacing: float = 0.0
+    handle_stiffness: float = 1000.0
+    drive: str = "uniform"
+    damping_ratio: float = 0.3
+    misalignment_deg: float = 0.0
+
+    def __post_init__(self):
+        if self.kind not in BACKING_KINDS:
+            raise ValueError(f"Backing.kind = {self.kind!r} must be one of {BACKING_KINDS}")
+        if self.drive not in BACKING_DRIVES:
+            raise ValueError(f"Backing.drive = {self.drive!r} must be one of {BACKING_DRIVES}")
+        _check(self, "t_b", *LENGTH_RANGE, lo_open=False, hi_open=False)
+        _check(self, "E_b", *MODULUS_RANGE, lo_open=False, hi_open=False)
+        _check(self, "nu_b", -1.0, 0.5, hi_open=True)
+        _check(self, "density", *DENSITY_RANGE, lo_open=False, hi_open=False)
+        if self.spacing != 0.0:
+            _check(self, "spacing", *LENGTH_RANGE, lo_open=False, hi_open=False)
+        _check(self, "handle_stiffness", 0.0, 1e12)
+        _check(self, "damping_ratio", 0.0, 10.0, lo_open=False)
+        _check(self, "misalignment_deg", -10.0, 10.0, lo_open=False, hi_open=False)
+        if self.misalignment_deg != 0.0 and self.kind != "elastic":
+            raise ValueError(
+                f"Backing.misalignment_deg = {self.misalignment_deg!r} needs kind = 'elastic' "
+                f"(the rigid plate is level), got kind = {self.kind!r}"
+            )
+
+    def bending_stiffness(self, width: float) -> float:
+        """EI of a strip of width ``width`` [µm] in plane strain [µN·µm²]."""
+        return self.E_b * width * self.t_b**3 / (12.0 * (1.0 - self.nu_b**2))
+
+
+@dataclass(frozen=True)
+class SetaArray:
+    """Everything that defines a simulated array.
+
+    ``mechanics`` is ``"linear"`` (the paper's 2×2 beam stiffness, eq 20–21) or ``"rod"``
+    (large rotation: a rigid rod on a rotary bending spring plus an axial spring). ``tip`` is
+    the tip's contact law, one of :data:`TIPS` (:mod:`gecko_agents.contact`): ``"sphere"``
+    (JKR, eq 1–15; the default), ``"hertz"`` (the same sphere without adhesion) or
+    ``"spatula"`` (a peeling thin film, parameters in ``spatula``, :class:`Spatula`).
+    """
+
+    contact: Contact = field(default_factory=Contact)
+    seta: Seta = field(default_factory=Seta)
+    array: Array = field(default_factory=Array)
+    floor: Floor = field(default_factory=Floor)
+    friction: Friction = field(default_factory=Friction)
+    mechanics: str = "linear"
+    tip: str = "sphere"
+    spatula: Spatula = field(default_factory=Spatula)
+    backing: Backing = field(default_factory=Backing)
+
+    def __post_init__(self):
+        for name, cls in _GROUPS.items():
+            value = getattr(self, name)
+            if not isinstance(value, cls):
+                raise ValueError(
+                    f"SetaArray.{name} = {value!r} must be a {cls.__name__}; to change one "
+                    f"of its fields use replace(**{{'{name}.<field>': value}})"
+                )
+        if self.mechanics not in MECHANICS:
+            raise ValueError(f"SetaArray.mechanics = {self.mechanics!r} must be one of {MECHANICS}")
+        if self.tip not in TIPS:
+            raise ValueError(f"SetaArray.tip = {self.tip!r} must be one of {TIPS}")
+
+    # Derived quantities used throughout ---------------------------------------------------
+    @property
+    def axial_stiffness(self) -> float:
+        """Ka [µN/µm] (eq 17)."""
+        return float(beam.axial_stiffness(self.seta.r, self.seta.L, self.contact.E1))
+
+    @property
+    def bending_stiffness(self) -> float:
+        """Kp [µN/µm] (eq 19)."""
+        return float(beam.bending_stiffness(self.seta.r, self.seta.L, self.contact.E1))
+
+    @property
+    def Ky(self) -> float:
+        """Longitudinal (normal) stiffness Ky [µN/µm] (eq 20)."""
+        return float(
+            beam.longitudinal_stiffness(
+                self.axial_stiffness, self.bending_stiffness, self.seta.theta
+            )
+        )
+
+    @property
+    def Kx(self) -> float:
+        """Transverse stiffness Kx [µN/µm] (eq 21)."""
+        return float(
+            beam.transverse_stiffness(self.axial_stiffness, self.bending_stiffness, self.seta.theta)
+        )
+
+    def replace(self, **overrides) -> SetaArray:
+        """A copy with dotted overrides, e.g. ``replace(**{"floor.sigma": 0.5})``."""
+        groups: dict[str, dict] = {}
+        top: dict = {}
+        for key, value in overrides.items():
+            part, _, name = key.partition(".")
+            if not name:
+                if part not in {f.name for f in dataclasses.fields(self)}:
+                    raise ValueError(f"unknown parameter {key!r}")
+                top[part] = value
+                continue
+            if part not in {"contact", "seta", "array", "floor", "friction", "spatula", "backing"}:
+                raise ValueError(f"unknown parameter group {part!r} in {key!r}")
+            sub = getattr(self, part)
+            if name not in {f.name for f in dataclasses.fields(sub)}:
+                raise ValueError(f"unknown parameter {key!r}")
+            groups.setdefault(part, {})[name] = value
+        for part, vals in groups.items():
+            top[part] = dataclasses.replace(getattr(self, part), **vals)
+        return dataclasses.replace(self, **top)
+
+    def to_dict(self) -> dict:
+        """Plain nested dict of every parameter (for metadata.json)."""
+        return dataclasses.asdict(self)
+
+    @classmethod
+    def from_dict(cls, d: dict) -> SetaArray:
+        """Inverse of :meth:`to_dict`."""
+        return cls(
+            contact=Contact(**d["contact"]),
+            seta=Seta(**d["seta"]),
+            array=Array(**d["array"]),
+            floor=Floor(**d["floor"]),
+            friction=Friction(**d["friction"]),
+            mechanics=d["mechanics"],
+            tip=d.get("tip", "sphere"),
+            spatula=Spatula(**d.get("spatula", {})),
+            backing=Backing(**d.get("backing", {})),
+        )
+
+
+_GROUPS = {
+    "contact": Contact,
+    "seta": Seta,
+    "array": Array,
+    "floor": Floor,
+    "friction": Friction,
+    "spatula": Spatula,
+    "backing": Backing,
+}
+
+
+def check_seed(seed, name: str = "seed") -> int:
+    """``seed`` as a Python int, or ValueError naming ``name``.
+
+    Accepts non-negative integers below 2⁶³ (Python or numpy); refuses bool, float (3.7 would
+    silently become 3), strings and negative numbers: a seed is part of what a result means,
+    so it is never coerced.
+    """
+    if isinstance(seed, np.integer):
+        seed = int(seed)
+    if isinstance(seed, bool) or not isinstance(seed, int):
+        raise ValueError(
+            f"{name} = {seed!r} ({type(seed).__name__}) must be a non-negative integer"
+        )
+    if not 0 <= seed < 2**63:
+        raise ValueError(f"{name} = {seed!r} is outside the allowed range [0, 2**63)")
+    return seed
+
+
+PAPER_TABLE1 = SetaArray(
+    contact=Contact(R=4.0, E1=1.413, nu1=0.3, E2=55_000.0, nu2=0.25, gamma1=0.040, gamma2=0.170),
+    seta=Seta(r=1.5, L=20.0, theta_deg=30.0),
+    array=Array(count=1, pitch=4.0),
+    floor=Floor(sigma=0.0),
+    friction=Friction(mu=0.2),
+)
+"""Single seta of the paper's Table 1 (Fig 8).
+
+Table 1: slope 30°, diameter 3 µm (→ rod radius r = 1.5 µm, NOTES.md), length 20 µm, ν = 0.3,
+E = 1.413 MPa, "adhesive energy" 40 mJ/m² read as the seta's surface energy γ1; the floor is the
+55 GPa, ν = 0.25, γ2 = 170 mJ/m² plane of section 3.1.1, and w = 2√(γ1γ2) = 0.1649 J/m² (the
+paper's own rule). Tip radius R = 4 µm from section 3.1.1 (Table 1 gives none). μ = 0.2 from
+section 3.3.2. The alternative reading that matches Fig 5 (w = 0.080 J/m²) is
+:data:`PAPER_FIG5_READING`.
+"""
+
+PAPER_ARRAY = SetaArray(
+    contact=PAPER_TABLE1.contact,
+    seta=Seta(r=1.5, L=20.0, theta_deg=60.0),
+    array=Array(count=10_000_000, pitch=4.0),
+    floor=Floor(sigma=1.0, correlation_length=0.0, seed=0),
+    friction=Friction(mu=0.2),
+)
+"""The array of section 3.3.2 (Fig 10–11).
+
+10⁷ setae on 1 cm² at 4 µm pitch (count and pitch kept separate: a square 4 µm pitch would give
+6.25×10⁶, NOTES.md), θ = 60°, E = 1.413 MPa, ν = 0.3, γ1 = 40 mJ/m², floor 55 GPa, ν = 0.25,
+γ2 = 170 mJ/m², μ = 0.2, roughness "mean square error 1" read as RMS height σ = 1 µm with an
+independent height under each seta (eq 28). Rod r = 1.5 µm, L = 20 µm and R = 4 µm carried over
+from Table 1 and section 3.1.1, which the array section does not restate.
+"""
+
+PAPER_FIG5_READING = PAPER_TABLE1.replace(**{"contact.w": 0.080})
+"""Table 1 with w = 0.080 J/m², the work of adhesion that Fig 5's −1.5 µN pull-off at R = 4 µm
+implies (= 2 × 40 mJ/m², i.e. w = 2γ1; NOTES.md)."""

@@ -1,0 +1,398 @@
+"""The quasi-static ``rod`` seta (``params.mechanics == "rod"``): large rotations, solved by Newton.
+
+The rod is rigid, pivots at its root on a rotary spring and stretches on an axial spring
+(:func:`rod_force`); its JKR tip (eq 7, 10) sticks or slides under Coulomb friction and lets go
+where the rod–contact equilibrium folds. Each plate position is one damped Newton solve per seta
+(:func:`rod_newton`, :func:`rod_step`). Units: µm, µN (see :mod:`gecko_agents.params`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gecko_agents.history import STATE_FREE as FREE
+from gecko_agents.history import STATE_SLIP as SLIP
+from gecko_agents.history import STATE_STICK as STICK
+from gecko_agents.params import SetaArray
+from gecko_agents.physics import beam, jkr
+from gecko_agents.quasistatic.heights import plate_start_height
+from gecko_agents.quasistatic.state import State, jump_in
+
+
+def rod_force(x, y, Ka, k_phi, L, theta):
+    """Force of a rod seta on its tip and the tip's tangent stiffness (the agent's ``rod`` law).
+
+    The rod is rigid, pivots at its root on a rotary spring k_φ = Kp·L² and has an axial spring
+    Ka (Kp, Ka: eq 19, 17). With the tip at d = (x, y) from the root, ℓ = |d|, e = d/ℓ,
+    e⊥ = (−e_y, e_x) and Δφ = atan2(y, x) + θ wrapped to (−π, π]:
+
+        U = ½Ka(ℓ − L)² + ½k_φΔφ²,    F = −∇U = −Ka(ℓ − L)·e − (k_φΔφ/ℓ)·e⊥,
+        H = ∇∇U = Ka·e eᵀ + (Ka(ℓ − L)/ℓ + k_φ/ℓ²)·e⊥e⊥ᵀ − (k_φΔφ/ℓ²)(e e⊥ᵀ + e⊥eᵀ).
+
+    At rest (ℓ = L, Δφ = 0) H is the paper's 2×2 stiffness K of eq 20–21 (Ka along the rod,
+    Kp across it), so rod and ``linear`` agree for small deflections. The same formula as
+    :meth:`gecko_agents.model.Model.spring_force`.
+
+    Parameters
+    ----------
+    x, y : tip position relative to the root [µm] (y up, the rest tip at L(cos θ, −sin θ)).
+    Ka : axial stiffness [µN/µm]. k_phi : rotary stiffness [µN·µm/rad]. L : rod length [µm].
+    theta : rest angle below the plate [rad].
+
+    Returns
+    -------
+    (Fx, Fy) [µN] and (H_xx, H_xy, H_yy) [µN/µm].
+    """
+    ell = np.hypot(x, y)
+    ex, ey = x / ell, y / ell
+    dphi = np.remainder(np.arctan2(y, x) + theta + np.pi, 2 * np.pi) - np.pi
+    fa = Ka * (ell - L)
+    ft = k_phi * dphi / ell
+    Fx = -fa * ex + ft * ey
+    Fy = -fa * ey - ft * ex
+    perp = fa / ell + k_phi / (ell * ell)
+    cross = ft / ell
+    Hxx = Ka * ex * ex + perp * ey * ey + 2.0 * cross * ex * ey
+    Hyy = Ka * ey * ey + perp * ex * ex - 2.0 * cross * ex * ey
+    Hxy = Ka * ex * ey - perp * ex * ey + cross * (ey * ey - ex * ex)
+    return (Fx, Fy), (Hxx, Hxy, Hyy)
+
+
+@dataclass(frozen=True)
+class RodSetup:
+    """Constants of the quasi-static ``rod`` seta (see :func:`rod_force`).
+
+    Attributes: R [µm], w [µN/µm], E_star [MPa], Fc [µN], L [µm], theta [rad], Ka [µN/µm],
+    k_phi [µN·µm/rad], k_t (stick spring of the contact [µN/µm], ``inf``: a sticking tip does
+    not move), mu [-], law, lateral (``"coupled"`` or ``"free"``), a_c (end of the JKR stable
+    branch [µm]), a0 (zero-load radius [µm]), Ky (eq 20 [µN/µm]).
+    """
+
+    R: float
+    w: float
+    E_star: float
+    Fc: float
+    L: float
+    theta: float
+    Ka: float
+    k_phi: float
+    k_t: float
+    mu: float
+    law: str
+    lateral: str
+    a_c: float
+    a0: float
+    Ky: float
+    Kxx: float
+    Kxy: float
+
+    @classmethod
+    def from_params(
+        cls,
+        params: SetaArray,
+        lateral: str = "coupled",
+        stiffness_scale: float = 1.0,
+        tangential_stiffness: float = math.inf,
+    ) -> RodSetup:
+        """The rod of ``params`` (Ka, Kp scaled by ``stiffness_scale``), contact and friction."""
+        if not tangential_stiffness > 0:
+            raise ValueError(f"tangential_stiffness = {tangential_stiffness!r} must be > 0")
+        if lateral not in ("coupled", "free"):
+            raise ValueError(f"lateral = {lateral!r} must be 'coupled' or 'free'")
+        if not stiffness_scale > 0:
+            raise ValueError(f"stiffness_scale = {stiffness_scale!r} must be > 0")
+        R, w, Es = params.contact.jkr_args()
+        Ka = params.axial_stiffness * stiffness_scale
+        Kp = params.bending_stiffness * stiffness_scale
+        K = beam.stiffness_matrix(Ka, Kp, params.seta.theta)
+        L = params.seta.L
+        return cls(
+            R,
+            w,
+            Es,
+            params.contact.pull_off_force,
+            L,
+            params.seta.theta,
+            Ka,
+            Kp * L * L,
+            float(tangential_stiffness),
+            params.friction.mu if lateral == "coupled" else 0.0,
+            params.friction.law,
+            lateral,
+            float(jkr.snap_off_radius(R, w, Es)),
+            float(jkr.zero_load_contact_radius(R, w, Es)),
+            float(K[1, 1] - K[0, 1] ** 2 / K[0, 0]),
+            float(K[0, 0]),
+            float(K[0, 1]),
+        )
+
+    def cap(self, P):
+        """Tangential force cap [µN] for normal force(s) P [µN] (as :meth:`Friction.cap`)."""
+        if self.law == "paper":
+            return self.mu * np.maximum(P, 0.0)
+        return self.mu * np.abs(P + 2.0 * self.Fc)
+
+    def dcap(self, P):
+        """d cap / dP [-]."""
+        if self.law == "paper":
+            return self.mu * (P > 0)
+        return self.mu * np.sign(P + 2.0 * self.Fc)
+
+    @property
+    def rest(self) -> tuple[float, float]:
+        """Free tip position relative to the root [µm]."""
+        return self.L * math.cos(self.theta), -self.L * math.sin(self.theta)
+
+
+def _jkr_terms(a, R, Es, k1, k2):
+    """P (eq 7) [µN], dP/da [µN/µm], δ (eq 10) [µm] and dδ/da [-] at contact radius a [µm];
+    k1 = √(8πwE*), k2 = √(2πw/E*)."""
+    sa = np.sqrt(a)
+    P = (4.0 * Es / (3.0 * R)) * a * a * a - k1 * a * sa
+    dP = (4.0 * Es / R) * a * a - 1.5 * k1 * sa
+    d = a * a / R - k2 * sa
+    dd = 2.0 * a / R - 0.5 * k2 / sa
+    return P, dP, d, dd
+
+
+def _residual(rs: RodSetup, c, x, a, anchor, s, k1, k2):
+    """Residual (r1, r2) of F_rod(x, y) + (F_t, P) = 0 at (x, a), its Jacobian
+    (j11, j12, j21, j22) in (x, a), and P [µN] and the rod's F_x [µN] that scale it."""
+    P, dP, d, dd = _jkr_terms(a, rs.R, rs.E_star, k1, k2)
+    y = c - d
+    (Fx, Fy), (Hxx, Hxy, Hyy) = rod_force(x, y, rs.Ka, rs.k_phi, rs.L, rs.theta)
+    # dy/da = −δ'(a).
+    if anchor is not None and math.isinf(rs.k_t):  # rigid stick: x = anchor
+        r1 = rs.Ka * (anchor - x)
+        j11, j12 = -rs.Ka * np.ones_like(x), np.zeros_like(x)
+    elif anchor is not None:  # stick on the contact's spring k_t
+        r1 = Fx - rs.k_t * (x - anchor)
+        j11, j12 = -Hxx - rs.k_t, Hxy * dd
+    else:  # slide in direction s
+        r1 = Fx + s * rs.cap(P)
+        j11, j12 = -Hxx, Hxy * dd + s * rs.dcap(P) * dP
+    r2 = Fy + P
+    j21, j22 = -Hxy, Hyy * dd + dP
+    return (r1, r2), (j11, j12, j21, j22), P, Fx
+
+
+def _stable(rs: RodSetup, c, x, a, anchor, s, k1, k2):
+    """Where the equilibrium at (x, a) is stable: the tangent stiffness K_tot = H + contact
+    (+ stick spring) in (x, y) has positive determinant and trace."""
+    P, dP, d, dd = _jkr_terms(a, rs.R, rs.E_star, k1, k2)
+    y = c - d
+    _, (Hxx, Hxy, Hyy) = rod_force(x, y, rs.Ka, rs.k_phi, rs.L, rs.theta)
+    kc = dP / np.maximum(dd, 1e-300)  # dP/dδ
+    stick = anchor is not None
+    if stick and math.isinf(rs.k_t):
+        return Hyy + kc > 0
+    kxx = Hxx + (rs.k_t if stick else 0.0)
+    kxy = Hxy + (0.0 if stick else s * rs.dcap(P) * kc)
+    return (kxx * (Hyy + kc) - kxy * Hxy > 0) & (kxx + Hyy + kc > 0)
+
+
+def rod_newton(
+    rs: RodSetup, c, x, a, anchor=None, s=None, iters: int = 60, max_jump: float = math.inf
+):
+    """Equilibrium of rod + JKR tip for each seta, by damped Newton on (x, a).
+
+    The tip sits at (x, y) from its root with y = c − δ(a) (c = h + R − Z [µm]: floor height
+    h, plate height Z), the normal force is P(a) (eq 7), the overlap δ(a) (eq 10). Lateral:
+    ``anchor`` given: stick, F_t = −k_t(x − anchor) (``k_t = inf``: x = anchor); else slide in
+    direction ``s`` = ±1 with F_t = s·cap(P). Equations: F_rod(x, y) + (F_t, P) = 0.
+
+    ``max_jump`` [µm]: an equilibrium whose x is farther than this from the start does not
+    count (it lies beyond a snap of the branch the tip was on).
+
+    Returns (x, a, ok): ok where Newton converged to a stable equilibrium (the tangent
+    stiffness of rod + contact + stick spring has positive determinant and trace) on the
+    stable JKR branch (a > a_c). Where the equilibrium has folded away, ok is False.
+    """
+    w, Es = rs.w, rs.E_star
+    k1, k2 = math.sqrt(8.0 * math.pi * w * Es), math.sqrt(2.0 * math.pi * w / Es)
+    x_start = x
+    x, a = x.copy(), a.copy()
+    a_min = rs.a_c * (1.0 + 1e-9)
+    tol = 1e-10 * rs.Fc
+    conv = np.zeros(x.size, dtype=bool)
+    for _ in range(iters):
+        (r1, r2), (j11, j12, j21, j22), P, Fx = _residual(rs, c, x, a, anchor, s, k1, k2)
+        det = j11 * j22 - j12 * j21
+        scale = tol + 1e-12 * (np.abs(P) + np.abs(Fx))
+        conv = (np.abs(r1) <= scale) & (np.abs(r2) <= scale)
+        if conv.all():
+            break
+        det = np.where(det == 0.0, 1e-300, det)
+        dx = -(j22 * r1 - j12 * r2) / det
+        da = -(-j21 * r1 + j11 * r2) / det
+        # Damping: keep steps to a fraction of the rod length and of the contact radius.
+        lim = np.minimum(
+            1.0,
+            np.minimum(
+                0.1 * rs.L / np.maximum(np.abs(dx), 1e-300),
+                0.3 * a / np.maximum(np.abs(da), 1e-300),
+            ),
+        )
+        lim = np.where(conv, 0.0, lim)
+        x = x + lim * dx
+        a = np.maximum(a + lim * da, a_min)
+    ok = _stable(rs, c, x, a, anchor, s, k1, k2)
+    ok &= conv & (a > a_min) & np.isfinite(x)
+    # An equilibrium far from the last one is the far side of a snap (e.g. the rod swinging
+    # through upright): the branch the tip was on has folded; dynamically the tip lets go.
+    ok &= np.abs(x - x_start) <= max_jump
+    return x, a, ok
+
+
+class RodState(State):
+    """:class:`~gecko_agents.quasistatic.state.State` plus the rod tip abscissa x [µm] (from the
+    root),
+    contact radius a [µm] and tangential contact force ft [µN] of each seta's last
+    equilibrium."""
+
+    def __init__(self, n):
+        super().__init__(n)
+        self.x = np.zeros(n)
+        self.a = np.zeros(n)
+        self.ft = np.zeros(n)
+
+    def copy(self):
+        c = RodState(0)
+        for k in ("state", "sigma", "u", "x", "a", "ft"):
+            setattr(c, k, getattr(self, k).copy())
+        return c
+
+
+def rod_step(rs: RodSetup, st: RodState, Z: float, h: np.ndarray):
+    """Equilibrate every rod seta at plate height Z; update ``st`` in place.
+
+    As :func:`~gecko_agents.quasistatic.linear.step`, with the large-rotation rod instead of the
+    linear
+    spring: a free tip jumps in where it touches (δ ≥ 0) and anchors there; an attached tip
+    first tries to stick at its anchor (F_t = −k_t(x − anchor), |F_t| ≤ cap), otherwise slides
+    with F_t = ±cap in the direction the stick trial demanded (return mapping, as the agent
+    model); where neither has a stable equilibrium, the spring–contact system has folded and
+    the tip lets go. The overlap recorded for a release is that of the tip's last equilibrium
+    (within one plate step of the fold). ``st.u`` is the anchor relative to the rest tip
+    abscissa [µm].
+
+    Returns (P, F_t, δ, released mask, release overlaps), as
+    :func:`~gecko_agents.quasistatic.linear.step`.
+    """
+    n = len(h)
+    x0, y0 = rs.rest
+    c = h + rs.R - Z
+    # (P, F_t, δ, released, release overlap); a free tip has δ = c − y0.
+    out = (np.zeros(n), np.zeros(n), c - y0, np.zeros(n, dtype=bool), np.full(n, np.nan))
+    jump, att = jump_in(st, out[2])
+    if jump.any():
+        st.x[jump] = x0
+        st.a[jump] = rs.a0
+    idx = np.flatnonzero(att)
+    if idx.size == 0:
+        return out
+    trial = _RodTrial(idx, c[idx], st.x[idx], st.a[idx], 0.1 * rs.L)
+    sig = st.sigma[idx].copy()
+    if rs.lateral == "free":
+        todo = np.ones(idx.size, dtype=bool)
+        sig[:] = 1.0
+    else:
+        todo, sig = _rod_stick(rs, st, trial)
+    if todo.any():
+        t = np.flatnonzero(todo)
+        s = sig[t] if rs.lateral == "coupled" else np.zeros(t.size)
+        xk, ak, okk = rod_newton(rs, trial.c[t], trial.x[t], trial.a[t], s=s, max_jump=trial.jump)
+        trial.new_x[t[okk]], trial.new_a[t[okk]] = xk[okk], ak[okk]
+        trial.state[t[okk]] = SLIP
+        sig[t] = s
+    _rod_commit(rs, st, c, trial, sig, out)
+    return out
+
+
+class _RodTrial:
+    """The attached setae ``idx`` of one rod step: their c = h + R − Z [µm], last tip abscissa
+    x and contact radius a [µm], and the new equilibrium (new_x, new_a, state) being found.
+    ``jump`` [µm]: the largest move of x that still counts as the same branch."""
+
+    def __init__(self, idx, c, x, a, jump):
+        self.idx, self.c, self.x, self.a, self.jump = idx, c, x, a, jump
+        self.new_x, self.new_a = x.copy(), a.copy()
+        self.state = np.full(idx.size, FREE, dtype=np.int8)
+
+
+def _rod_stick(rs: RodSetup, st: RodState, tr: _RodTrial):
+    """Stick trial at each anchor; where it holds within the cap, the tip sticks.
+
+    Returns (the setae still to slide, their slide direction): the direction the spring
+    demands, or where the stick branch has folded that of the last tangential force.
+    """
+    args = (rs.R, rs.w, rs.E_star)
+    x0, _ = rs.rest
+    anchor = x0 + st.u[tr.idx]
+    xs, as_, ok = rod_newton(rs, tr.c, tr.x, tr.a, anchor=anchor, max_jump=tr.jump)
+    Ps = jkr.force_from_radius(as_, *args)
+    if math.isinf(rs.k_t):
+        Fts = -rod_force(
+            xs, tr.c - jkr.overlap_from_radius(as_, *args), rs.Ka, rs.k_phi, rs.L, rs.theta
+        )[0][0]
+    else:
+        Fts = -rs.k_t * (xs - anchor)
+    stick_ok = ok & (np.abs(Fts) <= rs.cap(Ps) * (1 + 1e-12))
+    tr.new_x[stick_ok], tr.new_a[stick_ok] = xs[stick_ok], as_[stick_ok]
+    tr.state[stick_ok] = STICK
+    sig = np.where(np.where(ok, Fts, st.ft[tr.idx]) >= 0, 1.0, -1.0)
+    return ~stick_ok, sig
+
+
+def _rod_commit(rs: RodSetup, st: RodState, c, tr: _RodTrial, sig, out):
+    """Write the step's equilibria into ``st`` and ``out``; setae without one let go."""
+    P, Ft, delta, released, rel_overlap = out
+    args = (rs.R, rs.w, rs.E_star)
+    x0, y0 = rs.rest
+    idx, state, new_x, new_a = tr.idx, tr.state, tr.new_x, tr.new_a
+    good = state != FREE
+    j = idx[good]
+    Pj = jkr.force_from_radius(new_a[good], *args)
+    dj = jkr.overlap_from_radius(new_a[good], *args)
+    P[j], delta[j] = Pj, dj
+    slip = state[good] == SLIP
+    capj = rs.cap(Pj)
+    if rs.lateral == "free":
+        Ft[j] = 0.0
+    else:
+        yj = c[j] - dj
+        Ft[j] = -rod_force(new_x[good], yj, rs.Ka, rs.k_phi, rs.L, rs.theta)[0][0]
+    st.state[idx] = state
+    st.x[idx], st.a[idx] = new_x, new_a
+    st.ft[idx] = Ft[idx]
+    st.sigma[idx] = np.where(state == SLIP, sig, 0.0)
+    # Anchor: a sliding tip's anchor trails it by cap/k_t (F_t = −k_t(x − anchor)).
+    trail = 0.0 if math.isinf(rs.k_t) else capj[slip] * sig[good][slip] / rs.k_t
+    st.u[j[slip]] = new_x[good][slip] + trail - x0
+    gone = idx[~good]
+    if gone.size:
+        released[gone] = True
+        rel_overlap[gone] = jkr.overlap_from_radius(tr.a[~good], *args)
+        st.state[gone] = FREE
+        st.u[gone] = 0.0
+        st.sigma[gone] = 0.0
+        delta[gone] = c[gone] - y0
+
+
+def rod_retract_travel(params: SetaArray, rs: RodSetup, heights, Z_from: float) -> float:
+    """Plate travel up from Z_from [µm] after which every rod seta has surely let go [µm].
+
+    Back past the start height, plus the swing of the rod to upright, L(1 − sin θ), its axial
+    stretch under Fc and the stick spring's, and a margin of 20|δc|.
+    """
+    stretch = rs.Fc / rs.Ka + (0.0 if math.isinf(rs.k_t) else rs.Fc / rs.k_t)
+    return (
+        plate_start_height(params, heights, 0.0)
+        - Z_from
+        + rs.L * (1.0 - math.sin(rs.theta))
+        + 1.5 * stretch
+        + 20 * abs(params.contact.snap_off_overlap)
+    )

@@ -1,0 +1,343 @@
+"""Run files: plain-text TOML records of exactly what was simulated, and running them.
+
+Units are those of :mod:`gecko_agents.params` (µm, µN, µs, ng); protocol keys carry their unit
+in their name (``depth_um``, ``speed_um_per_us``, ``preload_uN``, ``duration_us``, …).
+
+Run file
+--------
+::
+
+    description = "one seta of Table 1 pressed 0.5 µm and pulled off"   # optional
+    preset = "PAPER_TABLE1"            # a preset of gecko_agents.params (`gecko-agents params`)
+
+    [params]                           # overrides by dotted name (SetaArray.replace)
+    "seta.L" = 5.0
+    mechanics = "rod"
+
+    [model]                            # all optional
+    n_sim = 1                          # simulated setae, 1–20 000 (default: array.count)
+    seed = 1                           # run seed ≥ 0 (default: floor.seed)
+    dt_us = 0.01                       # time step [µs] (default: 0.75/ω_max)
+    record_setae = true                # per-seta arrays (animations need them)
+    kernel = "auto"                    # auto | numpy | numba | python
+
+    [[protocol]]                       # segments in order ...
+    segment = "press_to"
+    depth_um = 0.5
+    speed_um_per_us = 0.05
+
+    [[protocol]]
+    segment = "pull_off"
+
+    # ... or one preset protocol instead of the segments:
+    # [protocol]
+    # preset = "press_pull"
+    # depth_um = 0.5
+
+    [quick.model]                      # what `--quick` changes: [quick.params],
+    n_sim = 1                          # [quick.model] merge into the tables above,
+                                       # quick.protocol replaces the protocol
+
+Segments (:mod:`gecko_agents.protocol`; every key but ``segment`` has a default unless marked
+required):
+
+==========  ========================================================================
+segment     keys
+==========  ========================================================================
+move        dx_um, dy_um [µm], speed_um_per_us [µm/µs]
+press_to    depth_um [µm] (required), speed_um_per_us
+press       preload_uN [µN] (required), speed_um_per_us, band [-] (fraction of preload)
+hold        duration_us [µs] (required)
+pull_off    speed_um_per_us, angle_deg [degrees from +x], clearance_um, max_travel_um [µm]
+==========  ========================================================================
+
+Preset protocols: ``press_pull`` (depth_um, speed_um_per_us), ``preload_pull`` (preload_uN,
+speed_um_per_us), ``drag_pull`` (preload_uN, drag_um, angle_deg, speed_um_per_us).
+
+Sweep files (the same presets, ``[params]`` and ``[quick]`` rules, a grid instead of a
+protocol) are described in :mod:`gecko_agents.runfiles.sweep`; their names are importable from here.
+The checks both kinds of file share are in :mod:`gecko_agents.runfiles.schema`.
+
+Everything is checked when the file is loaded — unknown keys, wrong types, values the parameter
+sets or protocol segments refuse, the quick variant too — and every error is a
+:class:`RunFileError` naming the file, the key, the value and the allowed range, so nothing
+starts on a file with an error in it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib.util
+import os
+import re
+import shutil
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from gecko_agents.history import History, atomic_write_bytes, invariant_violations
+from gecko_agents.params import SetaArray
+from gecko_agents.runfiles.schema import (
+    PRESETS,
+    PROTOCOL_PRESETS,
+    SEGMENTS,
+    Ctx,
+    RunFileError,
+    apply_params,
+    build_protocol,
+    find_preset,
+    merge_quick,
+    preset_docs,
+    read_toml,
+    sub_table,
+)
+from gecko_agents.runfiles.sweep import SWEEP_FILE_NAME, SweepSpec, load_sweep, point_functions
+
+__all__ = [
+    "RunFileError",
+    "RunSpec",
+    "SweepSpec",
+    "PRESETS",
+    "SEGMENTS",
+    "PROTOCOL_PRESETS",
+    "preset_docs",
+    "point_functions",
+    "load_run",
+    "load_sweep",
+    "execute_run",
+    "RUN_FILE_NAME",
+    "SWEEP_FILE_NAME",
+]
+
+RUN_FILE_NAME = "run.toml"
+"""Name of the run file's copy inside a run directory."""
+
+_MODEL_KEYS = {"n_sim": int, "seed": int, "dt_us": float, "record_setae": bool, "kernel": str}
+_MODEL_RANGES = {
+    "seed": "an integer ≥ 0",
+    "n_sim": "an integer in [1, 20000]",
+    "dt_us": "a time step > 0 µs (below the stability bound the model states)",
+}
+
+
+# Run files ---------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class RunSpec:
+    """A checked run file.
+
+    Attributes
+    ----------
+    path : the run file; ``text`` its bytes (copied verbatim into the run directory).
+    quick : whether the ``[quick]`` variant was taken.
+    preset : preset name; ``overrides`` the ``[params]`` in effect (dotted name → value).
+    params : the validated :class:`SetaArray`.
+    model : keyword arguments of :class:`~gecko_agents.model.Model` (``n_sim``, ``seed``,
+        ``dt``, ``record_setae``, ``kernel``; absent ones take the model's defaults).
+    protocol : the protocol segments.
+    description : the file's description (may be empty).
+    resolved : the tables in effect (after ``--quick``), for metadata.json.
+    """
+
+    path: Path
+    text: bytes
+    quick: bool
+    preset: str
+    overrides: dict
+    params: SetaArray
+    model: dict
+    protocol: list
+    description: str = ""
+    resolved: dict = field(default_factory=dict)
+
+    def build_model(self):
+        """The :class:`~gecko_agents.model.Model` (its own checks reported as run-file errors)."""
+        from gecko_agents.model import Model
+
+        try:
+            return Model(self.params, **self.model)
+        except (ValueError, TypeError) as err:
+            m = re.match(r"(n_sim|dt|kernel|seed)\b", str(err))
+            key = {"dt": "dt_us"}.get(m.group(1), m.group(1)) if m else None
+            where = f"[model] {key}" if key else "[model]"
+            raise RunFileError(f"{self.path}: {where}: {err}") from None
+
+
+_RUN_KEYS = {"description", "preset", "params", "model", "protocol", "quick"}
+_RUN_QUICK_KEYS = {"params", "model", "protocol"}
+
+
+def _run_variant(ctx: Ctx, data: dict, quick: dict | None, path: Path, raw: bytes) -> RunSpec:
+    """One variant of a run file; ``quick`` is the [quick] table it was merged with, if any."""
+    quick_t = quick or {}
+    name, base = find_preset(ctx, data)
+    overrides = sub_table(ctx, data, "params")
+    params = apply_params(ctx, base, overrides, "params", quick_t.get("params", {}))
+    model_t = sub_table(ctx, data, "model")
+    in_quick = quick_t.get("model", {})
+    ctx.keys("[quick.model]" if quick else "[model]", model_t, _MODEL_KEYS)
+    model: dict = {}
+    for key, value in model_t.items():
+        where = f"[{'quick.' if key in in_quick else ''}model] {key}"
+        model[{"dt_us": "dt"}.get(key, key)] = ctx.type_(where, value, _MODEL_KEYS[key])
+        bad = {
+            "seed": lambda v: v < 0,
+            "n_sim": lambda v: v < 1,
+            "dt_us": lambda v: not 0 < v < float("inf"),
+        }.get(key, lambda v: False)
+        if bad(value):
+            raise ctx.error(where, f"{value} must be {_MODEL_RANGES[key]}")
+    if "protocol" not in data:
+        raise ctx.error("[protocol]", "missing: give [[protocol]] segments or a [protocol] preset")
+    segments = build_protocol(
+        ctx, data["protocol"], "[quick.protocol]" if "protocol" in quick_t else "[protocol]"
+    )
+    description = ctx.type_("description", data.get("description", ""), str)
+    resolved = {"preset": name, "params": overrides, "model": model_t, "protocol": data["protocol"]}
+    return RunSpec(
+        path=path,
+        text=raw,
+        quick=quick is not None,
+        preset=name,
+        overrides=dict(overrides),
+        params=params,
+        model=model,
+        protocol=segments,
+        description=description,
+        resolved=resolved,
+    )
+
+
+def load_run(path, *, quick: bool = False) -> RunSpec:
+    """Read and check a run file; with ``quick`` take its ``[quick]`` variant.
+
+    Both variants are checked whichever is asked for. Without a ``[quick]`` table, ``quick``
+    caps ``n_sim`` at 3.
+
+    Raises
+    ------
+    RunFileError naming the file, the key, the value and the allowed range.
+    """
+    path, raw, data = read_toml(path)
+    ctx = Ctx(path)
+    ctx.keys("top level", data, _RUN_KEYS)
+    quick_t = sub_table(ctx, data, "quick")
+    ctx.keys("[quick]", quick_t, _RUN_QUICK_KEYS)
+    full = _run_variant(ctx, {k: v for k, v in data.items() if k != "quick"}, None, path, raw)
+    ctx.variant = " (in the --quick variant)"
+    if "quick" in data:
+        fast = _run_variant(
+            ctx, merge_quick(ctx, data, quick_t, ("params", "model")), quick_t, path, raw
+        )
+    else:
+        n = min(full.model.get("n_sim", full.params.array.count), 3)
+        fast = dataclasses.replace(full, quick=True, model={**full.model, "n_sim": n})
+    return fast if quick else full
+
+
+# Running -----------------------------------------------------------------------------------------
+def _staging_dir(out: Path) -> Path:
+    """This process's hidden sibling of ``out``; removes those left by killed processes."""
+    for left in out.parent.glob(f".{out.name}.partial-*"):
+        pid = left.name.rsplit("-", 1)[-1]
+        if pid.isdigit() and int(pid) != os.getpid() and not _alive(int(pid)):
+            shutil.rmtree(left, ignore_errors=True)
+    return out.parent / f".{out.name}.partial-{os.getpid()}"
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # exists but belongs to someone else
+        return True
+    return True
+
+
+def _check_run_target(out: Path, animation: str | None) -> None:
+    """Refuse, before anything runs, a target that is not a run directory (it would be
+    replaced) and an animation format that cannot be written."""
+    if out.exists() and not (
+        out.is_dir() and ((out / RUN_FILE_NAME).is_file() or not any(out.iterdir()))
+    ):
+        raise RunFileError(
+            f"{out}: exists and is not a run directory (no {RUN_FILE_NAME}); choose another --out"
+        )
+    if animation not in (None, "gif", "mp4"):
+        raise ValueError(f"animation = {animation!r} must be None, 'gif' or 'mp4'")
+    if animation == "mp4" and importlib.util.find_spec("imageio_ffmpeg") is None:
+        raise RunFileError(
+            "--mp4 needs the ffmpeg binary from imageio-ffmpeg: pip install -e '.[video]' "
+            "(or use --gif)"
+        )
+
+
+def execute_run(
+    spec: RunSpec,
+    out,
+    *,
+    animation: str | None = None,
+    progress: bool = True,
+    argv: list[str] | None = None,
+) -> tuple[Path, History]:
+    """Run a checked run file and write its run directory ``out``.
+
+    The directory holds ``history.csv``, ``metadata.json`` and ``setae.npz``
+    (:meth:`History.save`), ``force_history.png``, ``floor.png`` (profile and PSD),
+    ``detachment.gif``/``.mp4`` if
+    ``animation`` is ``"gif"``/``"mp4"`` (per-seta recording is then switched on; it does not
+    change the dynamics), and the run file copied verbatim as ``run.toml``. Everything is
+    written into a hidden sibling directory that replaces ``out`` only once complete, so an
+    interrupted or failed run leaves ``out`` as it was.
+
+    Raises
+    ------
+    RunFileError if ``out`` exists and is not a run directory (it would be replaced); whatever
+    the run raises (nothing is written then).
+    """
+    out = Path(out)
+    _check_run_target(out, animation)
+    kwargs = dict(spec.model)
+    if animation:
+        kwargs["record_setae"] = True
+    model = dataclasses.replace(spec, model=kwargs).build_model()
+    out.parent.mkdir(parents=True, exist_ok=True)
+    stage = _staging_dir(out)
+    shutil.rmtree(stage, ignore_errors=True)
+    try:
+        history = model.run(spec.protocol, progress=progress)
+        history.meta["run_file"] = {
+            "file": str(spec.path),
+            "copy": RUN_FILE_NAME,
+            "quick": spec.quick,
+            "description": spec.description,
+            "resolved": spec.resolved,
+            "command": "gecko-agents run " + " ".join(argv or [str(spec.path)]),
+            "invariant_violations": invariant_violations(history),
+        }
+        history.save(stage)
+        atomic_write_bytes(stage / RUN_FILE_NAME, spec.text)
+        from gecko_agents import render
+
+        render.plot_history(history, stage / "force_history.png")
+        from gecko_agents.render.floor_plots import plot_floor
+
+        plot_floor(model.profile, stage / "floor.png", stats=history.meta["floor_statistics"])
+        if animation:
+            render.animate(history, stage / f"detachment.{animation}")
+        _replace_dir(stage, out)
+    except BaseException:
+        shutil.rmtree(stage, ignore_errors=True)
+        raise
+    return out, history
+
+
+def _replace_dir(stage: Path, out: Path) -> None:
+    """Put the complete ``stage`` at ``out`` (replacing an older run directory there)."""
+    if out.exists():
+        old = out.parent / f".{out.name}.old-{os.getpid()}"
+        shutil.rmtree(old, ignore_errors=True)
+        os.replace(out, old)
+        os.replace(stage, out)
+        shutil.rmtree(old, ignore_errors=True)
+    else:
+        os.replace(stage, out)

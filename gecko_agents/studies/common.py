@@ -1,0 +1,168 @@
+"""Shared plumbing for the studies: arguments, output folders, tables, claims.
+
+Every scenario has ``main(argv=None) -> dict`` and accepts ``--quick`` (seconds, small N, used
+by the tests) and ``--out DIR`` (default ``renders/<name>/``); it writes only there. The dict it
+returns holds its key numbers and, for reproduce_paper, ``"claims"``: rows of the
+paper-comparison table built with :func:`claim`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from gecko_agents.history import atomic_write_bytes, versions
+from gecko_agents.physics import jkr
+
+RENDERS = Path("renders")
+"""Default output root, relative to the current directory: ``renders/<study>/``."""
+
+VERDICTS = ("reproduced", "trend reproduced", "not reproducible from the stated parameters")
+GREY = "#7f7f7f"
+"""Colour of reference curves (the parts of eq 7/10 no tip reaches, N·Fc lines)."""
+PAPER_DELTA_S_COEF = -0.21
+"""The paper's separation overlap δs = −0.21 a0²/R (section 2.1; docs/physics.md, "Snap-off")."""
+
+
+def num(x: float, spec: str = ".2f") -> str:
+    """``format(x, spec)`` with a typographic minus."""
+    return format(x, spec).replace("-", "\u2212")
+
+
+def rel_off(ours: float, paper: float) -> str:
+    """Relative distance from the paper's number, e.g. ``"6.4 %"``."""
+    return f"{100 * abs(ours - paper) / abs(paper):.1f} %"
+
+
+def off_paper(ours: float, paper: float) -> str:
+    """How far ``ours`` is from the paper's number, e.g. ``"0.7 % off the paper's value"``."""
+    return f"{rel_off(ours, paper)} off the paper's value"
+
+
+def writable_dir(value: str) -> Path:
+    """``--out`` as argparse ``type=``: a folder that exists or can be made, and is writable.
+
+    Refuses (usage error, exit 2) an empty value (it would write into the current directory),
+    an existing file, a path under a file, and a folder that cannot be created or written to.
+    The folder is created here, as the scenario would do first anyway.
+    """
+    if not value.strip():
+        raise argparse.ArgumentTypeError(
+            f"{value!r} is empty: give an output folder (or omit --out for renders/<scenario>/)"
+        )
+    path = Path(value)
+    if path.exists() and not path.is_dir():
+        raise argparse.ArgumentTypeError(f"{value!r} is an existing file, not a folder")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=path):
+            pass
+    except OSError as err:
+        raise argparse.ArgumentTypeError(
+            f"{value!r} cannot be used as the output folder: {err.strerror or err}"
+        ) from None
+    return path
+
+
+def parse_args(doc: str, argv=None, extra=None) -> argparse.Namespace:
+    """Parse the common options; ``extra(parser)`` may add scenario-specific ones."""
+    parser = argparse.ArgumentParser(description=(doc or "").strip().splitlines()[0])
+    parser.add_argument(
+        "--quick", action="store_true", help="small and fast (seconds): for tests and a first look"
+    )
+    parser.add_argument(
+        "--out",
+        type=writable_dir,
+        default=None,
+        help="output folder, created if needed (default renders/<scenario>/)",
+    )
+    parser.add_argument("--no-progress", action="store_true", help="hide progress bars")
+    if extra is not None:
+        extra(parser)
+    return parser.parse_args(argv)
+
+
+def output_dir(name: str, args: argparse.Namespace) -> Path:
+    """The scenario's output folder, created if needed."""
+    out = args.out if args.out is not None else RENDERS / name
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+def write_table(path: Path, rows: list[dict]) -> Path:
+    """Write dict rows as CSV (atomic); columns from the union of keys in first-seen order."""
+    cols: list[str] = []
+    for r in rows:
+        cols += [k for k in r if k not in cols]
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=cols, lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+    atomic_write_bytes(Path(path), buf.getvalue().encode())
+    return Path(path)
+
+
+def write_json(path: Path, data: dict) -> Path:
+    """Write JSON (atomic) with the package versions added under ``versions``."""
+    data = dict(data, versions=versions())
+    atomic_write_bytes(Path(path), json.dumps(data, indent=2, default=float).encode())
+    return Path(path)
+
+
+def claim(
+    figure: str,
+    claim: str,
+    paper: str,
+    ours: str,
+    verdict: str,
+    reason: str,
+    alternative: str = "—",
+) -> dict:
+    """One row of renders/paper_comparison.md. ``ours``/``alternative`` are computed strings."""
+    if verdict not in VERDICTS:
+        raise ValueError(f"verdict {verdict!r} must be one of {VERDICTS}")
+    return {
+        "figure": figure,
+        "claim": claim,
+        "paper": paper,
+        "ours": ours,
+        "alternative": alternative,
+        "verdict": verdict,
+        "reason": reason,
+    }
+
+
+def jkr_curves(contact, n: int, P_max: float) -> dict:
+    """Arrays along eq 7/10 for one tip (µm, µN): the reachable branch a ≥ a_c up to the
+    compressive force P_max (``a_st``, ``P_st``, ``d_st``) and the part below a_c that no
+    tip reaches (``a_un``, ``P_un``, ``d_un``)."""
+    R, w, E = contact.jkr_args()
+    a_D = float(jkr.snap_off_radius(R, w, E))
+    a_max = float(jkr.contact_radius_from_force(P_max, R, w, E))
+    a_st = np.linspace(a_D, a_max, n)
+    a_un = np.linspace(0.0, a_D, max(n // 4, 20))
+    return {
+        "a_st": a_st,
+        "P_st": jkr.force_from_radius(a_st, R, w, E),
+        "d_st": jkr.overlap_from_radius(a_st, R, w, E),
+        "a_un": a_un,
+        "P_un": jkr.force_from_radius(a_un, R, w, E),
+        "d_un": jkr.overlap_from_radius(a_un, R, w, E),
+    }
+
+
+def run_scenario(name: str, argv: list[str]) -> tuple[dict, float]:
+    """Run scenario ``name``'s ``main(argv)`` (here or in a worker process: a module-level
+    function, so it pickles by name); returns (its result, wall time [s])."""
+    import importlib
+    import time
+
+    t0 = time.perf_counter()
+    res = importlib.import_module(f"gecko_agents.studies.{name}").main(argv)
+    return res, time.perf_counter() - t0
