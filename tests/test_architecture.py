@@ -1,0 +1,122 @@
+"""The library stands alone and reads in one direction.
+
+* No module of ``gecko_agents`` imports ``scenarios`` (or any top-level script module), at module
+  level or inside a function, and none touches ``sys.path``: an installed wheel runs its own
+  studies and examples.
+* Each ``scenarios/*.py`` is a thin command line over a study of the library.
+* Modules stay of one concept: none over ~600 lines, no function over ~80.
+"""
+
+import ast
+import sys
+from pathlib import Path
+
+import pytest
+
+import gecko_agents
+
+PKG = Path(gecko_agents.__file__).resolve().parent
+MODULES = sorted(PKG.rglob("*.py"))
+MAX_MODULE_LINES = 600
+MAX_FUNCTION_LINES = 80
+THIRD_PARTY = {
+    # pyproject.toml's dependencies and optional extras, by import name
+    "pymunk", "numpy", "scipy", "matplotlib", "tqdm",
+    "numba", "distributed", "pandas", "SurfaceTopography", "imageio_ffmpeg",
+    "PIL",  # Pillow, matplotlib's own dependency: its GIF writer
+}  # fmt: skip
+
+
+def _tree(path: Path) -> ast.Module:
+    return ast.parse(path.read_text(), filename=str(path))
+
+
+def _imported_modules(tree: ast.Module) -> set[str]:
+    """Every module an ``import``/``from … import`` anywhere in the tree names (absolute)."""
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names |= {a.name for a in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            names.add(node.module)
+    return names
+
+
+def _dynamic_import_targets(tree: ast.Module) -> set[str]:
+    """String arguments of ``importlib.import_module(...)`` / ``__import__(...)`` calls."""
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and node.args and isinstance(node.args[0], ast.Constant):
+            fn = node.func
+            name = fn.attr if isinstance(fn, ast.Attribute) else getattr(fn, "id", "")
+            if name in ("import_module", "__import__") and isinstance(node.args[0].value, str):
+                out.add(node.args[0].value)
+    return out
+
+
+def test_the_checks_see_function_level_and_dynamic_imports():
+    tree = ast.parse(
+        "def f():\n    import scenarios.x\n    from _common import y\n"
+        "    importlib.import_module('_preload')\n    sys.path.insert(0, 'a')\n"
+    )
+    assert {"scenarios.x", "_common"} <= _imported_modules(tree)
+    assert _dynamic_import_targets(tree) == {"_preload"}
+    assert _touches_sys_path(tree)
+
+
+def _touches_sys_path(tree: ast.Module) -> bool:
+    for node in ast.walk(tree):
+        if (
+            isinstance(node, ast.Attribute)
+            and node.attr == "path"
+            and isinstance(node.value, ast.Name)
+            and node.value.id == "sys"
+        ):
+            return True
+    return False
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(PKG)))
+def test_no_module_imports_outside_the_package_or_edits_sys_path(path):
+    tree = _tree(path)
+    for name in _imported_modules(tree) | _dynamic_import_targets(tree):
+        top = name.split(".")[0]
+        allowed = top == "gecko_agents" or top in sys.stdlib_module_names or top in THIRD_PARTY
+        assert allowed, (
+            f"{path} imports {name}: not the package, the standard library or a dependency"
+        )
+    assert not _touches_sys_path(tree), f"{path} reads or edits sys.path"
+
+
+def test_every_dynamic_import_of_the_package_resolves():
+    import importlib
+
+    for path in MODULES:
+        for name in _dynamic_import_targets(_tree(path)):
+            if name.startswith("gecko_agents"):
+                importlib.import_module(name)
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(PKG)))
+def test_modules_and_functions_stay_short(path):
+    src = path.read_text()
+    assert src.count("\n") <= MAX_MODULE_LINES, f"{path}: {src.count(chr(10))} lines"
+    long = [
+        (node.name, node.end_lineno - node.lineno + 1)
+        for node in ast.walk(ast.parse(src))
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
+        and node.end_lineno - node.lineno + 1 > MAX_FUNCTION_LINES
+    ]
+    assert not long, f"{path}: functions over {MAX_FUNCTION_LINES} lines: {long}"
+
+
+def test_scenario_scripts_are_thin_command_lines():
+    scripts = sorted((PKG.parent / "scenarios").glob("*.py"))
+    if not scripts:
+        pytest.skip("no scenarios/ folder beside the package (an installed copy)")
+    for script in scripts:
+        tree = _tree(script)
+        imports = [n for n in tree.body if isinstance(n, ast.ImportFrom)]
+        assert [n.module for n in imports] == [f"gecko_agents.studies.{script.stem}"], script
+        defs = [n for n in ast.walk(tree) if isinstance(n, ast.FunctionDef | ast.ClassDef)]
+        assert not defs, f"{script} defines {[d.name for d in defs]}: it belongs in the study"
