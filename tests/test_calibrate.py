@@ -150,3 +150,89 @@ def test_command_line(tmp_path, capsys):
     assert exc.value.code == 2
     assert cal.main([str(f), "--free", "contact.nope=0.01:0.2"]) == 2
     assert "unknown parameter name" in capsys.readouterr().err
+
+
+# Uncertainties that mean nothing are not given (reliability probes) --------------------------
+
+
+def _two_preloads(pull_offs):
+    return {"preload_uN": PRELOADS[: len(pull_offs)], "pull_off_uN": pull_offs}
+
+
+def test_fewer_data_than_free_parameters_are_refused():
+    with pytest.raises(ValueError, match="1 data value.*2 free parameters"):
+        cal.fit({"preload_uN": [40.0], "pull_off_uN": [50.0]}, FREE, base=BASE, **FAST)
+
+
+def test_zero_residual_dof_without_stated_errors_gives_no_standard_error():
+    # One point, one free parameter: the fit is exact and no scatter measures the noise.
+    d = cal.load_data({"preload_uN": [40.0], "pull_off_uN": [1.0]})
+    y = float(cal.predict(d, BASE.replace(**{"contact.w": 0.12}), forward=cal.Forward(**FAST))[0])
+    r = cal.fit(
+        {"preload_uN": [40.0], "pull_off_uN": [y]},
+        {"contact.w": (0.05, 0.3)},
+        base=BASE,
+        n_starts=1,
+        **FAST,
+    )
+    assert r.record["dof"] == 0
+    assert np.isnan(r.stderr["contact.w"]) and not r.identifiable["contact.w"]
+    assert r.record["free"]["contact.w"]["stderr"] is None
+    # With a stated uncertainty the standard error is the propagated one: finite.
+    r = cal.fit(
+        {"preload_uN": [40.0], "pull_off_uN": [y], "pull_off_err_uN": [0.03 * y]},
+        {"contact.w": (0.05, 0.3)},
+        base=BASE,
+        n_starts=1,
+        **FAST,
+    )
+    assert np.isfinite(r.stderr["contact.w"]) and r.stderr["contact.w"] > 0
+
+
+def test_a_fit_on_its_bound_is_not_identifiable_and_has_no_standard_error():
+    # Pull-offs far above what w ≤ 0.06 J/m² can hold: the fit runs into the high bound.
+    d = cal.load_data(_two_preloads(np.ones(3)))
+    y = cal.predict(d, BASE.replace(**{"contact.w": 0.3}), forward=cal.Forward(**FAST))
+    base = BASE.replace(**{"contact.w": 0.055})
+    r = cal.fit(_two_preloads(y), {"contact.w": (0.05, 0.06)}, base=base, n_starts=1, **FAST)
+    assert r.values["contact.w"] == pytest.approx(0.06, rel=1e-5)
+    assert not r.identifiable["contact.w"] and np.isnan(r.stderr["contact.w"])
+    assert "high bound" in r.notes["contact.w"]
+
+
+def test_pull_offs_in_either_sign_convention_fit_alike_and_mixed_signs_are_refused():
+    truth = {"contact.w": 0.12, "floor.sigma": 0.8}
+    data = _synthetic(truth, 0.03, 1)
+    negative = dict(data, pull_off_uN=-data["pull_off_uN"])
+    a = cal.fit(data, {"contact.w": (0.05, 0.3)}, base=BASE, n_starts=1, **FAST)
+    b = cal.fit(negative, {"contact.w": (0.05, 0.3)}, base=BASE, n_starts=1, **FAST)
+    assert a.values == b.values and b.data.pull_off_sign == -1 and a.data.pull_off_sign == 1
+    mixed = dict(data, pull_off_uN=data["pull_off_uN"] * np.array([1, -1, 1, 1]))
+    with pytest.raises(ValueError, match=r"mixes signs .*rows \[2\]"):
+        cal.load_data(mixed)
+
+
+@pytest.mark.parametrize(
+    ("argv", "word"),
+    [
+        (["--free", "contact.w=0.05:0.3", "--free", "contact.w=0.1:0.2"], "--free"),
+        (["--free", "contact.w=0.05:0.3", "--blocks", "0"], "n_blocks"),
+        (["--free", "contact.w=0.05:0.3", "--seed", "-1"], "seed"),
+        (["--free", "contact.w=0.05:0.3", "--seed", str(2**70)], "seed"),
+    ],
+)
+def test_cli_refuses_repeated_free_parameters_and_bad_settings(tmp_path, capsys, argv, word):
+    csv = tmp_path / "d.csv"
+    csv.write_text("preload_uN,pull_off_uN\n40,60\n200,70\n")
+    with pytest.raises(SystemExit) if word == "--free" else _no_raise():
+        code = cal.main([str(csv), *argv])
+        assert code == 2
+    assert word in capsys.readouterr().err
+
+
+class _no_raise:
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return False

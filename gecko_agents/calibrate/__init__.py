@@ -26,8 +26,16 @@ weighted residuals at the optimum, ``scipy.optimize.least_squares``).
 
 Identifiability: a parameter is flagged (``identifiable[name] = False``, with the reason in
 ``result.notes``) when the data hardly move the model along it (Jacobian column below 1e-6 of
-the largest), its standard error exceeds a quarter of its bound interval, or its correlation
-with another free parameter exceeds 0.95 in magnitude.
+the largest), its standard error exceeds a quarter of its bound interval, its correlation
+with another free parameter exceeds 0.95 in magnitude, or the fit ended on one of its bounds
+(the data want a value beyond it; the curvature there says nothing about an interval). No
+standard error is given (NaN, printed without ±) for a parameter on its bound, nor for any
+when the data are as many as the free parameters and state no uncertainties (zero residual
+degrees of freedom: the scatter that would scale the covariance cannot be estimated). Fewer
+data than free parameters are refused.
+
+Pull-offs may be given as magnitudes (> 0) or in the package's sign convention (tension < 0),
+one convention per data set (``Data.pull_off_sign`` records which).
 
 Forward model (quasi-static): heights on a fixed grid of Gaussian quantiles with a moving
 contact front, one shared approach for all preloads of a σ and batched retracts, the peak
@@ -79,7 +87,13 @@ from gecko_agents.calibrate.free import (
 )
 from gecko_agents.calibrate.result import FitResult
 from gecko_agents.history import versions
-from gecko_agents.params import PAPER_ARRAY, PAPER_FIG5_READING, PAPER_TABLE1, SetaArray
+from gecko_agents.params import (
+    PAPER_ARRAY,
+    PAPER_FIG5_READING,
+    PAPER_TABLE1,
+    SetaArray,
+    check_seed,
+)
 
 __all__ = ["fit", "load_data", "FitResult", "Forward", "PSEUDO_PARAMETERS", "main"]
 
@@ -175,16 +189,22 @@ def fit(
     :class:`FitResult`.
     """
     t0 = time.perf_counter()
+    check_seed(seed, "seed")
     fw = _checked_settings(base, forward, n_starts, n_blocks, retract_steps, diff_step)
     d = load_data(data)
     names, lo, hi = check_free(base, free)
     pb = _Problem(d, base, names, UnitBox(lo, hi), seed, fw, diff_step)
+    if pb.y.size < len(names):
+        raise ValueError(
+            f"data = {d.source!r}: {pb.y.size} data value(s) cannot determine {len(names)} "
+            f"free parameters ({', '.join(names)}); give at least {len(names)} or free fewer"
+        )
     u0s = starts(len(names), n_starts)
     runs = [pb.run(u0, max_nfev) for u0 in u0s]
     best = min(runs, key=lambda r: r.cost)
     values = pb.box.to_param(best.x)
     unc = _uncertainty(pb.jac(best.x), pb.box, values, best.cost, pb.y.size, d.err_given)
-    ident, notes = _identifiability(names, unc, pb.box, values)
+    ident, notes = _identifiability(names, unc, pb.box, values, best.x)
     fitted, scale = apply_free(base, names, values)
     model_best = pb.model(best.x)
     return FitResult(
@@ -209,6 +229,11 @@ def _checked_settings(base, forward, n_starts, n_blocks, retract_steps, diff_ste
     if not isinstance(base, SetaArray):
         raise ValueError(f"base must be a SetaArray, got {type(base).__name__}")
     fw = forward if isinstance(forward, Forward) else Forward(kind=forward)
+    for name, value in (("n_blocks", n_blocks), ("retract_steps", retract_steps)):
+        if value is not None and (
+            not isinstance(value, int) or isinstance(value, bool) or value < 1
+        ):
+            raise ValueError(f"{name} = {value!r} must be an integer ≥ 1 (or None: the default)")
     if n_blocks is not None or retract_steps is not None:
         fw = replace(
             fw, n_blocks=n_blocks or fw.n_blocks, retract_steps=retract_steps or fw.retract_steps
@@ -288,15 +313,18 @@ def _uncertainty(J_unit, box: UnitBox, values, cost, n_obs, err_given) -> _Uncer
     the Jacobian ``J_unit`` in the unit box at the optimum ``values``."""
     dpdu = box.dparam_du(values)
     J = J_unit / dpdu[None, :]
-    dof = max(n_obs - values.size, 1)
+    dof = n_obs - values.size  # ≥ 0: fit refuses fewer data than parameters
     chi2 = float(2 * cost)
-    s2 = 1.0 if err_given else chi2 / dof
+    # Without stated uncertainties the scatter scales the covariance; with dof = 0 there is
+    # no scatter to measure it by, so no standard error can be given (NaN).
+    s2 = 1.0 if err_given else (chi2 / dof if dof > 0 else np.nan)
     JtJ = J.T @ J
     colnorm = np.sqrt(np.diag(JtJ) * dpdu**2)
     with np.errstate(divide="ignore", invalid="ignore"):
-        cov = np.linalg.pinv(JtJ, rcond=1e-12) * s2
-        se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-        corr = cov / np.outer(se, se)
+        cov = np.linalg.pinv(JtJ, rcond=1e-12)  # the correlation does not depend on s2
+        sd = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+        corr = cov / np.outer(sd, sd)
+        se = sd * np.sqrt(s2)
     flat = colnorm < 1e-6 * max(colnorm.max(), 1e-300)
     se = np.where(flat, np.inf, se)
     corr = np.where(np.isfinite(corr), corr, np.nan)
@@ -304,16 +332,35 @@ def _uncertainty(J_unit, box: UnitBox, values, cost, n_obs, err_given) -> _Uncer
     return _Uncertainty(se, corr, flat, chi2, dof, s2)
 
 
-def _identifiability(names, unc: _Uncertainty, box: UnitBox, values) -> tuple[dict, dict]:
-    """name → whether the data determine it, and name → why not (see the module docstring)."""
+BOUND_TOL = 1e-6
+"""A fitted value within this fraction of its (log or linear) bound interval of a bound is
+on the bound."""
+
+
+def _identifiability(names, unc: _Uncertainty, box: UnitBox, values, u) -> tuple[dict, dict]:
+    """name → whether the data determine it, and name → why not (see the module docstring);
+    ``u`` is the optimum in the unit box. Sets ``unc.se`` to NaN where no interval holds."""
     span = box.hi - box.lo
     se, corr = unc.se, unc.corr
     ident, notes = {}, {}
     for i, n in enumerate(names):
         why = []
+        if u[i] <= BOUND_TOL or u[i] >= 1.0 - BOUND_TOL:
+            side, bound = ("low", box.lo[i]) if u[i] <= 0.5 else ("high", box.hi[i])
+            why.append(
+                f"the fit ended on its {side} bound {bound:.6g}: the data want a value beyond "
+                "it, so no standard error holds (widen the bounds or fix the parameter)"
+            )
+            se[i] = np.nan
+        elif unc.dof == 0 and np.isnan(unc.s2):
+            why.append(
+                "zero residual degrees of freedom and no stated uncertainties: the data fit "
+                "exactly and their scatter, hence the standard error, cannot be estimated"
+            )
+            se[i] = np.nan
         if unc.flat[i]:
             why.append("the data do not depend on it (flat direction of the fit)")
-        elif se[i] > 0.25 * span[i] or (box.logs[i] and se[i] > values[i]):
+        elif np.isfinite(se[i]) and (se[i] > 0.25 * span[i] or (box.logs[i] and se[i] > values[i])):
             why.append(
                 f"its standard error {se[i]:.3g} exceeds a quarter of its bound "
                 f"interval {span[i]:.3g} or its value"
@@ -354,7 +401,7 @@ def _record(pb: _Problem, search, values, unc: _Uncertainty, verdict, fitted, t0
                 "high": float(box.hi[i]),
                 "start": base_value(pb.base, n),
                 "value": float(values[i]),
-                "stderr": float(unc.se[i]),
+                "stderr": float(unc.se[i]) if np.isfinite(unc.se[i]) else None,
                 "identifiable": ident[n],
                 "note": notes.get(n, ""),
             }
@@ -366,7 +413,8 @@ def _record(pb: _Problem, search, values, unc: _Uncertainty, verdict, fitted, t0
         "cost": float(best.cost),
         "chi2": unc.chi2,
         "dof": unc.dof,
-        "covariance_scale": unc.s2,
+        "covariance_scale": unc.s2 if np.isfinite(unc.s2) else None,
+        "pull_off_sign": d.pull_off_sign,
         "observed": pb.y.tolist(),
         "uncertainty": pb.err.tolist(),
         "model": pb.model(best.x).tolist(),
@@ -460,11 +508,25 @@ def main(argv=None) -> int:
         help="override a base parameter (repeat)",
     )
     ap.add_argument("--forward", choices=("quasistatic", "agent"), default="quasistatic")
-    ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--starts", type=int, default=3)
-    ap.add_argument("--blocks", type=int, default=None)
+    ap.add_argument(
+        "--seed", type=int, default=0, help="seed of the agent model's floor, in [0, 2**63)"
+    )
+    ap.add_argument(
+        "--starts", type=int, default=3, help="least-squares starts (≥ 1); the best is kept"
+    )
+    ap.add_argument(
+        "--blocks",
+        type=int,
+        default=None,
+        help="quasi-static floor-height blocks (≥ 1; default the forward model's)",
+    )
     ap.add_argument("--out", default=None, help="directory for fit.json and the plots")
     args = ap.parse_args(argv)
+    for flag, pairs in (("--free", args.free), ("--set", args.set)):
+        names = [n for n, _ in pairs]
+        twice = sorted({n for n in names if names.count(n) > 1})
+        if twice:
+            ap.error(f"{flag} names {', '.join(twice)} more than once: give each parameter once")
     try:
         base = _BASES[args.base].replace(**dict(args.set))
         res = fit(
@@ -481,7 +543,11 @@ def main(argv=None) -> int:
         return 2
     for n in res.names:
         flag = "" if res.identifiable[n] else f"   NOT DETERMINED: {res.notes[n]}"
-        print(f"{n} = {res.values[n]:.6g} ± {res.stderr[n]:.3g}{flag}")
+        se = res.stderr[n]
+        spread = f" ± {se:.3g}" if np.isfinite(se) else " (no standard error)"
+        print(f"{n} = {res.values[n]:.6g}{spread}{flag}")
+    if res.data.pull_off_sign < 0:
+        print("pull-offs read in the package's sign convention (tension < 0), fitted as magnitudes")
     print(f"cost = {res.cost:.6g}")
     if args.out:
         print(f"written to {res.save(args.out)}")

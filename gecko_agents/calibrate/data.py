@@ -64,6 +64,9 @@ class Data:
     digest: str
     source: str
     extra: dict = field(default_factory=dict)
+    pull_off_sign: int = 1
+    """+1 when pull-offs were given as magnitudes (> 0), −1 when in the package's sign
+    convention (tension negative); ``columns["pull_off"]`` holds magnitudes either way."""
 
     @property
     def n(self) -> int:
@@ -179,4 +182,26 @@ def load_data(data) -> Data:
         raise ValueError("column preload: preloads must be > 0 µN")
     if "sigma" in found and np.any(found["sigma"] < 0):
         raise ValueError("column sigma: roughness must be ≥ 0 µm")
-    return Data(kind, found, bool(errs), digest, source, extra)
+    sign = 1
+    if "pull_off" in found:
+        found["pull_off"], sign = _pull_off_magnitudes(found["pull_off"])
+    return Data(kind, found, bool(errs), digest, source, extra, sign)
+
+
+def _pull_off_magnitudes(pull_off: np.ndarray) -> tuple[np.ndarray, int]:
+    """Pull-offs as magnitudes [µN], and the sign convention they were given in.
+
+    Either convention is accepted as long as one is used throughout: all ≥ 0 (magnitudes, +1)
+    or all ≤ 0 (the package's convention, tension negative: −1). Mixed signs are refused,
+    naming the rows, since a pull-off is a tension and cannot change sign within a data set.
+    """
+    if np.all(pull_off >= 0):
+        return pull_off, 1
+    if np.all(pull_off <= 0):
+        return -pull_off, -1
+    pos, neg = np.flatnonzero(pull_off > 0) + 1, np.flatnonzero(pull_off < 0) + 1
+    raise ValueError(
+        f"column pull_off mixes signs (positive in rows {pos.tolist()}, negative in rows "
+        f"{neg.tolist()}): give every pull-off as a magnitude (> 0) or every one in the "
+        "package's sign convention (tension < 0)"
+    )

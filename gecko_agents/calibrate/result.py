@@ -19,7 +19,9 @@ from gecko_agents.history import atomic_write_bytes
 class FitResult:
     """Outcome of :func:`gecko_agents.calibrate.fit`.
 
-    values, stderr : fitted value and one standard error per free parameter (dicts by name).
+    values, stderr : fitted value and one standard error per free parameter (dicts by name);
+        the standard error is NaN where none holds (on a bound, or zero residual degrees of
+        freedom without stated uncertainties: see the module docstring).
     correlation : (k, k) correlation matrix in the order of ``names``.
     cost : ½ Σ (weighted residual)² at the optimum (scipy's convention).
     identifiable : name → bool (see the module docstring); ``notes`` says why not.
