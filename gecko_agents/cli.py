@@ -31,6 +31,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from gecko_agents import __version__
+from gecko_agents.output_paths import check_output_dir, output_dir_arg
 from gecko_agents.params.table import parameter_table
 
 __all__ = [
@@ -55,12 +56,20 @@ def _err(message: str) -> None:
     print(f"{PROG}: error: {message}", file=sys.stderr)
 
 
+def _checked(out: Path) -> Path:
+    """A default output folder, checked as ``--out`` is (a usage error if it cannot be written)."""
+    try:
+        return check_output_dir(out, "the default output folder")
+    except ValueError as err:
+        raise UsageError(f"{err}; give --out") from None
+
+
 # run ---------------------------------------------------------------------------------------------
 def _add_run(p: argparse.ArgumentParser) -> None:
     p.add_argument("runfile", type=Path, help="run file (TOML; see examples/)")
     p.add_argument(
         "--out",
-        type=Path,
+        type=output_dir_arg,
         default=None,
         help="run directory to write (default runs/<run file name>; an older run "
         "directory there is replaced once the new one is complete)",
@@ -100,7 +109,7 @@ def _cmd_run(args, extra) -> int:
     from gecko_agents.runfiles import run as runfile
 
     spec = runfile.load_run(args.runfile, quick=args.quick)
-    out = args.out if args.out is not None else _default_run_dir(args.runfile)
+    out = args.out if args.out is not None else _checked(_default_run_dir(args.runfile))
     seg = ", ".join(type(s).__name__ for s in spec.protocol)
     print(
         f"{spec.path}{' (quick)' if spec.quick else ''}: {spec.preset}"
@@ -150,7 +159,7 @@ def _add_sweep(p: argparse.ArgumentParser) -> None:
     p.add_argument("sweepfile", type=Path, help="sweep file (TOML; see examples/)")
     p.add_argument(
         "--out",
-        type=Path,
+        type=output_dir_arg,
         default=None,
         help="output directory (default: the file's out_dir, else sweeps/<name>)",
     )
@@ -184,7 +193,7 @@ def _cmd_sweep(args, extra) -> int:
     from gecko_agents.runfiles import sweep as sweepfile
 
     spec = sweepfile.load_sweep(args.sweepfile, quick=args.quick)
-    out = args.out if args.out is not None else spec.out_dir
+    out = args.out if args.out is not None else _checked(spec.out_dir)
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers {args.workers} must be ≥ 1")
     workers = args.workers if args.workers is not None else spec.workers
@@ -249,7 +258,9 @@ def _cmd_sweep(args, extra) -> int:
 # reproduce ---------------------------------------------------------------------------------------
 def _add_reproduce(p: argparse.ArgumentParser) -> None:
     p.add_argument("--quick", action="store_true", help="the one-minute version")
-    p.add_argument("--out", type=Path, default=None, help="output folder (default renders/)")
+    p.add_argument(
+        "--out", type=output_dir_arg, default=None, help="output folder (default renders/)"
+    )
     p.add_argument("--no-progress", action="store_true", help="hide progress bars")
 
 

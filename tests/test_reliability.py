@@ -260,3 +260,38 @@ def test_a_diverging_state_names_the_quantity_and_setae():
     m.state.P[2] = math.inf
     msg = non_finite_report(m, {"force_normal_uN": math.inf})
     assert "P (setae [2])" in msg and "force_normal_uN" in msg and "dt" in msg
+
+
+# Output paths are checked before any work, for every command ------------------------------------
+
+BAD_OUTS = ["", "FILE", "FILE/sub", "/proc/gecko_agents_no/such"]
+
+
+@pytest.mark.parametrize("out", BAD_OUTS)
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["run", str(ROOT / "examples" / "drag_pull.toml"), "--quick"],
+        ["sweep", str(ROOT / "examples" / "sweep_roughness_preload.toml"), "--quick"],
+        ["reproduce", "--quick"],
+    ],
+    ids=["run", "sweep", "reproduce"],
+)
+def test_every_command_refuses_an_unwritable_out_before_any_work(
+    tmp_path, monkeypatch, capsys, command, out
+):
+    from gecko_agents import cli
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "FILE").write_text("not a folder")
+    assert cli.main([*command, "--out", out]) == 2
+    err = capsys.readouterr().err
+    assert "--out" in err and "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["FILE"]  # nothing written
+
+
+def test_check_output_dir_accepts_a_new_folder_under_a_writable_one_and_creates_nothing(tmp_path):
+    from gecko_agents.output_paths import check_output_dir
+
+    assert check_output_dir(tmp_path / "a" / "b") == tmp_path / "a" / "b"
+    assert list(tmp_path.iterdir()) == []

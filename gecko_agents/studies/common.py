@@ -12,12 +12,12 @@ import argparse
 import csv
 import io
 import json
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from gecko_agents.history import atomic_write_bytes, versions
+from gecko_agents.output_paths import output_dir_arg
 from gecko_agents.physics import jkr
 
 RENDERS = Path("renders")
@@ -46,27 +46,12 @@ def off_paper(ours: float, paper: float) -> str:
 
 
 def writable_dir(value: str) -> Path:
-    """``--out`` as argparse ``type=``: a folder that exists or can be made, and is writable.
-
-    Refuses (usage error, exit 2) an empty value (it would write into the current directory),
-    an existing file, a path under a file, and a folder that cannot be created or written to.
-    The folder is created here, as the scenario would do first anyway.
-    """
-    if not value.strip():
-        raise argparse.ArgumentTypeError(
-            f"{value!r} is empty: give an output folder (or omit --out for renders/<scenario>/)"
-        )
-    path = Path(value)
-    if path.exists() and not path.is_dir():
-        raise argparse.ArgumentTypeError(f"{value!r} is an existing file, not a folder")
-    try:
-        path.mkdir(parents=True, exist_ok=True)
-        with tempfile.TemporaryFile(dir=path):
-            pass
-    except OSError as err:
-        raise argparse.ArgumentTypeError(
-            f"{value!r} cannot be used as the output folder: {err.strerror or err}"
-        ) from None
+    """``--out`` as argparse ``type=``: a folder that exists or can be made, and is writable
+    (:func:`gecko_agents.output_paths.output_dir_arg`: an empty value, an existing file, a path
+    under a file and an unwritable folder are usage errors, exit 2), created here, as the study
+    would do first anyway."""
+    path = output_dir_arg(value)
+    path.mkdir(parents=True, exist_ok=True)
     return path
 
 
