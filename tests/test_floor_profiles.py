@@ -383,3 +383,22 @@ def test_run_metadata_carries_the_floor_statistics():
     y = m.profile.y
     assert st["rms_height_um"] == pytest.approx(float(np.sqrt(np.mean((y - y.mean()) ** 2))))
     assert st["hurst"] is not None and 0.0 < st["hurst"] < 1.5
+
+
+def test_a_line_inside_the_data_block_is_refused_or_read_past_never_dropping_rows(tmp_path):
+    rows = [f"{0.1 * i:.1f} {0.01 * np.sin(i):.5f}" for i in range(200)]
+    junk = tmp_path / "junk.txt"
+    junk.write_text("\n".join(rows[:100] + ["-- scan paused --"] + rows[100:]) + "\n")
+    with pytest.raises(ValueError, match=r"line 101: '-- scan paused --'"):
+        profiles.read_columns(junk, unit="um")
+    commented = tmp_path / "commented.txt"
+    commented.write_text("\n".join(rows[:100] + ["# scan paused", ""] + rows[100:]) + "\n")
+    x, h, _, _ = profiles.read_columns(commented, unit="um")
+    assert x.size == 200 and x[-1] == pytest.approx(19.9) and x[100] == pytest.approx(10.0)
+
+
+def test_heights_beyond_any_floor_under_setae_are_refused_naming_the_range():
+    x = np.linspace(0.0, 100.0, 50)
+    with pytest.raises(ValueError, match=r"span 6.\d+e\+08 µm .*\[0, 10000\] µm"):
+        floor.from_profile(x, 3e8 * np.sin(x), unit="um", source="probe")
+    assert floor.from_profile(x, 1e3 * np.sin(x), unit="um").y.size == 50  # 2 mm: accepted

@@ -201,6 +201,11 @@ def length_factor(unit: str, what: str = "unit") -> float:
 DETRENDS = ("linear", "mean", "none")
 
 
+MAX_HEIGHT_RANGE = 1e4
+"""Largest peak-to-valley height [µm] of a measured floor after detrending: 10 mm, three
+orders above the setae's length; a profile beyond it is almost always read in the wrong unit."""
+
+
 def from_profile(
     x,
     h,
@@ -270,6 +275,13 @@ def from_profile(
         h = h - np.polyval(np.polyfit(x - x[0], h, 1), x - x[0])
     elif detrend == "mean":
         h = h - h.mean()
+    span = float(h.max() - h.min())
+    if span > MAX_HEIGHT_RANGE:
+        raise ValueError(
+            f"the detrended heights span {span:.3g} µm{where}, outside the allowed range "
+            f"[0, {MAX_HEIGHT_RANGE:g}] µm for a floor under setae tens of µm long: check "
+            f"height_unit (read as {height_unit or unit!r})"
+        )
     length = x[-1] - x[0]
     dx = length / (x.size - 1) if spacing is None else check_positive("spacing", spacing)
     n = int(np.floor(length / dx + 1e-9)) + 1

@@ -64,6 +64,20 @@ def _is_data(line: str, columns: tuple[int, int]) -> bool:
     return True
 
 
+def _is_comment(line: str) -> bool:
+    """A comment line (``#`` or ``%``) or an empty one."""
+    text = line.strip()
+    return not text or text[0] in "#%"
+
+
+def _data_above(lines: list[str], i: int, columns: tuple[int, int]) -> bool:
+    """Whether the nearest line above line ``i`` that is not a comment or empty is data."""
+    j = i - 1
+    while j >= 0 and _is_comment(lines[j]):
+        j -= 1
+    return j >= 0 and _is_data(lines[j], columns)
+
+
 def _header_units(header: str, columns: tuple[int, int]) -> tuple[str | None, str | None]:
     """Units of the two columns named in a header line, or None where none is given."""
     text = header.lstrip("#% ").strip()
@@ -87,7 +101,9 @@ def read_columns(
     """The raw two columns of a text/CSV profile file, as written: (x, h, x_unit, h_unit).
 
     The data block is the run of lines, up to the end of the file, whose ``columns`` are
-    numbers (separators: comma, semicolon, tab or spaces; trailing empty fields allowed); the
+    numbers (separators: comma, semicolon, tab or spaces; trailing empty fields allowed);
+    comment (``#``, ``%``) and empty lines inside it are read past, any other line inside it
+    is refused naming its line number (the rows above it would otherwise be dropped); the
     line just above it is read as the column header. Units come from that header (``Lateral
     um``, ``Raw Micrometer``, ``x [nm]``, ``h_um`` …) or from ``unit`` / ``height_unit``; a
     header unit that contradicts the argument is refused. The file is decoded as UTF-8, else
@@ -113,9 +129,22 @@ def read_columns(
     end = len(lines)
     while end > 0 and not lines[end - 1].strip():
         end -= 1
-    start = end
-    while start > 0 and _is_data(lines[start - 1], columns):
-        start -= 1
+    start, skipped = end, []
+    while start > 0:
+        line = lines[start - 1]
+        if _is_data(line, columns):
+            start -= 1
+        elif _is_comment(line) and _data_above(lines, start - 1, columns):
+            skipped.append(start - 1)  # a comment inside the data block is read past
+            start -= 1
+        else:
+            break
+    if start > 0 and _data_above(lines, start - 1, columns):
+        raise ValueError(
+            f"{str(path)!r} line {start}: {lines[start - 1].strip()[:60]!r} is not numbers in "
+            f"columns {columns}, and numbers stand above it: the data block is interrupted "
+            "(remove or comment out the line with '#'; the rows above it would be dropped)"
+        )
     if end - start < 2:
         raise ValueError(
             f"{str(path)!r} is not a two-column profile: found {end - start} "
@@ -127,7 +156,8 @@ def read_columns(
     arg_h = height_unit if height_unit is not None else unit
     x_unit = _pick_unit(path, "unit", hx, arg_x)
     h_unit = _pick_unit(path, "height_unit", hh, arg_h, fallback=x_unit)
-    data = np.array([[float(_fields(ln)[c]) for c in columns] for ln in lines[start:end]])
+    rows = (ln for i, ln in enumerate(lines[start:end], start) if i not in set(skipped))
+    data = np.array([[float(_fields(ln)[c]) for c in columns] for ln in rows])
     return data[:, 0], data[:, 1], x_unit, h_unit
 
 
