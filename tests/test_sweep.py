@@ -92,7 +92,7 @@ BAD_SPECS = [
     ({"array.count": [1, 2.5]}, [0], r"count = 2.5"),
     ({"floor.sigma": [0.5]}, [], "seeds is empty"),
     ({"floor.sigma": [0.5]}, [1, 2, 1], r"repeat the seed\(s\) \[1\]"),
-    ({"floor.sigma": [0.5]}, [-1], "seed -1"),
+    ({"floor.sigma": [0.5]}, [-1], r"sweep seed = -1 is outside the allowed range \[0, 2\*\*63\)"),
     ({"floor.sigma": [0.5]}, [1.5], "seed 1.5"),
     ({"contact.w": [None, 0.1]}, [0], None),  # valid: contrast for the cases above
 ]
@@ -429,3 +429,12 @@ def test_point_names_of_sweep_files_are_the_library_point_functions():
     for name, fn in runfiles_sweep.point_functions().items():
         assert fn is getattr(sweep_bench, name)
         assert fn.__module__ == "gecko_agents.sweep.points"
+
+
+@pytest.mark.parametrize("seed", [-1, 2**63, 2**70])
+def test_sweep_seeds_outside_the_package_seed_range_are_refused(seed):
+    with pytest.raises(
+        ValueError, match=r"sweep seed = -?\d+ is outside the allowed range \[0, 2\*\*63\)"
+    ):
+        sweep.expand_grid(PAPER_TABLE1, {}, [0, seed])
+    assert len(sweep.expand_grid(PAPER_TABLE1, {}, [0, 2**63 - 1])) == 2

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from gecko_agents.params import SetaArray
+from gecko_agents.params import SetaArray, check_seed
 
 __all__ = ["FN_PREFIX", "SweepPoint", "expand_grid", "canonical_json", "plain"]
 
@@ -88,9 +88,10 @@ def _checked_seeds(seeds: Sequence[int]) -> list[int]:
     seeds = [plain(s) for s in seeds]
     if not seeds:
         raise ValueError("sweep seeds is empty: give at least one seed")
-    for s in seeds:
-        if isinstance(s, bool) or not isinstance(s, int) or s < 0:
-            raise ValueError(f"sweep seed {s!r} must be an integer ≥ 0")
+    for s in seeds:  # the range every seed of the package has (params.check_seed)
+        if isinstance(s, bool) or not isinstance(s, int):
+            raise ValueError(f"sweep seed {s!r} must be an integer in [0, 2**63)")
+        check_seed(s, "sweep seed")
     repeated = sorted({s for i, s in enumerate(seeds) if s in seeds[:i]})
     if repeated:
         raise ValueError(f"sweep seeds repeat the seed(s) {repeated}")
@@ -110,7 +111,8 @@ def expand_grid(
     ------
     ValueError naming the culprit for: a grid name that is not a parameter, a value list that is
     empty, not a list or has repeated values, a value the parameter refuses, no seeds, a seed
-    that is not an integer ≥ 0, repeated seeds, or two points with identical parameters and seed.
+    that is not an integer in [0, 2**63), repeated seeds, or two points with identical
+    parameters and seed.
     Every point's :class:`SetaArray` is built here, so nothing has run when this raises.
     """
     if not isinstance(base, SetaArray):
