@@ -191,6 +191,7 @@ def _cmd_sweep(args, extra) -> int:
     from gecko_agents import sweep
     from gecko_agents.history import atomic_write_bytes
     from gecko_agents.runfiles import sweep as sweepfile
+    from gecko_agents.sweep.store import read_record
 
     spec = sweepfile.load_sweep(args.sweepfile, quick=args.quick)
     out = args.out if args.out is not None else _checked(spec.out_dir)
@@ -201,6 +202,9 @@ def _cmd_sweep(args, extra) -> int:
         workers = None  # the scheduler's own workers run the points
     points_dir = out / "points"
     before = {p.stem for p in points_dir.glob("*.json")} if points_dir.is_dir() else set()
+    stored_ok = {  # points an earlier run finished: reused, not recomputed
+        k for k in before if (read_record(points_dir / f"{k}.json", k) or {}).get("status") == "ok"
+    }
     if before and not args.resume:
         raise UsageError(
             f"{out} already holds {len(before)} point file(s) of a sweep; add "
@@ -239,7 +243,7 @@ def _cmd_sweep(args, extra) -> int:
         return EXIT_INTERRUPTED
     except ImportError as err:
         raise UsageError(str(err)) from None
-    reused = sum(r["key"] in before and r["status"] == "ok" for r in rows)
+    reused = sum(r["key"] in stored_ok and r["status"] == "ok" for r in rows)
     errors = [r for r in rows if r["status"] != "ok"]
     print(
         f"wrote {out / 'sweep.csv'} in {time.perf_counter() - t0:.1f} s: "

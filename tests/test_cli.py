@@ -337,3 +337,24 @@ def test_mp4_without_ffmpeg_refused_before_stepping(tmp_path, monkeypatch, capsy
     _no_stepping(monkeypatch)
     assert cli.main(["run", str(src), "--mp4", "--out", str(tmp_path / "out")]) == 2
     assert "video" in capsys.readouterr().err
+
+
+def test_a_resumed_sweep_recomputes_a_truncated_point_file_and_counts_it_as_such(tmp_path, capsys):
+    path = tmp_path / "s.toml"
+    path.write_text(
+        'preset = "PAPER_TABLE1"\npoint = "analytic_point"\nseeds = [0, 1, 2]\n'
+        '[grid]\n"floor.sigma" = [0.0, 0.5]\n'
+    )
+    out = tmp_path / "sw"
+    args = ["sweep", str(path), "--out", str(out), "--workers", "1", "--no-progress"]
+    assert cli.main(args) == 0
+    first = (out / "sweep.csv").read_text()
+    victim = sorted((out / "points").glob("*.json"))[0]
+    victim.write_bytes(victim.read_bytes()[:40])  # truncated by a crash
+    capsys.readouterr()
+    assert cli.main([*args, "--resume"]) == 0
+    said = capsys.readouterr().out
+    assert "reusing 5 of 6" in said and "1 damaged point file(s)" in said
+    assert "other code or parameters" not in said
+    assert "6 of 6 points ok, 5 reused" in said
+    assert (out / "sweep.csv").read_text() == first  # the recomputed point is the same

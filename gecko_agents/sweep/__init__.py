@@ -143,21 +143,30 @@ def _checked_options(fn_kwargs, dask, n_workers) -> tuple[dict, str | None, int]
 
 
 def _points_to_run(out: Path, points, keys) -> list[tuple[SweepPoint, str]]:
-    """The (point, key) pairs not yet stored with status "ok"; says what is reused."""
+    """The (point, key) pairs not yet stored with status "ok"; says what is reused, what is
+    recomputed because its file is damaged, and what belongs to other code or parameters."""
     point_dir = out / "points"
-    done = {
-        k for k in keys if (read_record(point_dir / f"{k}.json", k) or {}).get("status") == "ok"
-    }
+    records = {k: read_record(point_dir / f"{k}.json", k) for k in keys}
+    done = {k for k, r in records.items() if (r or {}).get("status") == "ok"}
     todo = [(p, k) for p, k in zip(points, keys, strict=True) if k not in done]
     point_dir.mkdir(parents=True, exist_ok=True)
-    stale = len(list(point_dir.glob("*.json"))) - len(done)
-    if done or stale > 0:
+    stored = {f.stem for f in point_dir.glob("*.json")}
+    damaged = sorted(k for k in stored & set(keys) if records[k] is None)
+    failed = sum(1 for k in stored & set(keys) if records[k] is not None and k not in done)
+    foreign = len(stored - set(keys))
+    notes = [
+        f"{len(damaged)} damaged point file(s) (unreadable or truncated) are recomputed"
+        if damaged
+        else "",
+        f"{failed} point(s) that failed before are retried" if failed else "",
+        f"{foreign} stored points from other code or parameters are not used" if foreign else "",
+    ]
+    if done or any(notes):
         print(
             f"sweep {out}: reusing {len(done)} of {len(points)} points computed by this code"
-            + (f"; {stale} stored points from other code or parameters are not used" if stale > 0
-               else ""),
+            + "".join(f"; {n}" for n in notes if n),
             flush=True,
-        )  # fmt: skip
+        )
     return todo
 
 
