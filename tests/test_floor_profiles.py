@@ -402,3 +402,30 @@ def test_heights_beyond_any_floor_under_setae_are_refused_naming_the_range():
     with pytest.raises(ValueError, match=r"span 6.\d+e\+08 µm .*\[0, 10000\] µm"):
         floor.from_profile(x, 3e8 * np.sin(x), unit="um", source="probe")
     assert floor.from_profile(x, 1e3 * np.sin(x), unit="um").y.size == 50  # 2 mm: accepted
+
+
+def test_the_dektak_scan_is_read_on_its_true_grid_against_an_independent_slope():
+    # The file prints x to 0.1 µm while the stylus samples every 1500 µm / 9600 = 0.15625 µm
+    # (header: Length 1500.0 um; 9600 rows). Independently of the reader: the height column
+    # on that grid, least-squares line removed, RMS of the forward differences over Δ.
+    import csv
+
+    with SURFACES.joinpath("dektak_profile.csv").open(encoding="latin-1") as f:
+        rows = list(csv.reader(f))
+    start = next(i for i, r in enumerate(rows) if r and r[0].startswith("Lateral")) + 1
+    h = np.array([float(r[1]) for r in rows[start:] if r and r[0].strip()])
+    assert h.size == 9600
+    dx = 1500.0 / 9600
+    k = np.arange(h.size) * dx
+    h = h - np.polyval(np.polyfit(k, h, 1), k)
+    slope = np.sqrt(np.mean((np.diff(h) / dx) ** 2))
+    stats = floor.statistics(profiles.read_text(DATA / "dektak_profile.csv"))
+    # Mean spacing of the printed end points vs the header's: 1499.8/9599 vs 0.15625 (3e-5).
+    assert stats["rms_slope"] == pytest.approx(slope, rel=1e-4)
+    assert stats["rms_height_um"] == pytest.approx(np.sqrt(np.mean(h**2)), rel=1e-4)
+    x, *_ = profiles.read_columns(DATA / "dektak_profile.csv")
+    assert set(np.round(np.diff(x), 6)) == {0.1, 0.2}  # as printed
+    assert profiles.printed_resolution(x) == pytest.approx(0.1)
+    # A genuinely non-uniform scan is left as it is.
+    xs = np.cumsum(np.r_[0.0, np.tile([0.1, 0.5], 50)])
+    assert np.array_equal(profiles.uniform_grid(xs), xs)

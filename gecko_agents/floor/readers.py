@@ -34,6 +34,8 @@ __all__ = [
     "read_map",
     "load",
     "TEXT_SUFFIXES",
+    "uniform_grid",
+    "printed_resolution",
 ]
 
 TEXT_SUFFIXES = (".csv", ".txt", ".dat", ".asc", ".xy", ".tsv")
@@ -191,11 +193,45 @@ def read_text(
     height_unit: str | None = None,
     **kwargs,
 ) -> Profile:
-    """A floor profile from a two-column text/CSV file (:func:`read_columns`), converted to µm,
-    detrended and resampled by :func:`gecko_agents.floor.from_profile` (``kwargs``:
+    """A floor profile from a two-column text/CSV file (:func:`read_columns`), a uniform scan
+    printed with rounded positions read on its true grid (:func:`uniform_grid`), converted to
+    µm, detrended and resampled by :func:`gecko_agents.floor.from_profile` (``kwargs``:
     ``spacing``, ``detrend``, ``x_range``)."""
     x, h, ux, uh = read_columns(path, columns=columns, unit=unit, height_unit=height_unit)
-    return from_profile(x, h, unit=ux, height_unit=uh, source=Path(path).name, **kwargs)
+    return from_profile(
+        uniform_grid(x), h, unit=ux, height_unit=uh, source=Path(path).name, **kwargs
+    )
+
+
+def printed_resolution(x: np.ndarray, max_decimals: int = 9) -> float:
+    """The finest decimal step ``x`` was printed with: 10⁻ᵈ for the fewest decimals d that
+    write every value (to 1e-6 of the step), e.g. 0.1 for a column of 0.0, 0.2, 0.3, …"""
+    for d in range(max_decimals + 1):
+        scaled = np.asarray(x, float) * 10.0**d
+        if np.all(np.abs(scaled - np.round(scaled)) <= 1e-6 * np.maximum(1.0, np.abs(scaled))):
+            return 10.0**-d
+    return 0.0
+
+
+def uniform_grid(x: np.ndarray) -> np.ndarray:
+    """``x`` put back on its true uniform grid if it is a uniform grid printed rounded.
+
+    Instruments sample uniformly but may print positions coarser than their spacing (a Dektak
+    export writes 0.1 µm for a 0.15625 µm sampling, so its steps read 0.1 or 0.2 µm); read as
+    written, the heights would be placed up to half a print step off and every resampled slope
+    distorted. ``x`` is taken as the grid x₀ + k·Δ, Δ = (x_last − x₀)/(n − 1), when every value
+    lies within one print step (:func:`printed_resolution`) of it — the most rounding and the
+    rounding of the end points can move a value — and a non-uniform scan, whose points stray
+    further, is returned unchanged.
+    """
+    x = np.asarray(x, float)
+    if x.size < 3:
+        return x
+    grid = x[0] + (x[-1] - x[0]) * np.arange(x.size) / (x.size - 1)
+    step = printed_resolution(x)
+    if step > 0 and np.max(np.abs(x - grid)) <= step * (1 + 1e-9):
+        return grid
+    return x
 
 
 def write_text(path, profile: Profile) -> Path:
@@ -256,7 +292,8 @@ def read_topography(
 ) -> Profile:
     """A floor profile from any file SurfaceTopography's ``read_topography`` reads.
 
-    A line scan is used whole; of a 2-D map the profile along x at the y index ``row`` is
+    A line scan is used whole (a uniform scan printed with rounded positions on its true grid,
+    :func:`uniform_grid`); of a 2-D map the profile along x at the y index ``row`` is
     taken (required for maps; heights[:, row] of :func:`read_map`). Heights and positions are
     converted from the file's unit to µm and passed to
     :func:`gecko_agents.floor.from_profile` (``kwargs``: ``spacing``, ``detrend``,
@@ -268,6 +305,7 @@ def read_topography(
         if row is not None:
             raise ValueError(f"row = {row!r} given but {str(path)!r} is a line scan")
         x, h = topo.positions_and_heights()
+        x = uniform_grid(np.asarray(x, float) * f) / f  # a Dektak file prints x rounded
         h = np.ma.filled(np.ma.asarray(h, dtype=float), np.nan)
         name = path.name
     else:
