@@ -23,8 +23,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import importlib
-import importlib.util
+import shlex
 import sys
 import time
 from collections.abc import Callable
@@ -146,7 +145,7 @@ def _cmd_run(args, extra) -> int:
         _err(f"the history breaks its invariants: {'; '.join(bad)}")
         return EXIT_FAILURE
     print(
-        f"re-run it with: {PROG} run {out / runfile.RUN_FILE_NAME}"
+        f"re-run it with: {PROG} run {shlex.quote(str(out / runfile.RUN_FILE_NAME))}"
         f"{' --quick' if args.quick else ''}"
     )
     return EXIT_OK
@@ -261,7 +260,11 @@ def _cmd_sweep(args, extra) -> int:
 
 # reproduce ---------------------------------------------------------------------------------------
 def _add_reproduce(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--quick", action="store_true", help="the one-minute version")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="small runs of every study: the report's shape in about a minute on 2 cores",
+    )
     p.add_argument(
         "--out", type=output_dir_arg, default=None, help="output folder (default renders/)"
     )
@@ -355,37 +358,14 @@ def _cmd_params(args, extra) -> int:
 
 
 # calibrate ---------------------------------------------------------------------------------------
-CALIBRATE_MODULE = "gecko_agents.calibrate"
-
-
-def _calibrate_module():
-    """The calibration module if this version has it, else None."""
-    if importlib.util.find_spec(CALIBRATE_MODULE) is None:
-        return None
-    return importlib.import_module(CALIBRATE_MODULE)
-
-
 def _add_calibrate(p: argparse.ArgumentParser) -> None:
-    """Every argument is handed to ``python -m gecko_agents.calibrate`` (its own --help)."""
+    """Every argument is handed to :func:`gecko_agents.calibrate.main` (its own --help)."""
 
 
 def _cmd_calibrate(args, extra) -> int:
-    module = _calibrate_module()
-    if module is None:
-        if "-h" in extra or "--help" in extra:
-            print(
-                f"usage: {PROG} calibrate ...\n\nCalibration is not part of this version of "
-                f"gecko_agents ({CALIBRATE_MODULE} is missing); once it is, every argument "
-                f"is passed to python -m {CALIBRATE_MODULE}.\n\nexample:\n  "
-                f"{COMMANDS['calibrate'].example}"
-            )
-            return EXIT_OK
-        raise UsageError(
-            f"calibrate is not available: this version of gecko_agents has no "
-            f"{CALIBRATE_MODULE} module"
-        )
-    code = module.main(list(extra))
-    return code if isinstance(code, int) else EXIT_OK
+    from gecko_agents import calibrate
+
+    return calibrate.main(list(extra), prog=f"{PROG} calibrate")
 
 
 # The table of subcommands ------------------------------------------------------------------------
@@ -449,7 +429,7 @@ COMMANDS: dict[str, Command] = {
         _add_calibrate,
         _cmd_calibrate,
         "fit parameters to measured curves (gecko_agents.calibrate)",
-        "gecko-agents calibrate --help",
+        "gecko-agents calibrate data.csv --free contact.w=0.01:0.2 --out fit/",
         passthrough=True,
         own_help=False,
     ),

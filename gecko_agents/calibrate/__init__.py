@@ -480,14 +480,19 @@ def _parse_set(text: str) -> tuple[str, object]:
         return name.strip(), value.strip()
 
 
-def main(argv=None) -> int:
-    """``python -m gecko_agents.calibrate DATA.csv --free contact.w=0.01:0.2 ...``
+def main(argv=None, prog: str = "gecko-agents calibrate") -> int:
+    """``gecko-agents calibrate DATA.csv --free contact.w=0.01:0.2 ...`` (also
+    ``python -m gecko_agents.calibrate``).
 
-    Exit status 0 on success, 2 on a usage or input error (message on stderr).
+    Exit status 0 on success, 2 on a usage or input error (message on stderr, prefixed with
+    ``prog`` as the other commands' are).
     """
     ap = argparse.ArgumentParser(
-        prog="python -m gecko_agents.calibrate",
+        prog=prog,
         description="Fit free parameters to a measured data set.",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog="example:\n  gecko-agents calibrate data.csv --free contact.w=0.01:0.2 "
+        "--free floor.sigma=0.1:2 --out fit/",
     )
     ap.add_argument("data", help="CSV with unit-suffixed columns, e.g. preload_uN,pull_off_uN")
     ap.add_argument(
@@ -539,7 +544,7 @@ def main(argv=None) -> int:
             n_blocks=args.blocks,
         )
     except ValueError as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        print(f"{prog}: error: {exc}", file=sys.stderr)
         return 2
     for n in res.names:
         flag = "" if res.identifiable[n] else f"   NOT DETERMINED: {res.notes[n]}"
