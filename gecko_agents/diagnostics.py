@@ -210,15 +210,16 @@ def model_facts(model, segments) -> dict:
     }
 
 
-def _fact(history, key: str):
-    """``history.meta[key]``, or a ValueError naming the key (:data:`MODEL_FACTS`)."""
-    try:
-        return history.meta[key]
-    except KeyError:
+def _model_facts(history) -> dict:
+    """The :data:`MODEL_FACTS` of ``history.meta``, or a ValueError naming every one missing."""
+    missing = [k for k in MODEL_FACTS if k not in history.meta]
+    if missing:
+        what = "; ".join(f"{k!r}: {MODEL_FACTS[k]}" for k in missing)
         raise ValueError(
-            f"history.meta lacks {key!r} ({MODEL_FACTS[key]}), which diagnose needs: the run "
-            "was recorded before the model kept it, or its metadata was edited; re-run it"
-        ) from None
+            f"history.meta lacks {what}, which diagnose needs: the run was recorded before "
+            "the model kept it, or its metadata was edited; re-run it"
+        )
+    return {k: history.meta[k] for k in MODEL_FACTS}
 
 
 @dataclass(frozen=True)
@@ -246,20 +247,20 @@ class _Run:
     warned_linear: bool  # the model's every-step linear-deflection check fired
 
 
-def _stiffest_contact(history, load: float) -> float:
+def _stiffest_contact(history, tip_law: str, load: float) -> float:
     """dP/dδ [µN/µm] at ``load`` [µN] of the tip law the run used, rebuilt from its
-    parameters (refused if it is not the law ``meta["tip_law"]`` names)."""
+    parameters (refused if it is not ``tip_law``, the law the run recorded)."""
     law = contact_law(history.params)
-    recorded = _fact(history, "tip_law")
-    if law.name != recorded:
+    if law.name != tip_law:
         raise ValueError(
-            f"history.meta['tip_law'] = {recorded!r}, but the history's parameters give the "
+            f"history.meta['tip_law'] = {tip_law!r}, but the history's parameters give the "
             f"tip law {law.name!r}: the parameters or the metadata were edited; re-run it"
         )
     return law.stiffest(load)
 
 
 def _facts(history) -> _Run:
+    m = _model_facts(history)
     p = history.params
     c = p.contact
     R, w, E = c.jkr_args()
@@ -270,12 +271,12 @@ def _facts(history) -> _Run:
         raise ValueError("history.geometry lacks 'floor_y_um' (the floor), which diagnose needs")
     floor_y = np.asarray(history.geometry["floor_y_um"])
     floor_top = float(np.max(floor_y)) if len(floor_y) else 0.0
-    z_touch = float(_fact(history, "z_touch_um"))
+    z_touch = float(m["z_touch_um"])
     load = max(P_comp, 5 * c.pull_off_force)
     k_max = (
-        _fact(history, "axial_stiffness_uN_per_um")
-        + _stiffest_contact(history, load)
-        + _fact(history, "tangential_stiffness_uN_per_um")
+        m["axial_stiffness_uN_per_um"]
+        + _stiffest_contact(history, m["tip_law"], load)
+        + m["tangential_stiffness_uN_per_um"]
     )
     return _Run(
         R=R,
@@ -285,17 +286,17 @@ def _facts(history) -> _Run:
         P_comp=P_comp,
         touched=bool(np.max(history["n_attached"], initial=0) > 0),
         a0=float(jkr.zero_load_contact_radius(R, w, E)) if adhesive else 0.0,
-        v=float(_fact(history, "protocol_speed_um_per_us")),
+        v=float(m["protocol_speed_um_per_us"]),
         stroke=abs(c.snap_off_overlap) if adhesive else None,
         floor_top=floor_top,
         reached=float(np.min(history["plate_y_um"], initial=np.inf)) <= z_touch + floor_top,
         z_touch=z_touch,
-        settle_time=float(_fact(history, "settle_time_us")),
-        dt=float(_fact(history, "dt_us")),
-        mass=float(_fact(history, "mass_ng")),
+        settle_time=float(m["settle_time_us"]),
+        dt=float(m["dt_us"]),
+        mass=float(m["mass_ng"]),
         k_max=k_max,
-        omega_max=float(_fact(history, "omega_max_per_us")),
-        warned_linear=bool(_fact(history, "linear_deflection_warned")),
+        omega_max=float(m["omega_max_per_us"]),
+        warned_linear=bool(m["linear_deflection_warned"]),
     )
 
 

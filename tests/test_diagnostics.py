@@ -255,3 +255,23 @@ def test_a_history_whose_tip_law_is_not_its_parameters_is_refused(run):
     _, h, _ = run
     with pytest.raises(ValueError, match="tip_law"):
         dg.diagnose(dataclasses.replace(h, params=STIFF.replace(tip="hertz")), warn=False)
+
+
+def test_a_loaded_run_that_never_touched_is_diagnosed_as_the_live_one(monkeypatch, tmp_path):
+    """A plate moved short of the floor (touched: not applicable, from the recorded z_touch
+    and floor) and one moved past it too fast (MeaninglessRunError) read the same from disk."""
+    # Contact-free runs miss conftest's energy balance on their tiny energy scale (see
+    # tests/test_reliability.py): run them unchecked.
+    monkeypatch.setattr(Model, "run", Model.run.__globals__.get("_run", Model.run))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        h = Model(STIFF, n_sim=2, seed=1).run([protocol.Move(dy=-0.1, speed=0.05)], progress=False)
+    g = hist.load(h.save(tmp_path / "short"))
+    assert h.meta["validity"]["items"]["touched"]["ok"] is None
+    assert dg.diagnose(g, warn=False) == h.meta["validity"]
+    with pytest.raises(dg.MeaninglessRunError) as live:
+        Model(STIFF, n_sim=1, seed=1).run(protocol.press_pull(0.5, speed=20.0), progress=False)
+    past = hist.load(live.value.history.save(tmp_path / "past"))
+    with pytest.raises(dg.MeaninglessRunError) as loaded:
+        dg.diagnose(past, warn=False)
+    assert str(loaded.value) == str(live.value)
