@@ -196,8 +196,7 @@ def model_facts(model, segments) -> dict:
 
     Returns
     -------
-    dict of the :data:`MODEL_FACTS` keys other than ``dt_us``, ``mass_ng``,
-    ``tangential_stiffness_uN_per_um`` and ``tip_law``, in their units.
+    dict of the :data:`MODEL_FACTS` the run's metadata does not carry anyway, in their units.
     """
     speeds = [float(getattr(s, "speed", 0.0) or 0.0) for s in segments]
     return {
@@ -272,32 +271,20 @@ def _facts(history) -> _Run:
     floor_y = np.asarray(history.geometry["floor_y_um"])
     floor_top = float(np.max(floor_y)) if len(floor_y) else 0.0
     z_touch = float(m["z_touch_um"])
-    load = max(P_comp, 5 * c.pull_off_force)
-    k_max = (
-        m["axial_stiffness_uN_per_um"]
-        + _stiffest_contact(history, m["tip_law"], load)
-        + m["tangential_stiffness_uN_per_um"]
-    )
+    k_contact = _stiffest_contact(history, m["tip_law"], max(P_comp, 5 * c.pull_off_force))
+    k_max = m["axial_stiffness_uN_per_um"] + k_contact + m["tangential_stiffness_uN_per_um"]
     return _Run(
-        R=R,
-        w=w,
-        E=E,
-        adhesive=adhesive,
-        P_comp=P_comp,
+        R=R, w=w, E=E, adhesive=adhesive, P_comp=P_comp,
         touched=bool(np.max(history["n_attached"], initial=0) > 0),
         a0=float(jkr.zero_load_contact_radius(R, w, E)) if adhesive else 0.0,
         v=float(m["protocol_speed_um_per_us"]),
         stroke=abs(c.snap_off_overlap) if adhesive else None,
         floor_top=floor_top,
         reached=float(np.min(history["plate_y_um"], initial=np.inf)) <= z_touch + floor_top,
-        z_touch=z_touch,
-        settle_time=float(m["settle_time_us"]),
-        dt=float(m["dt_us"]),
-        mass=float(m["mass_ng"]),
-        k_max=k_max,
-        omega_max=float(m["omega_max_per_us"]),
+        z_touch=z_touch, settle_time=float(m["settle_time_us"]), dt=float(m["dt_us"]),
+        mass=float(m["mass_ng"]), k_max=k_max, omega_max=float(m["omega_max_per_us"]),
         warned_linear=bool(m["linear_deflection_warned"]),
-    )
+    )  # fmt: skip
 
 
 def _a_over_R(f: _Run) -> dict:
