@@ -6,6 +6,12 @@ violated item. A run whose result cannot mean anything (the plate went past the 
 ever touched it) raises :class:`MeaninglessRunError` instead. :func:`validity_table` summarises
 the diagnostics of several runs as a markdown table (for ``renders/paper_comparison.md``).
 
+:func:`diagnose` reads the :class:`~gecko_agents.history.History` alone: its parameters, series,
+floor (``geometry["floor_y_um"]``) and the facts of the live model that the run recorded into
+its metadata (:data:`MODEL_FACTS`, written by :func:`model_facts`). A run loaded from disk
+(:func:`gecko_agents.history.load`) is therefore diagnosed exactly as it was when it ran; one
+whose metadata lacks a fact is refused with an error naming the key.
+
 Units: µm, µN, µs, ng (:mod:`gecko_agents.params`). Each item is a dict::
 
     {"value": float, "limit": float, "ok": bool | None, "rule": "value ≤ limit", "meaning": str,
@@ -81,6 +87,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gecko_agents.contact import contact_law
 from gecko_agents.physics import jkr
 
 __all__ = [
@@ -88,7 +95,9 @@ __all__ = [
     "MeaninglessRunError",
     "Z0_UM",
     "LIMITS",
+    "MODEL_FACTS",
     "diagnose",
+    "model_facts",
     "non_finite_report",
     "run_cost",
     "check_cost",
@@ -110,6 +119,23 @@ LIMITS = {
     "crack_deborah": ("≤", 100.0),
 }
 """Item → (relation, limit); the reasons and sources are in the module docstring."""
+
+MODEL_FACTS = {
+    "dt_us": "the time step dt [µs]",
+    "mass_ng": "the tip mass m [ng]",
+    "axial_stiffness_uN_per_um": "the seta's axial stiffness Ka [µN/µm]",
+    "tangential_stiffness_uN_per_um": "the tip law's stick stiffness k_t [µN/µm]",
+    "omega_max_per_us": "the model's design-point ω_max = √(k_max/m) [1/µs]",
+    "settle_time_us": "the free seta's period T = 2π√(m/Ky) [µs] (Model.settle_time)",
+    "z_touch_um": "the plate height at which a resting tip touches the floor's mean plane [µm]",
+    "tip_law": "the name of the tip law the model ran (rebuilt from the parameters)",
+    "linear_deflection_warned": "whether the model's every-step linear-deflection check fired",
+    "protocol_speed_um_per_us": "the largest plate speed of the protocol's segments [µm/µs]",
+}
+"""Keys of ``history.meta`` that :func:`diagnose` reads → what they hold: what the live model
+knew and the history's series do not say. :meth:`gecko_agents.model.Model.run` records them
+(:func:`model_facts`, beside ``dt_us``, ``mass_ng``, ``tangential_stiffness_uN_per_um`` and
+``tip_law``, which its metadata carries anyway)."""
 
 COST_WARN = 1e9
 """Seta-steps (steps × simulated setae) above which a run warns before it starts: about 10⁷
@@ -159,24 +185,46 @@ def _tip_forces(history) -> tuple[np.ndarray, np.ndarray]:
     return history["force_normal_uN"] / n, history["force_tangential_uN"] / n
 
 
-def _plate_speed(history, segments) -> float:
-    """Largest plate speed [µm/µs]: the protocol's segment speeds if given, else from the
-    recorded plate trajectory."""
-    speeds = [float(getattr(s, "speed", 0.0) or 0.0) for s in segments or ()]
-    if speeds:
-        return max(speeds)
-    t = np.asarray(history["time_us"], dtype=float)
-    if len(t) < 2:
-        return 0.0
-    dt = np.diff(t)
-    dist = np.hypot(np.diff(history["plate_x_um"]), np.diff(history["plate_y_um"]))
-    good = dt > 0
-    return float(np.max(dist[good] / dt[good], initial=0.0))
+def model_facts(model, segments) -> dict:
+    """What :func:`diagnose` needs of a live model beyond the metadata every run carries
+    (:data:`MODEL_FACTS`), for ``history.meta``.
+
+    Parameters
+    ----------
+    model : the :class:`~gecko_agents.model.Model` at the end of its run.
+    segments : the protocol's segments (their ``speed`` [µm/µs], 0 for a segment without one).
+
+    Returns
+    -------
+    dict of the :data:`MODEL_FACTS` the run's metadata does not carry anyway, in their units.
+    """
+    speeds = [float(getattr(s, "speed", 0.0) or 0.0) for s in segments]
+    return {
+        "axial_stiffness_uN_per_um": float(model.Ka),
+        "omega_max_per_us": float(model.omega_max),
+        "settle_time_us": float(model.settle_time),
+        "z_touch_um": float(model.z_touch),
+        "linear_deflection_warned": bool(getattr(model, "_warned_linear", False)),
+        "protocol_speed_um_per_us": max(speeds, default=0.0),
+    }
+
+
+def _model_facts(history) -> dict:
+    """The :data:`MODEL_FACTS` of ``history.meta``, or a ValueError naming every one missing."""
+    missing = [k for k in MODEL_FACTS if k not in history.meta]
+    if missing:
+        what = "; ".join(f"{k!r}: {MODEL_FACTS[k]}" for k in missing)
+        raise ValueError(
+            f"history.meta lacks {what}, which diagnose needs: the run was recorded before "
+            "the model kept it, or its metadata was edited; re-run it"
+        )
+    return {k: history.meta[k] for k in MODEL_FACTS}
 
 
 @dataclass(frozen=True)
 class _Run:
-    """What the items are measured from, read once from the model and its history."""
+    """What the items are measured from, read once from the history: its parameters, series
+    and floor, and the model facts it recorded (:data:`MODEL_FACTS`)."""
 
     R: float  # tip radius [µm]
     w: float  # work of adhesion [µN/µm]
@@ -189,27 +237,54 @@ class _Run:
     stroke: float | None  # |δc|, the JKR snap-off overlap [µm] (None if not adhesive)
     floor_top: float  # highest floor point [µm]
     reached: bool  # the plate went below the height at which the highest resting tip touches
+    z_touch: float  # plate height at which a resting tip touches h = 0 [µm]
+    settle_time: float  # free seta period T [µs]
+    dt: float  # time step [µs]
+    mass: float  # tip mass [ng]
+    k_max: float  # seta + contact at the largest compression (≥ 5 Fc) + stick [µN/µm]
+    omega_max: float  # the model's design-point ω_max [1/µs]
+    warned_linear: bool  # the model's every-step linear-deflection check fired
 
 
-def _facts(model, history, segments) -> _Run:
-    c = model.params.contact
+def _stiffest_contact(history, tip_law: str, load: float) -> float:
+    """dP/dδ [µN/µm] at ``load`` [µN] of the tip law the run used, rebuilt from its
+    parameters (refused if it is not ``tip_law``, the law the run recorded)."""
+    law = contact_law(history.params)
+    if law.name != tip_law:
+        raise ValueError(
+            f"history.meta['tip_law'] = {tip_law!r}, but the history's parameters give the "
+            f"tip law {law.name!r}: the parameters or the metadata were edited; re-run it"
+        )
+    return law.stiffest(load)
+
+
+def _facts(history) -> _Run:
+    m = _model_facts(history)
+    p = history.params
+    c = p.contact
     R, w, E = c.jkr_args()
-    adhesive = model.params.tip == "sphere" and w > 0
+    adhesive = p.tip == "sphere" and w > 0
     P_tip, _ = _tip_forces(history)
-    floor_top = float(np.max(model.profile.y)) if len(model.profile.y) else 0.0
+    P_comp = float(np.max(P_tip, initial=0.0))
+    if "floor_y_um" not in history.geometry:
+        raise ValueError("history.geometry lacks 'floor_y_um' (the floor), which diagnose needs")
+    floor_y = np.asarray(history.geometry["floor_y_um"])
+    floor_top = float(np.max(floor_y)) if len(floor_y) else 0.0
+    z_touch = float(m["z_touch_um"])
+    k_contact = _stiffest_contact(history, m["tip_law"], max(P_comp, 5 * c.pull_off_force))
+    k_max = m["axial_stiffness_uN_per_um"] + k_contact + m["tangential_stiffness_uN_per_um"]
     return _Run(
-        R=R,
-        w=w,
-        E=E,
-        adhesive=adhesive,
-        P_comp=float(np.max(P_tip, initial=0.0)),
+        R=R, w=w, E=E, adhesive=adhesive, P_comp=P_comp,
         touched=bool(np.max(history["n_attached"], initial=0) > 0),
         a0=float(jkr.zero_load_contact_radius(R, w, E)) if adhesive else 0.0,
-        v=_plate_speed(history, segments),
+        v=float(m["protocol_speed_um_per_us"]),
         stroke=abs(c.snap_off_overlap) if adhesive else None,
         floor_top=floor_top,
-        reached=float(np.min(history["plate_y_um"], initial=np.inf)) <= model.z_touch + floor_top,
-    )
+        reached=float(np.min(history["plate_y_um"], initial=np.inf)) <= z_touch + floor_top,
+        z_touch=z_touch, settle_time=float(m["settle_time_us"]), dt=float(m["dt_us"]),
+        mass=float(m["mass_ng"]), k_max=k_max, omega_max=float(m["omega_max_per_us"]),
+        warned_linear=bool(m["linear_deflection_warned"]),
+    )  # fmt: skip
 
 
 def _a_over_R(f: _Run) -> dict:
@@ -241,10 +316,10 @@ def _tabor(f: _Run) -> dict:
     )
 
 
-def _linear_deflection(model, history) -> dict:
-    p = model.params
+def _linear_deflection(history, f: _Run) -> dict:
+    p = history.params
     linear = p.mechanics == "linear"
-    warned = bool(getattr(model, "_warned_linear", False))
+    warned = f.warned_linear
     dev = None
     if linear and history.setae and "tip_x_um" in history.setae:
         g = history.geometry
@@ -277,17 +352,17 @@ def _linear_deflection(model, history) -> dict:
     return item
 
 
-def _quasi_static(model, history, f: _Run) -> dict:
-    q = f.v * model.settle_time / f.stroke if f.stroke else None
+def _quasi_static(history, f: _Run) -> dict:
+    q = f.v * f.settle_time / f.stroke if f.stroke else None
     if f.stroke:
         meaning = (
-            f"plate speed {f.v:.3g} µm/µs × free seta period {model.settle_time:.3g} µs / JKR "
+            f"plate speed {f.v:.3g} µm/µs × free seta period {f.settle_time:.3g} µs / JKR "
             f"stroke |δc| = {f.stroke:.3g} µm: a critically damped seta lags the plate by "
             "v·T/π, which must stay within the stroke between jump-in and snap-off"
         )
     else:  # a film or non-adhesive tip has no snap-off stroke to compare the lag with
         meaning = (
-            f"not judged: tip = {model.params.tip!r} has no JKR snap-off stroke; halve the "
+            f"not judged: tip = {history.params.tip!r} has no JKR snap-off stroke; halve the "
             f"plate speed ({f.v:.3g} µm/µs) until the forces stop moving (a spatula's "
             "pull-off is first order in the speed: the frictional-adhesion study's "
             "plate-speed table)"
@@ -304,17 +379,16 @@ def _quasi_static(model, history, f: _Run) -> dict:
     return item
 
 
-def _time_step(model, f: _Run) -> dict:
+def _time_step(f: _Run) -> dict:
     """ω·dt of the stiffest spring a tip met: seta + contact at the largest compression
     reached (at least the design point 5 Fc) + stick spring."""
-    load = max(f.P_comp, 5 * model.params.contact.pull_off_force)
-    k = model.Ka + model.law.stiffest(load) + model.k_t
-    omega = max(math.sqrt(k / model.mass), model.omega_max)
+    k = f.k_max
+    omega = max(math.sqrt(k / f.mass), f.omega_max)
     return _item(
         "time_step",
-        omega * model.dt,
+        omega * f.dt,
         f"ω·dt with ω = √(k/m) of the stiffest spring met (k = {k:.3g} µN/µm, m = "
-        f"{model.mass:.3g} ng, dt = {model.dt:.3g} µs); stable below 2, energy of jump "
+        f"{f.mass:.3g} ng, dt = {f.dt:.3g} µs); stable below 2, energy of jump "
         "events booked to ~ω·dt",
         "docs/physics.md 'Time stepping'; Hairer, Lubich & Wanner, Geometric Numerical "
         "Integration §I.1",
@@ -350,17 +424,17 @@ def _crack_deborah(contact, f: _Run) -> dict:
     return item
 
 
-def _refuse_if_meaningless(model, history, f: _Run) -> None:
+def _refuse_if_meaningless(history, f: _Run) -> None:
     """MeaninglessRunError if the plate went past the floor and no tip ever touched it."""
     if not (f.reached and not f.touched):
         return
-    past = model.z_touch + f.floor_top - float(np.min(history["plate_y_um"]))
-    lag = f.v * model.settle_time / math.pi
-    v_ok = abs(model.params.contact.snap_off_overlap) / model.settle_time
+    past = f.z_touch + f.floor_top - float(np.min(history["plate_y_um"]))
+    lag = f.v * f.settle_time / math.pi
+    v_ok = abs(history.params.contact.snap_off_overlap) / f.settle_time
     raise MeaninglessRunError(
         f"no tip ever touched the floor although the plate went {past:.3g} µm past the "
         f"height at which the highest resting tip touches it: at {f.v:.3g} µm/µs the setae "
-        f"(free period {model.settle_time:.3g} µs) lag the plate by ~{lag:.3g} µm, so the "
+        f"(free period {f.settle_time:.3g} µs) lag the plate by ~{lag:.3g} µm, so the "
         f"run measured nothing; lower the plate speed below {v_ok:.3g} µm/µs (quasi-static "
         "ratio 1) or press deeper (the recorded history is the exception's .history)",
         history,
@@ -383,32 +457,44 @@ def _warn_violations(items: dict, violations: list[str]) -> None:
         )
 
 
-def diagnose(model, history, segments=None, *, warn: bool = True) -> dict:
+def diagnose(history, *, warn: bool = True) -> dict:
     """Validity of one run (module docstring): ``{"ok", "violations", "items"}``.
+
+    Reads the history alone (its parameters, series, floor and :data:`MODEL_FACTS`), so a run
+    loaded with :func:`gecko_agents.history.load` gives what the live run gave.
 
     Parameters
     ----------
-    model : the :class:`~gecko_agents.model.Model` that ran.
-    history : its :class:`~gecko_agents.history.History`.
-    segments : the protocol's segments (for the plate speed); None: from the trajectory.
-    warn : issue one :class:`ValidityWarning` per violated item.
+    history : :class:`~gecko_agents.history.History`
+        A run of :meth:`gecko_agents.model.Model.run`, live or loaded.
+    warn : bool
+        Issue one :class:`ValidityWarning` per violated item.
+
+    Returns
+    -------
+    dict
+        ``"ok"`` (bool), ``"violations"`` (item names) and ``"items"`` (name → item dict).
 
     Raises
     ------
-    MeaninglessRunError if the plate went past the floor and no tip ever touched it.
+    ValueError
+        If ``history.meta`` lacks a :data:`MODEL_FACTS` key (named), or its ``tip_law`` is
+        not the law of its parameters.
+    MeaninglessRunError
+        If the plate went past the floor and no tip ever touched it.
     """
-    f = _facts(model, history, segments)
+    f = _facts(history)
     items = {
         "a_over_R": _a_over_R(f),
         "tabor": _tabor(f),
-        "linear_deflection": _linear_deflection(model, history),
-        "quasi_static": _quasi_static(model, history, f),
-        "time_step": _time_step(model, f),
+        "linear_deflection": _linear_deflection(history, f),
+        "quasi_static": _quasi_static(history, f),
+        "time_step": _time_step(f),
         "touched": _touched(f),
-        "crack_deborah": _crack_deborah(model.params.contact, f),
+        "crack_deborah": _crack_deborah(history.params.contact, f),
     }
     violations = [name for name, it in items.items() if it["ok"] is False]
-    _refuse_if_meaningless(model, history, f)
+    _refuse_if_meaningless(history, f)
     if warn:
         _warn_violations(items, violations)
     return {"ok": not violations, "violations": violations, "items": items}

@@ -153,7 +153,9 @@ class History:
         ``floor_y_um`` (floor polyline).
     detachments : dict of arrays, one entry per detachment event: ``seta``, ``time_us``,
         ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``.
-    meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…).
+    meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…),
+        with the live model's facts that :func:`gecko_agents.diagnostics.diagnose` reads
+        (:data:`gecko_agents.diagnostics.MODEL_FACTS`), so a loaded run is diagnosed as it ran.
     """
 
     params: SetaArray

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gecko_agents.contact import bounds as tip_bounds
-from gecko_agents.diagnostics import check_cost, diagnose, non_finite_report
+from gecko_agents.diagnostics import check_cost, diagnose, model_facts, non_finite_report
 from gecko_agents.history import History, versions
 from gecko_agents.model.recorder import Recorder
 from gecko_agents.model.setup import floor_statistics
@@ -83,12 +83,13 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         "damping": dataclasses.asdict(m.damping), "mass_ng": m.mass,
         "tangential_stiffness_uN_per_um": m.k_t,
         "wall_time_s": time.perf_counter() - t_wall, "versions": versions(),
+        **model_facts(m, segments),
     }  # fmt: skip
     w = m.world
     geometry = {"root_dx_um": w.root_dx, "root_dy_um": w.root_dy,
                 "floor_x_um": w.profile.x, "floor_y_um": w.profile.y}  # fmt: skip
     history = run.recorder.history(m.params, m.seed, geometry, meta)
-    history.meta["validity"] = diagnose(m, history, segments)
+    history.meta["validity"] = diagnose(history)
     return history
 
 
