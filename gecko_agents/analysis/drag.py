@@ -52,10 +52,12 @@ def drag_span(h, drag: float | None = None) -> tuple[int, int]:
     """Indices of the records where the drag starts and ends.
 
     Start: the last record before the plate moves along x. End: the first record with the
-    plate at its start + ``drag`` [µm] (within :data:`AT_END_UM`); if that record was not kept
-    (``record_every`` > 1), the last record on the drag's line, before the pull moved the plate
-    off it. Without a drag (``drag == 0``) both are the record of the press's largest normal
-    force, so the pull phase (:mod:`gecko_agents.analysis.pull`) starts there.
+    plate at its start + ``drag`` [µm] (within :data:`AT_END_UM`) and still at the drag's
+    height; if that record was not kept (``record_every`` > 1), the last record at the drag's
+    height, before the pull lifted the plate (a pull along the floor, at 0° or 180°, never
+    lifts it: keep every record for those). Without a drag (``drag == 0``) both are the
+    record of the press's largest normal force, so the pull phase
+    (:mod:`gecko_agents.analysis.pull`) starts there.
 
     Parameters
     ----------
@@ -75,11 +77,12 @@ def drag_span(h, drag: float | None = None) -> tuple[int, int]:
     if not moved.size:
         raise ValueError(f"the plate never moves along x; no drag of {drag} µm in this history")
     start = int(moved[0]) - 1
-    at_end = np.flatnonzero(np.abs(px - (px[0] + drag)) < AT_END_UM)
+    py = np.asarray(h["plate_y_um"])
+    on_line = np.abs(py - py[start + 1]) <= MOVED_UM  # the drag keeps the plate's height
+    at_end = np.flatnonzero((np.abs(px - (px[0] + drag)) < AT_END_UM) & on_line)
     if at_end.size:
         return start, int(at_end[0])
-    py = np.asarray(h["plate_y_um"])
-    off_line = np.flatnonzero(np.abs(py[start + 1 :] - py[start + 1]) > MOVED_UM)
+    off_line = np.flatnonzero(~on_line[start + 1 :])
     end = start + int(off_line[0]) if off_line.size else len(px) - 1
     return start, end
 
