@@ -34,6 +34,11 @@ Outputs (``renders/frictional_adhesion/``): ``sweep.csv``, ``frictional_adhesion
 ``speed_convergence.csv`` (full runs or ``--convergence``), ``beyond_the_paper.md``,
 ``metadata.json``; ``--animate`` adds ``spatula_peel.gif``. A run removes the optional files
 it does not write, so a folder never mixes a quick run's report with a full run's tables.
+
+What is read off a run is defined once in :mod:`gecko_agents.analysis` (drag span, release point,
+pull-off, let-go and lean after the drag, ratio, α*, plate-speed convergence); the figures and
+the report's prose are in :mod:`gecko_agents.studies.frictional_adhesion_report`. The model's
+validity warnings are not silenced.
 """
 
 from __future__ import annotations
