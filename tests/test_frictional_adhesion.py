@@ -1,39 +1,19 @@
-"""Frictional adhesion: the critical angle of a limit curve (synthetic oracle) and a spatula
-seta whose release force falls as the pull turns up past α*."""
+"""Frictional adhesion: a spatula seta whose release force falls as the pull turns up past α*,
+a tip pushed over its pad, and the study's plate-speed check (its numbers, from
+:mod:`gecko_agents.analysis.convergence`). The analyses themselves are tested against
+synthetic histories in ``test_analysis.py``."""
 
 import math
-import warnings
 
 import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.analysis.limit_curve import critical_angle
+from gecko_agents.analysis.drag import drag_span
+from gecko_agents.analysis.pull import release_point
 from gecko_agents.history import STATE_STICK
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
-
-
-def test_critical_angle_of_a_synthetic_limit_line():
-    shear = np.array([0.5, 1.0, 2.0, 3.0])
-    alpha = 27.0
-    adhesion = shear * math.tan(math.radians(alpha))
-    # Releases in compression or with releasing shear are not on the adhesion limit.
-    shear = np.append(shear, [1.0, -2.0])
-    adhesion = np.append(adhesion, [-0.4, 1.0])
-    assert critical_angle(shear, adhesion) == pytest.approx(alpha, abs=1e-9)
-
-
-def test_critical_angle_least_squares_through_the_origin():
-    # Points 20° and 40° off the shear axis at equal shear: slope (tan20 + tan40)/2.
-    a = [math.tan(math.radians(20.0)), math.tan(math.radians(40.0))]
-    expected = math.degrees(math.atan(0.5 * (a[0] + a[1])))
-    assert critical_angle([1.0, 1.0], a) == pytest.approx(expected, abs=1e-9)
-
-
-def test_critical_angle_nan_without_tension():
-    assert math.isnan(critical_angle([1.0, 2.0], [-0.1, 0.0]))
-
 
 SETA = PAPER_ARRAY.replace(
     **{"tip": "spatula", "mechanics": "rod", "floor.sigma": 0.0, "array.count": 1,
@@ -42,17 +22,15 @@ SETA = PAPER_ARRAY.replace(
 
 
 def _release_force(beta):
-    """Largest force magnitude [µN] a gripping-dragged spatula seta holds in a pull at β [deg]
-    from +x (the pull's angle from the gripping shear axis is 180° − β), the plate at the
-    quasi-static speed."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        h = Model(SETA, seed=1, record_every=1).run(
-            protocol.drag_pull(0.2, -8.0, beta, speed=protocol.DEFAULT_SPEED), progress=False
-        )
-    px = h["plate_x_um"]
-    k0 = int(np.flatnonzero(np.abs(px - (px[0] - 8.0)) < 1e-6)[0])
-    return float(np.hypot(h["force_normal_uN"][k0:], h["force_tangential_uN"][k0:]).max())
+    """The force [µN] at the release point (the largest force held in tension) of a
+    gripping-dragged spatula seta pulled at β [deg] from +x (the pull's angle from the gripping
+    shear axis is 180° − β), the plate at the quasi-static speed."""
+    h = Model(SETA, seed=1, record_every=1).run(
+        protocol.drag_pull(0.2, -8.0, beta, speed=protocol.DEFAULT_SPEED), progress=False
+    )
+    release = release_point(h)
+    assert release.in_tension
+    return release.force
 
 
 def test_release_force_falls_as_the_pull_angle_rises_past_critical():
@@ -67,15 +45,12 @@ def _push_over_the_pad(mu):
     from gecko_agents.contact import contact_law
 
     p = SETA.replace(**{"friction.mu": mu})
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        h = Model(p, seed=1, record_every=1, record_setae=True).run(
-            protocol.drag_pull(0.2, 15.0, 90.0, speed=0.05), progress=False
-        )
-    px = h["plate_x_um"]
-    drag = (px > px[0] + 1e-9) & (
-        np.abs(h["plate_y_um"] - h["plate_y_um"][np.argmax(px > 0)]) < 1e-9
+    h = Model(p, seed=1, record_every=1, record_setae=True).run(
+        protocol.drag_pull(0.2, 15.0, 90.0, speed=0.05), progress=False
     )
+    start, end = drag_span(h)
+    drag = np.zeros(len(h), dtype=bool)
+    drag[start + 1 : end + 1] = True  # the records of the plate moving along the floor
     return contact_law(p), h, drag
 
 
@@ -116,8 +91,8 @@ def test_a_pressed_tip_sticks_and_its_seta_flips_over_it():
 
 
 def _convergence_rows(releasing, undamped_releasing):
-    """Synthetic rows of the scenario's plate-speed check: speeds 0.04, 0.02, 0.01 µm/µs with
-    the given releasing pull-offs [µN], then one undamped row at 0.04."""
+    """Synthetic rows of the study's plate-speed check: speeds 0.04, 0.02, 0.01 µm/µs with the
+    given releasing pull-offs [µN], then one undamped row at 0.04."""
     speeds = (0.04, 0.02, 0.01)
     rows = [
         {"tip": "spatula", "speed_um_per_us": v, "contact_damping": True, "gripping_uN": 1.0,
@@ -130,24 +105,42 @@ def _convergence_rows(releasing, undamped_releasing):
 
 
 @pytest.fixture
-def frictional_adhesion_scenario():
+def study():
     from gecko_agents.studies import frictional_adhesion
 
     return frictional_adhesion
 
 
-def test_convergence_report_claims_first_order_only_when_the_numbers_show_it(
-    frictional_adhesion_scenario,
-):
-    section = frictional_adhesion_scenario.convergence_section
-    # An error ∝ v: 0.5 + 2v gives equal slopes (2 µN per µm/µs) between successive speeds.
-    linear = "\n".join(section(_convergence_rows([0.58, 0.54, 0.52], 0.518)))
-    assert "first order in the speed" in linear
-    assert "mostly the contact dashpots'" in linear  # undamped 0.4 % from the slowest, not 11.5 %
-    # An error ∝ v²: slopes 2.4 and 1.2 differ by ×2: no first-order claim.
-    quadratic = "\n".join(section(_convergence_rows([0.5 + 400 * v**2 for v in (0.04, 0.02, 0.01)],
-                                                    0.5)))  # fmt: skip
-    assert "(not first order)" in quadratic
-    # An undamped run as far from the slowest as the damped one: no dashpot explanation.
-    far = "\n".join(section(_convergence_rows([0.58, 0.54, 0.52], 0.58)))
-    assert "dashpots'" not in far
+def test_convergence_numbers_of_an_error_linear_in_the_speed(study):
+    """0.5 + 2v: equal slopes (2 µN per µm/µs), order 1, limit 0.5 µN; the undamped run
+    0.518 µN is 0.4 % from the slowest damped one (0.52) against 11.5 % for the damped runs'
+    change: the dashpots' share."""
+    conv = study.convergence_summary(_convergence_rows([0.58, 0.54, 0.52], 0.518))
+    rel = conv["releasing"]
+    np.testing.assert_allclose(rel["slopes"], [2.0, 2.0], rtol=1e-9)
+    assert rel["first_order"]
+    assert rel["order"] == pytest.approx(1.0, abs=1e-6)
+    assert rel["limit"] == pytest.approx(0.5, abs=1e-12)
+    assert rel["change"] == pytest.approx(0.58 / 0.52 - 1.0)
+    assert conv["gripping"]["change"] == 0.0
+    assert conv["undamped"]["gap"] == pytest.approx(0.518 / 0.52 - 1.0)
+    assert conv["undamped"]["dashpot_dominated"]
+    assert conv["sphere_range"] is None
+
+
+def test_convergence_numbers_of_an_error_quadratic_in_the_speed(study):
+    """0.5 + 400v²: slopes 24 and 12 (×2 apart): not first order, observed order 2."""
+    conv = study.convergence_summary(
+        _convergence_rows([0.5 + 400 * v**2 for v in (0.04, 0.02, 0.01)], 0.5)
+    )
+    rel = conv["releasing"]
+    np.testing.assert_allclose(rel["slopes"], [24.0, 12.0], rtol=1e-9)
+    assert not rel["first_order"]
+    assert rel["order"] == pytest.approx(2.0, abs=1e-6)
+    assert rel["limit_at_order"] == pytest.approx(0.5, abs=1e-9)
+
+
+def test_an_undamped_run_as_far_off_as_the_damped_ones_is_not_the_dashpots(study):
+    conv = study.convergence_summary(_convergence_rows([0.58, 0.54, 0.52], 0.58))
+    assert conv["undamped"]["gap"] == pytest.approx(conv["releasing"]["change"])
+    assert not conv["undamped"]["dashpot_dominated"]

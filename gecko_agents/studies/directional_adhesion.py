@@ -4,18 +4,20 @@ tilt, then pull off at an angle; peak pull-off force vs pull angle.
 Geckos stick when their setae are dragged towards their tips and let go when pushed back. Here
 a patch of setae (θ = 60°, rod mechanics so that large swings stay physical) is pressed to a
 preload, dragged by ±drag along x (+x is the direction the setae lean towards), and pulled off
-along angles from 30° to 150° (90° = straight up). The peak pull-off is the largest magnitude of
-the total contact force (normal and tangential) during the pull.
+along angles from 30° to 150° (90° = straight up). Per run, after the drag
+(:mod:`gecko_agents.analysis.pull`): the peak normal pull-off (the largest adhesion of the pull)
+and the peak total pull, the magnitude of the contact force (normal and tangential) at the
+release point, the largest force held in tension (0 if the pull never reached tension).
 """
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from gecko_agents import protocol
+from gecko_agents.analysis.pull import pull_off, release_point
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render import plot_force_curves, save_figure
@@ -23,14 +25,6 @@ from gecko_agents.studies.common import output_dir, parse_args, write_json, writ
 
 PRELOAD_PER_SETA = 1.0  # µN
 DRAG = 4.0  # µm
-
-
-def peak_force(h) -> tuple[float, float]:
-    """Peak normal pull-off [µN] and peak total pull |F| in tension [µN] after the drag."""
-    fn, ft = h["force_normal_uN"], h["force_tangential_uN"]
-    tension = fn < 0
-    total = np.where(tension, np.hypot(fn, ft), 0.0)
-    return float(max(0.0, -fn.min())), float(total.max())
 
 
 @dataclass(frozen=True)
@@ -65,15 +59,15 @@ def run_one(params, plan: Plan, drag: float, angle: float, args, out) -> dict:
     record = args.animate and drag > 0 and angle == plan.angles[0]
     m = Model(params, n_sim=n_sim, seed=7, record_setae=record)
     prot = protocol.drag_pull(PRELOAD_PER_SETA * n_sim, drag, angle, speed=speed)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        h = m.run(prot, progress=not args.no_progress)
+    h = m.run(prot, progress=not args.no_progress)
     if record:
         from gecko_agents.render import animate
 
         h.save(out / "animated_run")
         animate(h, out / "detachment.gif")
-    normal, total = peak_force(h)
+    release = release_point(h, drag)
+    normal = pull_off(h, drag).adhesion
+    total = release.force if release.in_tension else 0.0
     return {
         "drag_um": drag,
         "pull_angle_deg": angle,

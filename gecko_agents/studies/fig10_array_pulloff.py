@@ -13,8 +13,6 @@ The x axis is the pressing displacement d = (mean-plane touch-down height) − (
 
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
 
 from gecko_agents import protocol
@@ -111,9 +109,7 @@ def agent_patches(params, n_sims, seeds, quick, progress, preload, out, z_touch,
                 protocol.Press(preload / scale, protocol.DEFAULT_SPEED * (4 if quick else 1)),
                 protocol.PullOff(pull_speed),
             ]
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # the linear seta leaves small deflection
-                h = m.run(prot, progress=progress)
+            h = m.run(prot, progress=progress)
             h.save(out / f"agent_n{n_sim}_seed{seed}")
             peak = h.peak_pull_off * scale / UN_PER_N
             agent_peaks[n_sim].append(peak)
