@@ -363,13 +363,6 @@ class SpatulaTip(ContactLaw):
     def stiffest(self, load: float) -> float:
         return 2 * self.E_star * float(jkr.hertz_contact_radius(load, self.R, self.E_star))
 
-    def kendall_force(self, phi):
-        """Steady peel force F [µN] of the film at peel angle φ [rad] without pre-tension:
-        the root of (F/b)(1 − cos φ) + (F/b)²/(2E_f·h) = w (Kendall 1975, eq 4 per width)."""
-        c = 1.0 - np.cos(phi)
-        Eh = self.E_f * self.h
-        return self.b * Eh * (np.sqrt(c * c + 2.0 * self.w / Eh) - c)
-
     def energy(self, a, delta):
         raise NotImplementedError("SpatulaTip stores its energy in the state (state.uc)")
 

@@ -37,12 +37,7 @@ import numpy as np
 from gecko_agents.contact import contact_law
 from gecko_agents.floor import Profile
 from gecko_agents.history import History
-from gecko_agents.model.mass_damping import (
-    DEFAULT_DAMPING,
-    Damping,
-    seta_mass,
-    tangential_stiffness,
-)
+from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping, seta_mass
 from gecko_agents.model.runner import SimulationUnstable, run_protocol
 from gecko_agents.model.setup import (
     KERNELS,
@@ -65,7 +60,6 @@ __all__ = [
     "SimulationUnstable",
     "numba_available",
     "seta_mass",
-    "tangential_stiffness",
     "KERNELS",
 ]
 

@@ -177,25 +177,8 @@ class Branches:
         P = jkr.force_from_radius(a, self.R, self.w, self.E_star)
         return -jkr.overlap_from_radius(a, self.R, self.w, self.E_star) - self.deflection(name, P)
 
-    def dG(self, name, a):
-        """dG_b/da = −δ'(a) − D_b'(P)·P'(a) [-], from eq 7 and eq 10 differentiated."""
-        R, w, Es = self.R, self.w, self.E_star
-        a = np.asarray(a, dtype=float)
-        dP = 4.0 * Es * a * a / R - 1.5 * np.sqrt(8.0 * np.pi * w * Es * a)
-        dd = 2.0 * a / R - 0.5 * np.sqrt(2.0 * np.pi * w / (Es * a))
-        if name == "stick":
-            dD = 1.0 / self.Kyy_stick
-        elif name == "free":
-            dD = 1.0 / self.Ky
-        else:
-            sigma = 1.0 if name == "slip+" else -1.0
-            P = jkr.force_from_radius(a, R, w, Es)
-            dcap = self.mu if self.law == "adhesive" else self.mu * (P > 0)
-            dD = (1.0 - self.Kxy / self.Kxx * sigma * dcap) / self.Ky
-        return -dd - dD * dP
-
     def _G_dG(self, name, a):
-        """G_b(a) and dG_b/da together (what :meth:`G` and :meth:`dG` give), sharing √a."""
+        """G_b(a) [µm] and dG_b/da [-] together, sharing √a."""
         R, w, Es = self.R, self.w, self.E_star
         k1, k2 = math.sqrt(8.0 * math.pi * w * Es), math.sqrt(2.0 * math.pi * w / Es)
         sa = np.sqrt(a)
