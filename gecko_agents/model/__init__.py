@@ -86,7 +86,8 @@ class Model:
     Parameters
     ----------
     params : the array. ``params.array.count`` is the physical array; the model simulates
-        ``n_sim`` setae of it (default: all of them, refused above 20 000) in one row at
+        ``n_sim`` setae of it (default: all of them; refused above
+        :data:`gecko_agents.model.setup.MAX_N`) in one row at
         ``params.array.pitch`` and reports ``scale = count / n_sim`` in the metadata.
     seed : seed of the run's single ``numpy.random.Generator`` (default ``params.floor.seed``):
         an integer ≥ 0 (Python or numpy; bool, float and str are refused, naming ``seed``), or

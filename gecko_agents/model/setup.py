@@ -22,7 +22,7 @@ __all__ = ["KERNELS", "MAX_N", "MAX_THREADS", "checked_arguments", "choose_kerne
            "numba_available"]  # fmt: skip
 
 KERNELS = ("auto", "numpy", "numba", "python")
-MAX_N = 200_000  # 10⁵ setae: ~0.7 GB peak RSS (python -m gecko_agents.bench)
+MAX_N = 200_000  # ~1.5 GB peak RSS here (10⁵: ~0.7 GB; python -m gecko_agents.bench)
 _PYTHON_MAX_N = 6  # below this many setae the interpreted loop beats numpy's call overhead
 MAX_THREADS = 64
 _LOADAVG = "/proc/loadavg"  # Linux: its fourth field is runnable/total scheduling entities
