@@ -44,6 +44,7 @@ from gecko_agents.params.checks import (
     check,
 )
 from gecko_agents.physics import beam, jkr
+from gecko_agents.physics.friction import friction_cap
 
 MECHANICS = ("linear", "rod")
 DETACHMENT_RULES = ("fold", "delta_s", "load_control")
@@ -307,12 +308,9 @@ class Friction:
             raise ValueError(f"Friction.law = {self.law!r} must be one of {FRICTION_LAWS}")
 
     def cap(self, P, Fc):
-        """Largest tangential force magnitude [µN] for normal force(s) ``P`` [µN] (≥ 0)."""
-        import numpy as np
-
-        if self.law == "paper":
-            return self.mu * np.maximum(P, 0.0)
-        return self.mu * np.abs(np.asarray(P) + 2.0 * Fc)
+        """Largest tangential force magnitude [µN] for normal force(s) ``P`` [µN] and pull-off
+        force ``Fc`` [µN]: :func:`gecko_agents.physics.friction.friction_cap` of this law."""
+        return friction_cap(np.asarray(P), Fc, self.mu, self.law == "paper")
 
 
 @dataclass(frozen=True)

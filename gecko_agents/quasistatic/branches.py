@@ -17,6 +17,7 @@ from scipy.optimize import brentq
 
 from gecko_agents.params import SetaArray
 from gecko_agents.physics import beam, jkr
+from gecko_agents.physics.friction import friction_cap, friction_cap_slope
 from gecko_agents.quasistatic.heights import plate_start_height
 
 
@@ -158,10 +159,8 @@ class Branches:
         return self.Ky / factor
 
     def cap(self, P):
-        """Tangential force cap [µN] for normal force(s) P [µN]."""
-        if self.law == "paper":
-            return self.mu * np.maximum(P, 0.0)
-        return self.mu * np.abs(P + 2.0 * self.Fc)
+        """Tangential force cap [µN] for normal force(s) P [µN] (as :meth:`Friction.cap`)."""
+        return friction_cap(P, self.Fc, self.mu, self.law == "paper")
 
     def deflection(self, name, P):
         """Spring deflection D_b (tip minus rest, downward positive) for force P [µm]."""
@@ -196,7 +195,7 @@ class Branches:
         else:
             q = self.Kxy / self.Kxx * (1.0 if name == "slip+" else -1.0)
             G -= (P - q * self.cap(P)) / self.Ky
-            dcap = self.mu if self.law == "adhesive" else self.mu * (P > 0)
+            dcap = friction_cap_slope(P, self.Fc, self.mu, self.law == "paper")
             dG -= (1.0 - q * dcap) / self.Ky * dP
         return G, dG
 

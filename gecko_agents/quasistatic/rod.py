@@ -18,6 +18,7 @@ from gecko_agents.history import STATE_SLIP as SLIP
 from gecko_agents.history import STATE_STICK as STICK
 from gecko_agents.params import SetaArray
 from gecko_agents.physics import beam, jkr
+from gecko_agents.physics.friction import friction_cap, friction_cap_slope
 from gecko_agents.quasistatic.heights import plate_start_height
 from gecko_agents.quasistatic.state import State, jump_in
 
@@ -131,15 +132,11 @@ class RodSetup:
 
     def cap(self, P):
         """Tangential force cap [µN] for normal force(s) P [µN] (as :meth:`Friction.cap`)."""
-        if self.law == "paper":
-            return self.mu * np.maximum(P, 0.0)
-        return self.mu * np.abs(P + 2.0 * self.Fc)
+        return friction_cap(P, self.Fc, self.mu, self.law == "paper")
 
     def dcap(self, P):
         """d cap / dP [-]."""
-        if self.law == "paper":
-            return self.mu * (P > 0)
-        return self.mu * np.sign(P + 2.0 * self.Fc)
+        return friction_cap_slope(P, self.Fc, self.mu, self.law == "paper")
 
     @property
     def rest(self) -> tuple[float, float]:
