@@ -38,9 +38,7 @@ def release_radius(k, R, w, E_star):
     a_lc = 0.25 ** (1 / 3) * jkr.zero_load_contact_radius(R, w, E_star)
 
     def g(a):  # δ' + P'/k, sign change between a_c (P'<0, δ'=0) and a_lc (P'=0, δ'>0)
-        dP = 4.0 * E_star * a * a / R - 1.5 * np.sqrt(8.0 * np.pi * w * E_star * a)
-        dd = 2.0 * a / R - 0.5 * np.sqrt(2.0 * np.pi * w / (E_star * a))
-        return dd + dP / k
+        return jkr.overlap_slope(a, R, w, E_star) + jkr.force_slope(a, R, w, E_star) / k
 
     return brentq(g, ac * (1 + 1e-13), a_lc, xtol=1e-15 * ac, rtol=1e-15, maxiter=200)
 
@@ -158,6 +156,12 @@ class Branches:
             )
         return self.Ky / factor
 
+    @property
+    def touchdown(self) -> float:
+        """Plate height [µm] at which a resting tip touches h = 0: R + L sin θ
+        (:func:`gecko_agents.physics.beam.touchdown_height`)."""
+        return float(beam.touchdown_height(self.L, self.theta, self.R))
+
     def cap(self, P):
         """Tangential force cap [µN] for normal force(s) P [µN] (as :meth:`Friction.cap`)."""
         return friction_cap(P, self.Fc, self.mu, self.law == "paper")
@@ -178,6 +182,9 @@ class Branches:
 
     def _G_dG(self, name, a):
         """G_b(a) [µm] and dG_b/da [-] together, sharing √a."""
+        # jkr.branch_terms written out in the order of operations these tables were built
+        # with (another order moves the inverted radii in their last bit); tests/test_formulas.py
+        # pins it to jkr.branch_terms.
         R, w, Es = self.R, self.w, self.E_star
         k1, k2 = math.sqrt(8.0 * math.pi * w * Es), math.sqrt(2.0 * math.pi * w / Es)
         sa = np.sqrt(a)
