@@ -17,13 +17,14 @@ from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import jkr
 from gecko_agents.physics import savkoor_briggs as sj
+from gecko_agents.physics.friction import combined_shear_modulus
 
 SHEARED = PAPER_ARRAY.replace(
     **{"contact.shear_coupling": "savkoor_briggs", "mechanics": "rod", "floor.sigma": 0.0}
 )
 C = SHEARED.contact
 R, W, E = C.jkr_args()
-G = float(sj.combined_shear_modulus(C.E1, C.nu1, C.E2, C.nu2))
+G = float(combined_shear_modulus(C.E1, C.nu1, C.E2, C.nu2))
 
 
 def test_no_shear_is_jkr():

@@ -9,7 +9,7 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.contact import contact_law
-from gecko_agents.contact.spatula import _film_force
+from gecko_agents.contact.spatula import K_MU, K_PAPER, _film_force
 from gecko_agents.history import STATE_SLIP, STATE_STICK
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
@@ -30,7 +30,7 @@ def peel_at_fixed_angle(law, phi, ds):
     away by ds [µm] a step on a pad that does not slide as a whole (μ → ∞); returns the film
     tension at the last step before the film let go [µN]."""
     k = law.constants.copy()
-    k[9] = 1e12  # the whole pad never slides
+    k[K_MU] = 1e12  # the whole pad never slides
     ell, p0, s0, xf, s = law.ell0, 0.0, law.s_attach, 0.0, law.s_attach
     F = 0.0
     for _ in range(200_000):
@@ -110,13 +110,13 @@ def test_pretension_is_kept_and_capped():
     law = contact_law(SPATULA)
     k = law.constants.copy()
     R, s0, ell = law.R, 1.5, law.ell0
-    k[9] = 1.0  # μ = 1: a cap of 2Fc ≈ 1 µN, above P0
+    k[K_MU] = 1.0  # μ = 1: a cap of 2Fc ≈ 1 µN, above P0
     # Slack film (tip over the front): the locked pre-tension stays.
     out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, 0.0, k)
     assert out[4] == pytest.approx(0.3)
     # A pre-tension below the cap μ·2Fc·ℓ/ℓ0 plus the front's adhesion w·b stays: receding
     # would cost more adhesion energy than the pre-strain releases (Griffith).
-    k[9] = 0.05
+    k[K_MU] = 0.05
     wb = law.w * law.b
     out = law.step_scalar(0.0, R + 1.0, ell, 0.3, s0, 0.0, k)
     assert 0.3 < 0.05 * 2.0 * law.pull_off_force + wb
@@ -211,7 +211,7 @@ def test_pressed_tip_sticks_then_slides_at_its_coulomb_cap_plus_the_film():
     law = contact_law(BONDED)
     k = law.constants.copy()
     mu, kt, s_attach, K = 10.0, law.tip_stiffness, law.s_attach, law.K
-    k[9] = mu
+    k[K_MU] = mu
     delta = 0.05
     cap = mu * hertz_compression(law, delta)
     assert cap / kt < 0.5 * s_attach  # it slides before the film is taut
@@ -247,7 +247,7 @@ def test_tip_friction_counted_once():
     k = law.constants.copy()
     for z in (law.R - 0.2, law.R + 1.0):
         assert _friction_cap(z, 0.5 * law.ell0, k) == pytest.approx(0.2 * 2.0 * law.w * law.b * 0.5)
-    k[10] = 1.0
+    k[K_PAPER] = 1.0
     assert _friction_cap(law.R - 0.2, law.ell0, k) == 0.0
 
 

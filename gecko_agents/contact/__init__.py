@@ -29,10 +29,13 @@ JKR, crack-kinetics and Hertz spheres never reach that branch, so their historie
 Each law gives the same formulas twice, kept side by side so that they cannot drift apart:
 vectorized numpy methods (the general floor path, recording, energies) and scalar
 ``@staticmethod`` functions with ``k``, the law's constants, as last argument
-(:attr:`ContactLaw.constants`, a float64 array) that the per-seta loop calls, compiled by numba
-or interpreted (:mod:`gecko_agents.model.step_numpy`). ``tests/test_contact.py`` pins both forms of
-every
-law to its closed form (:mod:`gecko_agents.physics.jkr`) point by point.
+(:attr:`ContactLaw.constants`, a float64 array read by the named indices ``K_*`` of each law's
+module; the slots every tangential law fills on attachment are :data:`.base.K_ATTACH_RADIUS` and
+:data:`.base.K_ATTACH_FILM`) that the per-seta loop calls, compiled by numba or interpreted
+(:mod:`gecko_agents.model.step_numpy`). ``tests/test_contact.py`` pins both forms of every law to
+its closed form (:mod:`gecko_agents.physics.jkr`) point by point. Formulas the laws share with
+the rest of the model have one home in :mod:`gecko_agents.physics` (the friction cap and
+Mindlin's stick stiffness: :mod:`gecko_agents.physics.friction`), compiled where called.
 
 Layout: :mod:`.base` (interface, shared scalar helpers), one module per law (:mod:`.jkr_sphere`,
 :mod:`.rate_jkr`, :mod:`.hertz`, :mod:`.spatula`, :mod:`.sheared_jkr`) and :mod:`.registry` (names).

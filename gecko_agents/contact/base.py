@@ -9,17 +9,24 @@ import math
 
 import numpy as np
 
-from gecko_agents.physics.savkoor_briggs import combined_shear_modulus, stick_stiffness
+from gecko_agents.physics._util import jitable
+from gecko_agents.physics.friction import combined_shear_modulus, stick_stiffness
 
-__all__ = ["ContactLaw", "branch_radius", "jitable", "mindlin_stiffness"]
+__all__ = [
+    "ContactLaw",
+    "K_ATTACH_RADIUS",
+    "K_ATTACH_FILM",
+    "branch_radius",
+    "jitable",
+    "mindlin_stiffness",
+]
 
-
-try:  # the scalar forms call it from inside numba-compiled code too
-    from numba.extending import register_jitable as jitable
-except ImportError:  # numba is optional: then it is a plain function
-
-    def jitable(fn):
-        return fn
+# Slots every tangential law (``tangential = True``) fills in its constants k: what the kernels
+# give a tip on attachment, its state ``a`` (contact radius, or the film's attached length) [µm]
+# and its free film's unstretched length s0 [µm] (0 for a law without a film). The other
+# indices are each law's own, named in its module (``K_*``).
+K_ATTACH_RADIUS = 5
+K_ATTACH_FILM = 12
 
 
 @jitable
@@ -48,10 +55,10 @@ def branch_radius(delta, R, ac):
 
 
 def mindlin_stiffness(contact, a: float) -> float:
-    """Tangential stick stiffness k_t = 8G*·a of a circular contact of radius a [µN/µm].
-
-    Mindlin (1949, J Appl Mech 16:259); G* = ((2−ν1)/G1 + (2−ν2)/G2)⁻¹, G = E/(2(1+ν))
-    (Johnson, Contact Mechanics, 1985, §7.2).
+    """Tangential stick stiffness k_t = 8G*·a of a circular contact of radius a [µN/µm] for the
+    materials of ``contact``: :func:`gecko_agents.physics.friction.stick_stiffness` with
+    :func:`~gecko_agents.physics.friction.combined_shear_modulus` (Mindlin 1949, J Appl Mech
+    16:259; Johnson, Contact Mechanics, 1985, §7.2).
 
     Parameters
     ----------

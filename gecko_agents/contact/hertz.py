@@ -11,6 +11,11 @@ from gecko_agents.physics import jkr
 
 __all__ = ["HertzSphere"]
 
+# Indices of HertzSphere.constants (k), what the scalar functions read.
+K_R = 0  # tip radius R [µm]
+K_FORCE = 1  # 4E*/(3R) [µN/µm³]: P = k[K_FORCE]·a³
+K_ENERGY = 2  # 8E*/(15R²) [µN/µm⁴]: U = k[K_ENERGY]·a⁵
+
 
 class HertzSphere(ContactLaw):
     """An elastic sphere on a flat without adhesion (Hertz 1882; paper eq 1–3; Johnson,
@@ -39,7 +44,8 @@ class HertzSphere(ContactLaw):
         self.a0 = a_ref
         self.tangential_stiffness = mindlin_stiffness(contact, a_ref)
         self.zero_load_stiffness = 2 * E * a_ref
-        self.constants = np.array([R, 4.0 * E / (3.0 * R), 8.0 * E / (15.0 * R * R)])
+        k = self.constants = np.zeros(3)
+        k[K_R], k[K_FORCE], k[K_ENERGY] = R, 4.0 * E / (3.0 * R), 8.0 * E / (15.0 * R * R)
 
     def stiffest(self, load: float) -> float:
         return 2 * self.E_star * float(jkr.hertz_contact_radius(load, self.R, self.E_star))
@@ -55,12 +61,12 @@ class HertzSphere(ContactLaw):
 
     @staticmethod
     def radius_scalar(delta, a_prev, dt, k):
-        return math.sqrt(delta * k[0]) if delta > 0.0 else 0.0
+        return math.sqrt(delta * k[K_R]) if delta > 0.0 else 0.0
 
     @staticmethod
     def force_scalar(a, delta, k):
-        return k[1] * a * a * a
+        return k[K_FORCE] * a * a * a
 
     @staticmethod
     def energy_scalar(a, delta, k):
-        return k[2] * a**5
+        return k[K_ENERGY] * a**5

@@ -11,6 +11,15 @@ from gecko_agents.physics import jkr
 
 __all__ = ["JKRSphere"]
 
+# Indices of JKRSphere.constants (k), what the scalar functions read.
+K_R = 0  # tip radius R [µm]
+K_AC = 1  # snap-off radius a_c [µm]
+K_HERTZ = 2  # 4E*/(3R) [µN/µm³] (eq 7's first term over a³)
+K_ADHESION = 3  # 8πwE* [µN²/µm³] (eq 7's second term is √(k[K_ADHESION]·a³))
+K_W = 4  # work of adhesion w [µN/µm]
+K_E = 5  # effective modulus E* [MPa]
+K_U_JUMP = 6  # U(a_jump) [pJ], from the scalar energy itself: the energy is 0 at attachment
+
 
 class JKRSphere(ContactLaw):
     """An elastic sphere of radius R on a flat, JKR adhesion (paper eq 1–15; Johnson, Kendall &
@@ -51,11 +60,10 @@ class JKRSphere(ContactLaw):
         self.a0 = a0
         self.tangential_stiffness = mindlin_stiffness(contact, a0)
         self.zero_load_stiffness = 2 * E * a0
-        # k = (R, ac, 4E*/(3R), 8πwE*, w, E*, U(a_jump)); U(a_jump) from the scalar form itself.
-        self.constants = np.array(
-            [R, self.ac, 4.0 * E / (3.0 * R), 8.0 * math.pi * w * E, w, E, 0.0]
-        )
-        self.constants[6] = JKRSphere.energy_scalar(self.jump_radius, 0.0, self.constants)
+        k = self.constants = np.zeros(7)
+        k[K_R], k[K_AC], k[K_W], k[K_E] = R, self.ac, w, E
+        k[K_HERTZ], k[K_ADHESION] = 4.0 * E / (3.0 * R), 8.0 * math.pi * w * E
+        k[K_U_JUMP] = JKRSphere.energy_scalar(self.jump_radius, 0.0, k)
 
     def stiffest(self, load: float) -> float:
         a = float(jkr.contact_radius_from_force(load, self.R, self.w, self.E_star))
@@ -124,16 +132,16 @@ class JKRSphere(ContactLaw):
 
     @staticmethod
     def radius_scalar(delta, a_prev, dt, k):
-        return branch_radius(delta, k[0], k[1])
+        return branch_radius(delta, k[K_R], k[K_AC])
 
     @staticmethod
     def force_scalar(a, delta, k):
         a3 = a * a * a
-        return a3 * k[2] - math.sqrt(a3 * k[3])
+        return a3 * k[K_HERTZ] - math.sqrt(a3 * k[K_ADHESION])
 
     @staticmethod
     def energy_scalar(a, delta, k):
-        R, w, E = k[0], k[4], k[5]
+        R, w, E = k[K_R], k[K_W], k[K_E]
         A = 4.0 * E / (3.0 * R)
         B = math.sqrt(8.0 * math.pi * w * E)
         C = math.sqrt(2.0 * math.pi * w / E)
@@ -142,4 +150,4 @@ class JKRSphere(ContactLaw):
             - (A * C / 7.0 + 4.0 * B / (7.0 * R)) * a**3.5
             + math.pi * w * a * a
         )
-        return U - k[6]
+        return U - k[K_U_JUMP]

@@ -12,6 +12,17 @@ from gecko_agents.physics import jkr
 
 __all__ = ["RateJKRSphere"]
 
+# Indices of RateJKRSphere.constants (k), what the scalar functions read.
+K_R = 0  # tip radius R [µm]
+K_AC = 1  # snap-off radius a_c [µm]
+K_W = 2  # work of adhesion w [µN/µm]
+K_E = 3  # effective modulus E* [MPa]
+K_V_OPEN = 4  # crack opening speed v* [µm/µs]
+K_INV_N = 5  # 1/n, the crack exponent's inverse [-]
+K_V_CLOSE = 6  # crack closing speed [µm/µs]
+K_DELTA_C = 7  # snap-off overlap δc [µm]
+K_U_JUMP = 8  # U(a_j, 0) + πw·a_j² [pJ]: the energy is 0 at attachment
+
 
 class RateJKRSphere(JKRSphere):
     """A JKR sphere whose contact edge moves at a finite speed: crack kinetics (Maugis &
@@ -63,11 +74,11 @@ class RateJKRSphere(JKRSphere):
         # adhesion ~90 w: far outside what the rate law is meant for) it lets go regardless.
         self.detach_overlap = 20.0 * self.delta_c
         R, w, E = self.R, self.w, self.E_star
-        # k = (R, ac, w, E*, v*, 1/n, v_close, δc, U(a_j, 0) + πw·a_j²)
-        self.constants = np.array(
-            [R, self.ac, w, E, self.v_star, 1.0 / self.n_exp, self.v_close, self.delta_c, 0.0]
-        )
-        self.constants[8] = self.energy_scalar(self.jump_radius, 0.0, self.constants)
+        k = self.constants = np.zeros(9)
+        k[K_R], k[K_AC], k[K_W], k[K_E] = R, self.ac, w, E
+        k[K_V_OPEN], k[K_INV_N], k[K_V_CLOSE] = self.v_star, 1.0 / self.n_exp, self.v_close
+        k[K_DELTA_C] = self.delta_c
+        k[K_U_JUMP] = self.energy_scalar(self.jump_radius, 0.0, k)
 
     def radius(self, delta, a_prev, dt):
         k = self.constants
@@ -93,16 +104,8 @@ class RateJKRSphere(JKRSphere):
 
     @staticmethod
     def radius_scalar(delta, a_prev, dt, k):
-        R, ac, w, E, v_star, inv_n, v_close, delta_c = (
-            k[0],
-            k[1],
-            k[2],
-            k[3],
-            k[4],
-            k[5],
-            k[6],
-            k[7],
-        )
+        R, ac, w, E = k[K_R], k[K_AC], k[K_W], k[K_E]
+        v_star, inv_n, v_close, delta_c = k[K_V_OPEN], k[K_INV_N], k[K_V_CLOSE], k[K_DELTA_C]
         a = a_prev
         # Equilibrium radius on the stable branch, if any.
         has_eq = delta >= delta_c
@@ -140,11 +143,11 @@ class RateJKRSphere(JKRSphere):
 
     @staticmethod
     def force_scalar(a, delta, k):
-        E, R = k[3], k[0]
+        E, R = k[K_E], k[K_R]
         return 2.0 * E * a * delta - 2.0 * E * a * a * a / (3.0 * R)
 
     @staticmethod
     def energy_scalar(a, delta, k):
-        R, w, E = k[0], k[2], k[3]
+        R, w, E = k[K_R], k[K_W], k[K_E]
         UE = E * (a * delta * delta - 2.0 * a * a * a * delta / (3.0 * R) + a**5 / (5.0 * R * R))
-        return UE - math.pi * w * a * a - k[8]
+        return UE - math.pi * w * a * a - k[K_U_JUMP]

@@ -7,9 +7,15 @@ import math
 
 import numpy as np
 
-from gecko_agents.contact.base import ContactLaw, branch_radius, mindlin_stiffness
+from gecko_agents.contact.base import (
+    K_ATTACH_FILM,
+    K_ATTACH_RADIUS,
+    ContactLaw,
+    branch_radius,
+    mindlin_stiffness,
+)
 from gecko_agents.physics import jkr
-from gecko_agents.physics import savkoor_briggs as sheared_jkr
+from gecko_agents.physics.friction import combined_shear_modulus, friction_cap, stick_stiffness
 
 __all__ = ["ShearedJKRSphere"]
 
@@ -22,8 +28,17 @@ except ImportError:  # pragma: no cover
         return lambda f: f
 
 
-# k = (R, a_c, w, E*, G*, a_jump, μ, paper, Fc, 0, 0, 0, 0): k[5] and k[12] are the radius and
-# the (unused) film length the kernels give a tip on attachment, as for every tangential law.
+# Indices of ShearedJKRSphere.constants (k), what the scalar functions read; k[K_ATTACH_RADIUS]
+# and k[K_ATTACH_FILM] are the radius and the (unused) film length the kernels give a tip on
+# attachment, as for every tangential law (:mod:`.base`).
+K_R = 0  # tip radius R [µm]
+K_AC = 1  # JKR's snap-off radius a_c [µm]
+K_W = 2  # work of adhesion w [µN/µm]
+K_E = 3  # effective modulus E* [MPa]
+K_G = 4  # combined shear modulus G* [MPa]
+K_MU = 6  # friction coefficient μ [-]
+K_PAPER = 7  # 1.0: the paper's friction cap μ·max(P, 0), 0.0: the adhesive μ|P + 2Fc|
+K_FC = 8  # pull-off force Fc [µN]
 
 
 @_njit(cache=True)
@@ -31,9 +46,9 @@ def _fold_radius(c2, k):
     """Radius [µm] at the end of the stable branch at fixed δ and ξ, where dδ/da = 0:
     8πw·a³ − 4c2·a² − π²w²R²/E* = 0 with c2 = 4G*ξ² [µN] (Newton from the right, where the
     cubic is convex and increasing; a_c, JKR's snap-off radius, at ξ = 0)."""
-    R, w, E = k[0], k[2], k[3]
+    R, w, E = k[K_R], k[K_W], k[K_E]
     C = (math.pi * w * R) ** 2 / E
-    a = c2 / (2.0 * math.pi * w) + k[1]  # the cubic is ≥ 0 here (module docstring)
+    a = c2 / (2.0 * math.pi * w) + k[K_AC]  # the cubic is ≥ 0 here (module docstring)
     for _ in range(100):
         h = (8.0 * math.pi * w * a - 4.0 * c2) * a * a - C
         dh = (24.0 * math.pi * w * a - 8.0 * c2) * a
@@ -47,7 +62,7 @@ def _fold_radius(c2, k):
 @_njit(cache=True)
 def _gap(a, delta, c2, k):
     """g(a) = a²/R − √((2πwa − c2)/E*) − δ [µm] and g'(a): zero on the branch at (δ, ξ)."""
-    R, w, E = k[0], k[2], k[3]
+    R, w, E = k[K_R], k[K_W], k[K_E]
     q = (2.0 * math.pi * w * a - c2) / E
     r = math.sqrt(q) if q > 0.0 else 0.0
     g = a * a / R - r - delta
@@ -62,12 +77,12 @@ def _radius(delta, xi, k):
     (past
     the fold). g(a) is convex, so Newton from JKR's radius at δ (where g ≥ 0, right of the
     fold whenever the contact exists) falls monotonically onto the largest root."""
-    c2 = 4.0 * k[4] * xi * xi
+    c2 = 4.0 * k[K_G] * xi * xi
     a_fold = _fold_radius(c2, k)
     g, _ = _gap(a_fold, delta, c2, k)
     if g > 0.0:
         return 0.0
-    a = max(branch_radius(delta, k[0], k[1]), a_fold)
+    a = max(branch_radius(delta, k[K_R], k[K_AC]), a_fold)
     for _ in range(200):
         g, dg = _gap(a, delta, c2, k)
         if g <= 0.0 or dg <= 0.0:
@@ -82,7 +97,7 @@ def _radius(delta, xi, k):
 @_njit(cache=True)
 def _state_energy(a, delta, xi, k):
     """:func:`gecko_agents.physics.savkoor_briggs.energy` [pJ] of radius a at (δ, ξ)."""
-    R, w, E, G = k[0], k[2], k[3], k[4]
+    R, w, E, G = k[K_R], k[K_W], k[K_E], k[K_G]
     e = delta - a * a / R
     U = 8.0 * E * a**5 / (15.0 * R * R) + 4.0 * E * a**3 / (3.0 * R) * e + E * a * e * e
     return U - math.pi * a * a * w + 4.0 * G * a * xi * xi
@@ -91,16 +106,15 @@ def _state_energy(a, delta, xi, k):
 @_njit(cache=True)
 def _normal_force(a, delta, k):
     """:func:`gecko_agents.physics.savkoor_briggs.force_from_state` [µN]."""
-    R, E = k[0], k[3]
+    R, E = k[K_R], k[K_E]
     return 4.0 * E * a**3 / (3.0 * R) + 2.0 * E * a * (delta - a * a / R)
 
 
 @_njit(cache=True)
 def _cap(P, k):
-    """Coulomb cap [µN]: μ|P + 2Fc| (adhesive, Thornton 1991) or μ·max(P, 0) (paper, eq 27)."""
-    if k[7] > 0.0:
-        return k[6] * max(P, 0.0)
-    return k[6] * abs(P + 2.0 * k[8])
+    """Coulomb cap [µN]: :func:`gecko_agents.physics.friction.friction_cap`, μ|P + 2Fc|
+    (adhesive, Thornton 1991) or μ·max(P, 0) (paper, eq 27)."""
+    return friction_cap(P, k[K_FC], k[K_MU], k[K_PAPER] > 0.0)
 
 
 @_njit(cache=True)
@@ -109,7 +123,8 @@ def _holds(delta, s, k):
     a = _radius(delta, s, k)
     if a <= 0.0:
         return a, 0.0
-    return a, (1.0 if 8.0 * k[4] * a * s <= _cap(_normal_force(a, delta, k), k) else 0.0)
+    held = stick_stiffness(a, k[K_G]) * s <= _cap(_normal_force(a, delta, k), k)
+    return a, (1.0 if held else 0.0)
 
 
 class ShearedJKRSphere(ContactLaw):
@@ -151,9 +166,7 @@ class ShearedJKRSphere(ContactLaw):
 
     def __init__(self, contact, friction):
         R, w, E = contact.jkr_args()
-        G = float(
-            sheared_jkr.combined_shear_modulus(contact.E1, contact.nu1, contact.E2, contact.nu2)
-        )
+        G = float(combined_shear_modulus(contact.E1, contact.nu1, contact.E2, contact.nu2))
         self.R, self.w, self.E_star, self.G_star = R, w, E, G
         self.pull_off_force = float(jkr.pull_off_force(R, w))
         self.ac = float(jkr.snap_off_radius(R, w, E))
@@ -167,9 +180,10 @@ class ShearedJKRSphere(ContactLaw):
         self.tangential_stiffness = mindlin_stiffness(contact, self.a0)
         self.zero_load_stiffness = 2 * E * self.a0
         mu, paper = friction.mu, 1.0 if friction.law == "paper" else 0.0
-        self.constants = np.array(
-            [R, self.ac, w, E, G, self.jump_radius, mu, paper, self.pull_off_force] + [0.0] * 4
-        )
+        k = self.constants = np.zeros(K_ATTACH_FILM + 1)  # indices 9–11 unused
+        k[K_R], k[K_AC], k[K_W], k[K_E], k[K_G] = R, self.ac, w, E, G
+        k[K_ATTACH_RADIUS], k[K_ATTACH_FILM] = self.jump_radius, 0.0
+        k[K_MU], k[K_PAPER], k[K_FC] = mu, paper, self.pull_off_force
 
     def stiffest(self, load: float) -> float:
         a = float(jkr.contact_radius_from_force(load, self.R, self.w, self.E_star))
@@ -197,7 +211,7 @@ class ShearedJKRSphere(ContactLaw):
         branch's end holds (shear has peeled the adhesive contact as far as it goes; Johnson
         1997 has it drop to the Hertz area then, which is not modelled). A slip dissipates the
         work of the shear it held, 8G*·a·|ξ| times the slip."""
-        delta = k[0] - z
+        delta = k[K_R] - z
         xi = dx - xa
         s = abs(xi)
         a, ok = _holds(delta, s, k)
@@ -221,12 +235,12 @@ class ShearedJKRSphere(ContactLaw):
             if released:  # what the contact stored when its force last acted is dissipated
                 return 0.0, 0.0, 0.0, 0.0, 0.0, u_prev, xa, u_prev, 0.0, 0.0
             a = _radius(delta, lo, k)
-            coulomb = 8.0 * k[4] * a * lo * (s - lo)
+            coulomb = stick_stiffness(a, k[K_G]) * lo * (s - lo)
             xi = math.copysign(lo, xi)
             xa = dx - xi
             slid = 1.0
         P = _normal_force(a, delta, k)
-        T = -8.0 * k[4] * a * xi
+        T = -stick_stiffness(a, k[K_G]) * xi
         # Elastic: the radius follows (δ, ξ) on the branch, so a step dissipates only the
         # work of a slip (the stick spring's release at fixed position, to first order).
         U = _state_energy(a, delta, xi, k)

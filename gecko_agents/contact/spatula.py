@@ -6,10 +6,34 @@ import math
 
 import numpy as np
 
-from gecko_agents.contact.base import ContactLaw, mindlin_stiffness
+from gecko_agents.contact.base import (
+    K_ATTACH_FILM,
+    K_ATTACH_RADIUS,
+    ContactLaw,
+    mindlin_stiffness,
+)
 from gecko_agents.physics import jkr
+from gecko_agents.physics.friction import friction_cap
 
 __all__ = ["SpatulaTip"]
+
+# Indices of SpatulaTip.constants (k), what the scalar functions read; k[K_ATTACH_RADIUS] and
+# k[K_ATTACH_FILM] are the attached length ℓ0 and the free film's length s0 = h the kernels give
+# a tip on attachment, as for every tangential law (:mod:`.base`).
+K_R = 0  # tip radius R [µm]
+K_B = 1  # film width b [µm]
+K_H = 2  # film thickness h [µm]
+K_EF = 3  # film modulus E_f [MPa]
+K_W = 4  # work of adhesion w [µN/µm]
+K_ELL0 = K_ATTACH_RADIUS  # attached length at first contact ℓ0 [µm]
+K_FILM = 6  # film stiffness K = E_f·h·b [µN]
+K_HERTZ_P = 7  # (4/3)E*√R [µN/µm^(3/2)]: the tip body's compression P_c = k·δ^(3/2)
+K_HERTZ_U = 8  # (8/15)E*√R [µN/µm^(3/2)]: its energy k·δ^(5/2)
+K_MU = 9  # friction coefficient μ [-]
+K_PAPER = 10  # 1.0: the paper's friction cap μ·max(P, 0), 0.0: the adhesive μ|P + 2Fc|
+K_FC = 11  # Kendall's 90° peel force w·b, the pad's Fc [µN]
+K_BONDED = 13  # 1.0: spatula.interface = "bonded", 0.0: "sliding"
+K_KT = 14  # the tip body's stick stiffness k_t [µN/µm]
 
 
 try:  # the film's helpers are called from the compiled loop, so they are compiled too
@@ -36,7 +60,7 @@ def _film_energy(dx, z, ell, p0, s0, k):
     ½K(s − s0)²/s0 + pre-strain of the attached film m·P0²/(2K) over its material length
     m = ℓ/(1 + ε0) = ℓK/(K + P0) (ℓ its floor length) + surface energy w·b·(ℓ0 − ℓ) of the
     floor it no longer covers + Hertz compression of the tip (8/15)E*√R·δ^(5/2)."""
-    R, b, w, ell0, K, hz_u = k[0], k[1], k[4], k[5], k[6], k[8]
+    R, b, w, ell0, K, hz_u = k[K_R], k[K_B], k[K_W], k[K_ELL0], k[K_FILM], k[K_HERTZ_U]
     zf = z - R if z > R else 0.0
     s = math.sqrt(dx * dx + zf * zf)
     e = s - s0
@@ -57,7 +81,7 @@ def _release_rate(dx, zf, p0, s0, k):
     F(1 − cos φ) + F²/(2E_f·h·b) (Kendall 1975, J Phys D 8:1449, eq 4 per width); to second
     order in the strains it is Chen, Wu & Gao's F(1 − cos φ) + (F − P0)²/(2E_f·h·b) (2009,
     J R Soc Interface 6:529)."""
-    b, K = k[1], k[6]
+    b, K = k[K_B], k[K_FILM]
     F, s = _film_force(dx, zf, s0, K)
     cos_phi = -dx / s if s > 0.0 else 0.0
     return (-F * cos_phi + (F + (F * F + p0 * p0) / (2.0 * K)) / (1.0 + p0 / K)) / b
@@ -68,21 +92,19 @@ def _hertz_compression(z, k):
     """Hertz compression P_c = (4/3)E*√R·δ^(3/2) [µN] of the tip body at height z [µm] of its
     centre above the floor, δ = R − z > 0 (Hertz 1882; Johnson, Contact Mechanics, 1985, eq
     4.22); 0 while the body does not touch."""
-    d = k[0] - z
-    return k[7] * d * math.sqrt(d) if d > 0.0 else 0.0
+    d = k[K_R] - z
+    return k[K_HERTZ_P] * d * math.sqrt(d) if d > 0.0 else 0.0
 
 
 @_njit(cache=True)
 def _friction_cap(z, ell, k):
-    """Friction cap of the attached pad [µN]: ``adhesive`` μ·2Fc·ℓ/ℓ0, the adhesion part of
-    Thornton's μ|P + 2Fc| for what is still attached (Fc = w·b), or ``paper`` 0 (eq 27's
-    μ·max(P, 0) with no load on the pad). The pad carries no normal load: the film's pull acts
-    at the peel front (Kendall's picture) and the Hertz compression P_c on the tip body, whose
-    own friction μ·P_c is :func:`_tip_stick`'s (counted once, there)."""
-    ell0, mu, paper, Fc = k[5], k[9], k[10], k[11]
-    if paper > 0.0:
-        return 0.0
-    return mu * 2.0 * Fc * ell / ell0
+    """Friction cap of the attached pad [µN]: the cap of an unloaded contact
+    (:func:`gecko_agents.physics.friction.friction_cap` at P = 0) times the fraction ℓ/ℓ0 still
+    attached: ``adhesive`` μ·2Fc·ℓ/ℓ0, the adhesion part of Thornton's μ|P + 2Fc| (Fc = w·b), or
+    ``paper`` 0 (eq 27's μ·max(P, 0) with no load on the pad). The pad carries no normal load:
+    the film's pull acts at the peel front (Kendall's picture) and the Hertz compression P_c on
+    the tip body, whose own friction μ·P_c is :func:`_tip_stick`'s (counted once, there)."""
+    return friction_cap(0.0, k[K_FC], k[K_MU], k[K_PAPER] > 0.0) * ell / k[K_ELL0]
 
 
 @_njit(cache=True)
@@ -202,14 +224,14 @@ def _slide(dx, zf, z, ell, p0, s0, k):
     dissipates ∫(H − P0) dv + w·b·v ≥ 0; a contraction releases ∫P0 dv ≥ (c·ℓ + w·b)·v and
     pays w·b·v (:func:`_film_energy` at the tip's position).
     """
-    K = k[6]
+    K = k[K_FILM]
     c = _friction_cap(z, 1.0, k)  # the cap per floor length of pad [µN/µm] (it is ∝ ℓ)
     shift = 0.0
     slid = 0.0
     if ell <= 0.0:
         return dx, shift, ell, p0, slid
     m = ell * K / (K + p0)  # the pad's material (unstretched) length [µm]
-    wb = k[4] * k[1]  # what the front's adhesion holds against a recession [µN]
+    wb = k[K_W] * k[K_B]  # what the front's adhesion holds against a recession [µN]
     if p0 > c * ell + wb:  # friction and the front's adhesion can no longer hold P0
         p0 = (c * m + wb) / (1.0 - c * m / K)  # P0 = c·ℓ + w·b with ℓ = m(1 + P0/K)
         v = _contract(ell, m, p0, K)
@@ -217,7 +239,7 @@ def _slide(dx, zf, z, ell, p0, s0, k):
         shift += v
         ell -= v
     H = _pull_on_front(dx, zf, s0, K)
-    if k[13] > 0.0:  # bonded (Kendall): no stretch; the whole pad slides past the cap
+    if k[K_BONDED] > 0.0:  # bonded (Kendall): no stretch; the whole pad slides past the cap
         if abs(H) > c * ell:
             hi = _slide_to_cap(dx, zf, s0, K, c * ell)
             shift = -hi if dx < 0.0 else hi
@@ -332,43 +354,22 @@ class SpatulaTip(ContactLaw):
         # zero-load radius). It sets how far the pressed body creeps before it slides
         # (μ·P_c/k_t), not the force at which it slides.
         a_ref = float(jkr.hertz_contact_radius(jkr.pull_off_force(R, w), R, E))
-        self.tip_stiffness = mindlin_stiffness(contact, a_ref)
+        self.tip_stiffness = kt = mindlin_stiffness(contact, a_ref)
         # The film's stiffness on attachment, K/h = E_f·b, the stiffest it gets (s0 ≥ h), in
         # parallel with the tip body's stick spring: the stiffest tangential spring of a tip.
         self.s_attach = h
         self.tangential_stiffness = self.K / h + self.tip_stiffness
         self.zero_load_stiffness = self.K / h
-        # k = (R, b, h, E_f, w, ℓ0, K, (4/3)E*√R, (8/15)E*√R, μ, paper, Fc, s0 on attachment,
-        # bonded interface, the tip body's stick stiffness k_t)
-        self.constants = np.array(
-            [
-                R,
-                b,
-                h,
-                E_f,
-                w,
-                ell0,
-                self.K,
-                4.0 * E * math.sqrt(R) / 3.0,
-                8.0 * E * math.sqrt(R) / 15.0,
-                friction.mu,
-                1.0 if friction.law == "paper" else 0.0,
-                self.pull_off_force,
-                h,
-                1.0 if getattr(spatula, "interface", "sliding") == "bonded" else 0.0,
-                self.tip_stiffness,
-            ]
-        )
+        k = self.constants = np.zeros(K_KT + 1)
+        k[K_R], k[K_B], k[K_H], k[K_EF], k[K_W], k[K_ELL0] = R, b, h, E_f, w, ell0
+        k[K_FILM], k[K_FC], k[K_ATTACH_FILM], k[K_KT] = self.K, self.pull_off_force, h, kt
+        k[K_HERTZ_P] = 4.0 * E * math.sqrt(R) / 3.0
+        k[K_HERTZ_U] = 8.0 * E * math.sqrt(R) / 15.0
+        k[K_MU], k[K_PAPER] = friction.mu, 1.0 if friction.law == "paper" else 0.0
+        k[K_BONDED] = 1.0 if getattr(spatula, "interface", "sliding") == "bonded" else 0.0
 
     def stiffest(self, load: float) -> float:
         return 2 * self.E_star * float(jkr.hertz_contact_radius(load, self.R, self.E_star))
-
-    def kendall_force(self, phi):
-        """Steady peel force F [µN] of the film at peel angle φ [rad] without pre-tension:
-        the root of (F/b)(1 − cos φ) + (F/b)²/(2E_f·h) = w (Kendall 1975, eq 4 per width)."""
-        c = 1.0 - np.cos(phi)
-        Eh = self.E_f * self.h
-        return self.b * Eh * (np.sqrt(c * c + 2.0 * self.w / Eh) - c)
 
     def energy(self, a, delta):
         raise NotImplementedError("SpatulaTip stores its energy in the state (state.uc)")
@@ -382,14 +383,14 @@ class SpatulaTip(ContactLaw):
         T [µN] (along +x: the film's and the tip body's friction), front displacement along +x
         [µm], the new state, the stored energy U [pJ], the energy dissipated [pJ] and whether
         the pad or the pressed tip body slid (1.0) or not (0.0)."""
-        R, K, mu, kt = k[0], k[6], k[9], k[14]
+        R, K, mu, kt = k[K_R], k[K_FILM], k[K_MU], k[K_KT]
         zf = z - R if z > R else 0.0  # height of the film's end (the tip body's bottom)
         xi = dx - xa  # the tip body's trial stick offset
         U0 = _film_energy(dx, z, ell, p0, s0, k)
         # 1. Slide: pre-tension by partial slip, then the whole pad while the cap is exceeded.
         dx, shift, ell, p0, slid = _slide(dx, zf, z, ell, p0, s0, k)
         # 2. Peel: advance the front until g = w; a film still above w at ℓ = 0 has let go.
-        w = k[4]
+        w = k[K_W]
         if ell > 0.0 and _release_rate(dx, zf, p0, s0, k) > w:
             grow = 1.0 / (1.0 + p0 / K)
             if _release_rate(dx - ell, zf, p0, s0 + ell * grow, k) > w:
@@ -407,7 +408,7 @@ class SpatulaTip(ContactLaw):
             shift += dc
             s0 += dc * grow
             ell -= dc
-            if ell < 1e-9 * k[5]:
+            if ell < 1e-9 * k[K_ELL0]:
                 ell = 0.0
         # 3. The film's forces on the tip and the tip body's compression.
         F, s = _film_force(dx, zf, s0, K)
@@ -417,8 +418,8 @@ class SpatulaTip(ContactLaw):
         if s > 0.0:
             P -= F * zf / s
             T = -F * dx / s
-        # 4. The pressed tip body's own friction, capped at μ·P_c.
-        xi, Tb, coulomb, body_slid = _tip_stick(xi, mu * Pc, kt)
+        # 4. The pressed tip body's own friction, capped at μ·P_c (Amontons: no adhesion).
+        xi, Tb, coulomb, body_slid = _tip_stick(xi, friction_cap(Pc, 0.0, mu, True), kt)
         T += Tb
         if body_slid > 0.0:
             slid = 1.0

@@ -37,12 +37,7 @@ import numpy as np
 from gecko_agents.contact import contact_law
 from gecko_agents.floor import Profile
 from gecko_agents.history import History
-from gecko_agents.model.mass_damping import (
-    DEFAULT_DAMPING,
-    Damping,
-    seta_mass,
-    tangential_stiffness,
-)
+from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping, seta_mass
 from gecko_agents.model.runner import SimulationUnstable, run_protocol
 from gecko_agents.model.setup import (
     KERNELS,
@@ -65,7 +60,6 @@ __all__ = [
     "SimulationUnstable",
     "numba_available",
     "seta_mass",
-    "tangential_stiffness",
     "KERNELS",
 ]
 
@@ -92,7 +86,8 @@ class Model:
     Parameters
     ----------
     params : the array. ``params.array.count`` is the physical array; the model simulates
-        ``n_sim`` setae of it (default: all of them, refused above 20 000) in one row at
+        ``n_sim`` setae of it (default: all of them; refused above
+        :data:`gecko_agents.model.setup.MAX_N`) in one row at
         ``params.array.pitch`` and reports ``scale = count / n_sim`` in the metadata.
     seed : seed of the run's single ``numpy.random.Generator`` (default ``params.floor.seed``):
         an integer ≥ 0 (Python or numpy; bool, float and str are refused, naming ``seed``), or

@@ -1,4 +1,4 @@
-"""Seta dynamics parameters: the tip's point mass, damping ratios, the contact's stick stiffness.
+"""Seta dynamics parameters: the tip's point mass and the damping ratios.
 
 Units: µm, µN, µs, ng (:mod:`gecko_agents.params`).
 """
@@ -8,11 +8,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from gecko_agents.contact import mindlin_stiffness
 from gecko_agents.params import SetaArray
-from gecko_agents.physics import jkr
 
-__all__ = ["Damping", "DEFAULT_DAMPING", "seta_mass", "tangential_stiffness"]
+__all__ = ["Damping", "DEFAULT_DAMPING", "seta_mass"]
 
 
 @dataclass(frozen=True)
@@ -50,10 +48,3 @@ def seta_mass(params: SetaArray) -> float:
     rho, R = params.seta.density, params.contact.R
     rod = math.pi * params.seta.r**2 * params.seta.L * rho
     return 4.0 / 3.0 * math.pi * R**3 * rho + 33.0 / 140.0 * rod
-
-
-def tangential_stiffness(params: SetaArray) -> float:
-    """Stick-spring stiffness of the JKR contact k_t = 8G*·a0 [µN/µm] (Mindlin 1949) at the
-    zero-load radius a0 (:func:`gecko_agents.contact.mindlin_stiffness`)."""
-    c = params.contact
-    return mindlin_stiffness(c, float(jkr.zero_load_contact_radius(*c.jkr_args())))

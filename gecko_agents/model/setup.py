@@ -22,7 +22,7 @@ __all__ = ["KERNELS", "MAX_N", "MAX_THREADS", "checked_arguments", "choose_kerne
            "numba_available"]  # fmt: skip
 
 KERNELS = ("auto", "numpy", "numba", "python")
-MAX_N = 200_000  # 10⁵ setae: ~0.7 GB peak RSS (python -m gecko_agents.bench)
+MAX_N = 200_000  # peak RSS pressed and stepping: ~1.1 GB here, ~0.7 GB at 10⁵ (bench.pressed_model)
 _PYTHON_MAX_N = 6  # below this many setae the interpreted loop beats numpy's call overhead
 MAX_THREADS = 64
 _LOADAVG = "/proc/loadavg"  # Linux: its fourth field is runnable/total scheduling entities
@@ -49,7 +49,7 @@ def checked_arguments(params, n_sim, contact, record_every, kernel, floor_profil
     n = params.array.count if n_sim is None else n_sim
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= MAX_N:
         raise ValueError(
-            f"n_sim = {n!r} must be an integer in [1, {MAX_N}] (~1.5 GB of pymunk bodies "
+            f"n_sim = {n!r} must be an integer in [1, {MAX_N}] (~1.1 GB of pymunk bodies "
             "at the top); simulate a patch of a large array with n_sim (the quasi-static "
             "solver does 10⁷)"
         )

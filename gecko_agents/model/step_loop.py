@@ -15,6 +15,7 @@ import math
 
 import numpy as np
 
+from gecko_agents.contact.base import K_ATTACH_FILM, K_ATTACH_RADIUS
 from gecko_agents.model.state import (
     AC,
     AX,
@@ -42,19 +43,13 @@ from gecko_agents.model.state import (
     Y,
 )
 from gecko_agents.model.state import P as PN
+from gecko_agents.physics._util import jitable
+from gecko_agents.physics.friction import friction_cap
 
 __all__ = ["pad_loop", "numba_available"]
 
 
-try:  # called from inside the compiled loops too
-    from numba.extending import register_jitable as _jitable
-except ImportError:  # numba is optional: then it is a plain function
-
-    def _jitable(fn):
-        return fn
-
-
-@_jitable
+@jitable  # called from inside the compiled loops too
 def seta_spring(i, r, data, S, c, pnx, pny, vpx, vpy, rest, root):
     """Seta i (batch row r of ``data``): stores its position and velocity and the evaluation
     point x + v·dt in ``S``, and returns (x, y, vx, vy, fx, fy, fdx, fdy, |u|²): the seta's
@@ -198,10 +193,7 @@ def _force_pass(force, energy, jit):
                 a = S[AC, i]
                 P = force(a, S[DELTA, i], k)
                 xi = x - S[AX, i]
-                if paper:
-                    cap = (P if P > 0.0 else 0.0) * mu
-                else:
-                    cap = abs(P + 2.0 * Fc) * mu
+                cap = friction_cap(P, Fc, mu, paper)
                 trial = xi * -kt
                 dtg = vx * -ct
                 if abs(trial) > cap:
@@ -353,7 +345,8 @@ def _film_contact(step, jit, damp_sliding=True):
             attached[i] = True
             new = True
             S[AX, i], S[AY, i] = x, h[i]
-            S[AC, i], S[S0, i], S[P0, i], S[UC, i] = k[5], k[12], 0.0, 0.0
+            S[AC, i], S[S0, i] = k[K_ATTACH_RADIUS], k[K_ATTACH_FILM]
+            S[P0, i], S[UC, i] = 0.0, 0.0
             S[XI, i] = 0.0  # the tip body's stick anchor, under the tip with the front
         if attached[i]:
             P, T, shift, ell, p0, s0, xa, U, de, slid = step(

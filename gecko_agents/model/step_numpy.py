@@ -31,6 +31,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from gecko_agents.physics.friction import friction_cap
+
 __all__ = ["LoopConstants", "NumpyStep"]
 
 
@@ -401,13 +403,7 @@ class NumpyStep:
         forces, their damping and which tips slide; the slip's Coulomb work is dissipated."""
         c = self.c
         k_t = c.k_t
-        if c.paper:
-            cap = np.maximum(P, 0.0)
-            cap *= c.mu
-        else:
-            cap = P + 2.0 * c.Fc
-            np.abs(cap, out=cap)
-            cap *= c.mu
+        cap = friction_cap(P, c.Fc, c.mu, c.paper)
         trial = xi * -k_t
         sl = np.abs(trial) > cap
         any_sl = bool(sl.any())

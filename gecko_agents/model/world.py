@@ -89,7 +89,7 @@ class World:
         self.root_dx = (np.arange(n) - (n - 1) / 2.0) * p.array.pitch
         self.root_dy = np.zeros(n)
         self.rest_dx, self.rest_dy = self.root_dx + rest_dx, self.root_dy + rest_dy
-        self.z_touch = R - rest_dy  # plate height at which a tip touches h = 0
+        self.z_touch = float(beam.touchdown_height(L, theta, R))  # a tip touches h = 0
         touch_x = self.rest_dx.copy()
         margin = 50.0 + 3 * L
         prof = floor.for_array(p.floor, touch_x, p.array.pitch, margin, rng, measured=floor_profile)

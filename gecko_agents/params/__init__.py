@@ -1,4 +1,4 @@
-"""Validated, frozen parameter sets and the paper's named presets.
+"""Validated, frozen parameter sets; the paper's named presets are in :mod:`.presets`.
 
 Unit system (the one used everywhere in gecko_agents)
 -----------------------------------------------------
@@ -44,6 +44,7 @@ from gecko_agents.params.checks import (
     check,
 )
 from gecko_agents.physics import beam, jkr
+from gecko_agents.physics.friction import friction_cap
 
 MECHANICS = ("linear", "rod")
 DETACHMENT_RULES = ("fold", "delta_s", "load_control")
@@ -307,12 +308,9 @@ class Friction:
             raise ValueError(f"Friction.law = {self.law!r} must be one of {FRICTION_LAWS}")
 
     def cap(self, P, Fc):
-        """Largest tangential force magnitude [µN] for normal force(s) ``P`` [µN] (≥ 0)."""
-        import numpy as np
-
-        if self.law == "paper":
-            return self.mu * np.maximum(P, 0.0)
-        return self.mu * np.abs(np.asarray(P) + 2.0 * Fc)
+        """Largest tangential force magnitude [µN] for normal force(s) ``P`` [µN] and pull-off
+        force ``Fc`` [µN]: :func:`gecko_agents.physics.friction.friction_cap` of this law."""
+        return friction_cap(np.asarray(P), Fc, self.mu, self.law == "paper")
 
 
 @dataclass(frozen=True)
@@ -573,39 +571,7 @@ def check_seed(seed, name: str = "seed") -> int:
     return seed
 
 
-PAPER_TABLE1 = SetaArray(
-    contact=Contact(R=4.0, E1=1.413, nu1=0.3, E2=55_000.0, nu2=0.25, gamma1=0.040, gamma2=0.170),
-    seta=Seta(r=1.5, L=20.0, theta_deg=30.0),
-    array=Array(count=1, pitch=4.0),
-    floor=Floor(sigma=0.0),
-    friction=Friction(mu=0.2),
-)
-"""Single seta of the paper's Table 1 (Fig 8).
-
-Table 1: slope 30°, diameter 3 µm (→ rod radius r = 1.5 µm, NOTES.md), length 20 µm, ν = 0.3,
-E = 1.413 MPa, "adhesive energy" 40 mJ/m² read as the seta's surface energy γ1; the floor is the
-55 GPa, ν = 0.25, γ2 = 170 mJ/m² plane of section 3.1.1, and w = 2√(γ1γ2) = 0.1649 J/m² (the
-paper's own rule). Tip radius R = 4 µm from section 3.1.1 (Table 1 gives none). μ = 0.2 from
-section 3.3.2. The alternative reading that matches Fig 5 (w = 0.080 J/m²) is
-:data:`PAPER_FIG5_READING`.
-"""
-
-PAPER_ARRAY = SetaArray(
-    contact=PAPER_TABLE1.contact,
-    seta=Seta(r=1.5, L=20.0, theta_deg=60.0),
-    array=Array(count=10_000_000, pitch=4.0),
-    floor=Floor(sigma=1.0, correlation_length=0.0, seed=0),
-    friction=Friction(mu=0.2),
-)
-"""The array of section 3.3.2 (Fig 10–11).
-
-10⁷ setae on 1 cm² at 4 µm pitch (count and pitch kept separate: a square 4 µm pitch would give
-6.25×10⁶, NOTES.md), θ = 60°, E = 1.413 MPa, ν = 0.3, γ1 = 40 mJ/m², floor 55 GPa, ν = 0.25,
-γ2 = 170 mJ/m², μ = 0.2, roughness "mean square error 1" read as RMS height σ = 1 µm with an
-independent height under each seta (eq 28). Rod r = 1.5 µm, L = 20 µm and R = 4 µm carried over
-from Table 1 and section 3.1.1, which the array section does not restate.
-"""
-
-PAPER_FIG5_READING = PAPER_TABLE1.replace(**{"contact.w": 0.080})
-"""Table 1 with w = 0.080 J/m², the work of adhesion that Fig 5's −1.5 µN pull-off at R = 4 µm
-implies (= 2 × 40 mJ/m², i.e. w = 2γ1; NOTES.md)."""
+# The paper's named presets (params/presets.py, built from the classes above): this package's API.
+from gecko_agents.params.presets import PAPER_ARRAY as PAPER_ARRAY  # noqa: E402
+from gecko_agents.params.presets import PAPER_FIG5_READING as PAPER_FIG5_READING  # noqa: E402
+from gecko_agents.params.presets import PAPER_TABLE1 as PAPER_TABLE1  # noqa: E402

@@ -25,6 +25,7 @@ __all__ = [
     "stiffness_matrix",
     "deflection_ratio",
     "rest_tip_offset",
+    "touchdown_height",
 ]
 
 
@@ -121,6 +122,20 @@ def rest_tip_offset(L, theta):
     (dx, dy) : the offsets along x (> 0) and y (< 0 for 0 < θ < π) [length].
     """
     return L * np.cos(theta), -L * np.sin(theta)
+
+
+def touchdown_height(L, theta, R):
+    """Plate height at which a resting tip of radius R touches the floor's mean plane y = 0:
+    R + L sin θ [length] (the resting tip centre sits :func:`rest_tip_offset` below its root,
+    which the plate carries, and touches y = 0 at y = R). The reference of the pressing
+    displacement d = R + L sin θ − plate height.
+
+    Parameters
+    ----------
+    L : seta length [length]. theta : seta angle to the plate [rad]. R : tip radius [length].
+    Arrays broadcast.
+    """
+    return R - rest_tip_offset(L, theta)[1]
 
 
 def linear_spring_force(u, K):

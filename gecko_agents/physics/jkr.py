@@ -34,6 +34,9 @@ __all__ = [
     "contact_radius_from_force",
     "force_from_overlap",
     "radius_from_overlap",
+    "force_slope",
+    "overlap_slope",
+    "branch_terms",
     "contact_stiffness",
     "contact_energy",
     "hertz_contact_radius",
@@ -212,16 +215,56 @@ def force_from_overlap(overlap, R, w, E_star):
     return force_from_radius(radius_from_overlap(overlap, R, w, E_star), R, w, E_star)
 
 
+def force_slope(a, R, w, E_star):
+    """dP/da = 4E*a²/R − (3/2)√(8πwE*a) [force/length], eq 7 differentiated; 0 at the
+    load-controlled pull-off radius a = 4^(-1/3)·a0.
+
+    Parameters
+    ----------
+    a : contact radius [length], > 0. R [length], w [force/length], E_star [force/length²].
+    """
+    return 4.0 * E_star * a * a / R - 1.5 * np.sqrt(8.0 * np.pi * w * E_star * a)
+
+
+def overlap_slope(a, R, w, E_star):
+    """dδ/da = 2a/R − ½√(2πw/(E*a)) [-], eq 10 differentiated; 0 at the snap-off radius a_c
+    (:func:`snap_off_radius`), where the stable branch ends.
+
+    Parameters
+    ----------
+    a : contact radius [length], > 0. R [length], w [force/length], E_star [force/length²].
+    """
+    return 2.0 * a / R - 0.5 * np.sqrt(2.0 * np.pi * w / (E_star * a))
+
+
+def branch_terms(a, R, w, E_star):
+    """P (eq 7) [force], dP/da [force/length], δ (eq 10) [length] and dδ/da [-] at contact
+    radius a [length], sharing √a (the quasi-static solvers' Newton steps): with
+    k1 = √(8πwE*), k2 = √(2πw/E*), P = 4E*a³/(3R) − k1·a^(3/2), dP/da = 4E*a²/R − (3/2)k1√a,
+    δ = a²/R − k2√a, dδ/da = 2a/R − k2/(2√a). The same values as :func:`force_from_radius`,
+    :func:`force_slope`, :func:`overlap_from_radius`, :func:`overlap_slope` to rounding.
+
+    Parameters
+    ----------
+    a : contact radius [length], > 0. R [length], w [force/length], E_star [force/length²].
+    """
+    k1, k2 = np.sqrt(8.0 * np.pi * w * E_star), np.sqrt(2.0 * np.pi * w / E_star)
+    sa = np.sqrt(a)
+    P = (4.0 * E_star / (3.0 * R)) * a * a * a - k1 * a * sa
+    dP = (4.0 * E_star / R) * a * a - 1.5 * k1 * sa
+    d = a * a / R - k2 * sa
+    dd = 2.0 * a / R - 0.5 * k2 / sa
+    return P, dP, d, dd
+
+
 def contact_stiffness(a, R, w, E_star):
     """dP/dδ along the JKR curve at contact radius a [force/length].
 
-    (dP/da)/(dδ/da) from eq 7 and eq 10. It is 2E*a in the Hertz limit, 0 at the
-    load-controlled pull-off (a = 0.63 a0), negative below it and −∞ at δc.
+    :func:`force_slope` / :func:`overlap_slope` (eq 7 and eq 10). It is 2E*a in the Hertz
+    limit, 0 at the load-controlled pull-off (a = 0.63 a0), negative below it and −∞ at δc.
     """
     a = np.asarray(a, dtype=float)
-    dP = 4.0 * E_star * a**2 / R - 1.5 * np.sqrt(8.0 * np.pi * w * E_star * a)
-    dd = 2.0 * a / R - 0.5 * np.sqrt(2.0 * np.pi * w / (E_star * a))
-    return dP / dd
+    return force_slope(a, R, w, E_star) / overlap_slope(a, R, w, E_star)
 
 
 def contact_energy(a, R, w, E_star):

@@ -5,11 +5,12 @@ Plain vectorized numpy functions, the oracles of :class:`gecko_agents.contact.Sh
 (any consistent units; µm, µN, MPa, µN/µm in gecko_agents). Symbols as
 :mod:`gecko_agents.physics.jkr`
 plus: T tangential force [force], ξ tangential displacement of the tip from its stick anchor
-[length], G* = ((2 − ν1)/G1 + (2 − ν2)/G2)⁻¹ the combined shear modulus of Mindlin's stick
-stiffness [force/length²].
+[length], G* the combined shear modulus of Mindlin's stick stiffness [force/length²]
+(:func:`gecko_agents.physics.friction.combined_shear_modulus`).
 
 Physics. A sticking circular contact of radius a under T holds the tangential field of a bonded
-punch, stiffness k_t = 8G*·a (Mindlin 1949, J Appl Mech 16:259). Its energy ½T²/k_t at fixed T
+punch, stiffness k_t = 8G*·a (Mindlin 1949, J Appl Mech 16:259;
+:func:`gecko_agents.physics.friction.stick_stiffness`). Its energy ½T²/k_t at fixed T
 (= 4G*·a·ξ² at fixed ξ) grows as the contact shrinks, so shear adds a mode-II release rate
 G_II = T²/(32πG*a³) at the contact edge to JKR's mode-I G_I = (P1 − P)²/(8πE*a³)
 (P1 = 4E*a³/(3R), the Hertz load of radius a). Griffith's balance G_I + G_II = w on a brittle
@@ -39,8 +40,6 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = [
-    "combined_shear_modulus",
-    "stick_stiffness",
     "force_from_state",
     "overlap_from_radius",
     "radius_from_loads",
@@ -48,19 +47,6 @@ __all__ = [
     "shear_to_free",
     "energy",
 ]
-
-
-def combined_shear_modulus(E1, nu1, E2, nu2):
-    """G* = ((2 − ν1)/G1 + (2 − ν2)/G2)⁻¹ with G = E/(2(1 + ν)) [force/length²] (Mindlin
-    1949; Johnson, Contact Mechanics, 1985, §7.2)."""
-    G1, G2 = E1 / (2 * (1 + nu1)), E2 / (2 * (1 + nu2))
-    return 1.0 / ((2 - nu1) / G1 + (2 - nu2) / G2)
-
-
-def stick_stiffness(a, G_star):
-    """Tangential stiffness k_t = 8G*·a of a sticking circular contact of radius a
-    [force/length] (Mindlin 1949)."""
-    return 8.0 * G_star * np.asarray(a, dtype=float)
 
 
 def force_from_state(a, overlap, R, E_star):

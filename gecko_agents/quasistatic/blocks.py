@@ -87,8 +87,8 @@ class Blocks:
         c0, c1 = self._codes(pre), self._codes(st)
         splits = {}
         h, hmin, hmax = self.h, self.hmin, self.hmax
-        # Jump-in: setae with h ≥ Z − L sin θ − R touch; the block holding that height.
-        h_in = Z - br.L * np.sin(br.theta) - br.R
+        # Jump-in: setae with h ≥ Z − (R + L sin θ) touch; the block holding that height.
+        h_in = Z - br.touchdown
         j = int(np.searchsorted(hmax, h_in))
         if j < h.size and hmin[j] < h_in and c0[j] == 0:
             splits[j] = h_in

@@ -17,6 +17,7 @@ from scipy.optimize import brentq
 
 from gecko_agents.params import SetaArray
 from gecko_agents.physics import beam, jkr
+from gecko_agents.physics.friction import friction_cap, friction_cap_slope
 from gecko_agents.quasistatic.heights import plate_start_height
 
 
@@ -37,9 +38,7 @@ def release_radius(k, R, w, E_star):
     a_lc = 0.25 ** (1 / 3) * jkr.zero_load_contact_radius(R, w, E_star)
 
     def g(a):  # δ' + P'/k, sign change between a_c (P'<0, δ'=0) and a_lc (P'=0, δ'>0)
-        dP = 4.0 * E_star * a * a / R - 1.5 * np.sqrt(8.0 * np.pi * w * E_star * a)
-        dd = 2.0 * a / R - 0.5 * np.sqrt(2.0 * np.pi * w / (E_star * a))
-        return dd + dP / k
+        return jkr.overlap_slope(a, R, w, E_star) + jkr.force_slope(a, R, w, E_star) / k
 
     return brentq(g, ac * (1 + 1e-13), a_lc, xtol=1e-15 * ac, rtol=1e-15, maxiter=200)
 
@@ -157,11 +156,15 @@ class Branches:
             )
         return self.Ky / factor
 
+    @property
+    def touchdown(self) -> float:
+        """Plate height [µm] at which a resting tip touches h = 0: R + L sin θ
+        (:func:`gecko_agents.physics.beam.touchdown_height`)."""
+        return float(beam.touchdown_height(self.L, self.theta, self.R))
+
     def cap(self, P):
-        """Tangential force cap [µN] for normal force(s) P [µN]."""
-        if self.law == "paper":
-            return self.mu * np.maximum(P, 0.0)
-        return self.mu * np.abs(P + 2.0 * self.Fc)
+        """Tangential force cap [µN] for normal force(s) P [µN] (as :meth:`Friction.cap`)."""
+        return friction_cap(P, self.Fc, self.mu, self.law == "paper")
 
     def deflection(self, name, P):
         """Spring deflection D_b (tip minus rest, downward positive) for force P [µm]."""
@@ -177,25 +180,11 @@ class Branches:
         P = jkr.force_from_radius(a, self.R, self.w, self.E_star)
         return -jkr.overlap_from_radius(a, self.R, self.w, self.E_star) - self.deflection(name, P)
 
-    def dG(self, name, a):
-        """dG_b/da = −δ'(a) − D_b'(P)·P'(a) [-], from eq 7 and eq 10 differentiated."""
-        R, w, Es = self.R, self.w, self.E_star
-        a = np.asarray(a, dtype=float)
-        dP = 4.0 * Es * a * a / R - 1.5 * np.sqrt(8.0 * np.pi * w * Es * a)
-        dd = 2.0 * a / R - 0.5 * np.sqrt(2.0 * np.pi * w / (Es * a))
-        if name == "stick":
-            dD = 1.0 / self.Kyy_stick
-        elif name == "free":
-            dD = 1.0 / self.Ky
-        else:
-            sigma = 1.0 if name == "slip+" else -1.0
-            P = jkr.force_from_radius(a, R, w, Es)
-            dcap = self.mu if self.law == "adhesive" else self.mu * (P > 0)
-            dD = (1.0 - self.Kxy / self.Kxx * sigma * dcap) / self.Ky
-        return -dd - dD * dP
-
     def _G_dG(self, name, a):
-        """G_b(a) and dG_b/da together (what :meth:`G` and :meth:`dG` give), sharing √a."""
+        """G_b(a) [µm] and dG_b/da [-] together, sharing √a."""
+        # jkr.branch_terms written out in the order of operations these tables were built
+        # with (another order moves the inverted radii in their last bit); tests/test_formulas.py
+        # pins it to jkr.branch_terms.
         R, w, Es = self.R, self.w, self.E_star
         k1, k2 = math.sqrt(8.0 * math.pi * w * Es), math.sqrt(2.0 * math.pi * w / Es)
         sa = np.sqrt(a)
@@ -213,7 +202,7 @@ class Branches:
         else:
             q = self.Kxy / self.Kxx * (1.0 if name == "slip+" else -1.0)
             G -= (P - q * self.cap(P)) / self.Ky
-            dcap = self.mu if self.law == "adhesive" else self.mu * (P > 0)
+            dcap = friction_cap_slope(P, self.Fc, self.mu, self.law == "paper")
             dG -= (1.0 - q * dcap) / self.Ky * dP
         return G, dG
 

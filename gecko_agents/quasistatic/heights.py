@@ -13,13 +13,18 @@ import math
 import numpy as np
 
 from gecko_agents.params import SetaArray
+from gecko_agents.physics import beam
+
+
+def touchdown(params: SetaArray) -> float:
+    """Plate height [µm] at which a resting tip touches the floor's mean plane:
+    :func:`gecko_agents.physics.beam.touchdown_height`, R + L sin θ."""
+    return float(beam.touchdown_height(params.seta.L, params.seta.theta, params.contact.R))
 
 
 def plate_start_height(params: SetaArray, heights, gap: float = 0.5) -> float:
     """Plate height at which the highest seta's free tip is ``gap`` [µm] above its floor [µm]."""
-    return float(
-        np.max(heights) + params.contact.R + params.seta.L * np.sin(params.seta.theta) + gap
-    )
+    return float(np.max(heights) + touchdown(params) + gap)
 
 
 def quantile_heights(n_setae: int, sigma: float, n_blocks: int = 256, *, return_edges=False):
@@ -124,7 +129,7 @@ def contact_front(params: SetaArray, h, w, gaussian):
         )
     lo_e, hi_e = edges[:-1], edges[1:]
     p_blk = ndtr(-lo_e) - ndtr(-hi_e)  # upper-tail form: accurate far out
-    z_of_touch = params.contact.R + params.seta.L * math.sin(params.seta.theta)
+    z_of_touch = touchdown(params)
 
     def h_of(Z):  # the part of every slice above the contact front at plate height Z
         zt = (Z - z_of_touch) / g_sigma

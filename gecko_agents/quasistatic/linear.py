@@ -31,7 +31,7 @@ def step(br: Branches, st: State, Z: float, h: np.ndarray, margins: bool = False
     lets go).
     """
     n = len(h)
-    t0 = (Z - br.L * np.sin(br.theta) - br.R) - h  # G target for zero lateral shift
+    t0 = (Z - br.touchdown) - h  # G target for zero lateral shift
     # (P, F_t, δ, released, release overlap); a free tip has δ = h + R − p0_y.
     out = (np.zeros(n), np.zeros(n), -t0, np.zeros(n, dtype=bool), np.full(n, np.nan))
     _, att = jump_in(st, out[2])

@@ -18,6 +18,7 @@ from gecko_agents.history import STATE_SLIP as SLIP
 from gecko_agents.history import STATE_STICK as STICK
 from gecko_agents.params import SetaArray
 from gecko_agents.physics import beam, jkr
+from gecko_agents.physics.friction import friction_cap, friction_cap_slope
 from gecko_agents.quasistatic.heights import plate_start_height
 from gecko_agents.quasistatic.state import State, jump_in
 
@@ -131,15 +132,11 @@ class RodSetup:
 
     def cap(self, P):
         """Tangential force cap [µN] for normal force(s) P [µN] (as :meth:`Friction.cap`)."""
-        if self.law == "paper":
-            return self.mu * np.maximum(P, 0.0)
-        return self.mu * np.abs(P + 2.0 * self.Fc)
+        return friction_cap(P, self.Fc, self.mu, self.law == "paper")
 
     def dcap(self, P):
         """d cap / dP [-]."""
-        if self.law == "paper":
-            return self.mu * (P > 0)
-        return self.mu * np.sign(P + 2.0 * self.Fc)
+        return friction_cap_slope(P, self.Fc, self.mu, self.law == "paper")
 
     @property
     def rest(self) -> tuple[float, float]:
@@ -147,21 +144,10 @@ class RodSetup:
         return self.L * math.cos(self.theta), -self.L * math.sin(self.theta)
 
 
-def _jkr_terms(a, R, Es, k1, k2):
-    """P (eq 7) [µN], dP/da [µN/µm], δ (eq 10) [µm] and dδ/da [-] at contact radius a [µm];
-    k1 = √(8πwE*), k2 = √(2πw/E*)."""
-    sa = np.sqrt(a)
-    P = (4.0 * Es / (3.0 * R)) * a * a * a - k1 * a * sa
-    dP = (4.0 * Es / R) * a * a - 1.5 * k1 * sa
-    d = a * a / R - k2 * sa
-    dd = 2.0 * a / R - 0.5 * k2 / sa
-    return P, dP, d, dd
-
-
-def _residual(rs: RodSetup, c, x, a, anchor, s, k1, k2):
+def _residual(rs: RodSetup, c, x, a, anchor, s):
     """Residual (r1, r2) of F_rod(x, y) + (F_t, P) = 0 at (x, a), its Jacobian
     (j11, j12, j21, j22) in (x, a), and P [µN] and the rod's F_x [µN] that scale it."""
-    P, dP, d, dd = _jkr_terms(a, rs.R, rs.E_star, k1, k2)
+    P, dP, d, dd = jkr.branch_terms(a, rs.R, rs.w, rs.E_star)
     y = c - d
     (Fx, Fy), (Hxx, Hxy, Hyy) = rod_force(x, y, rs.Ka, rs.k_phi, rs.L, rs.theta)
     # dy/da = −δ'(a).
@@ -179,10 +165,10 @@ def _residual(rs: RodSetup, c, x, a, anchor, s, k1, k2):
     return (r1, r2), (j11, j12, j21, j22), P, Fx
 
 
-def _stable(rs: RodSetup, c, x, a, anchor, s, k1, k2):
+def _stable(rs: RodSetup, c, x, a, anchor, s):
     """Where the equilibrium at (x, a) is stable: the tangent stiffness K_tot = H + contact
     (+ stick spring) in (x, y) has positive determinant and trace."""
-    P, dP, d, dd = _jkr_terms(a, rs.R, rs.E_star, k1, k2)
+    P, dP, d, dd = jkr.branch_terms(a, rs.R, rs.w, rs.E_star)
     y = c - d
     _, (Hxx, Hxy, Hyy) = rod_force(x, y, rs.Ka, rs.k_phi, rs.L, rs.theta)
     kc = dP / np.maximum(dd, 1e-300)  # dP/dδ
@@ -211,15 +197,13 @@ def rod_newton(
     stiffness of rod + contact + stick spring has positive determinant and trace) on the
     stable JKR branch (a > a_c). Where the equilibrium has folded away, ok is False.
     """
-    w, Es = rs.w, rs.E_star
-    k1, k2 = math.sqrt(8.0 * math.pi * w * Es), math.sqrt(2.0 * math.pi * w / Es)
     x_start = x
     x, a = x.copy(), a.copy()
     a_min = rs.a_c * (1.0 + 1e-9)
     tol = 1e-10 * rs.Fc
     conv = np.zeros(x.size, dtype=bool)
     for _ in range(iters):
-        (r1, r2), (j11, j12, j21, j22), P, Fx = _residual(rs, c, x, a, anchor, s, k1, k2)
+        (r1, r2), (j11, j12, j21, j22), P, Fx = _residual(rs, c, x, a, anchor, s)
         det = j11 * j22 - j12 * j21
         scale = tol + 1e-12 * (np.abs(P) + np.abs(Fx))
         conv = (np.abs(r1) <= scale) & (np.abs(r2) <= scale)
@@ -239,7 +223,7 @@ def rod_newton(
         lim = np.where(conv, 0.0, lim)
         x = x + lim * dx
         a = np.maximum(a + lim * da, a_min)
-    ok = _stable(rs, c, x, a, anchor, s, k1, k2)
+    ok = _stable(rs, c, x, a, anchor, s)
     ok &= conv & (a > a_min) & np.isfinite(x)
     # An equilibrium far from the last one is the far side of a snap (e.g. the rod swinging
     # through upright): the branch the tip was on has folded; dynamically the tip lets go.

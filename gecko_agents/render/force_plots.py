@@ -14,7 +14,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from gecko_agents.history import History
-from gecko_agents.physics.beam import rest_tip_offset
+from gecko_agents.physics import beam
 from gecko_agents.render.style import (
     APPROACH_COLOUR,
     RETRACT_COLOUR,
@@ -40,14 +40,9 @@ PRESSING_LABEL = "pressing displacement d [µm] (> 0 pressed)"
 
 
 def touchdown_height(params) -> float:
-    """Plate height [µm] at which a resting tip touches the floor's mean plane y = 0.
-
-    R + L sin θ: the plate carries the seta roots, the resting tip centre sits at
-    :func:`gecko_agents.physics.beam.rest_tip_offset` from its root, and the tip (radius R) touches
-    y = 0 when its centre is at y = R.
-    """
-    dy = rest_tip_offset(params.seta.L, params.seta.theta)[1]
-    return float(params.contact.R - dy)
+    """Plate height [µm] at which a resting tip of ``params`` touches the floor's mean plane
+    y = 0: R + L sin θ (:func:`gecko_agents.physics.beam.touchdown_height`)."""
+    return float(beam.touchdown_height(params.seta.L, params.seta.theta, params.contact.R))
 
 
 def pressing_displacement(history: History, plate_y=None) -> np.ndarray:

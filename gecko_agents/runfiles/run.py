@@ -15,7 +15,8 @@ Run file
     mechanics = "rod"
 
     [model]                            # all optional
-    n_sim = 1                          # simulated setae, 1–20 000 (default: array.count)
+    n_sim = 1                          # simulated setae, 1 to model.setup.MAX_N (default:
+                                       # array.count)
     seed = 1                           # run seed ≥ 0 (default: floor.seed)
     dt_us = 0.01                       # time step [µs] (default: 0.75/ω_max)
     record_setae = true                # per-seta arrays (animations need them)
@@ -114,7 +115,7 @@ RUN_FILE_NAME = "run.toml"
 _MODEL_KEYS = {"n_sim": int, "seed": int, "dt_us": float, "record_setae": bool, "kernel": str}
 _MODEL_RANGES = {
     "seed": "an integer ≥ 0",
-    "n_sim": "an integer in [1, 20000]",
+    "n_sim": "an integer ≥ 1 (the model refuses more than gecko_agents.model.setup.MAX_N)",
     "dt_us": "a time step > 0 µs (below the stability bound the model states)",
 }
 

@@ -19,6 +19,7 @@ from pathlib import Path
 from gecko_agents import params as params_mod
 from gecko_agents import protocol as prot
 from gecko_agents.params import SetaArray
+from gecko_agents.params import presets as presets_mod
 
 __all__ = [
     "RunFileError",
@@ -54,9 +55,9 @@ PRESETS: dict[str, SetaArray] = _discover_presets()
 
 
 def preset_docs() -> dict[str, str]:
-    """Each preset's docstring (the string literal after its assignment in params.py)."""
+    """Each preset's docstring (the string literal after its assignment in params/presets.py)."""
     try:
-        tree = ast.parse(inspect.getsource(params_mod))
+        tree = ast.parse(inspect.getsource(presets_mod))
     except (OSError, TypeError, SyntaxError):
         return {}
     out: dict[str, str] = {}
