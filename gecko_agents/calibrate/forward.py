@@ -9,7 +9,6 @@ parameters. Units: µm, µN.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -17,6 +16,7 @@ import numpy as np
 from gecko_agents import quasistatic as qs
 from gecko_agents.calibrate.data import Data
 from gecko_agents.params import SetaArray
+from gecko_agents.physics.beam import touchdown_height
 
 
 @dataclass
@@ -74,7 +74,7 @@ def predict_quasistatic(
     if data.kind == "preload":
         return _pull_offs(data, params, stiffness_scale, forward)
     c = data.columns
-    z_touch = params.contact.R + params.seta.L * math.sin(params.seta.theta)
+    z_touch = float(touchdown_height(params.seta.L, params.seta.theta, params.contact.R))
     h, w, _ = _heights(params, params.floor.sigma, forward.n_blocks)
     depth = 0.5
     if data.kind == "curve":

@@ -17,7 +17,6 @@ folder.
 from __future__ import annotations
 
 import csv
-import math
 import time
 from pathlib import Path
 
@@ -25,6 +24,7 @@ from gecko_agents import calibrate
 from gecko_agents import quasistatic as qs
 from gecko_agents.data import PAPER_FIGURES
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
+from gecko_agents.physics.beam import rest_tip_offset
 from gecko_agents.studies.common import output_dir, parse_args, write_json
 
 DATA = PAPER_FIGURES
@@ -80,9 +80,10 @@ def _sigma_text(arr, lin) -> str:
 def validation_rows() -> list[dict]:
     """Model seta and array stiffness vs Autumn et al. 2006 (J Exp Biol 209:3558, Table 1)."""
     p = PAPER_ARRAY
+    x_rest, y_rest = (float(v) for v in rest_tip_offset(p.seta.L, p.seta.theta))
     (_, _), (Hxx, Hxy, Hyy) = qs.rod_force(
-        p.seta.L * math.cos(p.seta.theta),
-        -p.seta.L * math.sin(p.seta.theta),
+        x_rest,
+        y_rest,
         p.axial_stiffness,
         p.bending_stiffness * p.seta.L**2,
         p.seta.L,
@@ -90,7 +91,7 @@ def validation_rows() -> list[dict]:
     )
     k_rod = float(Hyy - Hxy**2 / Hxx)  # µN/µm = N/m
     density = p.array.count / 1e8  # setae per µm² (10⁷ per cm²)
-    height = p.seta.L * math.sin(p.seta.theta)  # µm
+    height = -y_rest  # the seta's height above its tip [µm]
     e_eff_kpa = density * p.Ky * height * 1e3  # MPa → kPa: E_eff = ρ·k·H
     return [
         {
