@@ -206,6 +206,17 @@ MAX_HEIGHT_RANGE = 1e4
 orders above the setae's length; a profile beyond it is almost always read in the wrong unit."""
 
 
+def _check_height_span(h: np.ndarray, where: str, unit: str) -> None:
+    """Refuse detrended heights h [µm] spanning more than :data:`MAX_HEIGHT_RANGE`."""
+    span = float(h.max() - h.min())
+    if span > MAX_HEIGHT_RANGE:
+        raise ValueError(
+            f"the detrended heights span {span:.3g} µm{where}, outside the allowed range "
+            f"[0, {MAX_HEIGHT_RANGE:g}] µm for a floor under setae tens of µm long: check "
+            f"height_unit (read as {unit!r})"
+        )
+
+
 def from_profile(
     x,
     h,
@@ -275,13 +286,7 @@ def from_profile(
         h = h - np.polyval(np.polyfit(x - x[0], h, 1), x - x[0])
     elif detrend == "mean":
         h = h - h.mean()
-    span = float(h.max() - h.min())
-    if span > MAX_HEIGHT_RANGE:
-        raise ValueError(
-            f"the detrended heights span {span:.3g} µm{where}, outside the allowed range "
-            f"[0, {MAX_HEIGHT_RANGE:g}] µm for a floor under setae tens of µm long: check "
-            f"height_unit (read as {height_unit or unit!r})"
-        )
+    _check_height_span(h, where, height_unit or unit)
     length = x[-1] - x[0]
     dx = length / (x.size - 1) if spacing is None else check_positive("spacing", spacing)
     n = int(np.floor(length / dx + 1e-9)) + 1
