@@ -45,6 +45,7 @@ __all__ = [
     "SCALAR_COLUMNS",
     "PER_SETA_FIELDS",
     "FILM_FIELDS",
+    "BACKING_COLUMNS",
     "STATE_FREE",
     "STATE_STICK",
     "STATE_SLIP",
@@ -108,6 +109,20 @@ pad still covers [µm], NaN while the tip is free. Runs of other tips, and runs 
 these fields existed, have none."""
 
 
+BACKING_COLUMNS = (
+    "strip_front_x_um",
+    "strip_setae_force_x_uN",
+    "strip_setae_force_y_uN",
+)
+"""Columns an elastic backing adds to ``history.csv`` after :data:`SCALAR_COLUMNS`
+(:class:`gecko_agents.backing.elastic.ElasticBacking`): the detachment front, the material
+abscissa [µm] on the straight strip of the attached seta nearest the pulled side (NaN while
+none is attached), and the total seta spring + damping force on the tips [µN], the force the
+setae pull the strip with, free of the strip's inertia. The handle's force is the plate's
+(``plate_force_*_uN``). Its per-record arrays are :attr:`History.backing`, its static figures
+``meta["backing"]``. Rigid-plate runs, and runs saved before these columns existed, have none."""
+
+
 def versions() -> dict:
     """Versions of the package and the libraries that produced a result."""
     from importlib.metadata import PackageNotFoundError, version
@@ -145,7 +160,8 @@ class History:
     ----------
     params : the :class:`~gecko_agents.params.SetaArray` simulated.
     seed : seed of the run's ``numpy.random.Generator``.
-    scalars : dict column → array (n_records,), columns :data:`SCALAR_COLUMNS`.
+    scalars : dict column → array (n_records,), columns :data:`SCALAR_COLUMNS` (and, with an
+        elastic backing, :data:`BACKING_COLUMNS`).
     setae : dict field → array (n_records, N), fields from :data:`PER_SETA_FIELDS` (may be
         empty when per-seta recording is off).
     geometry : dict of static arrays for drawing: ``root_dx_um`` (N,) root abscissae relative
@@ -154,6 +170,11 @@ class History:
     detachments : dict of arrays, one entry per detachment event: ``seta``, ``time_us``,
         ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``.
     meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…).
+    backing : dict field → array (n_records, …) of an elastic backing, one row per record:
+        ``strip_node_x_um``, ``strip_node_y_um`` (n_records, n_links + 1), the strip's nodes
+        (link ends, −x end first) in the floor's frame [µm]; the nodes' material abscissae are
+        ``geometry["strip_node_abscissa_um"]`` (the roots' frame, the pad centred on 0) and
+        the scalar series :data:`BACKING_COLUMNS`. Empty for the rigid plate.
     """
 
     params: SetaArray
@@ -163,6 +184,7 @@ class History:
     geometry: dict[str, np.ndarray] = field(default_factory=dict)
     detachments: dict[str, np.ndarray] = field(default_factory=dict)
     meta: dict = field(default_factory=dict)
+    backing: dict[str, np.ndarray] = field(default_factory=dict)
 
     def __post_init__(self):
         missing = [c for c in SCALAR_COLUMNS if c not in self.scalars]
@@ -171,6 +193,12 @@ class History:
         n = {len(np.asarray(v)) for v in self.scalars.values()}
         if len(n) != 1:
             raise ValueError(f"History.scalars columns differ in length: {sorted(n)}")
+
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """The columns of ``history.csv``: :data:`SCALAR_COLUMNS`, then the
+        :data:`BACKING_COLUMNS` this run recorded."""
+        return SCALAR_COLUMNS + tuple(c for c in BACKING_COLUMNS if c in self.scalars)
 
     def __len__(self) -> int:
         return len(self.scalars["time_us"])
@@ -234,7 +262,7 @@ class History:
 
     def to_dataframe(self):
         """The scalar series as a :class:`pandas.DataFrame`, one row per record, columns
-        :data:`SCALAR_COLUMNS` (units in the names); the run's metadata in ``df.attrs``.
+        :attr:`columns` (units in the names); the run's metadata in ``df.attrs``.
 
         Needs pandas (``pip install 'gecko_agents[pandas]'``).
         """
@@ -244,7 +272,7 @@ class History:
             raise ImportError(
                 "History.to_dataframe needs pandas: pip install 'gecko_agents[pandas]'"
             ) from err
-        df = pd.DataFrame({c: np.asarray(self.scalars[c]) for c in SCALAR_COLUMNS})
+        df = pd.DataFrame({c: np.asarray(self.scalars[c]) for c in self.columns})
         df.attrs = json.loads(json.dumps(self.metadata(), default=_json_default))
         return df
 
@@ -258,7 +286,7 @@ class History:
         meta = self.meta
         code = (meta.get("versions") or versions()).get("gecko_agents")
         digest = hashlib.sha256()
-        for c in SCALAR_COLUMNS:
+        for c in self.columns:
             digest.update(np.ascontiguousarray(self.scalars[c], dtype=np.float64).tobytes())
         ident = {
             "params": self.params.to_dict() if params_dict is None else params_dict,
@@ -277,7 +305,7 @@ class History:
             "params": self.params.to_dict(),
             "seed": int(self.seed),
             "n_records": len(self),
-            "columns": list(SCALAR_COLUMNS),
+            "columns": list(self.columns),
         }
         meta.update(self.meta)
         meta.setdefault("versions", versions())
@@ -304,14 +332,15 @@ class History:
         buf = io.StringIO()
         buf.write(f"# run_id: {run_id}\n")
         writer = csv.writer(buf, lineterminator="\n")
-        writer.writerow(SCALAR_COLUMNS)
-        cols = [np.asarray(self.scalars[c]) for c in SCALAR_COLUMNS]
+        writer.writerow(self.columns)
+        cols = [np.asarray(self.scalars[c]) for c in self.columns]
         for row in zip(*cols, strict=True):
             writer.writerow([repr(float(v)) for v in row])
         atomic_write_bytes(d / "history.csv", buf.getvalue().encode())
         arrays = {f"setae__{k}": np.asarray(v) for k, v in self.setae.items()}
         arrays |= {f"geometry__{k}": np.asarray(v) for k, v in self.geometry.items()}
         arrays |= {f"detachments__{k}": np.asarray(v) for k, v in self.detachments.items()}
+        arrays |= {f"backing__{k}": np.asarray(v) for k, v in self.backing.items()}
         arrays["run_id"] = np.array(run_id)
         npz = io.BytesIO()
         np.savez_compressed(npz, **arrays)
@@ -357,7 +386,7 @@ def load(directory) -> History:
     meta_path, csv_path, npz_path = d / "metadata.json", d / "history.csv", d / "setae.npz"
     meta, raw_params, params, seed, n_records = _read_metadata(meta_path)
     saved_id = meta.get("run_id")
-    csv_id, table = _read_series(csv_path)
+    csv_id, columns, table = _read_series(csv_path)
     if n_records is not None and len(table) != n_records:
         what = "a header and no data rows" if len(table) == 0 else f"{len(table)} data rows"
         raise ValueError(
@@ -370,7 +399,7 @@ def load(directory) -> History:
             "the directory mixes files of two runs (an interrupted save?); re-run to "
             "regenerate it"
         )
-    groups: dict = {"setae": {}, "geometry": {}, "detachments": {}}
+    groups: dict = {"setae": {}, "geometry": {}, "detachments": {}, "backing": {}}
     if npz_path.is_file():
         npz_id = _read_arrays(npz_path, groups)
         if npz_id != saved_id:
@@ -384,7 +413,7 @@ def load(directory) -> History:
         h = History(
             params=params,
             seed=seed,
-            scalars={c: table[:, i] for i, c in enumerate(SCALAR_COLUMNS)},
+            scalars={c: table[:, i] for i, c in enumerate(columns)},
             meta=meta,
             **groups,
         )
@@ -420,9 +449,9 @@ def _read_metadata(meta_path: Path) -> tuple[dict, dict, SetaArray, int, int | N
     return meta, raw_params, params, seed, n_records
 
 
-def _read_series(csv_path: Path) -> tuple[str | None, np.ndarray]:
-    """history.csv as (the run_id of its ``#`` header, the table of SCALAR_COLUMNS, one row
-    per record); refuses other columns."""
+def _read_series(csv_path: Path) -> tuple[str | None, tuple[str, ...], np.ndarray]:
+    """history.csv as (the run_id of its ``#`` header, its columns, the table, one row per
+    record); refuses columns other than SCALAR_COLUMNS followed by some BACKING_COLUMNS."""
     try:
         text = csv_path.read_text(encoding="utf-8")
         lines = text.split("\n")
@@ -436,17 +465,21 @@ def _read_series(csv_path: Path) -> tuple[str | None, np.ndarray]:
         table = (
             np.loadtxt(io.StringIO(body), delimiter=",", ndmin=2)
             if body.strip()
-            else np.zeros((0, len(SCALAR_COLUMNS)))
+            else np.zeros((0, len(header)))
         )
     except ValueError as err:
         raise ValueError(f"{csv_path} is corrupt: {err}") from err
-    if header != list(SCALAR_COLUMNS):
-        raise ValueError(f"{csv_path} has columns {header}, expected {list(SCALAR_COLUMNS)}")
-    if table.shape[1] != len(SCALAR_COLUMNS):
+    columns = tuple(header)
+    extra = columns[len(SCALAR_COLUMNS) :]
+    known = tuple(c for c in BACKING_COLUMNS if c in extra)
+    if columns[: len(SCALAR_COLUMNS)] != SCALAR_COLUMNS or extra != known:
         raise ValueError(
-            f"{csv_path} has rows of {table.shape[1]} values, expected {len(SCALAR_COLUMNS)}"
+            f"{csv_path} has columns {header}, expected {list(SCALAR_COLUMNS)} (then any of "
+            f"{list(BACKING_COLUMNS)}, in that order)"
         )
-    return csv_id, table
+    if table.shape[1] != len(columns):
+        raise ValueError(f"{csv_path} has rows of {table.shape[1]} values, expected {len(columns)}")
+    return csv_id, columns, table
 
 
 def _read_arrays(npz_path: Path, groups: dict) -> str | None:
@@ -558,7 +591,7 @@ def invariant_violations(
     if quasi_static or h.meta.get("energy_complete") is False:
         energy_rtol = False  # no (complete) energy bookkeeping: quasi-static, elastic backing
     for name, col in h.scalars.items():
-        if quasi_static and name in untimed:
+        if (quasi_static and name in untimed) or name == "strip_front_x_um":  # NaN: none held
             continue
         if not np.all(np.isfinite(col)):
             out.append(f"{name} has non-finite values")
