@@ -88,7 +88,7 @@ def test_linear_deflection_from_recorded_tip_positions():
         m2 = Model(STIFF, n_sim=2, seed=1)
         h2 = m2.run(PROT, progress=False)
     it2 = h2.meta["validity"]["items"]["linear_deflection"]
-    assert it2["value"] is None and it2["ok"] is (not m2._warned_linear)
+    assert it2["value"] is None and it2["ok"] is (not m2.warned_linear)
     rod = STIFF.replace(mechanics="rod")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
