@@ -45,7 +45,6 @@ __all__ = [
     "SCALAR_COLUMNS",
     "PER_SETA_FIELDS",
     "FILM_FIELDS",
-    "BACKING_COLUMNS",
     "STATE_FREE",
     "STATE_STICK",
     "STATE_SLIP",
@@ -109,20 +108,6 @@ pad still covers [µm], NaN while the tip is free. Runs of other tips, and runs 
 these fields existed, have none."""
 
 
-BACKING_COLUMNS = (
-    "strip_front_x_um",
-    "strip_setae_force_x_uN",
-    "strip_setae_force_y_uN",
-)
-"""Columns an elastic backing adds to ``history.csv`` after :data:`SCALAR_COLUMNS`
-(:class:`gecko_agents.backing.elastic.ElasticBacking`): the detachment front, the material
-abscissa [µm] on the straight strip of the attached seta nearest the pulled side (NaN while
-none is attached), and the total seta spring + damping force on the tips [µN], the force the
-setae pull the strip with, free of the strip's inertia. The handle's force is the plate's
-(``plate_force_*_uN``). Its per-record arrays are :attr:`History.backing`, its static figures
-``meta["backing"]``. Rigid-plate runs, and runs saved before these columns existed, have none."""
-
-
 def versions() -> dict:
     """Versions of the package and the libraries that produced a result."""
     from importlib.metadata import PackageNotFoundError, version
@@ -160,8 +145,8 @@ class History:
     ----------
     params : the :class:`~gecko_agents.params.SetaArray` simulated.
     seed : seed of the run's ``numpy.random.Generator``.
-    scalars : dict column → array (n_records,), columns :data:`SCALAR_COLUMNS` (and, with an
-        elastic backing, :data:`BACKING_COLUMNS`).
+    scalars : dict column → array (n_records,), columns :data:`SCALAR_COLUMNS` and the
+        backing's (:attr:`columns`).
     setae : dict field → array (n_records, N), fields from :data:`PER_SETA_FIELDS` (may be
         empty when per-seta recording is off).
     geometry : dict of static arrays for drawing: ``root_dx_um`` (N,) root abscissae relative
@@ -170,11 +155,9 @@ class History:
     detachments : dict of arrays, one entry per detachment event: ``seta``, ``time_us``,
         ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``.
     meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…).
-    backing : dict field → array (n_records, …) of an elastic backing, one row per record:
-        ``strip_node_x_um``, ``strip_node_y_um`` (n_records, n_links + 1), the strip's nodes
-        (link ends, −x end first) in the floor's frame [µm]; the nodes' material abscissae are
-        ``geometry["strip_node_abscissa_um"]`` (the roots' frame, the pad centred on 0) and
-        the scalar series :data:`BACKING_COLUMNS`. Empty for the rigid plate.
+    backing : dict field → array (n_records, …) the backing recorded per record (an elastic
+        strip's nodes, :meth:`gecko_agents.backing.elastic.ElasticBacking.record`; none for
+        the rigid plate).
     """
 
     params: SetaArray
@@ -196,9 +179,8 @@ class History:
 
     @property
     def columns(self) -> tuple[str, ...]:
-        """The columns of ``history.csv``: :data:`SCALAR_COLUMNS`, then the
-        :data:`BACKING_COLUMNS` this run recorded."""
-        return SCALAR_COLUMNS + tuple(c for c in BACKING_COLUMNS if c in self.scalars)
+        """Columns of ``history.csv``: :data:`SCALAR_COLUMNS`, then the backing's, if any."""
+        return SCALAR_COLUMNS + tuple(c for c in self.scalars if c not in SCALAR_COLUMNS)
 
     def __len__(self) -> int:
         return len(self.scalars["time_us"])
@@ -451,7 +433,7 @@ def _read_metadata(meta_path: Path) -> tuple[dict, dict, SetaArray, int, int | N
 
 def _read_series(csv_path: Path) -> tuple[str | None, tuple[str, ...], np.ndarray]:
     """history.csv as (the run_id of its ``#`` header, its columns, the table, one row per
-    record); refuses columns other than SCALAR_COLUMNS followed by some BACKING_COLUMNS."""
+    record); refuses a table that does not start with SCALAR_COLUMNS."""
     try:
         text = csv_path.read_text(encoding="utf-8")
         lines = text.split("\n")
@@ -470,13 +452,8 @@ def _read_series(csv_path: Path) -> tuple[str | None, tuple[str, ...], np.ndarra
     except ValueError as err:
         raise ValueError(f"{csv_path} is corrupt: {err}") from err
     columns = tuple(header)
-    extra = columns[len(SCALAR_COLUMNS) :]
-    known = tuple(c for c in BACKING_COLUMNS if c in extra)
-    if columns[: len(SCALAR_COLUMNS)] != SCALAR_COLUMNS or extra != known:
-        raise ValueError(
-            f"{csv_path} has columns {header}, expected {list(SCALAR_COLUMNS)} (then any of "
-            f"{list(BACKING_COLUMNS)}, in that order)"
-        )
+    if columns[: len(SCALAR_COLUMNS)] != SCALAR_COLUMNS or len(set(columns)) < len(columns):
+        raise ValueError(f"{csv_path} has columns {header}, expected {list(SCALAR_COLUMNS)} first")
     if table.shape[1] != len(columns):
         raise ValueError(f"{csv_path} has rows of {table.shape[1]} values, expected {len(columns)}")
     return csv_id, columns, table
@@ -590,8 +567,9 @@ def invariant_violations(
                "energy_dissipated_pJ", "work_plate_pJ")  # fmt: skip
     if quasi_static or h.meta.get("energy_complete") is False:
         energy_rtol = False  # no (complete) energy bookkeeping: quasi-static, elastic backing
-    for name, col in h.scalars.items():
-        if (quasi_static and name in untimed) or name == "strip_front_x_um":  # NaN: none held
+    for name in SCALAR_COLUMNS:  # a backing's own columns may hold NaN (no front)
+        col = h.scalars[name]
+        if quasi_static and name in untimed:
             continue
         if not np.all(np.isfinite(col)):
             out.append(f"{name} has non-finite values")

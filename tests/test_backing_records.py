@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import history, protocol, render
+from gecko_agents.backing.elastic import STRIP_ARRAYS, STRIP_COLUMNS
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 
@@ -65,9 +66,10 @@ def peeled(tmp_path_factory):
 def test_strip_records_are_history_columns_and_arrays(peeled):
     m, h, _ = peeled
     n_nodes = m.backing.strip.n + 1
-    for c in history.BACKING_COLUMNS:
+    for c in STRIP_COLUMNS:
         assert h[c].shape == (len(h),)
-    assert h.backing["strip_node_x_um"].shape == (len(h), n_nodes)
+    for a in STRIP_ARRAYS:
+        assert h.backing[a].shape == (len(h), n_nodes)
     assert h.geometry["strip_node_abscissa_um"].shape == (n_nodes,)
     # The last record is the model's state at the end of the run.
     x, y = m.backing.strip.nodes()
@@ -83,7 +85,7 @@ def test_strip_records_are_history_columns_and_arrays(peeled):
 def test_saved_elastic_run_loads_from_its_directory_alone(peeled):
     _, h, run_dir = peeled
     loaded = history.load(run_dir)
-    assert loaded.columns == h.columns == history.SCALAR_COLUMNS + history.BACKING_COLUMNS
+    assert loaded.columns == h.columns == history.SCALAR_COLUMNS + STRIP_COLUMNS
     for c in h.columns:
         np.testing.assert_array_equal(loaded[c], h[c])
     for k, v in h.backing.items():

@@ -68,11 +68,29 @@ from gecko_agents.backing.strip import MIN_LINKS, OMEGA_DT, Strip, bending_lengt
 __all__ = [
     "Strip",
     "ElasticBacking",
+    "STRIP_COLUMNS",
+    "STRIP_ARRAYS",
     "bending_length",
     "peel",
     "OMEGA_DT",
     "MIN_LINKS",
 ]
+
+
+STRIP_COLUMNS = ("strip_front_x_um", "strip_setae_force_x_uN", "strip_setae_force_y_uN")
+"""Columns the strip adds to ``history.csv`` after
+:data:`~gecko_agents.history.SCALAR_COLUMNS`: the detachment front, the material abscissa [µm]
+on the straight strip of the attached seta nearest the pulled side (NaN while none is
+attached), and the total seta spring + damping force on the tips [µN], the force the setae
+pull the strip with, free of the strip's inertia. The force on the handle is the plate's
+(``plate_force_*_uN``)."""
+
+STRIP_ARRAYS = ("strip_node_x_um", "strip_node_y_um")
+"""Per-record arrays of the strip in ``History.backing`` (``setae.npz``), shape (n_records,
+n_links + 1): its nodes (link ends, −x end first) in the floor's frame [µm]. Their material
+abscissae [µm] on the straight strip (the roots' frame, the pad centred on 0; a leader arm's
+nodes lie beyond ``length_um``/2) are ``History.geometry["strip_node_abscissa_um"]``, the
+strip's static figures ``History.meta["backing"]``."""
 
 
 class ElasticBacking:
@@ -345,16 +363,9 @@ class ElasticBacking:
 
     def record(self) -> tuple[dict, dict]:
         """(scalar columns, per-record arrays) at a record: the front and the setae's pull
-        (:data:`gecko_agents.history.BACKING_COLUMNS`), the nodes' positions
-        ``strip_node_x_um``, ``strip_node_y_um`` (n_links + 1, −x end first) in the floor's
-        frame [µm]."""
-        x, y = self.strip.nodes()
-        scalars = {
-            "strip_front_x_um": self.front_x(),
-            "strip_setae_force_x_uN": self.setae_force[0],
-            "strip_setae_force_y_uN": self.setae_force[1],
-        }
-        return scalars, {"strip_node_x_um": x, "strip_node_y_um": y}
+        (:data:`STRIP_COLUMNS`), the nodes' positions (:data:`STRIP_ARRAYS`)."""
+        scalars = dict(zip(STRIP_COLUMNS, (self.front_x(), *self.setae_force), strict=True))
+        return scalars, dict(zip(STRIP_ARRAYS, self.strip.nodes(), strict=True))
 
 
 def peel(depth: float, psi_deg: float, speed: float = 0.05) -> list:
