@@ -13,6 +13,8 @@ I/O);
 * :mod:`gecko_agents.model.step_numpy`, :mod:`gecko_agents.model.step_loop` — the per-step forces
 (numpy, or one
   loop compiled by numba);
+* :mod:`gecko_agents.backing` — what holds the seta roots (``model.backing``, chosen by
+  ``params.backing.kind``): the rigid plate, or an elastic strip pulled through a handle spring;
 * :mod:`gecko_agents.protocol` — what the plate does; :mod:`gecko_agents.model.recorder` — what is
   recorded into a :class:`~gecko_agents.history.History`.
 
