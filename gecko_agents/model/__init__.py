@@ -546,7 +546,7 @@ class Model:
         """Move plate and tips rigidly along ``vp`` (plate velocity [µm/µs]) towards where
         segment ``seg`` (its running ``state``) lets the first sensor reach the floor, while
         nothing can touch (:meth:`gecko_agents.model.world.World.skip_free_travel`); returns
-        the travel [µm]. None while a tip is attached or with a backing that is not rigid."""
+        the travel [µm]: 0 while a tip is attached or with a backing that is not rigid."""
         if self.state.attached.any() or not self.backing.rigid:
             return 0.0
         target = seg.target(self, state)
