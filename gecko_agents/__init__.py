@@ -9,7 +9,3 @@ try:
     __version__ = version("gecko_agents")
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+unknown"
-
-# Backing models register themselves with gecko_agents.model (Model(params) picks one by
-# params.backing.kind); importing the module here makes every kind available.
-from gecko_agents.backing import elastic as _backing  # noqa: E402, F401

@@ -204,7 +204,7 @@ def model_facts(model, segments) -> dict:
         "omega_max_per_us": float(model.omega_max),
         "settle_time_us": float(model.settle_time),
         "z_touch_um": float(model.z_touch),
-        "linear_deflection_warned": bool(getattr(model, "_warned_linear", False)),
+        "linear_deflection_warned": bool(model.warned_linear),
         "protocol_speed_um_per_us": max(speeds, default=0.0),
     }
 

@@ -145,7 +145,8 @@ class History:
     ----------
     params : the :class:`~gecko_agents.params.SetaArray` simulated.
     seed : seed of the run's ``numpy.random.Generator``.
-    scalars : dict column → array (n_records,), columns :data:`SCALAR_COLUMNS`.
+    scalars : dict column → array (n_records,), columns :data:`SCALAR_COLUMNS` and the
+        backing's (:attr:`columns`).
     setae : dict field → array (n_records, N), fields from :data:`PER_SETA_FIELDS` (may be
         empty when per-seta recording is off).
     geometry : dict of static arrays for drawing: ``root_dx_um`` (N,) root abscissae relative
@@ -156,6 +157,9 @@ class History:
     meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…),
         with the live model's facts that :func:`gecko_agents.diagnostics.diagnose` reads
         (:data:`gecko_agents.diagnostics.MODEL_FACTS`), so a loaded run is diagnosed as it ran.
+    backing : dict field → array (n_records, …) the backing recorded per record (an elastic
+        strip's nodes, :meth:`gecko_agents.backing.elastic.ElasticBacking.record`; none for
+        the rigid plate).
     """
 
     params: SetaArray
@@ -165,6 +169,7 @@ class History:
     geometry: dict[str, np.ndarray] = field(default_factory=dict)
     detachments: dict[str, np.ndarray] = field(default_factory=dict)
     meta: dict = field(default_factory=dict)
+    backing: dict[str, np.ndarray] = field(default_factory=dict)
 
     def __post_init__(self):
         missing = [c for c in SCALAR_COLUMNS if c not in self.scalars]
@@ -173,6 +178,11 @@ class History:
         n = {len(np.asarray(v)) for v in self.scalars.values()}
         if len(n) != 1:
             raise ValueError(f"History.scalars columns differ in length: {sorted(n)}")
+
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """Columns of ``history.csv``: :data:`SCALAR_COLUMNS`, then the backing's, if any."""
+        return SCALAR_COLUMNS + tuple(c for c in self.scalars if c not in SCALAR_COLUMNS)
 
     def __len__(self) -> int:
         return len(self.scalars["time_us"])
@@ -236,7 +246,7 @@ class History:
 
     def to_dataframe(self):
         """The scalar series as a :class:`pandas.DataFrame`, one row per record, columns
-        :data:`SCALAR_COLUMNS` (units in the names); the run's metadata in ``df.attrs``.
+        :attr:`columns` (units in the names); the run's metadata in ``df.attrs``.
 
         Needs pandas (``pip install 'gecko_agents[pandas]'``).
         """
@@ -246,7 +256,7 @@ class History:
             raise ImportError(
                 "History.to_dataframe needs pandas: pip install 'gecko_agents[pandas]'"
             ) from err
-        df = pd.DataFrame({c: np.asarray(self.scalars[c]) for c in SCALAR_COLUMNS})
+        df = pd.DataFrame({c: np.asarray(self.scalars[c]) for c in self.columns})
         df.attrs = json.loads(json.dumps(self.metadata(), default=_json_default))
         return df
 
@@ -260,7 +270,7 @@ class History:
         meta = self.meta
         code = (meta.get("versions") or versions()).get("gecko_agents")
         digest = hashlib.sha256()
-        for c in SCALAR_COLUMNS:
+        for c in self.columns:
             digest.update(np.ascontiguousarray(self.scalars[c], dtype=np.float64).tobytes())
         ident = {
             "params": self.params.to_dict() if params_dict is None else params_dict,
@@ -279,7 +289,7 @@ class History:
             "params": self.params.to_dict(),
             "seed": int(self.seed),
             "n_records": len(self),
-            "columns": list(SCALAR_COLUMNS),
+            "columns": list(self.columns),
         }
         meta.update(self.meta)
         meta.setdefault("versions", versions())
@@ -306,14 +316,15 @@ class History:
         buf = io.StringIO()
         buf.write(f"# run_id: {run_id}\n")
         writer = csv.writer(buf, lineterminator="\n")
-        writer.writerow(SCALAR_COLUMNS)
-        cols = [np.asarray(self.scalars[c]) for c in SCALAR_COLUMNS]
+        writer.writerow(self.columns)
+        cols = [np.asarray(self.scalars[c]) for c in self.columns]
         for row in zip(*cols, strict=True):
             writer.writerow([repr(float(v)) for v in row])
         atomic_write_bytes(d / "history.csv", buf.getvalue().encode())
         arrays = {f"setae__{k}": np.asarray(v) for k, v in self.setae.items()}
         arrays |= {f"geometry__{k}": np.asarray(v) for k, v in self.geometry.items()}
         arrays |= {f"detachments__{k}": np.asarray(v) for k, v in self.detachments.items()}
+        arrays |= {f"backing__{k}": np.asarray(v) for k, v in self.backing.items()}
         arrays["run_id"] = np.array(run_id)
         npz = io.BytesIO()
         np.savez_compressed(npz, **arrays)
@@ -359,7 +370,7 @@ def load(directory) -> History:
     meta_path, csv_path, npz_path = d / "metadata.json", d / "history.csv", d / "setae.npz"
     meta, raw_params, params, seed, n_records = _read_metadata(meta_path)
     saved_id = meta.get("run_id")
-    csv_id, table = _read_series(csv_path)
+    csv_id, columns, table = _read_series(csv_path)
     if n_records is not None and len(table) != n_records:
         what = "a header and no data rows" if len(table) == 0 else f"{len(table)} data rows"
         raise ValueError(
@@ -372,7 +383,7 @@ def load(directory) -> History:
             "the directory mixes files of two runs (an interrupted save?); re-run to "
             "regenerate it"
         )
-    groups: dict = {"setae": {}, "geometry": {}, "detachments": {}}
+    groups: dict = {"setae": {}, "geometry": {}, "detachments": {}, "backing": {}}
     if npz_path.is_file():
         npz_id = _read_arrays(npz_path, groups)
         if npz_id != saved_id:
@@ -386,7 +397,7 @@ def load(directory) -> History:
         h = History(
             params=params,
             seed=seed,
-            scalars={c: table[:, i] for i, c in enumerate(SCALAR_COLUMNS)},
+            scalars={c: table[:, i] for i, c in enumerate(columns)},
             meta=meta,
             **groups,
         )
@@ -422,9 +433,9 @@ def _read_metadata(meta_path: Path) -> tuple[dict, dict, SetaArray, int, int | N
     return meta, raw_params, params, seed, n_records
 
 
-def _read_series(csv_path: Path) -> tuple[str | None, np.ndarray]:
-    """history.csv as (the run_id of its ``#`` header, the table of SCALAR_COLUMNS, one row
-    per record); refuses other columns."""
+def _read_series(csv_path: Path) -> tuple[str | None, tuple[str, ...], np.ndarray]:
+    """history.csv as (the run_id of its ``#`` header, its columns, the table, one row per
+    record); refuses a table that does not start with SCALAR_COLUMNS."""
     try:
         text = csv_path.read_text(encoding="utf-8")
         lines = text.split("\n")
@@ -438,17 +449,16 @@ def _read_series(csv_path: Path) -> tuple[str | None, np.ndarray]:
         table = (
             np.loadtxt(io.StringIO(body), delimiter=",", ndmin=2)
             if body.strip()
-            else np.zeros((0, len(SCALAR_COLUMNS)))
+            else np.zeros((0, len(header)))
         )
     except ValueError as err:
         raise ValueError(f"{csv_path} is corrupt: {err}") from err
-    if header != list(SCALAR_COLUMNS):
-        raise ValueError(f"{csv_path} has columns {header}, expected {list(SCALAR_COLUMNS)}")
-    if table.shape[1] != len(SCALAR_COLUMNS):
-        raise ValueError(
-            f"{csv_path} has rows of {table.shape[1]} values, expected {len(SCALAR_COLUMNS)}"
-        )
-    return csv_id, table
+    columns = tuple(header)
+    if columns[: len(SCALAR_COLUMNS)] != SCALAR_COLUMNS or len(set(columns)) < len(columns):
+        raise ValueError(f"{csv_path} has columns {header}, expected {list(SCALAR_COLUMNS)} first")
+    if table.shape[1] != len(columns):
+        raise ValueError(f"{csv_path} has rows of {table.shape[1]} values, expected {len(columns)}")
+    return csv_id, columns, table
 
 
 def _read_arrays(npz_path: Path, groups: dict) -> str | None:
@@ -559,7 +569,8 @@ def invariant_violations(
                "energy_dissipated_pJ", "work_plate_pJ")  # fmt: skip
     if quasi_static or h.meta.get("energy_complete") is False:
         energy_rtol = False  # no (complete) energy bookkeeping: quasi-static, elastic backing
-    for name, col in h.scalars.items():
+    for name in SCALAR_COLUMNS:  # a backing's own columns may hold NaN (no front)
+        col = h.scalars[name]
         if quasi_static and name in untimed:
             continue
         if not np.all(np.isfinite(col)):

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from gecko_agents import history, protocol
-from gecko_agents.backing.elastic import ElasticModel, Strip
+from gecko_agents.backing.elastic import ElasticBacking, Strip
+from gecko_agents.backing.rigid import RigidBacking
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY, Backing
 
@@ -93,8 +94,7 @@ def test_strip_books_its_energy():
 def _peak_pull(params):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        cls = ElasticModel if params.backing.kind == "elastic" else Model
-        m = cls(params, seed=1)
+        m = Model(params, seed=1)
         h = m.run(protocol.press_pull(0.5, speed=0.02), progress=False)
     return m, h
 
@@ -103,12 +103,12 @@ def test_stiff_elastic_backing_matches_rigid_plate():
     """A very stiff strip on a stiff handle carries the rigid plate's peak pull-off (1 %)."""
     _, rigid = _peak_pull(STUBBY)
     m, soft = _peak_pull(STUBBY.replace(**{"backing.kind": "elastic", "backing.E_b": 20.0}))
-    assert isinstance(m, ElasticModel)
+    assert isinstance(m.backing, ElasticBacking)
     peak_r = -float(np.min(rigid["plate_force_y_uN"]))
     peak_e = -float(np.min(soft["plate_force_y_uN"]))
     assert peak_e == pytest.approx(peak_r, rel=0.01)
-    b = soft.meta["backing"]
-    assert len(b["front_x_um"]) == len(b["handle_force_uN"]) > 10
+    assert soft.backing["strip_node_x_um"].shape[0] == len(soft["strip_front_x_um"]) == len(soft)
+    assert len(soft) > 10
     # The strip's and the handle's energies are booked: plate work = elastic + kinetic +
     # dissipated holds to 2 % (conftest checks it on every history too).
     assert soft.meta["energy_complete"] is True
@@ -128,7 +128,7 @@ def test_bad_backing_values_refused_naming_the_field(field, value):
 def test_chain_too_coarse_refused():
     p = STUBBY.replace(**{"backing.kind": "elastic", "backing.spacing": 40.0})
     with pytest.raises(ValueError, match="Backing.spacing"):
-        ElasticModel(p)
+        Model(p)
 
 
 def test_chain_of_1000_links_pulls_off_at_equal_load_sharing():
@@ -140,30 +140,39 @@ def test_chain_of_1000_links_pulls_off_at_equal_load_sharing():
                           "backing.spacing": 2.0})  # fmt: skip
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = ElasticModel(p, seed=1)
+        m = Model(p, seed=1)
+        strip = m.backing.strip
         gaps = []
-        step = m.strip.step
+        step = strip.step
 
         def recorded(*args):
             new = step(*args)
-            gaps.append(m.strip.pivots.gap_next)
+            gaps.append(strip.pivots.gap_next)
             return new
 
-        m.strip.step = recorded
+        strip.step = recorded
         h = m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
-    assert m.strip.n == 1000
-    assert max(h.meta["backing"]["setae_fy_uN"]) == pytest.approx(m.n * m.Fc, rel=0.01)
+    assert strip.n == 1000
+    assert max(h["strip_setae_force_y_uN"]) == pytest.approx(m.n * m.Fc, rel=0.01)
     assert -float(np.min(h["plate_force_y_uN"])) == pytest.approx(m.n * m.Fc, rel=0.01)
     assert history.energy_balance_error(h) < 0.01
     assert max(gaps) < 1e-6
 
 
-def test_backing_kind_chooses_the_model():
-    assert type(Model(STUBBY)) is Model
+def test_backing_kind_chooses_the_backing():
+    """``params.backing.kind`` chooses the model's backing component; the elastic strip's
+    options pass through ``Model`` and the rigid plate refuses them."""
+    assert type(Model(STUBBY).backing) is RigidBacking
     elastic = STUBBY.replace(**{"backing.kind": "elastic"})
-    assert type(Model(elastic)) is ElasticModel
+    m = Model(elastic)
+    assert type(m) is Model and type(m.backing) is ElasticBacking
+    assert m.kernel == "numpy"
     with pytest.raises(ValueError, match="kernel"):
-        ElasticModel(elastic, kernel="python")
+        Model(elastic, kernel="python")
+    with pytest.raises(ValueError, match="contact"):
+        Model(elastic, contact="callback")
+    with pytest.raises(ValueError, match="rigid plate"):
+        Model(STUBBY, leader_arm=10.0)
 
 
 def test_peel_detachment_front_starts_at_the_pulled_edge_and_moves():
@@ -176,26 +185,25 @@ def test_peel_detachment_front_starts_at_the_pulled_edge_and_moves():
     )  # fmt: skip
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = ElasticModel(p, seed=1)
+        m = Model(p, seed=1)
         h = m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
     b = h.meta["backing"]
-    front = np.array(b["front_x_um"])
+    front = h["strip_front_x_um"]
     front = front[np.isfinite(front)]
     edge = float(m.world.root_dx.max())
     assert front[0] == pytest.approx(edge)
     assert front[-1] < edge - 0.5 * (edge - m.world.root_dx.min())
     assert np.all(np.diff(front) <= 0.0)
-    pull_off = max(b["setae_fy_uN"])
+    pull_off = max(h["strip_setae_force_y_uN"])
     assert 0.0 < pull_off < 0.5 * m.n * m.Fc
     # The strip's nodes, per record, in the floor's frame: straight and level at the start,
     # and the pulled end hangs from the handle by the handle spring's stretch F/k_h.
-    nx, ny = np.array(b["nodes_x_um"]), np.array(b["nodes_y_um"])
-    assert nx.shape == ny.shape == (len(b["time_us"]), b["n_links"] + 1)
+    nx, ny = h.backing["strip_node_x_um"], h.backing["strip_node_y_um"]
+    assert nx.shape == ny.shape == (len(h), b["n_links"] + 1)
     half = 0.5 * b["length_um"]
     assert np.allclose(nx[0], np.linspace(-half, half, b["n_links"] + 1), atol=1e-3)
-    row = np.searchsorted(h["time_us"], b["time_us"])
-    assert np.allclose(h["time_us"][row], b["time_us"])
-    hang = h["plate_y_um"][row] + np.array(b["handle_fy_uN"]) / p.backing.handle_stiffness
+    # The handle's force is the plate's: the strip's end hangs below the handle by F/k_h.
+    hang = h["plate_y_um"] + h["plate_force_y_uN"] / p.backing.handle_stiffness
     assert np.allclose(ny[:, -1], hang, atol=0.02)
     assert ny[-1, -1] - ny[0, -1] > 1.0  # the end was lifted
 
@@ -214,13 +222,12 @@ def test_peel_pull_off_falls_as_the_backing_softens():
         )  # fmt: skip
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            m = ElasticModel(p, seed=1)
+            m = Model(p, seed=1)
             h = m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
-        b = h.meta["backing"]
-        front = np.array(b["front_x_um"])
+        front = h["strip_front_x_um"]
         front = front[np.isfinite(front)]
         assert front[0] == pytest.approx(m.world.root_dx.max())
         assert front[-1] < front[0]
-        ratios.append(max(b["setae_fy_uN"]) / (m.n * m.Fc))
+        ratios.append(max(h["strip_setae_force_y_uN"]) / (m.n * m.Fc))
     assert ratios[0] > ratios[1] > ratios[2] > 0.0
     assert ratios[0] < 0.5

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.backing.elastic import ElasticModel
 from gecko_agents.history import STATE_FREE
+from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY, Backing
 
 SMALL = PAPER_ARRAY.replace(
@@ -20,7 +20,7 @@ SMALL = PAPER_ARRAY.replace(
 def _run(params, **kwargs):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = ElasticModel(params, seed=3, **kwargs)
+        m = Model(params, seed=3, **kwargs)
         return m, m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
 
 
@@ -34,7 +34,7 @@ def test_aligned_reproduces_the_history_before_misalignment_existed():
     assert len(h) == 45
     assert float(h["work_plate_pJ"][-1]) == pytest.approx(63.495642963008365, rel=1e-12, abs=0)
     assert float(h["plate_force_y_uN"].min()) == pytest.approx(-15.382662229445415, rel=1e-12)
-    assert max(h.meta["backing"]["setae_fy_uN"]) == pytest.approx(15.381944514881706, rel=1e-12)
+    assert max(h["strip_setae_force_y_uN"]) == pytest.approx(15.381944514881706, rel=1e-12)
 
 
 @pytest.mark.parametrize("angle", [0.4, -0.4])
@@ -44,8 +44,7 @@ def test_misaligned_strip_touches_first_at_its_low_edge(angle):
     p = SMALL.replace(**{"array.count": 12, "floor.sigma": 0.0,
                          "backing.misalignment_deg": angle})  # fmt: skip
     m, h = _run(p, record_setae=True)
-    b = h.meta["backing"]
-    nx, ny = np.array(b["nodes_x_um"][0]), np.array(b["nodes_y_um"][0])
+    nx, ny = h.backing["strip_node_x_um"][0], h.backing["strip_node_y_um"][0]
     slope = np.polyfit(nx, ny, 1)[0]
     assert slope == pytest.approx(math.tan(math.radians(angle)), rel=1e-3)
     state = h.setae["state"]

@@ -12,7 +12,7 @@ from numpy.testing import assert_allclose
 from gecko_agents import diagnostics as dg
 from gecko_agents import history as hist
 from gecko_agents import protocol
-from gecko_agents.backing.elastic import ElasticModel
+from gecko_agents.backing.elastic import ElasticBacking
 from gecko_agents.contact import contact_law
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1, Contact
@@ -90,7 +90,7 @@ def test_linear_deflection_from_recorded_tip_positions():
         m2 = Model(STIFF, n_sim=2, seed=1)
         h2 = m2.run(PROT, progress=False)
     it2 = h2.meta["validity"]["items"]["linear_deflection"]
-    assert it2["value"] is None and it2["ok"] is (not m2._warned_linear)
+    assert it2["value"] is None and it2["ok"] is (not m2.warned_linear)
     rod = STIFF.replace(mechanics="rod")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -202,7 +202,7 @@ def test_a_loaded_run_is_diagnosed_as_the_live_one(case, tmp_path):
     """diagnose on the history read back from disk gives the live run's items, values and
     verdicts, and warns for the same items."""
     m, h, g = _live_and_loaded(case, tmp_path / "run")
-    assert isinstance(m, ElasticModel) is (case == "elastic_backing")
+    assert isinstance(m.backing, ElasticBacking) is (case == "elastic_backing")
     live = h.meta["validity"]
     with warnings.catch_warnings(record=True) as rec:
         warnings.simplefilter("always")

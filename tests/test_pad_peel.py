@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from gecko_agents.backing.elastic import ElasticModel
+from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 
 N = 100  # setae: a 400 µm pad, 10 bending lengths (the 90° start-up transient takes ~5)
@@ -24,17 +24,17 @@ def test_leader_arm_is_laid_out_at_the_peel_angle_stress_free(pad_peel):
     """The arm's links continue the pad's +x end at ψ: its end node sits at the pad's edge
     plus the arm's length along ψ, and the strip stores no bending energy in that shape."""
     p = pad_peel.BASE.replace(**{"array.count": 20})
-    m = ElasticModel(p, leader_arm=30.0, peel_angle_deg=40.0)
-    b = m.backing_info
-    x, y = m.strip.nodes()
+    m = Model(p, leader_arm=30.0, peel_angle_deg=40.0)
+    b = m.backing.info
+    x, y = m.backing.strip.nodes()
     arm = b["leader_arm_um"]
     assert arm >= 30.0 and b["n_links"] == b["pad_links"] + round(arm / b["link_um"])
     y0 = m.plate.position.y
     assert x[-1] == pytest.approx(0.5 * b["length_um"] + arm * math.cos(math.radians(40.0)))
     assert y[-1] == pytest.approx(y0 + arm * math.sin(math.radians(40.0)))
     assert np.allclose(y[: b["pad_links"] + 1], y0)
-    m.strip.step(m.dt)
-    assert m.strip.energy_bending == pytest.approx(0.0, abs=1e-12)
+    m.backing.strip.step(m.dt)
+    assert m.backing.strip.energy_bending == pytest.approx(0.0, abs=1e-12)
 
 
 @pytest.mark.parametrize(
@@ -44,13 +44,13 @@ def test_leader_arm_is_laid_out_at_the_peel_angle_stress_free(pad_peel):
 )  # fmt: skip
 def test_bad_leader_arm_refused(pad_peel, kwargs):
     with pytest.raises(ValueError, match="leader_arm|peel_angle_deg"):
-        ElasticModel(pad_peel.BASE.replace(**{"array.count": 8}), **kwargs)
+        Model(pad_peel.BASE.replace(**{"array.count": 8}), **kwargs)
 
 
 def test_leader_arm_needs_the_peel_drive():
     p = PAPER_ARRAY.replace(**{"array.count": 8, "backing.kind": "elastic"})
     with pytest.raises(ValueError, match="Backing.drive"):
-        ElasticModel(p, leader_arm=10.0)
+        Model(p, leader_arm=10.0)
 
 
 def test_peel_at_90_and_30_degrees_ordered_as_kendall(pad_peel):
@@ -64,7 +64,7 @@ def test_peel_at_90_and_30_degrees_ordered_as_kendall(pad_peel):
     for psi in (90.0, 30.0):
         m = pad_peel.preloaded_model(N, psi)
         h = pad_peel.peel(m, psi, speed=0.5)
-        front = np.array(h.meta["backing"]["front_x_um"])
+        front = h["strip_front_x_um"]
         front = front[np.isfinite(front)]
         edge = float(m.world.root_dx.max())
         assert front[0] == pytest.approx(edge)

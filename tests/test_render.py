@@ -383,74 +383,65 @@ LINK = 30.0  # µm: the toy strip is 5 links under 5 setae at 30 µm pitch, 150 
 
 
 def _with_backing(toy, nodes=True):
-    """``toy`` with a fake ``meta["backing"]`` on its own clock (every 0.7 µs from 0.1 µs): a
-    sagging strip whose nodes sit at material abscissae −75, −45, …, 75 µm, the front at the
-    node of abscissa 45 µm, and nothing attached in the last five backing records."""
+    """``toy`` with fake elastic-backing records, one per record as the Recorder writes them: a
+    sagging strip drifting +0.5 µm per record whose nodes sit at material abscissae −75, −45,
+    …, 75 µm, the front at the node of abscissa 45 µm, and nothing attached in the last five
+    records."""
     from dataclasses import replace
 
-    t_b = 0.1 + 0.7 * np.arange(22)
+    n = len(toy)
     material = np.linspace(-75.0, 75.0, 6)
-    plate_y = np.interp(t_b, toy["time_us"], toy["plate_y_um"])
-    nodes_x = np.tile(material, (t_b.size, 1)) + 0.5 * np.arange(t_b.size)[:, None]
+    plate_y = toy["plate_y_um"]
+    nodes_x = np.tile(material, (n, 1)) + 0.5 * np.arange(n)[:, None]
     nodes_y = plate_y[:, None] - 2.0 * np.cos(material / 75.0 * np.pi / 2)[None, :]
-    front = np.where(np.arange(t_b.size) < 17, 45.0, np.nan)
-    backing = {"time_us": t_b.tolist(), "front_x_um": front.tolist(), "length_um": 150.0}
+    front = np.where(np.arange(n) < n - 5, 45.0, np.nan)
+    pull = {"strip_setae_force_x_uN": np.zeros(n), "strip_setae_force_y_uN": np.zeros(n)}
+    scalars = {**toy.scalars, "strip_front_x_um": front, **pull}
+    backing, geometry = {}, dict(toy.geometry)
     if nodes:
-        backing |= {"nodes_x_um": nodes_x.tolist(), "nodes_y_um": nodes_y.tolist()}
-    return replace(toy, meta={**toy.meta, "backing": backing}), t_b, nodes_x, nodes_y
-
-
-def test_nearest_backing_record():
-    from gecko_agents.render.backing import nearest_records
-
-    t = np.array([0.0, 1.0, 2.0, 4.0])
-    got = nearest_records(t, [0.2, 0.5, 0.6, 2.9, 3.1, 10.0, -1.0])
-    np.testing.assert_array_equal(got, [0, 0, 1, 2, 3, 3, 0])  # a tie goes to the earlier
-    np.testing.assert_array_equal(nearest_records([5.0], [0.0, 9.0]), [0, 0])
+        backing = {"strip_node_x_um": nodes_x, "strip_node_y_um": nodes_y}
+        geometry["strip_node_abscissa_um"] = material
+    h = replace(toy, scalars=scalars, backing=backing, geometry=geometry)
+    return h, nodes_x, nodes_y
 
 
 def test_backing_strip_is_drawn_through_the_recorded_nodes(toy):
-    h, t_b, nodes_x, nodes_y = _with_backing(toy)
-    k = 9  # t = 4.5 µs: nearest backing record is 6 (4.3 µs), not 7 (5.0 µs)
-    j = int(np.argmin(np.abs(t_b - h["time_us"][k])))
-    assert j == 6
+    h, nodes_x, nodes_y = _with_backing(toy)
+    k = 9
     frame = render.render_frame(h, k)
-    np.testing.assert_array_equal(frame.strip.get_xdata(), nodes_x[j])
-    np.testing.assert_array_equal(frame.strip.get_ydata(), nodes_y[j])
+    np.testing.assert_array_equal(frame.strip.get_xdata(), nodes_x[k])
+    np.testing.assert_array_equal(frame.strip.get_ydata(), nodes_y[k])
     assert not frame.side_ax.patches  # the strip replaces the rigid plate
     # The front (abscissa 45 µm) is node 4; the roots (−60, −30, …, 60 µm) sit halfway
     # between two nodes, each on its rigid link.
-    np.testing.assert_allclose(frame.front.get_xydata(), [[nodes_x[j, 4], nodes_y[j, 4]]])
+    np.testing.assert_allclose(frame.front.get_xydata(), [[nodes_x[k, 4], nodes_y[k, 4]]])
     rods = [c for c in frame.side_ax.collections if type(c).__name__ == "LineCollection"]
     roots = np.array([seg[0] for seg in rods[0].get_segments()])
-    half = 0.5 * (nodes_x[j, :-1] + nodes_x[j, 1:]), 0.5 * (nodes_y[j, :-1] + nodes_y[j, 1:])
+    half = 0.5 * (nodes_x[k, :-1] + nodes_x[k, 1:]), 0.5 * (nodes_y[k, :-1] + nodes_y[k, 1:])
     np.testing.assert_allclose(roots, np.column_stack(half), atol=1e-12)
     # Drawn where promised: the strip's colour at a node inside the view.
     rgb = frame.rgb()
-    assert _is(_colour_at(rgb, frame.pixel(nodes_x[j, 2], nodes_y[j, 2]), 1), "#444444")
+    assert _is(_colour_at(rgb, frame.pixel(nodes_x[k, 2], nodes_y[k, 2]), 1), "#444444")
 
 
 def test_backing_front_follows_recorded_node_abscissae(toy):
-    """A strip with a leader arm records its nodes' material abscissae (links beyond the
-    pad): the front is placed by those, not by equal links over ``length_um``."""
+    """A strip with a leader arm has nodes beyond the pad: the front is placed by the nodes'
+    recorded material abscissae, not by equal links."""
     from dataclasses import replace
 
-    h, t_b, nodes_x, nodes_y = _with_backing(toy)
-    b = dict(h.meta["backing"])
-    b["node_abscissae_um"] = [-75.0, -45.0, -15.0, 15.0, 30.0, 45.0]  # front at node 5 now
-    h = replace(h, meta={**h.meta, "backing": b})
-    j = int(np.argmin(np.abs(t_b - h["time_us"][9])))
-    frame = render.render_frame(h, 9)
-    np.testing.assert_allclose(frame.front.get_xydata(), [[nodes_x[j, 5], nodes_y[j, 5]]])
-    b["node_abscissae_um"] = [0.0, 1.0]
+    h, nodes_x, nodes_y = _with_backing(toy)
+    g = dict(h.geometry, strip_node_abscissa_um=np.array([-75.0, -45.0, -15.0, 15.0, 30.0, 45.0]))
+    frame = render.render_frame(replace(h, geometry=g), 9)  # the front at node 5 now
+    np.testing.assert_allclose(frame.front.get_xydata(), [[nodes_x[9, 5], nodes_y[9, 5]]])
+    g["strip_node_abscissa_um"] = np.array([0.0, 1.0])
     with pytest.raises(ValueError, match="2 node abscissae for 6 nodes"):
-        render.render_frame(replace(h, meta={**h.meta, "backing": b}), 9)
+        render.render_frame(replace(h, geometry=g), 9)
 
 
 def test_backing_front_vanishes_once_nothing_is_attached(toy):
-    h, t_b, *_ = _with_backing(toy)
-    k = len(h) - 1  # nearest backing record is the last: front NaN
-    assert np.isnan(h.meta["backing"]["front_x_um"][-1])
+    h, *_ = _with_backing(toy)
+    k = len(h) - 1
+    assert np.isnan(h["strip_front_x_um"][k])
     assert len(render.render_frame(h, k).front.get_xdata()) == 0
 
 

@@ -1,35 +1,33 @@
-"""Cost of the elastic backing: seta-steps per second of a pressed elastic-backing model, the
-set-up of :func:`gecko_agents.bench.pressed_model` with ``backing.kind = "elastic"``.
+"""A pressed elastic-backing model, the set-up of :func:`gecko_agents.bench.pressed_model` with
+``backing.kind = "elastic"``: what the pad peel starts from and what the elastic backing's cost
+is measured on.
 
-The issue's target: an elastic backing costs at most 2× the rigid plate per seta-step at
-N = 10 000 (``backing_rate(n, steps)`` beside :func:`gecko_agents.bench.agent_rate` of
-:func:`gecko_agents.bench.pressed_model`; N = 10 000 is a strip of 1 516 links). The chain's
-pivots are solved directly, O(links) per step (:mod:`gecko_agents.backing.pivots`), so the
-strip adds a cost per step proportional to its links, not to their square.
+The chain's pivots are solved directly, O(links) per step (:mod:`gecko_agents.backing.pivots`),
+so the strip adds a cost per step proportional to its links, not to their square.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from gecko_agents.backing.elastic import ElasticModel
-from gecko_agents.bench import agent_rate
+from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 
-__all__ = ["elastic_pressed_model", "backing_rate"]
+__all__ = ["elastic_pressed_model"]
 
 
 def elastic_pressed_model(
     n: int, depth: float = 0.3, settle: int = 200, params=None, **model_kw
-) -> ElasticModel:
+) -> Model:
     """:func:`gecko_agents.bench.pressed_model` on an elastic strip: handle, strip and tips
     moved ``depth`` [µm] below touch-down, then ``settle`` steps of rest, every tip attached.
     ``params``: the array (default: the paper's on a flat floor with the default
     :class:`gecko_agents.params.Backing`, uniform drive), with ``n`` setae; ``model_kw`` go to
-    :class:`gecko_agents.backing.elastic.ElasticModel` (``seed``, ``leader_arm``, ...)."""
+    :class:`gecko_agents.model.Model` (``seed``, ``leader_arm``, ... for
+    :class:`gecko_agents.backing.elastic.ElasticBacking`)."""
     if params is None:
         params = PAPER_ARRAY.replace(**{"floor.sigma": 0.0, "backing.kind": "elastic"})
-    m = ElasticModel(params.replace(**{"array.count": int(n)}), **model_kw)
+    m = Model(params.replace(**{"array.count": int(n)}), **model_kw)
     plate_y = m.z_touch - depth
     drop = plate_y - m.plate.position.y
     m.plate.position = (m.plate.position.x, plate_y)
@@ -37,19 +35,13 @@ def elastic_pressed_model(
     for body, xy in zip(m.tips, rest, strict=True):
         body.position = (float(xy[0]), float(xy[1]))
         body.velocity = (0.0, 0.0)
-    for link in m.strip.links:
+    strip = m.backing.strip
+    for link in strip.links:
         link.position = (link.position.x, link.position.y + drop)
-    m.strip.rows = m.strip.read()
+    strip.rows = strip.read()
     m.reset_state_arrays()
     for _ in range(settle):
         m.step((0.0, 0.0))
     if not np.all(m.attached):
         raise RuntimeError(f"only {int(m.attached.sum())} of {n} tips attached after settling")
     return m
-
-
-def backing_rate(n: int, steps: int) -> float:
-    """Seta-steps per second of an elastic-backing model of ``n`` setae, pressed
-    (:func:`elastic_pressed_model`), through a ``steps``-step downward plate move
-    (:func:`gecko_agents.bench.agent_rate`)."""
-    return agent_rate(elastic_pressed_model(n), steps)

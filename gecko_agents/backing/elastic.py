@@ -20,7 +20,7 @@ against Euler–Bernoulli's P·L³/(3EI) (Timoshenko & Gere 1972, Mechanics of M
 The links are inextensible (the pivots hold them): the axial stiffness E_b·b·t_b/ℓ is 10³–10⁵
 times a seta's, so axial springs would only shorten the time step.
 
-Seta roots ride on the links (:class:`ElasticModel`): the root of seta i sits on link j(i) at
+Seta roots ride on the links (:class:`ElasticBacking`): the root of seta i sits on link j(i) at
 the abscissa it has on a straight strip, so it turns and moves with the link; the seta spring
 and damping act between the tip and that root (position and velocity of the root's material
 point), and the reaction goes onto the link as a force and a torque. A linear seta keeps its
@@ -64,11 +64,12 @@ import math
 import numpy as np
 
 from gecko_agents.backing.strip import MIN_LINKS, OMEGA_DT, Strip, bending_length
-from gecko_agents.model import Model, register_backing
 
 __all__ = [
     "Strip",
-    "ElasticModel",
+    "ElasticBacking",
+    "STRIP_COLUMNS",
+    "STRIP_ARRAYS",
     "bending_length",
     "peel",
     "OMEGA_DT",
@@ -76,23 +77,69 @@ __all__ = [
 ]
 
 
-@register_backing("elastic")
-class ElasticModel(Model):
-    """:class:`gecko_agents.model.Model` with the elastic backing of ``params.backing``
-    (built by ``Model(params)`` when ``params.backing.kind == "elastic"``). The numpy kernel
-    only; the free approach is stepped (no rigid skip: the strip is not rigid).
+STRIP_COLUMNS = ("strip_front_x_um", "strip_setae_force_x_uN", "strip_setae_force_y_uN")
+"""Columns the strip adds to ``history.csv`` after
+:data:`~gecko_agents.history.SCALAR_COLUMNS`: the detachment front, the material abscissa [µm]
+on the straight strip of the attached seta nearest the pulled side (NaN while none is
+attached), and the total seta spring + damping force on the tips [µN], the force the setae
+pull the strip with, free of the strip's inertia. The force on the handle is the plate's
+(``plate_force_*_uN``)."""
 
-    ``leader_arm`` [µm] > 0 (with ``backing.drive = "peel_end"``) adds a pre-peeled arm of
-    that length beyond the pad's +x edge: links of the same strip with no setae under them,
-    laid out at ``peel_angle_deg`` [deg] from the floor (+x, the pulled side; 90 = straight
-    up), stress-free in that shape (the kink's joint has that rest angle); the handle holds
-    the arm's end, so pulling the handle along the same angle peels the pad at a steady angle
-    (a handle pulled from the end of a flat strip drags it instead). Not with a misalignment.
+STRIP_ARRAYS = ("strip_node_x_um", "strip_node_y_um")
+"""Per-record arrays of the strip in ``History.backing`` (``setae.npz``), shape (n_records,
+n_links + 1): its nodes (link ends, −x end first) in the floor's frame [µm]. Their material
+abscissae [µm] on the straight strip (the roots' frame, the pad centred on 0; a leader arm's
+nodes lie beyond ``length_um``/2) are ``History.geometry["strip_node_abscissa_um"]``, the
+strip's static figures ``History.meta["backing"]``."""
+
+
+class ElasticBacking:
+    """The elastic strip of ``params.backing`` under the setae, held by the handle
+    (``world.plate``) through the handle spring; the backing of a
+    :class:`gecko_agents.model.Model` with ``params.backing.kind == "elastic"`` (its
+    ``model.backing``; the interface is :class:`gecko_agents.backing.rigid.RigidBacking`'s).
+    The numpy kernel only; the free approach is stepped (no rigid skip: the strip is not
+    rigid).
+
+    Parameters
+    ----------
+    model : the :class:`gecko_agents.model.Model` being built (world, state, physics, dt).
+    leader_arm : [µm] > 0 (with ``backing.drive = "peel_end"``) adds a pre-peeled arm of that
+        length beyond the pad's +x edge: links of the same strip with no setae under them,
+        laid out at ``peel_angle_deg`` from the floor, stress-free in that shape (the kink's
+        joint has that rest angle); the handle holds the arm's end, so pulling the handle
+        along the same angle peels the pad at a steady angle (a handle pulled from the end of
+        a flat strip drags it instead). Not with a misalignment. ``Model(params,
+        leader_arm=…)`` passes it here.
+    peel_angle_deg : [deg] angle of the leader arm from the floor (+x, the pulled side; 90 =
+        straight up), in (0, 180).
+
+    Attributes
+    ----------
+    strip : the :class:`Strip`. info : its static figures (``meta["backing"]``).
+    setae_force : (x, y) [µN] total seta spring + damping force on the tips at the last step.
     """
 
-    def __init__(self, params, leader_arm: float = 0.0, peel_angle_deg: float = 90.0,
-                 **kwargs):  # fmt: skip
-        bk = params.backing
+    kind = "elastic"
+    rigid = False
+
+    @staticmethod
+    def kernel(kernel: str, contact: str) -> str:
+        """The kernel the model runs: numpy (refuses the loops and the callback contact)."""
+        if kernel in ("numba", "python"):
+            raise ValueError(
+                f"kernel = {kernel!r}: the elastic backing (backing.kind = 'elastic') runs "
+                "with kernel='numpy'"
+            )
+        if contact != "batch":
+            raise ValueError(
+                f"contact = {contact!r}: the elastic backing (backing.kind = 'elastic') runs "
+                "with contact='batch'"
+            )
+        return "numpy"
+
+    def __init__(self, model, leader_arm: float = 0.0, peel_angle_deg: float = 90.0):
+        bk = model.params.backing
         if not (math.isfinite(leader_arm) and leader_arm >= 0.0):
             raise ValueError(f"leader_arm = {leader_arm!r} µm must be ≥ 0")
         if leader_arm and (bk.drive != "peel_end" or bk.misalignment_deg):
@@ -103,15 +150,11 @@ class ElasticModel(Model):
         if not 0.0 < peel_angle_deg < 180.0:
             raise ValueError(f"peel_angle_deg = {peel_angle_deg!r} must be in (0, 180)")
         self.leader_arm, self.peel_angle_deg = float(leader_arm), float(peel_angle_deg)
-        kernel = kwargs.get("kernel", "auto")
-        if kernel in ("numba", "python"):
-            raise ValueError(
-                f"kernel = {kernel!r}: the elastic backing (backing.kind = 'elastic') runs "
-                "with kernel='numpy'"
-            )
-        kwargs["kernel"] = "numpy"
-        super().__init__(params, **kwargs)
+        self.params, self.world, self.state = model.params, model.world, model.state
+        self.physics, self.dt, self.n = model.physics, model.dt, model.n
         self._build_strip()
+        self.setae_force = (0.0, 0.0)
+        self._roots = (np.zeros(self.n), np.zeros(self.n))
 
     def _build_strip(self):
         p, w, bk = self.params, self.world, self.params.backing
@@ -141,25 +184,7 @@ class ElasticModel(Model):
                       bk.damping_ratio, angle=alpha)  # fmt: skip
         if n_arm:
             strip.kink_up(n_links, math.radians(self.peel_angle_deg))
-        # Handle spring: k_h/n per link (uniform) or k_h on the +x end (peel).
-        if bk.drive == "uniform":
-            self._h_link = np.arange(n_links)
-            self._h_s = np.zeros(n_links)
-            self._h_dx = strip.x_centre.copy()
-            k_each = bk.handle_stiffness / n_links
-        else:  # the +x end of the strip (of the arm, if any)
-            self._h_link = np.array([strip.n - 1])
-            self._h_s = np.array([0.5 * ell])
-            self._h_dx = np.array([0.5 * length])
-            k_each = bk.handle_stiffness
-        self._h_dy = np.zeros_like(self._h_dx)
-        if n_arm:  # the arm's end, where kink_up laid it
-            ex, ey = strip.nodes()
-            self._h_dx[0], self._h_dy[0] = ex[-1] - w.plate.position.x, ey[-1] - w.plate.position.y
-        if alpha:  # the handle holds the strip turned: its attachment points turn with it
-            self._h_dx, self._h_dy = self._h_dx * math.cos(alpha), self._h_dx * math.sin(alpha)
-        self._k_h = k_each
-        self._E_handle = 0.0
+        k_each = self._attach_handle(strip, n_links, n_arm, length, alpha)
         # Rotary inertia first: the zig-zag mode is the links turning about their centres
         # (ω² = 4k_r/I), slowed to ω·dt = OMEGA_DT by the links' moment of inertia alone,
         # which leaves the bending waves longer than a link (ω² = EI·q⁴/ρA) at the true mass.
@@ -178,21 +203,42 @@ class ElasticModel(Model):
         rx = w.root_dx
         self._r_link = np.clip(((rx + 0.5 * length) // ell).astype(np.int64), 0, n_links - 1)
         self._r_s = rx - strip.x_centre[self._r_link]
-        self.backing_info = {
+        self.geometry = {"strip_node_abscissa_um": -0.5 * length + ell * np.arange(strip.n + 1)}
+        """Static arrays for ``History.geometry``: the nodes' abscissae on the straight strip
+        [µm] (the roots' frame, the pad centred on 0: a leader arm's nodes lie beyond
+        ``length_um``/2)."""
+        self.info = {
             "EI_uN_um2": EI, "width_um": pitch, "length_um": length, "n_links": strip.n,
             "pad_links": n_links, "leader_arm_um": n_arm * ell,
-            "node_abscissae_um": (-0.5 * length + ell * np.arange(strip.n + 1)).tolist(),
             "peel_angle_deg": self.peel_angle_deg if n_arm else None,
             "link_um": ell, "bending_length_um": lam, "foundation_uN_per_um2": k_f,
             "mass_scale": mass, "moment_scale": moment,
             "handle_stiffness_each_uN_per_um": k_each,
         }  # fmt: skip
-        self._rec = {"time_us": [], "front_x_um": [], "handle_fx_uN": [], "handle_fy_uN": [],
-                     "setae_fx_uN": [], "setae_fy_uN": [], "nodes_x_um": [],
-                     "nodes_y_um": []}  # fmt: skip
-        self.setae_force = (0.0, 0.0)
-        self._n_adv = 0
-        self._roots = (np.zeros(self.n), np.zeros(self.n))
+
+    def _attach_handle(self, strip, n_links, n_arm, length, alpha) -> float:
+        """The handle spring's points on the strip: k_h/n per link centre (uniform) or k_h on
+        the +x end (peel: of the arm, if any); returns the stiffness of each [µN/µm]."""
+        w, bk = self.world, self.params.backing
+        if bk.drive == "uniform":
+            self._h_link = np.arange(n_links)
+            self._h_s = np.zeros(n_links)
+            self._h_dx = strip.x_centre.copy()
+            k_each = bk.handle_stiffness / n_links
+        else:  # the +x end of the strip (of the arm, if any)
+            self._h_link = np.array([strip.n - 1])
+            self._h_s = np.array([0.5 * strip.ell])
+            self._h_dx = np.array([0.5 * length])
+            k_each = bk.handle_stiffness
+        self._h_dy = np.zeros_like(self._h_dx)
+        if n_arm:  # the arm's end, where kink_up laid it
+            ex, ey = strip.nodes()
+            self._h_dx[0], self._h_dy[0] = ex[-1] - w.plate.position.x, ey[-1] - w.plate.position.y
+        if alpha:  # the handle holds the strip turned: its attachment points turn with it
+            self._h_dx, self._h_dy = self._h_dx * math.cos(alpha), self._h_dx * math.sin(alpha)
+        self._k_h = k_each
+        self._E_handle = 0.0
+        return k_each
 
     def _lift(self, lift, alpha):
         """A misaligned start: raise the handle by ``lift`` [µm] (the strip's lowest edge
@@ -210,44 +256,40 @@ class ElasticModel(Model):
             body.position = (p.x + ddx, p.y + ddy)
 
     # ------------------------------------------------------------------ stepping
-    def _advance(self, vpx, vpy):
-        """One step: setae between tips and the roots on the chain, the chain pulled by the
-        handle (``world.plate``) moving at (vpx, vpy) [µm/µs].
+    def roots(self, hx, hy, vpx, vpy):
+        """Where the roots' material points on the links will be at the end of the step and
+        how fast they move, as per-seta "plates" for the seta springs (root minus the root
+        offset, since :meth:`~gecko_agents.model.step_numpy.NumpyStep.spring_damp` adds it)."""
+        w = self.world
+        rx, ry, rvx, rvy, ox, oy = self.strip.points(self.strip.rows, self._r_link, self._r_s,
+                                                     self.dt)  # fmt: skip
+        self._roots, self._arms = (rx, ry), (ox, oy)
+        return rx - w.root_dx, ry - w.root_dy, rvx, rvy
+
+    def hold(self, state) -> None:
+        """Keep the seta spring + damping forces on the tips (``state.F`` before the contacts
+        add to it, without the external force): their reaction loads the links."""
+        fsx, fsy = state.F[0].copy(), state.F[1].copy()
+        if state.external_force.any():
+            fsx -= state.external_force[:, 0]
+            fsy -= state.external_force[:, 1]
+        self._fs = (fsx, fsy)
+
+    def advance(self, dt, hx, hy, vpx, vpy, on_plate):
+        """One step of the strip under the setae's reactions and the handle spring, the
+        handle at (``hx``, ``hy``) [µm] moving at (``vpx``, ``vpy``) [µm/µs]; called after the
+        setae's bookkeeping. Returns the force on the handle [µN] (``on_plate``, the setae's
+        pull on a rigid plate, is not it).
 
         Energy: besides the setae's own bookkeeping, the step books the strip's joints
         (:meth:`Strip.step`), the handle spring's energy ½k_h·|Δ|² at the positions the step
         reaches, and the dissipation of the dampers that act on the strip (seta damping and
         the handle's damper), each as force × mid-step velocity of the link it acts on
         (v and ω averaged over the step: the work it does in semi-implicit Euler)."""
-        dt, s, ph, w, st = self.dt, self.state, self.physics, self.world, self.strip
-        w.plate.velocity = (vpx, vpy)
-        pp = w.plate.position
-        hx, hy = pp.x + vpx * dt, pp.y + vpy * dt  # the handle where forces are evaluated
-        self._pnext = (hx, hy)
-        ph.events = []
-        ph.diss = 0.0
+        s, ph, st = self.state, self.physics, self.strip
         data = st.rows
-        rx, ry, rvx, rvy, ox, oy = st.points(data, self._r_link, self._r_s, dt)
-        self._roots = (rx, ry)
-        w.read()
-        x, y = s.xy
-        np.multiply(s.pv[2], dt, out=x)
-        x += s.pv[0]
-        np.multiply(s.pv[3], dt, out=y)
-        y += s.pv[1]
-        # NumpyStep measures roots as (plate + root offset): give it per-seta "plates".
-        ph.spring_damp(rx - w.root_dx, ry - w.root_dy, rvx, rvy)
-        fsx, fsy = s.F[0].copy(), s.F[1].copy()  # spring + damping on the tips
-        if s.external_force.any():
-            fsx -= s.external_force[:, 0]
-            fsy -= s.external_force[:, 1]
-        if not self._constants.rod:
-            self._check_linear(ph.max_u2)
-        if self._fast_pads:
-            ph.contact_pads()
-        else:
-            ph.contact_general()
-        w.write_forces(s.F)
+        fsx, fsy = self._fs
+        ox, oy = self._arms
         # Reactions on the links: −F at the root (force and torque r × F).
         nl, link = st.n, self._r_link
         fx = -np.bincount(link, fsx, nl)
@@ -260,32 +302,20 @@ class ElasticModel(Model):
         hl = self._h_link
         Fhx, Fhy, Fcx, Fcy, qox, qoy = self._handle_forces(data, hx, hy, vpx, vpy, fx, fy, tq)
         self.setae_force = (float(fsx.sum()), float(fsy.sum()))
-        if w.pads:
-            w.recentre_pads(s.xy[0])
-        w.step(dt)
         new = st.step(dt, fx, fy, tq)
-        self.time += dt
         # Mid-step velocities of the links: what a force on a link works against.
         vmx, vmy = 0.5 * (data[:, 3] + new[:, 3]), 0.5 * (data[:, 4] + new[:, 4])
         wm = 0.5 * (data[:, 5] + new[:, 5])
-        # Seta damping dissipates −Fd·(v_tip − v_root): bookkeeping books it against the
-        # handle's velocity, the correction moves it onto the roots' (and keeps the release
-        # detection's reference speed, the handle's).
-        ph.bookkeeping(vpx, vpy)
+        # Seta damping dissipates −Fd·(v_tip − v_root): the setae's bookkeeping books it
+        # against the handle's velocity, the correction moves it onto the roots' (and keeps
+        # the release detection's reference speed, the handle's).
         root_power = float(vmx @ dfx + vmy @ dfy + wm @ dtq)
         ph.diss += (root_power - vpx * float(Fdx.sum()) - vpy * float(Fdy.sum())) * dt
         # The handle's damper: plate work at the handle minus the work done on the link.
         hl_power = float(Fcx @ vmx[hl] + Fcy @ vmy[hl] + (qox * Fcy - qoy * Fcx) @ wm[hl])
         handle_power = vpx * float(Fcx.sum()) + vpy * float(Fcy.sum())
         ph.diss += (handle_power - hl_power) * dt + st.dissipated
-        opx, opy = float(Fhx.sum()), float(Fhy.sum())
-        ppx, ppy = self._on_plate_prev
-        self._work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
-        self._on_plate_prev = (opx, opy)
-        self.reaction = (-opx, -opy)
-        self._n_adv += 1
-        if self._n_adv % self.record_every == 0 or self._n_adv == 1:
-            self._note()
+        return float(Fhx.sum()), float(Fhy.sum())
 
     def _handle_forces(self, data, hx, hy, vpx, vpy, fx, fy, tq):
         """The handle spring k·(handle point − link point) + c·(v_handle − v_point) on the
@@ -302,22 +332,12 @@ class ElasticModel(Model):
         np.add.at(tq, hl, qox * Fhy - qoy * Fhx)
         return Fhx, Fhy, Fcx, Fcy, qox, qoy
 
-    def _note(self):
-        r = self._rec
-        r["time_us"].append(self.time)
-        r["front_x_um"].append(self.front_x())
-        r["handle_fx_uN"].append(self.reaction[0])
-        r["handle_fy_uN"].append(self.reaction[1])
-        r["setae_fx_uN"].append(self.setae_force[0])
-        r["setae_fy_uN"].append(self.setae_force[1])
-        x, y = self.strip.nodes()
-        r["nodes_x_um"].append(x.tolist())
-        r["nodes_y_um"].append(y.tolist())
-
+    # ------------------------------------------------------------------ state
     def front_x(self) -> float:
         """Detachment front [µm]: root abscissa (straight strip) of the attached seta nearest
         the pulled side (+x for a peel; the outermost attached seta for a uniform pull); NaN
-        when none is attached."""
+        when none is attached. The strip moves sideways by no more than the setae's
+        deflection while setae hold it, so it also marks the front on the drawn strip."""
         att = np.flatnonzero(self.state.attached)
         if not att.size:
             return math.nan
@@ -326,57 +346,26 @@ class ElasticModel(Model):
             return float(x.max())
         return float(x[np.argmax(np.abs(x))])
 
-    def handle_force(self) -> tuple[float, float]:
-        """Force of the strip on the handle [µN] and its angle from the +x axis [deg]."""
-        fx, fy = self.reaction
-        return math.hypot(fx, fy), math.degrees(math.atan2(fy, fx))
+    def root_positions(self, handle) -> np.ndarray:
+        """Root positions (N, 2) [µm] on the links where the last step evaluated the forces
+        (``handle``, the handle's position, is not needed)."""
+        return np.column_stack(self._roots)
 
-    def backing_energy(self) -> float:
+    def energy(self) -> float:
         """Elastic energy of the strip's joints and the handle spring [pJ] at the last step's
         evaluation positions."""
         return self.strip.energy_bending + self._E_handle
 
-    def spring_energies(self) -> np.ndarray:
-        """Elastic energy of every seta [pJ] at the last step's evaluation positions (the
-        strip's and the handle's are :meth:`backing_energy`)."""
-        root = np.column_stack(self._roots)
-        return self.spring_force(self.state.xy.T, root)[1]
+    def kinetic_energy(self, tips: float) -> float:
+        """Kinetic energy of the tips (``tips`` [pJ]) and of the strip's links [pJ] (both in
+        the form ½m·v(n−½)·v(n+½) of :meth:`gecko_agents.model.Model.kinetic_energy`)."""
+        return tips + self.strip.kinetic
 
-    def kinetic_energy(self) -> float:
-        """Kinetic energy of the tips and of the strip's links [pJ] (both in the form
-        ½m·v(n−½)·v(n+½) of :meth:`gecko_agents.model.Model.kinetic_energy`)."""
-        return super().kinetic_energy() + self.strip.kinetic
-
-    def _skip_free_travel(self, seg, state, vp) -> float:
-        return 0.0
-
-    def run(self, protocol, **kwargs):
-        """:meth:`Model.run`; the history's ``meta["backing"]`` holds the strip's figures and,
-        per recorded step, the time, the detachment front, the handle force (force of the strip
-        on the handle, its magnitude and angle from +x) and ``setae_f*_uN``, the total seta
-        spring + damping force on the tips (= the force the setae pull the strip with, free of
-        the strip's inertia) [µN], and ``nodes_x_um``, ``nodes_y_um``: the positions of the
-        strip's n_links + 1 nodes (link ends, −x end first) in the floor's frame (the frame of
-        the tips and the floor profile) [µm], one list per record; ``node_abscissae_um``: the
-        nodes' abscissae on the straight strip (the roots' frame, the pad centred on 0: a
-        leader arm's nodes lie beyond ``length_um``/2), with ``pad_links``, ``leader_arm_um``
-        and ``peel_angle_deg`` (None without an arm).
-
-        ``front_x_um`` is the front's abscissa on the undeformed strip (the root offset
-        ``root_dx`` of the outermost attached seta); the strip moves sideways by no more than
-        the setae's deflection while setae hold it, so it also marks the front on the drawn
-        backing line."""
-        self._n_adv = 0
-        for v in self._rec.values():
-            v.clear()
-        history = super().run(protocol, **kwargs)
-        r = {k: v if k.startswith("nodes_") else list(map(float, v))
-             for k, v in self._rec.items()}  # fmt: skip
-        fx, fy = np.array(r["handle_fx_uN"]), np.array(r["handle_fy_uN"])
-        r["handle_force_uN"] = np.hypot(fx, fy).tolist()
-        r["handle_angle_deg"] = np.degrees(np.arctan2(fy, fx)).tolist()
-        history.meta["backing"] = {**self.backing_info, **r}
-        return history
+    def record(self) -> tuple[dict, dict]:
+        """(scalar columns, per-record arrays) at a record: the front and the setae's pull
+        (:data:`STRIP_COLUMNS`), the nodes' positions (:data:`STRIP_ARRAYS`)."""
+        scalars = dict(zip(STRIP_COLUMNS, (self.front_x(), *self.setae_force), strict=True))
+        return scalars, dict(zip(STRIP_ARRAYS, self.strip.nodes(), strict=True))
 
 
 def peel(depth: float, psi_deg: float, speed: float = 0.05) -> list:

@@ -13,6 +13,8 @@ I/O);
 * :mod:`gecko_agents.model.step_numpy`, :mod:`gecko_agents.model.step_loop` — the per-step forces
 (numpy, or one
   loop compiled by numba);
+* :mod:`gecko_agents.backing` — what holds the seta roots (``model.backing``, chosen by
+  ``params.backing.kind``): the rigid plate, or an elastic strip pulled through a handle spring;
 * :mod:`gecko_agents.protocol` — what the plate does; :mod:`gecko_agents.model.recorder` — what is
   recorded into a :class:`~gecko_agents.history.History`.
 
@@ -34,6 +36,7 @@ import warnings
 
 import numpy as np
 
+from gecko_agents.backing import backing_class
 from gecko_agents.contact import contact_law
 from gecko_agents.floor import Profile
 from gecko_agents.history import History
@@ -62,22 +65,6 @@ __all__ = [
     "seta_mass",
     "KERNELS",
 ]
-
-
-BACKINGS: dict[str, type] = {}
-"""Model subclass for each backing kind other than the rigid plate (``params.backing.kind``)."""
-
-
-def register_backing(kind: str):
-    """Class decorator: ``Model(params)`` with ``params.backing.kind == kind`` builds the
-    decorated subclass of :class:`Model` (e.g.
-    :class:`gecko_agents.backing.elastic.ElasticModel`)."""
-
-    def register(cls):
-        BACKINGS[kind] = cls
-        return cls
-
-    return register
 
 
 class Model:
@@ -122,25 +109,20 @@ class Model:
         tip has its sensor only near the sensor's edge, where events happen,
         :meth:`gecko_agents.model.world.World.update_sensors`; the same flags every step, so the
         same history) or ``"auto"`` (default: lazy where it applies). ``meta["detection"]``.
+    **backing_options : options of the backing ``params.backing.kind`` chooses (the
+        elastic strip's ``leader_arm`` [µm] and ``peel_angle_deg`` [deg],
+        :class:`gecko_agents.backing.elastic.ElasticBacking`); the rigid plate takes none.
+
+    Attributes
+    ----------
+    backing : what holds the seta roots, built from ``params.backing``
+        (:mod:`gecko_agents.backing`): the rigid plate or an elastic strip.
     """
 
     energy_complete = True
     """Whether the energy columns book every energy of the world (plate work = elastic +
     kinetic + dissipated); a model with parts whose energy it does not book says False and
     its histories skip the energy-balance invariant."""
-
-    def __new__(cls, params=None, *args, **kwargs):
-        # A backing other than the rigid plate is a subclass registered by its module
-        # (:func:`register_backing`), so this module imports no backing.
-        kind = getattr(getattr(params, "backing", None), "kind", "rigid")
-        if cls is Model and kind != "rigid":
-            if kind not in BACKINGS:
-                raise ValueError(
-                    f"backing.kind = {kind!r}: no model registered for it "
-                    f"(registered: {['rigid', *sorted(BACKINGS)]}); import its module first"
-                )
-            return super().__new__(BACKINGS[kind])
-        return super().__new__(cls)
 
     def __init__(
         self,
@@ -158,8 +140,11 @@ class Model:
         floor_profile: Profile | None = None,
         detection: str = "auto",
         threads: int | None = None,
+        **backing_options,
     ):
         n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
+        backing = backing_class(params.backing.kind)
+        kernel = backing.kernel(kernel, contact)
         threads = choose_threads(threads, int(n), contact)
         self.params, self.n, self.contact_path = params, int(n), contact
         if isinstance(seed, np.random.Generator):
@@ -209,6 +194,7 @@ class Model:
         self.reaction = (0.0, 0.0)
         self._work_step = 0.0
         self.reset_state_arrays()
+        self.backing = backing(self, **backing_options)
 
     def _set_mechanics(self, params, law, damping) -> None:
         """The seta's stiffnesses (eq 16–21), mass, damping coefficients and the stiffest
@@ -337,13 +323,11 @@ class Model:
 
     def spring_energies(self) -> np.ndarray:
         """Elastic energy of every seta [pJ] at the last step's evaluation positions."""
-        root = np.asarray(self._pnext) + np.column_stack([self.world.root_dx, self.world.root_dy])
-        return self.spring_force(self.state.xy.T, root)[1]
+        return self.spring_force(self.state.xy.T, self.backing.root_positions(self._pnext))[1]
 
     def backing_energy(self) -> float:
-        """Elastic energy of the backing [pJ]: 0 for the rigid plate (a subclass with a
-        compliant backing books its springs here)."""
-        return 0.0
+        """Elastic energy of the backing [pJ] (0 for the rigid plate)."""
+        return self.backing.energy()
 
     def contact_energies(self) -> np.ndarray:
         """Energy stored in each contact at the last step (0 for free tips) [pJ]."""
@@ -353,10 +337,12 @@ class Model:
         return U
 
     def kinetic_energy(self) -> float:
-        """Kinetic energy at the recorded positions [pJ]: ½m·v(n−½)·v(n+½), the form that
-        semi-implicit Euler conserves exactly for a linear spring."""
+        """Kinetic energy of the tips and the backing at the recorded positions [pJ]:
+        ½m·v(n−½)·v(n+½), the form that semi-implicit Euler conserves exactly for a linear
+        spring."""
         v = self.state.pv[2:4]
-        return 0.5 * self.mass * float(np.sum(v * (v + self.state.F * (self.dt / self.mass))))
+        tips = 0.5 * self.mass * float(np.sum(v * (v + self.state.F * (self.dt / self.mass))))
+        return self.backing.kinetic_energy(tips)
 
     def overlaps(self) -> np.ndarray:
         """Overlap δ of every tip with a candidate floor at the last step, NaN elsewhere."""
@@ -379,10 +365,23 @@ class Model:
         )
         body.force = (body.force.x + float(fx[0]), body.force.y + float(fy[0]))
 
-    def _advance(self, vpx, vpy):
-        """One time step with the plate at velocity (vpx, vpy) [µm/µs]; leaves the step's
-        reaction, work and dissipation in ``reaction``, ``_work_step``, ``physics.diss``."""
-        dt, s, ph, w = self.dt, self.state, self.physics, self.world
+    @property
+    def work_step(self) -> float:
+        """Work the plate (handle) did on the system during the last step [pJ]."""
+        return self._work_step
+
+    @property
+    def warned_linear(self) -> bool:
+        """Whether a seta deflected beyond 0.1 L under the linear beam model (warned once)."""
+        return self._warned_linear
+
+    def advance(self, vpx: float, vpy: float) -> None:
+        """One time step with the plate (handle) at velocity (``vpx``, ``vpy``) [µm/µs]; leaves
+        the step's reaction, work and dissipation in :attr:`reaction` [µN],
+        :attr:`work_step` [pJ] and ``physics.diss`` [pJ], the tips that let go in
+        ``physics.events`` (:meth:`pop_releases`). The backing (:attr:`backing`) gives the
+        roots the setae pull on and steps after the tips."""
+        dt, s, ph, w, bk = self.dt, self.state, self.physics, self.world, self.backing
         w.plate.velocity = (vpx, vpy)
         pp = w.plate.position
         pnx, pny = pp.x + vpx * dt, pp.y + vpy * dt
@@ -398,7 +397,8 @@ class Model:
             x += s.pv[0]  # where pymunk will evaluate forces
             np.multiply(s.pv[3], dt, out=y)
             y += s.pv[1]
-            opx, opy = ph.spring_damp(pnx, pny, vpx, vpy)
+            opx, opy = ph.spring_damp(*bk.roots(pnx, pny, vpx, vpy))
+            bk.hold(s)
             if not self._constants.rod:
                 self._check_linear(ph.max_u2)
             if self._fast_pads:
@@ -420,6 +420,7 @@ class Model:
         self.time += dt
         if self._loop is None:
             ph.bookkeeping(vpx, vpy)
+        opx, opy = bk.advance(dt, pnx, pny, vpx, vpy, (opx, opy))
         ppx, ppy = self._on_plate_prev
         self._work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
         self._on_plate_prev = (opx, opy)
@@ -491,7 +492,7 @@ class Model:
         and the tip positions (N, 2) at which the forces were evaluated [µm].
         """
         vx, vy = (float(v) for v in plate_velocity)
-        self._advance(vx, vy)
+        self.advance(vx, vy)
         return (
             np.array(self.reaction),
             self._work_step,
@@ -530,19 +531,34 @@ class Model:
         fast_approach : in segments that allow it (Move, PressTo, Press), while no tip is
             attached and every tip rests relative to the plate (within 1e-3 of the plate speed
             and of the lag that speed causes), move plate and tips rigidly to where the first
-            sensor reaches the floor (:meth:`_skip_free_travel`) instead of stepping there. A
+            sensor reaches the floor (:meth:`skip_free_travel`) instead of stepping there. A
             free seta's motion does not depend on where it is, so the history is the same but
             for the skipped rows; the travel skipped is ``meta["skipped_travel_um"]``.
         """
         return run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
 
-    def _skip_free_travel(self, seg, state, vp) -> float:
-        """Move plate and tips rigidly along ``vp`` while nothing can touch
-        (:meth:`gecko_agents.model.world.World.skip_free_travel`); returns the travel [µm]."""
-        if self.state.attached.any():
+    def skip_free_travel(self, seg, state, vp) -> float:
+        """Move plate and tips rigidly along ``vp`` (plate velocity [µm/µs]) towards where
+        segment ``seg`` (its running ``state``) lets the first sensor reach the floor, while
+        nothing can touch (:meth:`gecko_agents.model.world.World.skip_free_travel`); returns
+        the travel [µm]: 0 while a tip is attached or with a backing that is not rigid."""
+        if self.state.attached.any() or not self.backing.rigid:
             return 0.0
         target = seg.target(self, state)
         omega = math.sqrt(self.params.Ky / self.mass)
         travel = self.world.skip_free_travel(vp, omega, self.dt, target)
         self.time += travel / math.hypot(*vp) if travel else 0.0
         return travel
+
+    def pop_releases(self) -> list:
+        """The tips that let go in the last step (``physics.events``), each as (seta, overlap
+        [µm], release overlap [µm], force [µN]): the release overlap is where the tip started
+        to run away from its equilibrium (its overlap at the step if it never did). Clears
+        those tips' release marks (``state.jump``), so each release is reported once."""
+        jump = self.state.jump
+        out = []
+        for i, d, force in self.physics.events:
+            j = jump[i]
+            out.append((i, d, d if np.isnan(j) else float(j), force))
+            jump[i] = np.nan
+        return out

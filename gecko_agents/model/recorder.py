@@ -1,8 +1,9 @@
 """What a run records, kept apart from the stepping: rows of scalars, per-seta arrays, events.
 
 The recorder reads the model's public, documented state (:class:`gecko_agents.model.Model`'s
-``time``, ``plate_position``, ``reaction``, ``state`` and its energy methods) and never writes
-into it. Units and column names: :mod:`gecko_agents.history`.
+``time``, ``plate_position``, ``reaction``, ``state``, its energy methods and what its
+``backing`` records) and never writes into it. Units and column names:
+:mod:`gecko_agents.history`.
 """
 
 from __future__ import annotations
@@ -47,11 +48,17 @@ class Recorder:
         fields = PER_SETA_FIELDS + (FILM_FIELDS if film else ())
         self.per = {f: [] for f in fields} if per_seta else {}
         self.det = {k: [] for k in DETACHMENT_FIELDS}
+        # The backing's columns and per-record arrays, as its record() names them (none for
+        # the rigid plate).
+        self.backing_rows: dict[str, list] = {}
+        self.backing_arrays: dict[str, list] = {}
         self.max_ke = self.max_el = 0.0
 
     def record(self, m, work: float, dissipated: float) -> dict:
         """One row from model ``m`` after a step; ``work`` and ``dissipated`` are the run's
-        cumulative plate work and dissipated energy [pJ]. Returns the row."""
+        cumulative plate work and dissipated energy [pJ]. Returns the row of
+        :data:`~gecko_agents.history.SCALAR_COLUMNS` (the backing's columns are kept beside
+        it: its front is NaN while nothing is attached)."""
         s = m.state
         px, py = m.plate_position
         el = float(np.sum(m.spring_energies()) + np.sum(m.contact_energies()) + m.backing_energy())
@@ -74,6 +81,11 @@ class Recorder:
         }
         for k, val in row.items():
             self.rows[k].append(val)
+        scalars, arrays = m.backing.record()
+        for k, val in scalars.items():
+            self.backing_rows.setdefault(k, []).append(val)
+        for k, val in arrays.items():
+            self.backing_arrays.setdefault(k, []).append(np.array(val))
         self.max_ke = max(self.max_ke, ke)
         self.max_el = max(self.max_el, el)
         if self.per:
@@ -109,9 +121,11 @@ class Recorder:
 
     def history(self, params, seed: int, geometry: dict, meta: dict) -> History:
         """The recorded :class:`~gecko_agents.history.History`."""
-        scalars = {k: np.asarray(v, dtype=float) for k, v in self.rows.items()}
+        rows = self.rows | self.backing_rows
+        scalars = {k: np.asarray(v, dtype=float) for k, v in rows.items()}
         setae = {k: np.asarray(v) for k, v in self.per.items()}
         det = {k: np.asarray(v) for k, v in self.det.items()}
         # Quasi-static measure: peak kinetic over peak elastic energy of the run.
         meta = dict(meta, max_kinetic_to_elastic=self.max_ke / max(self.max_el, 1e-300))
-        return History(params, seed, scalars, setae, geometry, det, meta)
+        backing = {k: np.asarray(v) for k, v in self.backing_arrays.items()}
+        return History(params, seed, scalars, setae, geometry, det, meta, backing)

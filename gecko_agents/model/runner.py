@@ -14,8 +14,6 @@ import math
 import time
 from dataclasses import dataclass
 
-import numpy as np
-
 from gecko_agents.contact import bounds as tip_bounds
 from gecko_agents.diagnostics import check_cost, diagnose, model_facts, non_finite_report
 from gecko_agents.history import History, versions
@@ -85,9 +83,12 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         "wall_time_s": time.perf_counter() - t_wall, "versions": versions(),
         **model_facts(m, segments),
     }  # fmt: skip
+    if m.backing.info is not None:
+        meta["backing"] = m.backing.info
     w = m.world
     geometry = {"root_dx_um": w.root_dx, "root_dy_um": w.root_dy,
-                "floor_x_um": w.profile.x, "floor_y_um": w.profile.y}  # fmt: skip
+                "floor_x_um": w.profile.x, "floor_y_um": w.profile.y,
+                **m.backing.geometry}  # fmt: skip
     history = run.recorder.history(m.params, m.seed, geometry, meta)
     history.meta["validity"] = diagnose(history)
     return history
@@ -101,13 +102,12 @@ def _run_segment(m, seg: Segment, run: _Run, bar) -> None:
     e_scale = m.n * max(m.Fc, 1e-300) * abs(m.law.detach_overlap)
     while (vp := seg.velocity(m, state)) is not None:
         if may_skip and run.n_steps % every == 0 and not m.state.attached.any():
-            run.skipped += m._skip_free_travel(seg, state, vp)
-        m._advance(vp[0], vp[1])
-        run.work += m._work_step
+            run.skipped += m.skip_free_travel(seg, state, vp)
+        m.advance(vp[0], vp[1])
+        run.work += m.work_step
         run.dissipated += m.physics.diss
         if m.physics.events:
-            releases = _releases(m, m.physics.events)
-            rec.note_detachments(m.time, m.plate_position, releases)
+            rec.note_detachments(m.time, m.plate_position, m.pop_releases())
         run.n_steps += 1
         if run.n_steps % every == 0 or run.n_steps == 1:
             row = rec.record(m, run.work, run.dissipated)
@@ -118,18 +118,6 @@ def _run_segment(m, seg: Segment, run: _Run, bar) -> None:
             bar.update(int(m.time) - bar.n)
         if run.n_steps >= run.max_steps:
             raise RuntimeError(f"max_steps = {run.max_steps} reached in segment {seg}")
-
-
-def _releases(m, events):
-    """(seta, overlap, release overlap, force) of the tips that let go: the release overlap
-    is where the tip started to run away (its overlap at the step if it never did)."""
-    jump = m.state.jump
-    out = []
-    for i, d, force in events:
-        j = jump[i]
-        out.append((i, d, d if np.isnan(j) else float(j), force))
-        jump[i] = np.nan
-    return out
 
 
 def _check_stable(m, row, bound):

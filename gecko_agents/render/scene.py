@@ -167,8 +167,7 @@ class Scene:
         self.disp = pressing_displacement(history, self.plate_y)
         self.time = np.asarray(history["time_us"], dtype=float)
         self.plate_h = 0.15 * self.L  # drawn plate thickness [µm], a visual choice
-        backing = history.meta.get("backing")
-        self.backing = BackingTrack(backing, self.time) if backing else None
+        self.backing = BackingTrack.of(history)
         self.strip = self.front = None
         self.pitch = (
             float(np.median(np.diff(np.sort(self.root_dx))))

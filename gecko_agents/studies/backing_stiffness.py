@@ -29,21 +29,20 @@ of the pull (Winkler foundation: pull-off N·Fc/4; 8 discrete setae: 0.27 N·Fc)
 Misalignment of backing and floor is :mod:`gecko_agents.studies.misalignment`: there the
 compliance that keeps a tilted pad strong is the mount's (the handle), not the strip's bending.
 
-Pull-off is the largest total force the setae pull the strip with (``setae_fy_uN`` of
-``meta["backing"]``: free of the strip's inertia, which the model scales up for the time step,
-see :mod:`gecko_agents.backing.elastic`). ``--quick``: 8 setae, three moduli (three decades of β).
+Pull-off is the largest total force the setae pull the strip with (the history's
+``strip_setae_force_y_uN``: free of the strip's inertia, which the model scales up for the time
+step, see :mod:`gecko_agents.backing.elastic`). ``--quick``: 8 setae, three moduli (three
+decades of β).
 """
 
 from __future__ import annotations
 
 import math
 import time
-import warnings
 
 import numpy as np
 
 from gecko_agents import protocol, render
-from gecko_agents.backing.elastic import ElasticModel
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
@@ -67,25 +66,23 @@ def config(quick: bool) -> dict:
 def run_point(n: int, E_b: float | None) -> dict:
     """One press-and-peel; ``E_b`` None is the rigid plate pulled straight up."""
     p = BASE.replace(**{"array.count": n})
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        if E_b is None:
-            m = Model(p, seed=1)
-            h = m.run(protocol.press_pull(DEPTH, speed=SPEED), progress=False)
-            return {"E_b_MPa": math.inf, "beta": math.inf, "n": n,
-                    "pull_off_uN": -float(np.min(h["plate_force_y_uN"])),
-                    "N_Fc_uN": n * m.Fc, "front_travel_um": math.nan,
-                    "mass_scale": 1.0}  # fmt: skip
-        p = p.replace(**{"backing.kind": "elastic", "backing.E_b": E_b,
-                         "backing.drive": "peel_end",
-                         "backing.handle_stiffness": HANDLE})  # fmt: skip
-        m = ElasticModel(p, seed=1)
+    if E_b is None:
+        m = Model(p, seed=1)
         h = m.run(protocol.press_pull(DEPTH, speed=SPEED), progress=False)
+        return {"E_b_MPa": math.inf, "beta": math.inf, "n": n,
+                "pull_off_uN": -float(np.min(h["plate_force_y_uN"])),
+                "N_Fc_uN": n * m.Fc, "front_travel_um": math.nan,
+                "mass_scale": 1.0}  # fmt: skip
+    p = p.replace(**{"backing.kind": "elastic", "backing.E_b": E_b,
+                     "backing.drive": "peel_end",
+                     "backing.handle_stiffness": HANDLE})  # fmt: skip
+    m = Model(p, seed=1)
+    h = m.run(protocol.press_pull(DEPTH, speed=SPEED), progress=False)
     b = h.meta["backing"]
-    front = np.array(b["front_x_um"])
+    front = h["strip_front_x_um"]
     front = front[np.isfinite(front)]
     beta = 4 * b["EI_uN_um2"] / (b["foundation_uN_per_um2"] * b["length_um"] ** 4)
-    return {"E_b_MPa": E_b, "beta": beta, "n": n, "pull_off_uN": max(b["setae_fy_uN"]),
+    return {"E_b_MPa": E_b, "beta": beta, "n": n, "pull_off_uN": max(h["strip_setae_force_y_uN"]),
             "N_Fc_uN": n * m.Fc,
             "front_travel_um": float(front[0] - front[-1]) if front.size else math.nan,
             "mass_scale": b["mass_scale"]}  # fmt: skip

@@ -43,12 +43,11 @@ both strips, both mounts.
 from __future__ import annotations
 
 import time
-import warnings
 
 import numpy as np
 
 from gecko_agents import protocol, render
-from gecko_agents.backing.elastic import ElasticModel
+from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
 
@@ -72,16 +71,14 @@ def run_point(n: int, E_b: float, k_h: float, angle: float) -> dict:
     ``angle`` [deg], held by a handle of stiffness ``k_h`` [µN/µm]."""
     p = BASE.replace(**{"array.count": n, "backing.E_b": E_b, "backing.handle_stiffness": k_h,
                         "backing.misalignment_deg": angle})  # fmt: skip
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        m = ElasticModel(p, seed=1)
-        h = m.run(protocol.preload_pull(PRELOAD * n * m.Fc, speed=SPEED), progress=False)
+    m = Model(p, seed=1)
+    h = m.run(protocol.preload_pull(PRELOAD * n * m.Fc, speed=SPEED), progress=False)
     b = h.meta["backing"]
     return {"E_b_MPa": E_b, "handle_uN_per_um": k_h, "angle_deg": angle, "n": n,
             "mount_uN_per_um2": k_h / b["length_um"],
             "foundation_uN_per_um2": b["foundation_uN_per_um2"],
             "attached_max": int(np.max(h["n_attached"])),
-            "pull_off_over_NFc": max(b["setae_fy_uN"]) / (n * m.Fc)}  # fmt: skip
+            "pull_off_over_NFc": max(h["strip_setae_force_y_uN"]) / (n * m.Fc)}  # fmt: skip
 
 
 def draw(rows, out) -> None:

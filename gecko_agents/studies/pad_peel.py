@@ -4,7 +4,8 @@ angle ψ, beside Kendall's tape law with the work of adhesion the same run dissi
 A row of N setae (the paper's polyurethane array, stubby L = 5 µm setae, flat floor) stands on
 the default elastic strip (:class:`gecko_agents.params.Backing`: E_b = 1.413 MPa, t_b = 50 µm;
 bending length λ = 39 µm ≈ 10 setae), which continues beyond the pad's +x edge as a pre-peeled
-leader arm (``ElasticModel(leader_arm=…, peel_angle_deg=ψ)``: links without setae, laid out
+leader arm (``Model(params, leader_arm=…, peel_angle_deg=ψ)``, the elastic backing's options:
+links without setae, laid out
 at ψ from the floor and stress-free in that shape). The pad is preloaded (handle, strip and
 tips put 0.3 µm below touch-down, every tip attached, then left to settle), and the handle
 spring (50 µN/µm) on the arm's end is pulled at a steady speed.
@@ -58,13 +59,12 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 
 import numpy as np
 
 from gecko_agents import protocol, render
 from gecko_agents.backing.bench import elastic_pressed_model
-from gecko_agents.backing.elastic import ElasticModel
+from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render.backing import BackingTrack
 from gecko_agents.studies.common import GREY, output_dir, parse_args, write_json, write_table
@@ -97,7 +97,7 @@ def handle_direction_deg(psi: float) -> float:
 
 def preloaded_model(
     n: int, psi: float, params=BASE, arm: float = ARM, record_setae: bool = False
-) -> ElasticModel:
+) -> Model:
     """A pad of ``n`` setae on the strip with a leader arm at ``psi`` [deg], handle, strip and
     tips put ``DEPTH`` below touch-down and left ``SETTLE`` steps to settle (every tip
     attached); ``record_setae`` for an animation."""
@@ -105,7 +105,7 @@ def preloaded_model(
                                  peel_angle_deg=psi, record_setae=record_setae)  # fmt: skip
 
 
-def peel(m: ElasticModel, psi: float, speed: float, front_fraction: float = 1.0):
+def peel(m: Model, psi: float, speed: float, front_fraction: float = 1.0):
     """Pull the handle of the preloaded ``m`` at ``speed`` [µm/µs] so as to keep the peel
     angle ``psi`` [deg], until every seta has let go or (``front_fraction`` < 1) the handle has
     travelled what peels that fraction of the pad. Returns the History."""
@@ -113,9 +113,7 @@ def peel(m: ElasticModel, psi: float, speed: float, front_fraction: float = 1.0)
     if front_fraction < 1.0:
         travel = front_fraction * m.n * m.params.array.pitch * 2.0 * math.sin(math.radians(psi) / 2)
     segment = protocol.PullOff(speed, angle_deg=handle_direction_deg(psi), max_travel=travel)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return m.run([segment], progress=False)
+    return m.run([segment], progress=False)
 
 
 def steady_peel(h, width: float) -> dict:
@@ -125,8 +123,7 @@ def steady_peel(h, width: float) -> dict:
     of separation w_eff = ΔD/(Δa·b) + e/(pitch·b) (e the adhesion energy a seta gives back as
     it lets go) with its dissipated part and (ΔD + ΔE)/(Δa·b) [µN/µm], and Kendall's
     F/b = w_eff/(1 − cos ψ) beside F/b (``width`` b [µm])."""
-    b = h.meta["backing"]
-    t_b, front = np.array(b["time_us"]), np.array(b["front_x_um"])
+    t_b, front = h["time_us"], h["strip_front_x_um"]
     ok = np.isfinite(front)
     start, end = front[ok][0], front[ok][-1]
     x1 = start - PLATEAU[0] * (start - end)
@@ -134,8 +131,9 @@ def steady_peel(h, width: float) -> dict:
     inside = ok & (front <= x1) & (front >= x2)
     k1, k2 = np.flatnonzero(inside)[[0, -1]]
     t1, t2 = t_b[k1], t_b[k2]
-    F = np.array(b["handle_force_uN"])[k1 : k2 + 1]
-    fx, fy = np.array(b["handle_fx_uN"])[k1 : k2 + 1], np.array(b["handle_fy_uN"])[k1 : k2 + 1]
+    # The force of the strip on the handle: the plate's (the handle is the protocol's plate).
+    fx, fy = h["plate_force_x_uN"][k1 : k2 + 1], h["plate_force_y_uN"][k1 : k2 + 1]
+    F = np.hypot(fx, fy)
     # The mean force vector (the one whose work the energy columns hold; the magnitude's mean
     # is larger while the arm rings); on the strip it is minus that on the handle: angle ψ.
     F_mean = math.hypot(fx.mean(), fy.mean())
@@ -205,9 +203,8 @@ def draw(rows, histories, out) -> None:
         ax.legend()
         # The strip and its detachment front at a few moments of the last peel.
         h = histories[-1]
-        b = h.meta["backing"]
-        track = BackingTrack(b, h["time_us"])
-        node_s = np.array(b["node_abscissae_um"])
+        track = BackingTrack(h)
+        node_s = track.material
         ks = np.linspace(0, len(h) - 1, 6).astype(int)
         for i, k in enumerate(ks):
             x, y = track.nodes(k)
