@@ -188,7 +188,7 @@ def _add_sweep(p: argparse.ArgumentParser) -> None:
 
 def _cmd_sweep(args, extra) -> int:
     from gecko_agents import sweep
-    from gecko_agents.history import atomic_write_bytes
+    from gecko_agents.output_paths import atomic_write_bytes
     from gecko_agents.runfiles import sweep as sweepfile
     from gecko_agents.sweep.store import read_record
 

@@ -99,11 +99,7 @@ __all__ = [
     "diagnose",
     "model_facts",
     "non_finite_report",
-    "run_cost",
-    "check_cost",
     "validity_table",
-    "COST_WARN",
-    "COST_REFUSE",
 ]
 
 Z0_UM = 3.0e-4
@@ -136,13 +132,6 @@ MODEL_FACTS = {
 knew and the history's series do not say. :meth:`gecko_agents.model.Model.run` records them
 (:func:`model_facts`, beside ``dt_us``, ``mass_ng``, ``tangential_stiffness_uN_per_um`` and
 ``tip_law``, which its metadata carries anyway)."""
-
-COST_WARN = 1e9
-"""Seta-steps (steps × simulated setae) above which a run warns before it starts: about 10⁷
-seta-steps per second on one core (numpy path, 100+ setae) makes this minutes to hours."""
-COST_REFUSE = 1e11
-"""Seta-steps above which a run is refused before it starts: hours to days on one core; cut
-n_sim, the travel or the duration, or raise the speed (checking ``quasi_static``)."""
 
 
 class ValidityWarning(UserWarning):
@@ -535,34 +524,6 @@ def non_finite_report(model, row: dict) -> str:
         f"{model.dt:.3g} µs (ω_max·dt = {model.omega_max * model.dt:.2f}) may be too large for "
         "the contact stiffness reached; pass a smaller dt or a shallower depth/preload"
     )
-
-
-def run_cost(n_setae: int, duration_us: float, dt_us: float) -> float:
-    """Estimated seta-steps of a run: (duration / dt) × setae [-]."""
-    return n_setae * duration_us / dt_us
-
-
-def check_cost(n_setae: int, duration_us: float, dt_us: float) -> float:
-    """Refuse (ValueError) a run above :data:`COST_REFUSE` seta-steps, warn
-    (:class:`ValidityWarning`) above :data:`COST_WARN`; returns the estimate."""
-    cost = run_cost(n_setae, duration_us, dt_us)
-    steps = duration_us / dt_us
-    what = (
-        f"the run would take ~{steps:.3g} steps of dt = {dt_us:.3g} µs over ~{duration_us:.3g} "
-        f"µs for {n_setae} setae: {cost:.3g} seta-steps"
-    )
-    fix = (
-        "simulate fewer setae (n_sim), a shorter protocol (depth, travel, hold) or a faster "
-        "plate (keeping the quasi-static ratio ≤ 1), or check the moduli, which set dt"
-    )
-    if not cost <= COST_REFUSE:
-        raise ValueError(f"{what}, above the limit {COST_REFUSE:.0e}; {fix}")
-    if cost > COST_WARN:
-        warnings.warn(
-            ValidityWarning(f"{what} (above {COST_WARN:.0e}: expect minutes to hours); {fix}"),
-            stacklevel=3,
-        )
-    return cost
 
 
 def _validity_of(obj) -> dict | None:

@@ -28,9 +28,6 @@ import hashlib
 import io
 import json
 import math
-import os
-import platform
-import tempfile
 import zipfile
 import zlib
 from dataclasses import dataclass, field
@@ -38,7 +35,9 @@ from pathlib import Path
 
 import numpy as np
 
+from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import SetaArray, check_seed
+from gecko_agents.provenance import versions
 
 __all__ = [
     "History",
@@ -106,35 +105,6 @@ FILM_FIELDS = (
 (:class:`gecko_agents.contact.SpatulaTip`): the peel front's x [µm] and the floor length ℓ the
 pad still covers [µm], NaN while the tip is free. Runs of other tips, and runs saved before
 these fields existed, have none."""
-
-
-def versions() -> dict:
-    """Versions of the package and the libraries that produced a result."""
-    from importlib.metadata import PackageNotFoundError, version
-
-    out = {"python": platform.python_version()}
-    for name in ("gecko_agents", "numpy", "scipy", "pymunk", "matplotlib"):
-        try:
-            out[name] = version(name)
-        except PackageNotFoundError:
-            out[name] = None
-    return out
-
-
-def atomic_write_bytes(path: Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` via a temporary file in the same directory and a rename."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.chmod(tmp, 0o644)  # mkstemp makes it owner-only; results are meant to be shared
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 @dataclass

@@ -1,4 +1,6 @@
-"""Output folders checked before any work starts: a run, a sweep, a study or a report that
+"""Output folders and files: folders checked before any work starts, files written atomically.
+
+Folders: a run, a sweep, a study or a report that
 cannot write its results must say so before it computes them.
 
 :func:`check_output_dir` refuses, naming the value: an empty path (it would write into the
@@ -11,10 +13,11 @@ same check as an ``argparse`` ``type=``.
 from __future__ import annotations
 
 import argparse
+import os
 import tempfile
 from pathlib import Path
 
-__all__ = ["check_output_dir", "output_dir_arg"]
+__all__ = ["check_output_dir", "output_dir_arg", "atomic_write_bytes"]
 
 
 def check_output_dir(value, name: str = "--out") -> Path:
@@ -50,3 +53,19 @@ def output_dir_arg(value: str) -> Path:
         return check_output_dir(value, "")
     except ValueError as err:
         raise argparse.ArgumentTypeError(str(err).strip()) from None
+
+
+def atomic_write_bytes(path: Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` via a temporary file in the same directory and a rename."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.chmod(tmp, 0o644)  # mkstemp makes it owner-only; results are meant to be shared
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise

@@ -1,4 +1,5 @@
-"""Which code produced a result: a fingerprint of the package's source.
+"""Which code produced a result: a fingerprint of the package's source, and the versions of
+the package and the libraries it ran with.
 
 A cached result (a sweep point, a scenario's stored point) may only be reused by the code that
 computed it: keys include :func:`code_fingerprint`, so any change to the package's source —
@@ -11,6 +12,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import inspect
+import platform
 from pathlib import Path
 
 __all__ = ["code_fingerprint", "source_fingerprint"]
@@ -39,3 +41,16 @@ def source_fingerprint(fn) -> str | None:
     if not path.is_file() or _PACKAGE in path.parents:
         return None
     return hashlib.sha256(path.read_bytes()).hexdigest()[:16]
+
+
+def versions() -> dict:
+    """Versions of the package and the libraries that produced a result."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    out = {"python": platform.python_version()}
+    for name in ("gecko_agents", "numpy", "scipy", "pymunk", "matplotlib"):
+        try:
+            out[name] = version(name)
+        except PackageNotFoundError:
+            out[name] = None
+    return out

@@ -14,7 +14,7 @@ from gecko_agents import history as hist
 from gecko_agents import protocol
 from gecko_agents.backing.elastic import ElasticBacking
 from gecko_agents.contact import contact_law
-from gecko_agents.model import Model
+from gecko_agents.model import Model, cost
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1, Contact
 from gecko_agents.physics import jkr
 
@@ -162,13 +162,13 @@ def test_validity_table(run):
 
 
 def test_run_cost():
-    assert dg.run_cost(10, 100.0, 0.1) == 1e4
+    assert cost.run_cost(10, 100.0, 0.1) == 1e4
     with pytest.raises(ValueError, match="seta-steps"):
-        dg.check_cost(20_000, 1e7, 1e-3)
+        cost.check_cost(20_000, 1e7, 1e-3)
     with pytest.raises(ValueError, match="seta-steps"):
-        dg.check_cost(1, math.inf, 0.1)
+        cost.check_cost(1, math.inf, 0.1)
     with pytest.warns(dg.ValidityWarning, match="seta-steps"):
-        dg.check_cost(1000, 1e6, 0.1)
+        cost.check_cost(1000, 1e6, 0.1)
 
 
 # ------------------------------------------------------------------ from a saved run

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import history as hist
+from gecko_agents import output_paths
 from gecko_agents.params import PAPER_TABLE1
 
 
@@ -70,9 +71,9 @@ def test_failed_write_leaves_no_file(tmp_path, monkeypatch):
     def boom(*a, **k):
         raise OSError("disk full")
 
-    monkeypatch.setattr(hist.os, "replace", boom)
+    monkeypatch.setattr(output_paths.os, "replace", boom)
     with pytest.raises(OSError):
-        hist.atomic_write_bytes(target, b"abc")
+        output_paths.atomic_write_bytes(target, b"abc")
     assert not target.exists() and not list(tmp_path.iterdir())
 
 

@@ -16,7 +16,7 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.diagnostics import MeaninglessRunError, ValidityWarning
-from gecko_agents.model import Model, SimulationUnstable
+from gecko_agents.model import Model, SimulationUnstable, cost
 from gecko_agents.params import PAPER_TABLE1
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -203,9 +203,8 @@ def test_an_absurd_run_is_refused_before_it_starts():
 
 
 def test_a_costly_run_warns_before_it_starts(monkeypatch):
-    from gecko_agents import diagnostics
 
-    monkeypatch.setattr(diagnostics, "COST_WARN", 10.0)
+    monkeypatch.setattr(cost, "COST_WARN", 10.0)
     with pytest.warns(ValidityWarning, match="seta-steps"):
         Model(STIFF, n_sim=1, seed=1).run(protocol.press_pull(0.3, speed=0.05), progress=False)
 

@@ -86,7 +86,6 @@ from gecko_agents.calibrate.free import (
     starts,
 )
 from gecko_agents.calibrate.result import FitResult
-from gecko_agents.history import versions
 from gecko_agents.params import (
     PAPER_ARRAY,
     PAPER_FIG5_READING,
@@ -94,6 +93,7 @@ from gecko_agents.params import (
     SetaArray,
     check_seed,
 )
+from gecko_agents.provenance import versions
 
 __all__ = ["fit", "load_data", "FitResult", "Forward", "PSEUDO_PARAMETERS", "main"]
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from gecko_agents.calibrate.data import Data
-from gecko_agents.history import atomic_write_bytes
+from gecko_agents.output_paths import atomic_write_bytes
 
 
 @dataclass

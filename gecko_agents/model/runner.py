@@ -15,11 +15,13 @@ import time
 from dataclasses import dataclass
 
 from gecko_agents.contact import bounds as tip_bounds
-from gecko_agents.diagnostics import check_cost, diagnose, model_facts, non_finite_report
-from gecko_agents.history import History, versions
+from gecko_agents.diagnostics import diagnose, model_facts, non_finite_report
+from gecko_agents.history import History
+from gecko_agents.model.cost import check_cost
 from gecko_agents.model.recorder import Recorder
 from gecko_agents.model.setup import floor_statistics
 from gecko_agents.protocol import Segment
+from gecko_agents.provenance import versions
 
 __all__ = ["SimulationUnstable", "run_protocol"]
 

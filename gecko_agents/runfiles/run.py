@@ -75,7 +75,8 @@ import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from gecko_agents.history import History, atomic_write_bytes, invariant_violations
+from gecko_agents.history import History, invariant_violations
+from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import SetaArray
 from gecko_agents.runfiles.schema import (
     PRESETS,

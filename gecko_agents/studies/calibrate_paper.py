@@ -136,7 +136,12 @@ def fit_arrays(out: Path, quick: bool) -> dict:
     bases = {m: PAPER_ARRAY.replace(mechanics=m) for m in ("rod", "linear")}
     if quick:  # seconds: a stubby 100-seta placeholder instead of the 10⁷ array
         bases = {m: b.replace(**{"array.count": 100, "floor.sigma": 0.5}) for m, b in bases.items()}
-        arr_data = {"preload_uN": [8.6], "pull_off_uN": [20.0], "pull_off_err_uN": [2.0]}
+        # two points for two free parameters (fewer are refused)
+        arr_data = {
+            "preload_uN": [1.0, 8.6],
+            "pull_off_uN": [18.0, 20.0],
+            "pull_off_err_uN": [2.0, 2.0],
+        }
     arrs = {}
     for m, b in bases.items():
         t = time.perf_counter()

@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from gecko_agents.history import atomic_write_bytes, versions
-from gecko_agents.output_paths import output_dir_arg
+from gecko_agents.output_paths import atomic_write_bytes, output_dir_arg
 from gecko_agents.physics import jkr
+from gecko_agents.provenance import versions
 
 RENDERS = Path("renders")
 """Default output root, relative to the current directory: ``renders/<study>/``."""

@@ -56,9 +56,9 @@ from gecko_agents.analysis.drag import drag_span, lean_after_drag, let_go_in_dra
 from gecko_agents.analysis.limit_curve import critical_angle, force_angle
 from gecko_agents.analysis.pull import pull_off, release_point
 from gecko_agents.analysis.ratio import gripping_over_releasing
-from gecko_agents.history import atomic_write_bytes
 from gecko_agents.model import Model
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping
+from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
 

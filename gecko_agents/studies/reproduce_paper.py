@@ -16,8 +16,9 @@ from pathlib import Path
 import numpy as np
 
 from gecko_agents import quasistatic as qs
-from gecko_agents.history import atomic_write_bytes, versions
+from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import PAPER_ARRAY
+from gecko_agents.provenance import versions
 from gecko_agents.studies.common import RENDERS, claim, parse_args, run_scenario, write_json
 
 SCENARIOS = (

@@ -18,7 +18,7 @@ import io
 import json
 from pathlib import Path
 
-from gecko_agents.history import atomic_write_bytes
+from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import SetaArray
 from gecko_agents.provenance import code_fingerprint, source_fingerprint
 from gecko_agents.sweep.grid import SweepPoint, canonical_json

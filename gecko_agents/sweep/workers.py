@@ -21,7 +21,7 @@ from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures import as_completed as futures_as_completed
 
-from gecko_agents.history import versions
+from gecko_agents.provenance import versions
 from gecko_agents.sweep.grid import SweepPoint, plain
 
 __all__ = [
