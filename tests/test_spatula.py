@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
+from gecko_agents.analysis.pull import pull_off
 from gecko_agents.contact import contact_law
 from gecko_agents.contact.spatula import K_MU, K_PAPER, _film_force
 from gecko_agents.history import STATE_SLIP, STATE_STICK
@@ -151,15 +152,16 @@ def test_unknown_tip_refused():
 
 
 def _pull_off(drag, kernel="numba", mu=10.0, speed=protocol.DEFAULT_SPEED, damping=None):
-    """Largest tension [µN] of a spatula seta pressed to 0.2 µN, dragged ``drag`` [µm] and
-    pulled at 90°, the plate at ``speed`` [µm/µs]; and its history."""
+    """Pull-off [µN] (:func:`gecko_agents.analysis.pull.pull_off`: the largest adhesion in the
+    pull after the drag) of a spatula seta pressed to 0.2 µN, dragged ``drag`` [µm] and pulled
+    at 90°, the plate at ``speed`` [µm/µs]; and its history."""
     p = SPATULA.replace(**{"friction.mu": mu})
     extra = {} if damping is None else {"damping": damping}
     m = Model(p, n_sim=1, seed=7, kernel=kernel, **extra)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         h = m.run(protocol.drag_pull(0.2, drag, 90.0, speed=speed), progress=False)
-    return float(-h["force_normal_uN"].min()), h
+    return pull_off(h).adhesion, h
 
 
 def test_kernels_agree_on_a_drag_and_pull():
