@@ -20,6 +20,7 @@ from typing import Protocol
 from gecko_agents.params.checks import check as _check
 
 __all__ = [
+    "PressLimitError",
     "Segment",
     "Plate",
     "Move",
@@ -47,10 +48,16 @@ class Plate(Protocol):
     plate_start: float  # plate height at the start of a run [µm]
     settle_time: float  # slowest period of a free seta [µs]
     pull_travel: float  # plate travel a pull-off typically needs [µm]
+    n: int  # simulated setae
 
     def normal_force(self) -> float: ...  # total normal contact force [µN]
 
     def n_attached(self) -> int: ...
+
+
+class PressLimitError(RuntimeError):
+    """A force-controlled press whose preload the setae cannot carry: the plate reached the
+    floor's mean plane first."""
 
 
 class Segment:
@@ -67,6 +74,15 @@ class Segment:
     def estimated_duration(self, plate: Plate) -> float:
         """Estimated duration [µs] (for progress bars)."""
         raise NotImplementedError
+
+    def longest_duration(self, plate: Plate) -> float:
+        """The longest the segment can run [µs], for the cost check before a run starts; the
+        estimate unless the segment ends on a measured condition (force control)."""
+        return self.estimated_duration(plate)
+
+    def check(self, plate: Plate) -> None:
+        """Refuse (ValueError naming the field, value and range) what this plate cannot do;
+        called for every segment before the run steps."""
 
     def target(self, plate: Plate, state: dict):
         """Fixed end point (x, y) [µm] of the plate, or None."""
@@ -133,7 +149,18 @@ class PressTo(Segment):
         return _towards(plate, self.target(plate, state), self.speed)
 
     def estimated_duration(self, plate):
-        return max(plate.plate_start - (plate.z_touch - self.depth), 0.0) / self.speed
+        return abs(plate.plate_start - (plate.z_touch - self.depth)) / self.speed
+
+    def check(self, plate):
+        # Deeper than the touch-down height puts the plate below the floor's mean plane;
+        # higher than that above it leaves every tip a seta's reach away: neither measures.
+        z = float(plate.z_touch)
+        if not -z <= self.depth <= z:
+            raise ValueError(
+                f"PressTo.depth = {self.depth!r} µm is outside the allowed range [{-z:.4g}, "
+                f"{z:.4g}] µm: ± the touch-down height R + L sin θ (deeper puts the plate "
+                "below the floor's mean plane)"
+            )
 
 
 @dataclass(frozen=True)
@@ -166,11 +193,21 @@ class Press(Segment):
         state["force_avg"] = avg
         if avg >= self.preload:
             return None
+        if plate.plate_position[1] <= 0.0:  # the plate is down at the floor's mean plane
+            raise PressLimitError(
+                f"Press(preload={self.preload:.6g} µN) was not reached: the plate came down to "
+                f"the floor's mean plane, where its {plate.n} setae carried {avg:.4g} µN: lower "
+                "the preload or simulate more setae"
+            )
         frac = (self.preload - avg) / (self.band * self.preload)
         return 0.0, -self.speed * min(1.0, max(frac, 0.02))
 
     def estimated_duration(self, plate):
         return 2.0 / self.speed
+
+    def longest_duration(self, plate):
+        # At most the travel from the start down to the floor's mean plane (then it stops).
+        return max(float(plate.plate_start), 0.0) / self.speed
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.diagnostics import MeaninglessRunError, ValidityWarning
-from gecko_agents.model import Model, SimulationUnstable, cost
+from gecko_agents.model import Model, SimulationUnstable, cost, runner
 from gecko_agents.params import PAPER_TABLE1
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -294,3 +294,56 @@ def test_check_output_dir_accepts_a_new_folder_under_a_writable_one_and_creates_
 
     assert check_output_dir(tmp_path / "a" / "b") == tmp_path / "a" / "b"
     assert list(tmp_path.iterdir()) == []
+
+
+# Runs that cannot mean anything stop early, saying why ------------------------------------------
+
+
+def test_an_unreachable_preload_stops_at_the_floor_saying_so():
+    from gecko_agents.protocol import PressLimitError
+
+    m = Model(STIFF, n_sim=1, seed=1)
+    with pytest.raises(PressLimitError, match=r"preload=1e\+09 µN\) was not reached"):
+        m.run([protocol.Press(1e9, speed=0.05)], progress=False)
+    assert m.plate_position[1] <= 0.0 and m.plate_position[1] > -0.05 * m.dt * 2
+
+
+@pytest.mark.parametrize("depth", [1e6, -1e6])
+def test_a_depth_beyond_the_touch_down_height_is_refused_before_any_step(depth):
+    m = Model(STIFF, n_sim=1, seed=1)
+    with pytest.raises(ValueError, match=r"PressTo.depth = .* outside the allowed range"):
+        m.run([protocol.PressTo(depth)], progress=False)
+    assert m.time == 0.0
+
+
+def test_a_force_controlled_press_counts_at_its_longest_in_the_cost_check(monkeypatch):
+    seen = []
+    monkeypatch.setattr(runner, "check_cost", lambda n, dur, dt: seen.append(dur))
+    m = Model(STIFF, n_sim=1, seed=1)
+    m.run([protocol.Press(0.5, speed=0.05), protocol.PullOff(speed=0.05)], progress=False)
+    assert seen[0] >= m.plate_start / 0.05  # the travel down to the floor's mean plane
+
+
+@pytest.mark.parametrize(
+    "segment",
+    [
+        {"segment": "press_to", "depth_um": -0.5, "speed_um_per_us": 0.05},
+        {"segment": "pull_off", "speed_um_per_us": 0.05},
+    ],
+    ids=["press_to_above", "pull_only"],
+)
+def test_a_run_file_whose_tips_never_touch_says_so_and_writes_nothing(tmp_path, capsys, segment):
+    from gecko_agents import cli
+
+    args = ", ".join(f"{k} = {v!r}".replace("'", '"') for k, v in segment.items())
+    path = tmp_path / "r.toml"
+    path.write_text(
+        f'preset = "PAPER_TABLE1"\n[model]\nn_sim = 1\nseed = 1\n[[protocol]]\n{args}\n'.replace(
+            ", ", "\n"
+        )
+    )
+    assert cli.main(["run", str(path), "--out", str(tmp_path / "out"), "--no-progress"]) == 1
+    err = capsys.readouterr().err
+    assert "MeaninglessRunError" in err and "no tip ever touched" in err
+    assert "energy balance" not in err
+    assert not (tmp_path / "out").exists()

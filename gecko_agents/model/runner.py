@@ -57,8 +57,11 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
             raise TypeError(f"unknown protocol segment {seg!r}")
     m.reset_state_arrays()
     run = _Run(Recorder(m.record_setae, film=m.law.film), ke_bound, max_steps, fast_approach)
+    for seg in segments:
+        seg.check(m)  # a depth this plate cannot reach is refused before any step
     est = sum(seg.estimated_duration(m) for seg in segments)
-    check_cost(m.n, est, m.dt)  # refuse or warn before stepping when absurd
+    # refuse or warn before stepping when absurd, force control at its longest
+    check_cost(m.n, sum(seg.longest_duration(m) for seg in segments), m.dt)
     # Whole microseconds of simulated time; the total is an estimate and may be exceeded.
     desc = f"gecko_agents (dt = {m.dt:.3g} µs)"
     bar = tqdm(total=max(int(est), 1), unit="µs", disable=not progress, desc=desc,

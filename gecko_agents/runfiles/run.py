@@ -75,6 +75,9 @@ import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
+from gecko_agents.diagnostics import MeaninglessRunError
 from gecko_agents.history import History, invariant_violations
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import SetaArray
@@ -307,6 +310,7 @@ def execute_run(
     shutil.rmtree(stage, ignore_errors=True)
     try:
         history = model.run(spec.protocol, progress=progress)
+        _refuse_untouched(history)
         history.meta["run_file"] = {
             "file": str(spec.path),
             "copy": RUN_FILE_NAME,
@@ -331,6 +335,22 @@ def execute_run(
         shutil.rmtree(stage, ignore_errors=True)
         raise
     return out, history
+
+
+def _refuse_untouched(history: History) -> None:
+    """MeaninglessRunError, before anything is written, if no tip ever attached: a run file's
+    run exists to measure contact (the library lets a run travel freely; a run file does not)."""
+    if float(np.max(history["n_attached"], initial=0.0)) > 0:
+        return
+    reach = float(history.meta["z_touch_um"]) - float(np.min(history["plate_y_um"]))
+    raise MeaninglessRunError(
+        f"no tip ever touched the floor: the plate came at most {reach:.3g} µm past the height "
+        "at which a resting tip touches the floor's mean plane (negative: it stayed above it), "
+        "so the run measured nothing; press to a positive depth, or slower if the plate went "
+        "past the floor "
+        "(the validity item quasi_static says how fast the setae follow)",
+        history,
+    )
 
 
 def _replace_dir(stage: Path, out: Path) -> None:
