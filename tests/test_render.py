@@ -8,7 +8,8 @@ import pytest
 from PIL import Image
 
 from gecko_agents import history as hist
-from gecko_agents import render
+from gecko_agents import protocol, render
+from gecko_agents.model import Model
 from gecko_agents.params import PAPER_TABLE1
 from gecko_agents.render import force_plots
 
@@ -502,3 +503,14 @@ def test_film_and_pad_are_drawn_from_the_recorded_front():
     assert _is(_colour_at(rgb, frame.pixel(mid, floor(mid)), 0), FILM_COLOUR)
     plain = render.render_frame(_toy(), k)
     assert plain.films is None and plain.pads is None
+
+
+@pytest.mark.parametrize("bad", [["--frames", "0"], ["--fps", "0"], ["--window", "0"]])
+def test_a_bad_animation_argument_is_refused_before_the_figure_is_rewritten(tmp_path, bad):
+    h = Model(PAPER_TABLE1, n_sim=1, seed=1).run(protocol.press_pull(0.3, speed=0.05),
+                                                 progress=False)  # fmt: skip
+    run_dir = h.save(tmp_path / "run")
+    png = run_dir / "force_history.png"
+    png.write_bytes(b"the figure already there")
+    assert render.main([str(run_dir), *bad]) == 2
+    assert png.read_bytes() == b"the figure already there"

@@ -218,6 +218,12 @@ def run(args: argparse.Namespace) -> int:
     returns the exit code (2 on a missing or corrupt run)."""
     try:
         start = time.perf_counter()
+        # The animation's arguments first: a bad one must not cost the figure already there.
+        if args.fps is not None and not args.fps > 0:
+            raise ValueError(f"--fps {args.fps!r} must be > 0")
+        window_range(1, args.window)
+        if args.frames is not None:
+            frame_records(max(args.frames, 1), args.frames)
         history = load(args.run_dir)
         png = args.run_dir / "force_history.png"
         plot_history(history, png)
