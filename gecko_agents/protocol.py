@@ -49,7 +49,7 @@ class Plate(Protocol):
     settle_time: float  # slowest period of a free seta [µs]
     pull_travel: float  # plate travel a pull-off typically needs [µm]
     n: int  # simulated setae
-    L: float  # seta length [µm]
+    deepest: float  # deepest plate height: root a seta length and a tip radius under h = 0 [µm]
 
     def normal_force(self) -> float: ...  # total normal contact force [µN]
 
@@ -58,7 +58,7 @@ class Plate(Protocol):
 
 class PressLimitError(RuntimeError):
     """A force-controlled press whose preload the setae cannot carry: the plate came down a
-    seta length below the floor's mean plane first."""
+    seta length and a tip radius below the floor's mean plane first."""
 
 
 class Segment:
@@ -155,12 +155,12 @@ class PressTo(Segment):
     def check(self, plate):
         # Deeper than the touch-down height puts the plate below the floor's mean plane;
         # higher than that above it leaves every tip a seta's reach away: neither measures.
-        z, deepest = float(plate.z_touch), float(plate.z_touch) + float(plate.L)
+        z, deepest = float(plate.z_touch), float(plate.z_touch - plate.deepest)
         if not -z <= self.depth <= deepest:
             raise ValueError(
                 f"PressTo.depth = {self.depth!r} µm is outside the allowed range [{-z:.4g}, "
-                f"{deepest:.4g}] µm: from the touch-down height R + L sin θ above it to a seta "
-                "length below the floor's mean plane"
+                f"{deepest:.4g}] µm: from the touch-down height R + L sin θ above touch-down to "
+                "the plate a seta length and a tip radius below the floor's mean plane"
             )
 
 
@@ -194,11 +194,12 @@ class Press(Segment):
         state["force_avg"] = avg
         if avg >= self.preload:
             return None
-        if plate.plate_position[1] <= -plate.L:  # roots a seta length into the floor
+        if plate.plate_position[1] <= plate.deepest:  # seta and tip wholly under h = 0
             raise PressLimitError(
-                f"Press(preload={self.preload:.6g} µN) was not reached: the plate came down a "
-                f"seta length (L = {plate.L:.4g} µm) below the floor's mean plane, where its "
-                f"{plate.n} setae carried {avg:.4g} µN: lower the preload or simulate more setae"
+                f"Press(preload={self.preload:.6g} µN) was not reached: the plate came down to "
+                f"{plate.deepest:.4g} µm, a seta length and a tip radius below the floor's mean "
+                f"plane, where its {plate.n} setae carried {avg:.4g} µN: lower the preload or "
+                "simulate more setae"
             )
         frac = (self.preload - avg) / (self.band * self.preload)
         return 0.0, -self.speed * min(1.0, max(frac, 0.02))
@@ -207,9 +208,9 @@ class Press(Segment):
         return 2.0 / self.speed
 
     def longest_duration(self, plate):
-        # At most the travel from the start down to a seta length below the floor's mean
-        # plane, where it stops (rod setae folded flat let the plate pass the floor's plane).
-        return max(float(plate.plate_start) + float(plate.L), 0.0) / self.speed
+        # At most the travel from the start down to the deepest plate height, where it stops
+        # (rod setae folded flat let a plate pass the floor's mean plane in accepted runs).
+        return max(float(plate.plate_start) - float(plate.deepest), 0.0) / self.speed
 
 
 @dataclass(frozen=True)

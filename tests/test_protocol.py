@@ -20,7 +20,7 @@ class FakePlate:
     settle_time: float = 1.0
     pull_travel: float = 20.0
     n: int = 1
-    L: float = 5.0
+    deepest: float = -9.0
     force: float = 0.0
     attached: int = 0
     log: list = field(default_factory=list)

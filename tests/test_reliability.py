@@ -305,7 +305,7 @@ def test_an_unreachable_preload_stops_at_the_floor_saying_so():
     m = Model(STIFF, n_sim=1, seed=1)
     with pytest.raises(PressLimitError, match=r"preload=1e\+09 µN\) was not reached"):
         m.run([protocol.Press(1e9, speed=0.05)], progress=False)
-    assert -m.L - 0.05 * m.dt * 2 < m.plate_position[1] <= -m.L
+    assert m.deepest - 0.05 * m.dt * 2 < m.plate_position[1] <= m.deepest == -(m.L + 4.0)
 
 
 @pytest.mark.parametrize("depth", [1e6, -1e6])
@@ -321,7 +321,7 @@ def test_a_force_controlled_press_counts_at_its_longest_in_the_cost_check(monkey
     monkeypatch.setattr(runner, "check_cost", lambda n, dur, dt: seen.append(dur))
     m = Model(STIFF, n_sim=1, seed=1)
     m.run([protocol.Press(0.5, speed=0.05), protocol.PullOff(speed=0.05)], progress=False)
-    assert seen[0] >= (m.plate_start + m.L) / 0.05  # down to a seta length below the floor
+    assert seen[0] >= (m.plate_start - m.deepest) / 0.05  # down to the deepest plate height
 
 
 @pytest.mark.parametrize(

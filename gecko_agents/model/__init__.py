@@ -270,6 +270,12 @@ class Model:
         return self.world.profile
 
     @property
+    def deepest(self) -> float:
+        """Deepest plate height a press may reach [µm]: −(L + R), the root a seta length and a
+        tip radius below the floor's mean plane, seta and tip wholly under it."""
+        return -(self.L + self.params.contact.R)
+
+    @property
     def z_touch(self) -> float:
         """Plate height at which a resting tip touches the floor's mean plane h = 0 [µm]."""
         return self.world.z_touch
