@@ -73,17 +73,30 @@ def pressed_model(
     dotted parameter overrides (e.g. ``{"contact.crack_speed": 1.0}``)."""
     p = PAPER_ARRAY.replace(**{"array.count": int(n), "floor.sigma": 0.0, **(overrides or {})})
     m = Model(p, **kw)
+    place_pressed(m, depth)
+    return settle_attached(m, settle)
+
+
+def place_pressed(m: Model, depth: float) -> float:
+    """Put the plate ``depth`` [µm] below touch-down and every tip at rest under its root;
+    returns how far the plate moved [µm] (negative: down)."""
     plate_y = m.z_touch - depth
-    m.plate.position = (0.0, plate_y)
+    drop = plate_y - m.plate.position.y
+    m.plate.position = (m.plate.position.x, plate_y)
     rest = np.column_stack([m.world.rest_dx, m.world.rest_dy + plate_y])
     for body, xy in zip(m.tips, rest, strict=True):
         body.position = (float(xy[0]), float(xy[1]))
         body.velocity = (0.0, 0.0)
+    return drop
+
+
+def settle_attached(m: Model, settle: int) -> Model:
+    """``settle`` steps of rest from a placed state; refuses unless every tip attached."""
     m.reset_state_arrays()
     for _ in range(settle):
         m.step((0.0, 0.0))
     if not np.all(m.attached):
-        raise RuntimeError(f"only {int(m.attached.sum())} of {n} tips attached after settling")
+        raise RuntimeError(f"only {int(m.attached.sum())} of {m.n} tips attached after settling")
     return m
 
 

@@ -8,8 +8,7 @@ so the strip adds a cost per step proportional to its links, not to their square
 
 from __future__ import annotations
 
-import numpy as np
-
+from gecko_agents.bench import place_pressed, settle_attached
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 
@@ -28,20 +27,9 @@ def elastic_pressed_model(
     if params is None:
         params = PAPER_ARRAY.replace(**{"floor.sigma": 0.0, "backing.kind": "elastic"})
     m = Model(params.replace(**{"array.count": int(n)}), **model_kw)
-    plate_y = m.z_touch - depth
-    drop = plate_y - m.plate.position.y
-    m.plate.position = (m.plate.position.x, plate_y)
-    rest = np.column_stack([m.world.rest_dx, m.world.rest_dy + plate_y])
-    for body, xy in zip(m.tips, rest, strict=True):
-        body.position = (float(xy[0]), float(xy[1]))
-        body.velocity = (0.0, 0.0)
-    strip = m.backing.strip
+    drop = place_pressed(m, depth)
+    strip = m.backing.strip  # the strip moves down with its handle
     for link in strip.links:
         link.position = (link.position.x, link.position.y + drop)
     strip.rows = strip.read()
-    m.reset_state_arrays()
-    for _ in range(settle):
-        m.step((0.0, 0.0))
-    if not np.all(m.attached):
-        raise RuntimeError(f"only {int(m.attached.sum())} of {n} tips attached after settling")
-    return m
+    return settle_attached(m, settle)
