@@ -292,6 +292,11 @@ def _a_over_R(f: _Run) -> dict:
     )
 
 
+def _not_a_sphere(name: str) -> dict:
+    """A sphere's item for a flat-punch tip: it does not apply (the face is flat, a = R)."""
+    return _item(name, None, "a sphere tip's item: the flat punch's face is flat", "", False)
+
+
 def _tabor(f: _Run) -> dict:
     mu_t = (f.R * f.w**2 / (f.E**2 * Z0_UM**3)) ** (1 / 3) if f.adhesive else None
     return _item(
@@ -473,9 +478,10 @@ def diagnose(history, *, warn: bool = True) -> dict:
         If the plate went past the floor and no tip ever touched it.
     """
     f = _facts(history)
+    sphere = history.params.tip != "flat_punch"  # a punch's radius is its face's, a = R
     items = {
-        "a_over_R": _a_over_R(f),
-        "tabor": _tabor(f),
+        "a_over_R": _a_over_R(f) if sphere else _not_a_sphere("a_over_R"),
+        "tabor": _tabor(f) if sphere else _not_a_sphere("tabor"),
         "linear_deflection": _linear_deflection(history, f),
         "quasi_static": _quasi_static(history, f),
         "time_step": _time_step(f),

@@ -22,7 +22,7 @@ from gecko_agents.params import (
     (Contact, "R", -1.0, "[0.001, 100000.0]"), (Contact, "E1", 0.0, "[1e-06, 10000000.0]"),
     (Contact, "nu1", 0.5, "[0.0, 0.5)"), (Contact, "nu2", -0.1, "[0.0, 0.5)"),
     (Contact, "gamma1", math.nan, "(0.0, 10.0]"), (Contact, "E2", math.inf, "[1e-06, 10000000.0]"),
-    (Seta, "theta_deg", 90.0, "(0.0, 90.0)"), (Seta, "theta_deg", 0.0, "(0.0, 90.0)"),
+    (Seta, "theta_deg", 90.5, "(0.0, 90.0]"), (Seta, "theta_deg", 0.0, "(0.0, 90.0]"),
     (Seta, "r", 0.0, "[0.001, 100000.0]"), (Array, "count", 0, "[1, 1000000000]"),
     (Array, "count", 2.5, "[1, 1000000000]"), (Floor, "sigma", -0.1, "[0.0, 10000.0]"),
     (Friction, "mu", -0.2, "[0.0, 10.0]"),

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 from gecko_agents.contact.base import ContactLaw
+from gecko_agents.contact.flat_punch import FlatPunch
 from gecko_agents.contact.hertz import HertzSphere
 from gecko_agents.contact.jkr_sphere import JKRSphere
 from gecko_agents.contact.rate_jkr import RateJKRSphere
@@ -19,6 +20,7 @@ TIP_LAWS: dict[str, type[ContactLaw]] = {
     "sphere": JKRSphere,
     "hertz": HertzSphere,
     "spatula": SpatulaTip,
+    "flat_punch": FlatPunch,
 }
 """Tip laws by the name ``params.tip`` selects."""
 

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from gecko_agents.floor.probe import probe_profile
 from gecko_agents.floor.profile import Profile, check_positive, check_rng
 from gecko_agents.floor.spectral import (
     hurst_estimate,
@@ -54,6 +55,7 @@ __all__ = [
     "hurst_estimate",
     "statistics",
     "for_array",
+    "probe_profile",
     "LENGTH_UNITS",
     "length_factor",
 ]
@@ -343,7 +345,8 @@ def for_array(
     Otherwise ``floor_params.kind`` chooses: ``"gaussian"`` → :func:`make_profile` (eq 28; the
     floor every earlier run used, drawn identically), ``"self_affine"`` → :func:`self_affine`
     with RMS height ``sigma`` (or ``rms_slope``), ``hurst``, ``short_cutoff``,
-    ``long_cutoff``.
+    ``long_cutoff``, ``"probe"`` → :func:`~gecko_agents.floor.probe.probe_profile`, a
+    spherical probe of radius ``probe_radius`` with its apex under the middle of the array.
 
     Parameters
     ----------
@@ -372,8 +375,11 @@ def for_array(
             long_cutoff=fp.long_cutoff,
             **size,
         )
+    if kind == "probe":
+        centre = 0.5 * (x_centres.min() + x_centres.max())
+        return probe_profile(floor_params.probe_radius, x_start, x_end, centre)
     if kind != "gaussian":
-        raise ValueError(f"Floor.kind = {kind!r} must be 'gaussian' or 'self_affine'")
+        raise ValueError(f"Floor.kind = {kind!r} must be 'gaussian', 'self_affine' or 'probe'")
     return make_profile(
         floor_params.sigma,
         floor_params.correlation_length,

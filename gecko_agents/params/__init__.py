@@ -33,6 +33,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from gecko_agents.params.backing import BACKING_DRIVES as BACKING_DRIVES
+from gecko_agents.params.backing import BACKING_KINDS as BACKING_KINDS
+from gecko_agents.params.backing import Backing
 from gecko_agents.params.checks import (
     COUNT_MAX,
     DENSITY_RANGE,
@@ -49,11 +52,12 @@ from gecko_agents.physics.friction import friction_cap
 MECHANICS = ("linear", "rod")
 DETACHMENT_RULES = ("fold", "delta_s", "load_control")
 SHEAR_COUPLINGS = ("none", "savkoor_briggs")
-TIPS = ("sphere", "hertz", "spatula")
+TIPS = ("sphere", "hertz", "spatula", "flat_punch")
 """Tip contact laws (:data:`gecko_agents.contact.TIP_LAWS`): the adhesive JKR sphere of the
-paper, a Hertz sphere without adhesion, or a thin-film spatula that peels (:class:`Spatula`)."""
+paper, a Hertz sphere without adhesion, a thin-film spatula that peels (:class:`Spatula`) or
+the flat end of a pillar, a punch of radius ``contact.R`` (Kendall 1971, J Phys D 4:1186)."""
 FRICTION_LAWS = ("adhesive", "paper")
-FLOOR_KINDS = ("gaussian", "self_affine")
+FLOOR_KINDS = ("gaussian", "self_affine", "probe")
 
 
 # The range check and the physical ranges live in param_checks (one home, used by protocol too).
@@ -183,7 +187,9 @@ class Seta:
     ----------
     r : rod **radius** [µm] (Table 1 gives a 3 µm diameter; NOTES.md on eq 16–19).
     L : rod length [µm].
-    theta_deg : angle between the seta and the backing plate [degrees], in (0, 90).
+    theta_deg : angle between the seta and the backing plate [degrees], in (0, 90]; 90 is a
+        vertical pillar (its bending spring still acts: a slight tilt or a lateral tip force
+        bends it, and the ``rod`` seta buckles under axial load).
     density : material density [ng/µm³]; polyurethane ≈ 1.2e-3 (1200 kg/m³).
     """
 
@@ -195,7 +201,7 @@ class Seta:
     def __post_init__(self):
         _check(self, "r", *LENGTH_RANGE, lo_open=False, hi_open=False)
         _check(self, "L", *LENGTH_RANGE, lo_open=False, hi_open=False)
-        _check(self, "theta_deg", 0.0, 90.0)
+        _check(self, "theta_deg", 0.0, 90.0, hi_open=False)
         _check(self, "density", *DENSITY_RANGE, lo_open=False, hi_open=False)
 
     @property
@@ -244,6 +250,9 @@ class Floor:
         for wavelengths above it (self-affine only).
     rms_slope : RMS slope of the self-affine profile [-], > 0, used instead of ``sigma``
         (then ``sigma`` must be 0); ``None`` (default): the profile has RMS height ``sigma``.
+    probe_radius : radius R_p of a rigid spherical probe [µm] (``kind="probe"`` only: the
+        floor is the probe, apex under the middle of the array, smooth, ``sigma = 0``;
+        :mod:`gecko_agents.floor.probe`). Default 100 µm.
 
     The self-affine fields are ignored for ``kind="gaussian"``, so the defaults leave the
     Gaussian floor (and every history made with it) exactly as before.
@@ -257,9 +266,16 @@ class Floor:
     short_cutoff: float = 2.0
     long_cutoff: float = 50.0
     rms_slope: float | None = None
+    probe_radius: float = 100.0
 
     def __post_init__(self):
         _check(self, "sigma", 0.0, ROUGHNESS_MAX, lo_open=False, hi_open=False)
+        _check(self, "probe_radius", *LENGTH_RANGE, lo_open=False, hi_open=False)
+        if self.kind == "probe" and (self.sigma != 0 or self.correlation_length != 0):
+            raise ValueError(
+                f"Floor.kind = 'probe' is a smooth sphere: Floor.sigma = {self.sigma!r} and "
+                f"Floor.correlation_length = {self.correlation_length!r} must both be 0"
+            )
         _check(self, "correlation_length", 0.0, ROUGHNESS_MAX, lo_open=False, hi_open=False)
         _check(self, "seed", 0, 2**63, lo_open=False, integer=True)
         if self.kind not in FLOOR_KINDS:
@@ -355,91 +371,6 @@ class Spatula:
             )
 
 
-BACKING_KINDS = ("rigid", "elastic")
-BACKING_DRIVES = ("uniform", "peel_end")
-
-
-@dataclass(frozen=True)
-class Backing:
-    """The backing the setae stand on (:mod:`gecko_agents.backing.elastic`).
-
-    ``kind = "rigid"`` (default) is the kinematic plate of the paper: every root follows the
-    plate's motion (equal load sharing). ``kind = "elastic"`` is a strip in plane strain made of
-    a chain of rigid links joined by pivots and rotary springs (Euler–Bernoulli bending), the
-    roots riding on the chain; it is pulled through a handle spring by the protocol's plate
-    motion, at one end (``drive = "peel_end"``) or over its whole length (``"uniform"``).
-
-    Width convention: the simulated row of setae is one row of a square lattice, so the strip is
-    as wide as the row spacing, b = ``array.pitch``; its bending stiffness is
-    EI = E_b·b·t_b³ / (12(1 − ν_b²)) [µN·µm²] (plane strain plate, Timoshenko & Woinowsky-Krieger
-    1959, Theory of Plates and Shells, eq 3) and its mass per length ρ_b·b·t_b [ng/µm].
-
-    Attributes
-    ----------
-    kind : ``"rigid"`` or ``"elastic"``.
-    t_b : strip thickness [µm]; default 50 µm, an assumption in the range of the backing layers
-        of polyurethane microfibre adhesives (tens to hundreds of µm, Murphy, Aksak & Sitti 2009,
-        Small 5:170).
-    E_b : strip modulus [MPa]; default 1.413 MPa, the paper's polyurethane (Table 1's E), the
-        setae and backing being cast in one piece.
-    nu_b : strip Poisson ratio [-]; default 0.3 (Table 1's ν).
-    density : strip density [ng/µm³]; polyurethane ≈ 1.2e-3 (1200 kg/m³).
-    spacing : link length ℓ of the chain [µm]; 0 (default) means the coarsest allowed, λ/4
-        (and at least 4 links). Refused by the model when coarser than a quarter of the bending
-        length
-        λ = (4EI/k_f)^(1/4) (beam on an elastic foundation of the setae, k_f = K_y/pitch
-        [µN/µm²]; Hetényi 1946, Beams on Elastic Foundation, ch. 2).
-    handle_stiffness : stiffness k_h of the handle spring [µN/µm] (the machine or tendon
-        compliance), total over the strip; default 1000 µN/µm (a load cell much stiffer than
-        the array).
-    drive : ``"uniform"`` (the handle pulls every link with k_h/n_links) or ``"peel_end"`` (the
-        handle pulls the +x end of the strip).
-    damping_ratio : damping ratio of the rotary springs and the handle spring [-]; default 0.3.
-    misalignment_deg : angle between backing and floor at contact [degrees]; default 0
-        (aligned). The strip and the handle that holds it are turned by it about the strip's
-        centre, counter-clockwise: a positive angle lifts the +x end, so the −x edge touches
-        first. A few tenths of a degree turn a pull into a peel (Booth et al. found ~0.1°
-        enough; Bacca, Booth, Turner & McMeeking 2016, J Mech Phys Solids 96:428). Within
-        ±10° (the setae keep their rest direction in the floor's frame, a small-angle
-        assumption); only with ``kind = "elastic"``.
-    """
-
-    kind: str = "rigid"
-    t_b: float = 50.0
-    E_b: float = 1.413
-    nu_b: float = 0.3
-    density: float = 1.2e-3
-    spacing: float = 0.0
-    handle_stiffness: float = 1000.0
-    drive: str = "uniform"
-    damping_ratio: float = 0.3
-    misalignment_deg: float = 0.0
-
-    def __post_init__(self):
-        if self.kind not in BACKING_KINDS:
-            raise ValueError(f"Backing.kind = {self.kind!r} must be one of {BACKING_KINDS}")
-        if self.drive not in BACKING_DRIVES:
-            raise ValueError(f"Backing.drive = {self.drive!r} must be one of {BACKING_DRIVES}")
-        _check(self, "t_b", *LENGTH_RANGE, lo_open=False, hi_open=False)
-        _check(self, "E_b", *MODULUS_RANGE, lo_open=False, hi_open=False)
-        _check(self, "nu_b", -1.0, 0.5, hi_open=True)
-        _check(self, "density", *DENSITY_RANGE, lo_open=False, hi_open=False)
-        if self.spacing != 0.0:
-            _check(self, "spacing", *LENGTH_RANGE, lo_open=False, hi_open=False)
-        _check(self, "handle_stiffness", 0.0, 1e12)
-        _check(self, "damping_ratio", 0.0, 10.0, lo_open=False)
-        _check(self, "misalignment_deg", -10.0, 10.0, lo_open=False, hi_open=False)
-        if self.misalignment_deg != 0.0 and self.kind != "elastic":
-            raise ValueError(
-                f"Backing.misalignment_deg = {self.misalignment_deg!r} needs kind = 'elastic' "
-                f"(the rigid plate is level), got kind = {self.kind!r}"
-            )
-
-    def bending_stiffness(self, width: float) -> float:
-        """EI of a strip of width ``width`` [µm] in plane strain [µN·µm²]."""
-        return self.E_b * width * self.t_b**3 / (12.0 * (1.0 - self.nu_b**2))
-
-
 @dataclass(frozen=True)
 class SetaArray:
     """Everything that defines a simulated array.
@@ -447,8 +378,11 @@ class SetaArray:
     ``mechanics`` is ``"linear"`` (the paper's 2×2 beam stiffness, eq 20–21) or ``"rod"``
     (large rotation: a rigid rod on a rotary bending spring plus an axial spring). ``tip`` is
     the tip's contact law, one of :data:`TIPS` (:mod:`gecko_agents.contact`): ``"sphere"``
-    (JKR, eq 1–15; the default), ``"hertz"`` (the same sphere without adhesion) or
-    ``"spatula"`` (a peeling thin film, parameters in ``spatula``, :class:`Spatula`).
+    (JKR, eq 1–15; the default), ``"hertz"`` (the same sphere without adhesion),
+    ``"spatula"`` (a peeling thin film, parameters in ``spatula``, :class:`Spatula`) or
+    ``"flat_punch"`` (a flat pillar end of radius ``contact.R``: Sneddon's stiffness,
+    Kendall's pull-off; the elastic contact with a ``"fold"`` or ``"load_control"``
+    detachment, which coincide for a punch).
     """
 
     contact: Contact = field(default_factory=Contact)
@@ -473,6 +407,8 @@ class SetaArray:
             raise ValueError(f"SetaArray.mechanics = {self.mechanics!r} must be one of {MECHANICS}")
         if self.tip not in TIPS:
             raise ValueError(f"SetaArray.tip = {self.tip!r} must be one of {TIPS}")
+        if self.tip == "flat_punch":
+            _check_punch_contact(self.contact)
 
     # Derived quantities used throughout ---------------------------------------------------
     @property
@@ -540,6 +476,21 @@ class SetaArray:
             spatula=Spatula(**d.get("spatula", {})),
             backing=Backing(**d.get("backing", {})),
         )
+
+
+def _check_punch_contact(c: Contact) -> None:
+    """Refuse, naming the field, contact options a flat punch does not model (they belong to
+    the sphere: crack kinetics, the Savkoor–Briggs coupling, the paper's δs rule, eq 8)."""
+    for name, ok, allowed in (
+        ("crack_speed", math.isinf(c.crack_speed), "inf"),
+        ("shear_coupling", c.shear_coupling == "none", "'none'"),
+        ("detachment", c.detachment != "delta_s", "'fold' or 'load_control'"),
+    ):
+        if not ok:
+            raise ValueError(
+                f"Contact.{name} = {getattr(c, name)!r} is a sphere tip's option; with "
+                f"tip = 'flat_punch' it must be {allowed}"
+            )
 
 
 _GROUPS = {
