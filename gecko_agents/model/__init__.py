@@ -48,6 +48,7 @@ from gecko_agents.model.setup import (
     choose_kernel,
     choose_threads,
     detection_mode,
+    elastica_kernel,
     numba_available,
 )
 from gecko_agents.model.state import SetaState
@@ -55,6 +56,7 @@ from gecko_agents.model.step_numpy import LoopConstants, NumpyStep
 from gecko_agents.model.world import World
 from gecko_agents.params import SetaArray, check_seed
 from gecko_agents.physics import beam
+from gecko_agents.physics.elastica import Elastica
 from gecko_agents.protocol import DEFAULT_SPEED
 
 __all__ = [
@@ -182,6 +184,14 @@ class Model:
         if contact == "callback":
             self.world.on_pre_solve(self._pre_solve)
         self._fast_pads = self.world.pads and contact == "batch"
+        if params.mechanics == "elastica":
+            kernel = elastica_kernel(kernel)
+            s_ = params.seta
+            self.physics.chain = Elastica(
+                self.n, s_.L, s_.r, params.contact.E1, s_.theta, s_.links, s_.imperfection
+            )
+            self.physics.chain_axis = self.axis
+            self.physics.chain_damping_ratio = math.sqrt(self.Kp / params.Ky)
         self.kernel, self._loop, self.loop_threads = choose_kernel(
             kernel, self._fast_pads, self.n, type(self.law), threads
         )
@@ -325,6 +335,13 @@ class Model:
         if self.params.mechanics == "linear":
             u = d - self.L * self.axis
             return (*beam.linear_spring_force(u, self.K), u)
+        chain = self.physics.chain
+        if chain is not None:  # solved from the current shape, which it leaves as it was
+            kept = chain.phi, chain.stretch, chain.lam, chain.iterations
+            held = self.state.attached if self.physics.holds_tip else False
+            F, U = chain.solve(d, held)
+            chain.phi, chain.stretch, chain.lam, chain.iterations = kept
+            return F, U, None
         return (*beam.rod_spring_force(d, self.L, self.Ka, self.k_phi, self.theta), None)
 
     def spring_energies(self) -> np.ndarray:
@@ -405,7 +422,7 @@ class Model:
             y += s.pv[1]
             opx, opy = ph.spring_damp(*bk.roots(pnx, pny, vpx, vpy))
             bk.hold(s)
-            if not self._constants.rod:
+            if self.params.mechanics == "linear":
                 self._check_linear(ph.max_u2)
             if self._fast_pads:
                 ph.contact_pads()

@@ -118,6 +118,16 @@ def idle_cores() -> int:
     return max(1, round(cores - busy))
 
 
+def elastica_kernel(kernel: str) -> str:
+    """The kernel of ``mechanics = "elastica"``: numpy, the only one that solves the chain
+    (:mod:`gecko_agents.physics.elastica`); ``"numba"`` or ``"python"`` are refused."""
+    if kernel not in ("auto", "numpy"):
+        raise ValueError(
+            f"kernel={kernel!r}: mechanics='elastica' runs on kernel='numpy' (or 'auto')"
+        )
+    return "numpy"
+
+
 def choose_kernel(kernel: str, fast_pads: bool, n: int, law_type, threads: int = 1):
     """``(kernel, loop, threads)``: the kernel that runs (``"auto"`` resolved: numba if
     installed, else the interpreted loop up to a handful of setae, else numpy), its compiled

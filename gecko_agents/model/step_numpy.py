@@ -89,6 +89,8 @@ class NumpyStep:
         self.diss = 0.0  # energy dissipated in the current step [pJ]
         self.events = []  # (seta, overlap, force) of the tips that let go this step
         self.max_u2 = 0.0  # largest |u|² of a linear seta this step [µm²]
+        self.chain = None  # the elastica of mechanics="elastica" (physics.elastica.Elastica)
+        self.holds_tip = law.name == "flat_punch"  # a bonded punch face keeps its direction
 
     # ------------------------------------------------------------------ seta springs
     def spring_damp(self, pnx, pny, vpx, vpy):
@@ -98,7 +100,16 @@ class NumpyStep:
         x, y = s.xy
         Fx, Fy = s.F
         t0, t1 = self.tmp[0], self.tmp[1]
-        if not c.rod:
+        if self.chain is not None:
+            dx, dy = s.u
+            np.subtract(x, pnx, out=dx)
+            dx -= self.world.root_dx
+            np.subtract(y, pny, out=dy)
+            dy -= self.world.root_dy
+            held = s.attached if self.holds_tip else False
+            F = self.chain.solve(np.column_stack([dx, dy]), held)[0]
+            Fx[:], Fy[:] = F[:, 0], F[:, 1]
+        elif not c.rod:
             ux, uy = s.u
             np.subtract(x, pnx, out=ux)
             ux -= self.world.rest_dx
@@ -149,12 +160,25 @@ class NumpyStep:
         Fdx *= -c.c_seta
         np.subtract(vy, vpy, out=Fdy)
         Fdy *= -c.c_seta
+        if self.chain is not None:
+            self._damp_across(Fdx, Fdy)
         Fx += Fdx
         Fy += Fdy
         on_plate = (float(Fx.sum()), float(Fy.sum()))
         if s.external_force.any():
             s.F += s.external_force.T
         return on_plate
+
+    def _damp_across(self, Fdx, Fdy):
+        """The elastica's damper across its rest axis n: c_seta·(Kp/Ky)^½, critical for the
+        bending mode as c_seta is for the axial one (one isotropic damper overdamps a pillar's
+        bending by √(Ka/Kp) ≈ L/r and stalls its buckling). Along n it stays c_seta."""
+        nx, ny = self.chain_axis
+        along = Fdx * nx + Fdy * ny
+        across_x, across_y = Fdx - along * nx, Fdy - along * ny
+        f = self.chain_damping_ratio - 1.0
+        Fdx += f * across_x
+        Fdy += f * across_y
 
     # ------------------------------------------------------------------ contact
     def contact_energy(self, idx):

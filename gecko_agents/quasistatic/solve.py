@@ -28,6 +28,11 @@ def setup(
     """The seta model of ``params.mechanics``: :class:`Branches` (linear) or :class:`RodSetup`.
     The solver's tip is the paper's elastic JKR sphere: other tip laws are refused."""
     require_paper_tip(params)
+    if params.mechanics not in ("linear", "rod"):
+        raise ValueError(
+            f"the quasi-static solver models mechanics 'linear' and 'rod': mechanics = "
+            f"{params.mechanics!r} runs in the time-stepped Model"
+        )
     if params.mechanics == "rod":
         return RodSetup.from_params(params, lateral, stiffness_scale, tangential_stiffness)
     return Branches.from_params(params, lateral, stiffness_scale, tangential_stiffness)
