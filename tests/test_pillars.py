@@ -15,7 +15,7 @@ from gecko_agents.physics.elastica import Elastica
 
 E1 = PAPER_ARRAY.contact.E1
 R_SETA = 2.0
-# Euler's critical loads over EI/L² (Timoshenko & Gere 1961, §2.1–2.3): clamped–free,
+# Euler's critical loads over EI/L² (Timoshenko & Gere 1961, ch. 2): clamped–free,
 # clamped–pinned (the tip held laterally, free to turn), clamped–clamped (held and flat).
 EULER = {"free": math.pi**2 / 4, "pinned": 2.046 * math.pi**2, "clamped": 4 * math.pi**2}
 
@@ -38,6 +38,32 @@ def test_chain_at_rest_carries_nothing_and_matches_the_straight_beam():
     assert -F[0] @ n / eps == pytest.approx(E1 * math.pi * 1.5**2 / 20.0, rel=1e-4)
     # 16 links: Hencky's chain is 3EI/L³ to O(1/n²)
     assert -F[1] @ t / eps == pytest.approx(3 * EI / 20.0**3, rel=0.01)
+
+
+@pytest.mark.parametrize(
+    "case, tip_spring, pinned, below",
+    [("free", 0.0, False, 0.004), ("pinned", 0.0, True, 0.009), ("clamped", 2.0, True, 0.014)],
+)
+def test_chain_linear_stability_converges_on_euler(case, tip_spring, pinned, below):
+    """The chain's own critical load (smallest eigenvalue of its bending stiffness over its
+    geometric stiffness P·ℓ per link, the tip's lateral constraint Σψ = 0 where pinned) for
+    16 links lies just below Euler's, and 4× closer with 32 links (1/n² convergence)."""
+    from scipy.linalg import eigh, null_space
+
+    def critical(n):
+        el = Elastica(1, 1.0, 1.0, 1.0, math.pi / 2, links=n, imperfection=0.0)
+        k = el.k.copy()
+        K = np.diag(k[:-1] + np.append(k[1:-1], tip_spring * el.EI / el.ell))
+        K -= np.diag(k[1:-1], 1) + np.diag(k[1:-1], -1)
+        G = el.ell * np.eye(n)
+        if pinned:
+            Z = null_space(np.ones((1, n)))
+            K, G = Z.T @ K @ Z, Z.T @ G @ Z
+        return eigh(K, G, eigvals_only=True)[0] / (EULER[case] * el.EI)
+
+    e16, e32 = 1 - critical(16), 1 - critical(32)
+    assert 0 < e16 < below
+    assert e32 == pytest.approx(e16 / 4, rel=0.15)
 
 
 def test_chain_force_is_the_gradient_of_its_energy():

@@ -196,8 +196,8 @@ class Seta:
         1.3 % of Euler's (:mod:`gecko_agents.physics.elastica`).
     imperfection : the elastica's initial crookedness [-], in [0, 0.1]: its stress-free shape
         is an arc whose tip lies imperfection·L to +x of the straight seta; it picks the side a
-        vertical pillar buckles to. Default 1e-4 (the peak force stays within 0.3 % of the
-        perfect column's, Timoshenko & Gere 1961, Theory of Elastic Stability, §1.11).
+        vertical pillar buckles to. Default 1e-4 (the buckled column's force stays within
+        0.3 % of the perfect column's, ``tests/test_pillars.py``).
     """
 
     r: float = 1.5

@@ -9,15 +9,15 @@ or a tip off the floor) or held at its rest direction (a flat punch bonded to th
 face cannot tilt: :class:`gecko_agents.contact.FlatPunch`).
 
 Bending: the joint springs are k = EI/ℓ between links and 2EI/ℓ at a clamped end (the clamp
-and its mirror image make a joint of a chain twice as long), I = πr⁴/4 (Hencky 1920, Der
-Eisenbau 11:437, the bar-chain model of the elastica; its critical loads converge on Euler's
-as 1/n²: with 16 links the clamped–free, clamped–pinned and clamped–clamped columns buckle
-within 0.1 %, 0.8 % and 1.3 % of π²EI/(4L²), 2.046π²EI/L² and 4π²EI/L²: Timoshenko & Gere,
-Theory of Elastic Stability, 1961, §2.1–2.3, for the continuous values). Axial: one spring
-Ka = πr²E/L (eq 17) along the last link. An initially crooked column (Timoshenko & Gere 1961,
-§1.11) picks the side it buckles to: the stress-free chain is a circular arc whose tip lies
-``imperfection``·L to +x of the straight column (for a vertical pillar the branch would
-otherwise be a coin toss decided by rounding).
+and its mirror image make a joint of a chain twice as long), I = πr⁴/4: Hencky's bar-chain
+discretisation of the elastica. Its critical loads converge on Euler's as 1/n² (measured by
+``tests/test_pillars.py``'s linear stability of the chain: with 16 links the clamped–free,
+clamped–pinned and clamped–clamped columns buckle 0.1 %, 0.8 % and 1.3 % below
+π²EI/(4L²), 2.046π²EI/L² and 4π²EI/L², the continuous values of Timoshenko & Gere, Theory of
+Elastic Stability, 2nd ed., 1961, ch. 2). Axial: one spring Ka = πr²E/L (eq 17) along the
+last link. An initially crooked column picks the side it buckles to: the stress-free chain
+is a circular arc whose tip lies ``imperfection``·L to +x of the straight column (for a
+vertical pillar the branch would otherwise be a coin toss decided by rounding).
 
 Unknowns per seta: absolute link angles φ_1..φ_n, the axial stretch s and the force λ the tip
 body applies to the chain's end (the seta pushes the tip with −λ). Energy
