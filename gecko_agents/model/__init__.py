@@ -337,10 +337,11 @@ class Model:
             return (*beam.linear_spring_force(u, self.K), u)
         chain = self.physics.chain
         if chain is not None:  # solved from the current shape, which it leaves as it was
-            kept = chain.phi, chain.stretch, chain.lam, chain.iterations
-            held = self.state.attached if self.physics.holds_tip else False
-            F, U = chain.solve(d, held)
-            chain.phi, chain.stretch, chain.lam, chain.iterations = kept
+            kept = (chain.phi, chain.stretch, chain.lam, chain.iterations, chain.held,
+                    chain.clamp.copy(), chain.released)  # fmt: skip
+            F, U = chain.solve(d, chain.held)
+            (chain.phi, chain.stretch, chain.lam, chain.iterations, chain.held, chain.clamp,
+             chain.released) = kept  # fmt: skip
             return F, U, None
         return (*beam.rod_spring_force(d, self.L, self.Ka, self.k_phi, self.theta), None)
 

@@ -108,6 +108,7 @@ class NumpyStep:
             dy -= self.world.root_dy
             held = s.attached if self.holds_tip else False
             F = self.chain.solve(np.column_stack([dx, dy]), held)[0]
+            self.diss += self.chain.released  # a bonded face let go: its clamp's energy
             Fx[:], Fy[:] = F[:, 0], F[:, 1]
         elif not c.rod:
             ux, uy = s.u

@@ -5,8 +5,9 @@ rotary springs, with an axial spring at the tip, clamped at its root at the rest
 +x. Its links are massless: at every step the chain is in equilibrium with its root on the
 backing and its end at the tip body (whose mass carries the dynamics, as for the other setae),
 found by Newton's method from the previous step's shape. The tip's rotation is free (a sphere
-or a tip off the floor) or held at its rest direction (a flat punch bonded to the floor, whose
-face cannot tilt: :class:`gecko_agents.contact.FlatPunch`).
+or a tip off the floor) or held in the direction its face bonded in (a flat punch bonded to the
+floor, whose face cannot tilt: :class:`gecko_agents.contact.FlatPunch`); a face that lets go
+releases what its clamp stored (booked as dissipated, as a snap-off's contact energy).
 
 Bending: the joint springs are k = EI/ℓ between links and 2EI/ℓ at a clamped end (the clamp
 and its mirror image make a joint of a chain twice as long), I = πr⁴/4: Hencky's bar-chain
@@ -21,7 +22,8 @@ vertical pillar the branch would otherwise be a coin toss decided by rounding).
 
 Unknowns per seta: absolute link angles φ_1..φ_n, the axial stretch s and the force λ the tip
 body applies to the chain's end (the seta pushes the tip with −λ). Energy
-V = Σ ½k_j(ψ_j − ψ⁰_j)² + ½Ka·s² (+ ½k_c(φ_n − φ⁰_n)² with the tip held), ψ_j = φ_j − φ_{j−1};
+V = Σ ½k_j(ψ_j − ψ⁰_j)² + ½Ka·s² (+ ½k_c(φ_n − φ_b)² with the tip held, φ_b the direction
+of its face when it bonded), ψ_j = φ_j − φ_{j−1};
 end r(q) = Σ ℓ(cos φ_j, sin φ_j) + s(cos φ_n, sin φ_n). Equilibrium: ∇V = Jᵀλ, r(q) = d.
 
 Units: µm, µN, MPa; angles in radians.
@@ -70,6 +72,11 @@ class Elastica:
         self.phi = np.tile(self.phi_rest, (self.N, 1))
         self.stretch = np.zeros(self.N)
         self.lam = np.zeros((self.N, 2))
+        # The held tips and the direction their face was bonded in [rad]: a face bonds in the
+        # direction it touches in (no energy jump), lets go of what the clamp then stores.
+        self.held = np.zeros(self.N, bool)
+        self.clamp = np.full(self.N, self.phi_rest[-1])
+        self.released = 0.0  # clamp energy let go by tips released in the last solve [pJ]
         self.iterations = 0  # Newton iterations of the last solve (largest over setae)
 
     # ------------------------------------------------------------------ geometry
@@ -89,7 +96,7 @@ class Elastica:
         psi = np.diff(np.column_stack([np.full(len(phi), self.root_angle), phi]), axis=1)
         psi0 = np.diff(np.concatenate([[self.root_angle], self.phi_rest]))
         V = 0.5 * np.sum(self.k[:-1] * (psi - psi0) ** 2, axis=1) + 0.5 * self.Ka * s * s
-        tip = phi[:, -1] - self.phi_rest[-1]
+        tip = phi[:, -1] - self.clamp
         return V + np.where(held, 0.5 * self.k[-1] * tip * tip, 0.0)
 
     # ------------------------------------------------------------------ Newton
@@ -102,7 +109,7 @@ class Elastica:
         grad = tau.copy()
         grad[:, :-1] -= tau[:, 1:]
         kc = np.where(held, self.k[-1], 0.0)
-        grad[:, -1] += kc * (phi[:, -1] - self.phi_rest[-1])
+        grad[:, -1] += kc * (phi[:, -1] - self.clamp)
         ell = np.full((N, n), self.ell)
         ell[:, -1] += s
         Jx, Jy = -ell * sn, ell * c  # ∂r/∂φ_j
@@ -131,8 +138,12 @@ class Elastica:
         its tip (N, 2) [µN] and its elastic energy (N,) [pJ]. Raises ``RuntimeError`` naming
         the setae whose chain found no equilibrium (a tip pulled beyond the chain's reach)."""
         d = np.asarray(d, float)
-        held = np.broadcast_to(np.asarray(held, bool), (len(d),))
+        held = np.broadcast_to(np.asarray(held, bool), (len(d),)).copy()
         phi, s, lam = self.phi.copy(), self.stretch.copy(), self.lam.copy()
+        gone, new = self.held & ~held, held & ~self.held
+        beta = phi[gone, -1] - self.clamp[gone]
+        self.released = float(np.sum(0.5 * self.k[-1] * beta * beta))
+        self.clamp[new] = phi[new, -1]
         n = self.n
         f_tol = 1e-12 * max(self.EI / self.ell, self.Ka * self.L)
         x_tol = 1e-12 * self.L
@@ -160,7 +171,7 @@ class Elastica:
                 "its root); a tip pulled beyond the chain's reach or a step too long"
             )
         self.iterations = steps
-        self.phi, self.stretch, self.lam = phi, s, lam
+        self.phi, self.stretch, self.lam, self.held = phi, s, lam, held
         return -lam, self.energy(phi, s, held)
 
     def nodes(self, root) -> np.ndarray:

@@ -31,7 +31,7 @@ SCENARIOS = (
     "fig11b_roughness",
     "directional_adhesion",
 )
-BEYOND = ("calibrate_paper", "pull_speed", "frictional_adhesion")
+BEYOND = ("calibrate_paper", "pull_speed", "frictional_adhesion", "pillar_designs", "probe_test")
 """Studies beyond the paper whose sections join the report with ``--beyond``."""
 LONGEST = ("fig10_array_pulloff", "fig11b_roughness", "calibrate_paper", "pull_speed")
 
@@ -193,7 +193,9 @@ def extra_sections(base: Path, args) -> str:
         for name, files in (("calibrate_paper", ("calibration_section.md",
                                                  "validation_section.md")),
                             ("pull_speed", ()),
-                            ("frictional_adhesion", ("beyond_the_paper.md",))):  # fmt: skip
+                            ("frictional_adhesion", ("beyond_the_paper.md",)),
+                            ("pillar_designs", ("section.md",)),
+                            ("probe_test", ("section.md",))):  # fmt: skip
             for f in files:
                 path = base / name / f
                 if path.is_file():
