@@ -30,7 +30,7 @@ TABLE_QUOTE = (
 )
 AUTUMN2006B = (
     "Autumn K, Dittmore A, Santos D, Spenko M, Cutkosky M (2006). Frictional adhesion: a new "
-    "angle on gecko attachment. J Exp Biol 209:3569–3579. doi:10.1242/jeb.02486"
+    "angle on gecko attachment. J Exp Biol 209:3569. doi:10.1242/jeb.02486"
 )
 GILLIES = (
     "Gillies AG, Fearing RS (2014). Simulation of synthetic gecko arrays shearing on rough "
@@ -95,7 +95,8 @@ _DIRECTION = {
     "status": "assumed",
     "range": None,
     "why": "'along natural drag path' read as the gripping drag of this package (the "
-    "plate moving −x pulls the seta back along its shaft)",
+    "plate moving −x pulls the seta back along its shaft); read the other way, ours is the "
+    "inverse and the trend reverses",
 }
 
 ROWS: list[dict] = [
@@ -227,7 +228,7 @@ ROWS: list[dict] = [
     {
         "id": "kendall1975_peel",
         "source": "Kendall K (1975). Thin-film peeling — the elastic term. J Phys D Appl Phys "
-        "8:1449–1452. doi:10.1088/0022-3727/8/13/005",
+        "8:1449. doi:10.1088/0022-3727/8/13/005",
         "read_at": "https://www.synapsesocial.com/papers/69d91c3eccb0bba5a56841f0 (abstract)",
         "quote": "An energy balance shows that the force required to peel an elastic film from a "
         "rigid substrate depends not only on the adhesive surface energy but also on an elastic "
