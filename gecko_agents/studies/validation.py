@@ -219,7 +219,9 @@ def gravish_rate(quick: bool = True, v_star: float | None = None) -> dict:
 
 def flat_punch_ours(quick: bool = True) -> dict | None:
     """The flat punch's pull-off against its radius (Kendall 1971): needs the ``flat_punch``
-    tip of the designs issue; ``None`` until then (the row stays not scored)."""
+    tip of the designs issue; ``None`` until then (the row stays not scored). Filled in, it
+    returns ``{"value": …, "text": …}`` like the others; the row is then scored once its
+    ``theirs_value`` (and ``scatter``) are read from the source."""
     return None
 
 
@@ -252,6 +254,8 @@ def verdict(row: dict, ours: dict | None, sens: list[dict]) -> tuple[str, str]:
     if row["compare"] is None or ours is None or not math.isfinite(ours["value"]):
         return NOT_SCORED, row.get("unscored", "ours could not be computed")
     theirs, scatter, value = row["theirs_value"], row["scatter"], ours["value"]
+    if theirs is None and row["compare"] == "value":
+        return NOT_SCORED, "their value was not read: " + row.get("unscored", "")
     if theirs is not None and scatter is not None and abs(value - theirs) <= scatter:
         return VERDICTS[0], f"ours is within their ±{scatter:g}"
     if row["compare"] == "trend":

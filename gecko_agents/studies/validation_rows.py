@@ -279,9 +279,9 @@ ROWS: list[dict] = [
         "theirs_value": None,
         "scatter": None,
         "kind": "pull-off [µN]",
-        "compare": None,
+        "compare": "value",
         "params": [],
-        "ours": None,
+        "ours": "flat_punch_ours",
         "unscored": "source not read; our number needs the flat_punch tip (the designs issue): "
         "fill validation.flat_punch_ours, then the row is scored against the value read",
         "cause": "",
@@ -548,6 +548,26 @@ ROWS: list[dict] = [
         "params": [],
         "ours": None,
         "unscored": "source not read; needs buckling pillars (the designs issue)",
+        "cause": "",
+    },
+    {
+        "id": "yague_isla2015_buckling",
+        "source": "Yagüe Isla P, Kroner E (2015). A novel bioinspired switchable adhesive with "
+        "three distinct adhesive states. Adv Funct Mater 25(16):2444–2450. "
+        "doi:10.1002/adfm.201500241 (read in place of Paretkar et al., not found)",
+        "read_at": "https://pmc.ncbi.nlm.nih.gov/articles/PMC4553704",
+        "quote": "At higher preload, all pillars form contact, resulting in high pull-off force. "
+        "Even further loading leads to buckling induced detachment of the pillars which "
+        "corresponds to extremely low pull-off force.",
+        "measured": "pull-off of mushroom pillars against preload, up to buckling",
+        "theirs": "extremely low pull-off after buckling (no number in the abstract)",
+        "theirs_value": None,
+        "scatter": None,
+        "kind": "ratio [-]",
+        "compare": None,
+        "params": [],
+        "ours": None,
+        "unscored": "no value in the text we read; needs pillars that buckle (the designs issue)",
         "cause": "",
     },
     {
