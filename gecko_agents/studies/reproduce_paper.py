@@ -252,6 +252,8 @@ def main(argv=None) -> dict:
     write_json(
         base / "paper_comparison.json", {"rows": rows, "timings_s": timings, "quick": args.quick}
     )
+    if args.beyond:  # the literature comparison beside the paper report (studies/validation)
+        run_scenario("validation", ["--out", str(base)] + (["--quick"] if args.quick else []))
     total = time.perf_counter() - t_all
     print(f"wrote {base / 'paper_comparison.md'} ({len(rows)} claims) in {total:.0f} s")
     return {"claims": rows, "timings": timings, "total_s": total, "results": results}

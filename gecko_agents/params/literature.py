@@ -1,0 +1,106 @@
+"""Parameter sets for published experiments the package is checked against, one named preset
+each (:mod:`gecko_agents.studies.validation`, ``literature_comparison.md``).
+
+Units as in :mod:`gecko_agents.params` (µm, µN, µs, MPa, µN/µm). Every value a preset takes
+from its source says so; every other value is an assumption, marked as such with its reason.
+The study shows how much each row's number moves when an assumed value spans its plausible
+range. No preset here changes a default of :mod:`gecko_agents.params`, and none is tuned to
+the number it is compared with. Not registered as run-file presets (only
+:mod:`gecko_agents.params.presets` is).
+"""
+
+from __future__ import annotations
+
+from gecko_agents.params import Array, Contact, Floor, Seta, SetaArray
+from gecko_agents.params.presets import PAPER_ARRAY
+
+__all__ = [
+    "AUTUMN2006_SETA",
+    "TOKAY_SETAL_DENSITY",
+    "BOOTH2018_STIFF_MOUNT",
+    "BOOTH2018_COMPLIANT_MOUNT",
+    "BOOTH2018_COMPLIANCE_RATIO",
+    "KIM_SITTI2007_THIN",
+    "KIM_SITTI2007_THICK",
+    "GRAVISH2010_SETA",
+    "FRICTIONAL_SPATULA",
+    "FRICTIONAL_SPHERE",
+]
+
+
+AUTUMN2006_SETA = SetaArray(
+    contact=Contact(E1=1600.0, nu1=0.3),
+    seta=Seta(r=3.0, L=80.0, theta_deg=45.0),
+    array=Array(count=1, pitch=4.0),
+    floor=Floor(sigma=0.0),
+)
+"""A tokay gecko seta as a straight β-keratin rod, for the stiffness and effective modulus of
+Autumn, Majidi, Groff, Dittmore & Fearing (2006, J Exp Biol 209:3558, doi:10.1242/jeb.02469).
+
+Cited: E = 1.6 GPa = 1600 MPa, the setal keratin's bending modulus of *Gekko gecko* (Peattie,
+Majidi, Corder & Full 2007, "Ancestrally high elastic modulus of gecko setal β-keratin"; its
+abstract: "Gekko gecko (1.6 GPa +/- 0.15s.e.; n=24 setae)"; journal and pages not in the text
+we read). Assumed (the
+text we could read does not give the geometry Autumn et al. used): L = 80 µm, the middle of
+the "30–130 µm long" setae of Autumn et al. (2000, Nature 405:681); r = 3 µm, the middle of a
+"2-10 um wide" seta (a secondary source: the Harvard soft-matter wiki's gecko page); θ = 45°
+between shaft and backing (no source read gives the shaft angle). The contact fields are not
+used by these rows (stiffness only)."""
+
+TOKAY_SETAL_DENSITY = 0.0144
+"""Setae per µm² of a tokay toe pad [1/µm²] (14 400 per mm²). Assumed: a secondary web source
+(enviroliteracy.org, "approximately 14,400 setae per sq[uare millimetre]"); the primary count
+was not in a text we could read."""
+
+_STRIP = {"seta.L": 5.0, "floor.sigma": 0.0, "backing.kind": "elastic"}
+
+BOOTH2018_COMPLIANCE_RATIO = 3.1
+"""Compliance of Booth et al.'s thickest backing layer over their thinnest: "210% more
+compliant" = 3.1× (Booth, Bacca, McMeeking & Foster 2018; journal, volume and DOI are not in
+the abstract we read; the package's misalignment study cites Adv Mater Interfaces 5:1800272)."""
+
+BOOTH2018_STIFF_MOUNT = PAPER_ARRAY.replace(
+    **_STRIP, **{"backing.drive": "uniform", "backing.handle_stiffness": 1000.0}
+)
+"""The misalignment pad of :mod:`gecko_agents.studies.misalignment` (the paper's polyurethane,
+stubby L = 5 µm setae, flat floor, default 1.413 MPa strip pulled uniformly) on the package's
+default 1000 µN/µm mount, the stiff end of the Booth et al. (2018) comparison. The mount
+stiffness is an assumption (the package default; their layers' stiffness relative to their
+fibres' is not in the abstract we could read); the misalignment angle is set per run."""
+
+BOOTH2018_COMPLIANT_MOUNT = BOOTH2018_STIFF_MOUNT.replace(
+    **{"backing.handle_stiffness": 1000.0 / BOOTH2018_COMPLIANCE_RATIO}
+)
+""":data:`BOOTH2018_STIFF_MOUNT` on a mount 3.1× as compliant (cited: Booth et al. 2018's
+thickest layer is "210% more compliant" than their thinnest)."""
+
+KIM_SITTI2007_THIN = PAPER_ARRAY.replace(
+    **_STRIP, **{"backing.drive": "uniform", "backing.t_b": 160.0}
+)
+"""A pad of the paper's polyurethane setae on a 160 µm backing, pulled straight off through a
+uniform handle, for Kim & Sitti (2007, Appl Phys Lett 91:161905; DOI not found in the text we read).
+Cited: the "160μm thick backing layer" and the polyurethane. Assumed: the package's JKR
+sphere tips (theirs are spatulated), L = 5 µm setae, the strip's default modulus."""
+
+KIM_SITTI2007_THICK = KIM_SITTI2007_THIN.replace(**{"backing.t_b": 1120.0})
+""":data:`KIM_SITTI2007_THIN` on Kim & Sitti's "1120 μm thick backing" (cited)."""
+
+GRAVISH2010_SETA = PAPER_ARRAY.replace(
+    **{"mechanics": "rod", "seta.L": 5.0, "floor.sigma": 0.3, "contact.crack_speed": 1.0}
+)
+"""The pull-speed seta of :mod:`gecko_agents.studies.pull_speed` with crack kinetics, for the
+rate dependence of Gravish et al. (2010, J R Soc Interface 7:259, doi:10.1098/rsif.2009.0133).
+Assumed: the reference crack speed v* = 1 µm/µs and n = 0.5 (the package's Greenwood–Johnson
+default): neither gecko keratin nor their silicone is characterised in the text we read."""
+
+FRICTIONAL_SPATULA = PAPER_ARRAY.replace(
+    **{"mechanics": "rod", "floor.sigma": 0.0, "array.count": 1, "tip": "spatula",
+       "friction.mu": 10.0}
+)  # fmt: skip
+"""The frictional-adhesion seta of :mod:`gecko_agents.studies.frictional_adhesion` (rod, θ =
+60°, flat floor) with the spatula film tip (package defaults b = 3 µm, h = 1 µm, ℓ0 = 3 µm,
+all assumptions) and the nearly bonded pad μ = 10 of that study, for Autumn et al. (2006, J
+Exp Biol 209:3569) and Gillies & Fearing (2014, J R Soc Interface 11:20140021)."""
+
+FRICTIONAL_SPHERE = FRICTIONAL_SPATULA.replace(**{"tip": "sphere"})
+""":data:`FRICTIONAL_SPATULA` with the paper's JKR sphere tip (R = 4 µm)."""
