@@ -165,10 +165,16 @@ class Elastica:
             steps += 1
         else:
             bad = np.flatnonzero(todo)
+            reach = float(np.hypot(*d[bad[0]])) / self.L
+            why = (
+                "the column is pressed nearly flat: a buckled pillar carries about its Euler "
+                "load, so a force preload above it crushes it (press to a depth instead)"
+                if reach < 0.5
+                else "a tip pulled beyond the chain's reach or a time step too long"
+            )
             raise RuntimeError(
                 f"the elastica of setae {bad[:5].tolist()} found no equilibrium in "
-                f"{_MAX_ITER} Newton iterations (end at {d[bad[0]].round(4).tolist()} µm from "
-                "its root); a tip pulled beyond the chain's reach or a step too long"
+                f"{_MAX_ITER} Newton iterations (end {reach:.2f} L from its root): {why}"
             )
         self.iterations = steps
         self.phi, self.stretch, self.lam, self.held = phi, s, lam, held
