@@ -70,7 +70,8 @@ class Contact:
 
     Attributes
     ----------
-    R : tip sphere radius [µm] (the floor is flat, so R is also the equivalent radius).
+    R : tip sphere radius [µm] (the floor is flat, so R is also the equivalent radius); for
+        ``tip = "flat_punch"`` the punch (face) radius a.
     E1 : Young's modulus of the seta material (tip and rod) [MPa].
     nu1 : Poisson's ratio of the seta material [-], in [0, 0.5).
     E2 : Young's modulus of the floor [MPa].
@@ -189,7 +190,7 @@ class Seta:
     L : rod length [µm].
     theta_deg : angle between the seta and the backing plate [degrees], in (0, 90]; 90 is a
         vertical pillar (its bending spring still acts: a slight tilt or a lateral tip force
-        bends it, and the ``rod`` seta buckles under axial load).
+        bends it; ``mechanics = "elastica"`` buckles at Euler's loads).
     density : material density [ng/µm³]; polyurethane ≈ 1.2e-3 (1200 kg/m³).
     links : links of the bar chain of ``mechanics = "elastica"`` [-], 2–200; 16 (default)
         puts the clamped–free, clamped–pinned and clamped–clamped buckling loads within
