@@ -30,6 +30,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from gecko_agents import __version__
+from gecko_agents.console import WarningLog, add_verbosity_arguments, summary_line, verbosity
 from gecko_agents.output_paths import check_output_dir, output_dir_arg
 from gecko_agents.params.table import parameter_table
 
@@ -94,6 +95,7 @@ def _add_run(p: argparse.ArgumentParser) -> None:
         help="also write detachment.mp4 (needs pip install -e '.[video]')",
     )
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
+    add_verbosity_arguments(p)
 
 
 def _default_run_dir(runfile: Path) -> Path:
@@ -120,9 +122,11 @@ def _cmd_run(args, extra) -> int:
     argv = [str(args.runfile)] + (["--quick"] if args.quick else [])
     t0 = time.perf_counter()
     try:
-        out, history = runfile.execute_run(
-            spec, out, animation=args.animation, progress=not args.no_progress, argv=argv
-        )
+        with WarningLog(verbosity(args)) as log:
+            log.family(args.runfile.name)
+            out, history = runfile.execute_run(
+                spec, out, animation=args.animation, progress=not args.no_progress, argv=argv
+            )
     except runfile.RunFileError:
         raise
     except KeyboardInterrupt:
@@ -148,6 +152,7 @@ def _cmd_run(args, extra) -> int:
         f"re-run it with: {PROG} run {shlex.quote(str(out / runfile.RUN_FILE_NAME))}"
         f"{' --quick' if args.quick else ''}"
     )
+    print(summary_line([m["validity"]], f"'validity' in {out / 'metadata.json'}"))
     return EXIT_OK
 
 
@@ -269,13 +274,16 @@ def _add_reproduce(p: argparse.ArgumentParser) -> None:
         "--out", type=output_dir_arg, default=None, help="output folder (default renders/)"
     )
     p.add_argument("--no-progress", action="store_true", help="hide progress bars")
+    add_verbosity_arguments(p)
 
 
 def _cmd_reproduce(args, extra) -> int:
     from gecko_agents.studies import reproduce_paper
 
     argv = (["--quick"] if args.quick else []) + (["--out", str(args.out)] if args.out else [])
-    argv += (["--no-progress"] if args.no_progress else []) + list(extra)
+    argv += ["--no-progress"] if args.no_progress else []
+    argv += (["--quiet"] if args.quiet else []) + (["--verbose"] if args.verbose else [])
+    argv += list(extra)
     try:
         reproduce_paper.main(argv)
     except KeyboardInterrupt:
@@ -306,14 +314,19 @@ def _add_bench(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--no-dask", action="store_true", help="skip the 1- vs 2-worker Dask sweep throughput"
     )
+    add_verbosity_arguments(p)
 
 
 def _cmd_bench(args, extra) -> int:
     from gecko_agents import bench
 
-    bench.main(
-        (["--quick"] if args.quick else []) + (["--no-dask"] if args.no_dask else []) + list(extra)
-    )
+    with WarningLog(verbosity(args)) as log:
+        log.family("bench")
+        bench.main(
+            (["--quick"] if args.quick else [])
+            + (["--no-dask"] if args.no_dask else [])
+            + list(extra)
+        )
     return EXIT_OK
 
 
