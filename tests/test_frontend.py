@@ -1,0 +1,130 @@
+"""What a user sees: warnings as short lines ending in a validity summary, progress bars that end
+at exactly their totals, plain history files checked by their SHA-256."""
+
+import re
+import subprocess
+import sys
+import warnings
+
+import pytest
+
+from gecko_agents import protocol
+from gecko_agents.console import WarningLog, summary_line
+from gecko_agents.diagnostics import ValidityWarning
+from gecko_agents.model import Model
+from gecko_agents.params import PAPER_ARRAY
+
+STUBBY = PAPER_ARRAY.replace(**{"array.count": 3, "seta.L": 5.0, "floor.sigma": 0.3})
+PY_WARNING = re.compile(r"\.py:\d+: \w*Warning|warnings\.warn\(")
+
+
+# Warnings and the validity summary ----------------------------------------------------------
+
+
+def test_the_main_job_prints_no_python_warning_and_ends_with_the_validity_summary(tmp_path):
+    out = subprocess.run(
+        [sys.executable, "-m", "gecko_agents", "reproduce", "--quick", "--no-progress",
+         "--out", str(tmp_path)],
+        capture_output=True, text=True, timeout=900, check=True,
+    )  # fmt: skip
+    text = out.stdout + out.stderr
+    assert not PY_WARNING.search(text), [ln for ln in text.splitlines() if PY_WARNING.search(ln)]
+    last = out.stdout.strip().splitlines()[-1]
+    pattern = r"validity: (\d+ items? outside range|every item within range) in \d+ runs?"
+    assert re.match(pattern, last)
+    assert "paper_comparison.md" in last
+    # every warning line is short: one per item per study
+    assert max(len(ln) for ln in out.stderr.splitlines() or [""]) < 300
+
+
+def _warn(name, value):
+    message = f"validity: {name} = {value} violates value ≤ 1: why [src]"
+    warnings.warn(ValidityWarning(message), stacklevel=2)
+
+
+def test_one_line_per_item_per_family_and_quiet_prints_none(capsys):
+    with WarningLog(1) as log:
+        log.family("fig10")
+        for v in (2.0, 7.5, 3.0):
+            _warn("quasi_static", v)
+        warnings.warn("something else", stacklevel=2)
+        log.family("fig8")
+        _warn("quasi_static", 1.5)
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith("fig10: quasi_static = 2–7.5 (limit ≤ 1) in 3 runs: ")
+    assert err[1] == "fig10: warning: something else"
+    assert err[2].startswith("fig8: quasi_static = 1.5 (limit ≤ 1) in 1 run: ")
+    assert len(err) == 3
+    with WarningLog(0):
+        _warn("quasi_static", 2.0)
+    assert capsys.readouterr().err == ""
+
+
+def test_library_users_still_filter_validity_warnings():
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        _warn("tabor", 0.5)
+    assert len(rec) == 1 and issubclass(rec[0].category, ValidityWarning)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ValidityWarning)
+        with pytest.raises(ValidityWarning):
+            _warn("tabor", 0.5)
+
+
+def test_summary_line_counts_items_and_runs():
+    runs = [{"violations": ["a_over_R", "quasi_static"]}, {"violations": ["a_over_R"]}]
+    line = summary_line(runs, "the table")
+    assert line.startswith("validity: 2 items outside range in 2 runs (a_over_R in 2, ")
+    assert line.endswith("see the table")
+    assert summary_line([{"violations": []}], "x") == "validity: every item within range in 1 run"
+
+
+# Progress bars ------------------------------------------------------------------------------
+
+
+class _FakeBar:
+    made: list = []
+
+    def __init__(self, total=None, **kw):
+        self.total, self.n, self.desc, self.seen = total, 0, kw.get("desc", ""), []
+        self.total_while_running = total
+        _FakeBar.made.append(self)
+
+    def update(self, k):
+        self.n += k
+        self.seen.append((self.n, self.total))
+
+    def refresh(self):
+        pass
+
+    def close(self):
+        pass
+
+
+@pytest.fixture
+def fake_tqdm(monkeypatch):
+    import tqdm.auto
+
+    _FakeBar.made = []
+    monkeypatch.setattr(tqdm.auto, "tqdm", _FakeBar)
+    return _FakeBar.made
+
+
+def _check_bars(bars, kinds, spinners):
+    assert [b.desc.split()[1] for b in bars] == kinds
+    for b in bars:
+        assert b.total is not None and b.n == b.total  # exactly 100 % at the end
+        assert all(n <= t for n, t in b.seen if t is not None)  # never past the total
+        is_spinner = b.desc.split()[1] in spinners
+        assert (b.total_while_running is None) == is_spinner
+
+
+def test_every_segment_bar_ends_at_exactly_its_total(fake_tqdm):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = Model(STUBBY, seed=1)
+        m.run([protocol.PressTo(0.3, 0.02), protocol.Hold(7.3), protocol.PullOff(0.02)])
+        _check_bars(fake_tqdm, ["PressTo", "Hold", "PullOff"], {"PullOff"})
+        fake_tqdm.clear()
+        Model(STUBBY, seed=1).run([protocol.Press(m.Fc, 0.02), protocol.PullOff(0.02)])
+        _check_bars(fake_tqdm, ["Press", "PullOff"], {"Press", "PullOff"})
