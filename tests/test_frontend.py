@@ -128,3 +128,66 @@ def test_every_segment_bar_ends_at_exactly_its_total(fake_tqdm):
         fake_tqdm.clear()
         Model(STUBBY, seed=1).run([protocol.Press(m.Fc, 0.02), protocol.PullOff(0.02)])
         _check_bars(fake_tqdm, ["Press", "PullOff"], {"Press", "PullOff"})
+
+
+# Plain files ---------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def saved_run(tmp_path_factory):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        h = Model(STUBBY, seed=2).run(protocol.press_pull(0.3, 0.02), progress=False)
+    return h, h.save(tmp_path_factory.mktemp("run"))
+
+
+def test_pandas_reads_history_csv_with_default_arguments(saved_run):
+    import numpy as np
+
+    pd = pytest.importorskip("pandas")
+    from gecko_agents.history import SCALAR_COLUMNS, History
+
+    h, d = saved_run
+    df = pd.read_csv(d / "history.csv")
+    assert tuple(df.columns) == h.columns and h.columns[: len(SCALAR_COLUMNS)] == SCALAR_COLUMNS
+    for c in h.columns:  # the values round-trip exactly (repr of a float64)
+        np.testing.assert_array_equal(df[c].to_numpy(dtype=float), h[c])
+    loaded = History.load(d)
+    assert loaded.run_id() == h.run_id() and len(loaded) == len(h)
+
+
+def test_a_tampered_file_is_refused_by_its_checksum(saved_run, tmp_path):
+    import shutil
+
+    from gecko_agents.history import History
+
+    _, d = saved_run
+    for name in ("history.csv", "setae.npz"):
+        copy = tmp_path / name.replace(".", "_")
+        shutil.copytree(d, copy)
+        data = bytearray((copy / name).read_bytes())
+        i = len(data) // 2 if name.endswith("npz") else data.rindex(b"0")
+        data[i] = ord("1") if data[i] != ord("1") else ord("2")  # one byte: same length
+        (copy / name).write_bytes(bytes(data))
+        with pytest.raises(ValueError, match=f"{name} .*(SHA-256|corrupt)"):
+            History.load(copy)
+
+
+def test_directories_saved_with_the_run_id_comment_line_still_load(saved_run, tmp_path):
+    import json
+    import shutil
+
+    from gecko_agents.history import History
+
+    h, d = saved_run
+    old = tmp_path / "old"
+    shutil.copytree(d, old)
+    meta = json.loads((old / "metadata.json").read_text())
+    del meta["files"]
+    (old / "metadata.json").write_text(json.dumps(meta))
+    text = (old / "history.csv").read_text()
+    (old / "history.csv").write_text(f"# run_id: {meta['run_id']}\n{text}")
+    assert History.load(old).run_id() == h.run_id()
+    (old / "history.csv").write_text(f"# run_id: 0123456789abcdef\n{text}")
+    with pytest.raises(ValueError, match="belongs to run 0123456789abcdef"):
+        History.load(old)
