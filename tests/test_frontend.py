@@ -137,7 +137,8 @@ def test_every_segment_bar_ends_at_exactly_its_total(fake_tqdm):
 def saved_run(tmp_path_factory):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        h = Model(STUBBY, seed=2).run(protocol.press_pull(0.3, 0.02), progress=False)
+        big = STUBBY.replace(**{"array.count": 10_000_000})  # 3 simulated, scaled up
+        h = Model(big, n_sim=3, seed=2).run(protocol.press_pull(0.3, 0.02), progress=False)
     return h, h.save(tmp_path_factory.mktemp("run"))
 
 
@@ -191,3 +192,26 @@ def test_directories_saved_with_the_run_id_comment_line_still_load(saved_run, tm
     (old / "history.csv").write_text(f"# run_id: 0123456789abcdef\n{text}")
     with pytest.raises(ValueError, match="belongs to run 0123456789abcdef"):
         History.load(old)
+
+
+def test_a_floor_without_a_spectrum_gets_no_empty_panel(tmp_path):
+    import numpy as np
+
+    from gecko_agents import floor
+    from gecko_agents.render.floor_plots import plot_floor
+
+    x = np.linspace(0.0, 100.0, 201)
+    flat = floor.Profile(x, np.zeros_like(x), spacing=0.5, source="flat")
+    assert len(plot_floor(flat, tmp_path / "flat.png").axes) == 1
+    rough = floor.Profile(x, 0.1 * np.sin(x), spacing=0.5, source="sine")
+    assert len(plot_floor(rough, tmp_path / "rough.png").axes) == 2
+
+
+def test_the_force_figure_names_the_simulated_count_and_the_scale(saved_run):
+    from gecko_agents.render.force_plots import _count_title
+
+    h, _ = saved_run
+    n_sim, count = h.meta["n_sim"], h.params.array.count
+    assert n_sim == 3 and count != n_sim
+    numbers = [int(s.replace(" ", "")) for s in re.findall(r"\d[\d ]*\d|\d", _count_title(h))]
+    assert numbers == [n_sim, count]
