@@ -38,7 +38,7 @@ ADVICE = {
     "a_over_R": "the tip's forces are JKR's formula, not a sphere's (JKR needs a ≪ R)",
     "tabor": "below μ ≈ 5 Maugis–Dugdale or DMT apply, not JKR",
     "linear_deflection": 'the small-deflection beam left its range: use mechanics = "rod"',
-    "quasi_static": "halve the plate speed until the peak force stops moving",
+    "quasi_static": "slow the plate: the seta's damper costs a held tip that force",
     "time_step": "pass a smaller dt",
     "touched": "press deeper or slow the plate",
     "crack_deborah": "slow the plate or raise contact.crack_speed",

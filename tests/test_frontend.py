@@ -6,13 +6,14 @@ import subprocess
 import sys
 import warnings
 
+import numpy as np
 import pytest
 
 from gecko_agents import protocol
 from gecko_agents.console import WarningLog, summary_line
 from gecko_agents.diagnostics import ValidityWarning
 from gecko_agents.model import Model
-from gecko_agents.params import PAPER_ARRAY
+from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 
 STUBBY = PAPER_ARRAY.replace(**{"array.count": 3, "seta.L": 5.0, "floor.sigma": 0.3})
 PY_WARNING = re.compile(r"\.py:\d+: \w*Warning|warnings\.warn\(")
@@ -46,17 +47,17 @@ def test_one_line_per_item_per_family_and_quiet_prints_none(capsys):
     with WarningLog(1) as log:
         log.family("fig10")
         for v in (2.0, 7.5, 3.0):
-            _warn("quasi_static", v)
+            _warn("time_step", v)
         warnings.warn("something else", stacklevel=2)
         log.family("fig8")
-        _warn("quasi_static", 1.5)
+        _warn("time_step", 1.5)
     err = capsys.readouterr().err.splitlines()
-    assert err[0].startswith("fig10: quasi_static = 2–7.5 (limit ≤ 1) in 3 runs: ")
+    assert err[0].startswith("fig10: time_step = 2–7.5 (limit ≤ 1) in 3 runs: ")
     assert err[1] == "fig10: warning: something else"
-    assert err[2].startswith("fig8: quasi_static = 1.5 (limit ≤ 1) in 1 run: ")
+    assert err[2].startswith("fig8: time_step = 1.5 (limit ≤ 1) in 1 run: ")
     assert len(err) == 3
     with WarningLog(0):
-        _warn("quasi_static", 2.0)
+        _warn("time_step", 2.0)
     assert capsys.readouterr().err == ""
 
 
@@ -215,3 +216,56 @@ def test_the_force_figure_names_the_simulated_count_and_the_scale(saved_run):
     assert n_sim == 3 and count != n_sim
     numbers = [int(s.replace(" ", "")) for s in re.findall(r"\d[\d ]*\d|\d", _count_title(h))]
     assert numbers == [n_sim, count]
+
+
+# The quasi-static diagnostic against measured speed halving -----------------------------------
+
+_STIFF = PAPER_TABLE1.replace(**{"seta.L": 5.0})
+_FLAT20 = PAPER_ARRAY.replace(**{"floor.sigma": 0.0, "seta.L": 20.0})
+QS_CASES = {  # name: (params, n_sim, press depth [µm])
+    "sphere_linear": (_STIFF, 1, 0.3),
+    "sphere_rod": (_STIFF.replace(mechanics="rod"), 2, 0.3),
+    "array_linear": (_FLAT20, 1, 0.5),
+    "array_rod": (_FLAT20.replace(mechanics="rod"), 1, 0.5),
+}
+
+
+def _pull_branch(h):
+    """Plate height and total normal force from the deepest point to the pull-off peak."""
+    f, y = h["force_normal_uN"], h["plate_y_um"]
+    i0, ipk = int(np.argmin(y)), int(np.argmin(f))
+    return y[i0 : ipk + 1], f[i0 : ipk + 1]
+
+
+@pytest.mark.parametrize("case", list(QS_CASES))
+def test_quasi_static_value_predicts_the_change_of_halving_the_speed(case):
+    """q = ζ·Ky·v·T/(π·Fc) is the force the moving plate costs a held tip over Fc: halving
+    the speed must move the pull's force curve (at the plate height where the slower run
+    holds half its pull-off) by q/2 of n·Fc, within a factor of 3."""
+    params, n, depth = QS_CASES[case]
+    v = 0.4  # µm/µs: fast enough for the change to stand clear of the step's resolution
+    runs = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for speed in (v, v / 2):
+            m = Model(params, n_sim=n, seed=1, record_every=1)
+            runs.append(m.run(protocol.press_pull(depth, speed=speed), progress=False))
+    fast, slow = runs
+    q = fast.meta["validity"]["items"]["quasi_static"]["value"]
+    y_s, f_s = _pull_branch(slow)
+    k = int(np.argmax(f_s <= -0.5 * n * m.Fc))
+    y_f, f_f = _pull_branch(fast)
+    order = np.argsort(y_f)
+    measured = abs(np.interp(y_s[k], y_f[order], f_f[order]) - f_s[k]) / (n * m.Fc)
+    assert q / 2 / 3 <= measured <= 3 * q / 2, (q / 2, measured)
+
+
+def test_quasi_static_is_not_judged_for_a_peeling_film_or_a_tip_without_adhesion():
+    spatula = PAPER_ARRAY.replace(**{"tip": "spatula", "mechanics": "rod", "floor.sigma": 0.0})
+    for params in (spatula, _STIFF.replace(tip="hertz")):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            h = Model(params, n_sim=1, seed=1).run(protocol.press_pull(0.3, 0.2), progress=False)
+        item = h.meta["validity"]["items"]["quasi_static"]
+        assert item["value"] is None and item["ok"] is None
+        assert item["plate_speed_um_per_us"] > 0
