@@ -46,6 +46,7 @@ __all__ = [
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 PROG = "gecko-agents"
+HELP_WIDTH = 100  # longest line ``params`` prints
 
 
 class UsageError(Exception):
@@ -341,32 +342,40 @@ def _add_params(p: argparse.ArgumentParser) -> None:
 
 
 def _cmd_params(args, extra) -> int:
+    import textwrap
+
     from gecko_agents.runfiles.run import PRESETS, preset_docs
+
+    def wrapped(text: str, indent: str, first: str = "") -> str:
+        return textwrap.fill(" ".join(text.split()), HELP_WIDTH, initial_indent=first or indent,
+                             subsequent_indent=indent, break_on_hyphens=False)  # fmt: skip
 
     docs = preset_docs()
     if args.preset is None:
         print("Presets (show one with: gecko-agents params NAME):")
-        width = max(map(len, PRESETS))
         for name in PRESETS:
-            line = docs.get(name, "").split("\n", 1)[0]
-            print(f"  {name:<{width}}  {line}")
+            print(wrapped(docs.get(name, "").split("\n\n", 1)[0], " " * 4, f"  {name}: "))
         return EXIT_OK
     match = [n for n in PRESETS if n.lower() == args.preset.lower()]
     if not match:
         raise UsageError(f"unknown preset {args.preset!r}; allowed: {', '.join(PRESETS)}")
     name = match[0]
-    print(f"{name}: {docs.get(name, '').split(chr(10), 1)[0]}")
-    print(
+    print(wrapped(docs.get(name, "").split("\n\n", 1)[0], "  ", f"{name}: "))
+    print(wrapped(
         "Units: µm, µN, µs, ng; MPa = µN/µm², µN/µm = N/m = J/m². Derived quantities in "
-        "parentheses; override a parameter in a run file's [params] by its dotted name.\n"
-    )
-    rows = [("parameter", "value", "unit", "equation", "meaning")]
-    rows += [(n, v, u, e, m) for n, v, u, m, e in parameter_table(PRESETS[name])]
+        "parentheses; override a parameter in a run file's [params] by its dotted name "
+        "(e.g. \"seta.L\" = 5.0). Each parameter's meaning is on the lines under it.", ""))
+    print()
+    rows = [("parameter", "value", "unit", "equation")]
+    table = parameter_table(PRESETS[name])
+    rows += [(n, v, u, e) for n, v, u, _, e in table]
     widths = [max(len(r[i]) for r in rows) for i in range(4)]
     for i, row in enumerate(rows):
-        print("  ".join(c.ljust(w) for c, w in zip(row[:4], widths, strict=True)) + "  " + row[4])
+        print("  ".join(c.ljust(w) for c, w in zip(row, widths, strict=True)).rstrip())
         if i == 0:
-            print("  ".join("-" * w for w in widths) + "  " + "-" * 7)
+            print("  ".join("-" * w for w in widths))
+        elif table[i - 1][3]:
+            print(wrapped(table[i - 1][3], " " * 4))
     return EXIT_OK
 
 

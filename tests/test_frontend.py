@@ -269,3 +269,39 @@ def test_quasi_static_is_not_judged_for_a_peeling_film_or_a_tip_without_adhesion
         item = h.meta["validity"]["items"]["quasi_static"]
         assert item["value"] is None and item["ok"] is None
         assert item["plate_speed_um_per_us"] > 0
+
+
+# Help and advice -----------------------------------------------------------------------------
+
+
+def test_params_lines_fit_100_columns_and_every_parameter_has_a_meaning(capsys):
+    from gecko_agents.cli import main
+    from gecko_agents.params.table import parameter_table
+    from gecko_agents.runfiles.run import PRESETS, preset_docs
+
+    assert main(["params"]) == 0
+    listing = capsys.readouterr().out
+    for name, doc in preset_docs().items():  # each preset's first paragraph, whole
+        words = doc.split("\n\n", 1)[0].split()
+        assert " ".join(words) in " ".join(listing.split()), name
+    for name in PRESETS:
+        assert main(["params", name]) == 0
+        text = capsys.readouterr().out
+        assert max(map(len, text.splitlines())) <= 100
+        assert all(row[3] for row in parameter_table(PRESETS[name])), name
+
+
+def test_a_nested_params_table_gets_advice_in_toml(tmp_path, capsys):
+    import tomllib
+
+    from gecko_agents.cli import main
+
+    run = tmp_path / "nested.toml"
+    run.write_text(
+        'preset = "PAPER_TABLE1"\n[params.seta]\nL = 5.0\nr = 1.5\n'
+        '[[protocol]]\nsegment = "press_to"\ndepth_um = 0.3\n'
+    )
+    assert main(["run", str(run), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    advice = err.split("instead: ", 1)[1].strip().replace("; ", "\n")
+    assert tomllib.loads(advice) == {"seta.L": 5.0, "seta.r": 1.5}
