@@ -361,10 +361,14 @@ def _cmd_params(args, extra) -> int:
         raise UsageError(f"unknown preset {args.preset!r}; allowed: {', '.join(PRESETS)}")
     name = match[0]
     print(wrapped(docs.get(name, "").split("\n\n", 1)[0], "  ", f"{name}: "))
-    print(wrapped(
-        "Units: µm, µN, µs, ng; MPa = µN/µm², µN/µm = N/m = J/m². Derived quantities in "
-        "parentheses; override a parameter in a run file's [params] by its dotted name "
-        "(e.g. \"seta.L\" = 5.0). Each parameter's meaning is on the lines under it.", ""))
+    print(
+        wrapped(
+            "Units: µm, µN, µs, ng; MPa = µN/µm², µN/µm = N/m = J/m². Derived quantities in "
+            "parentheses; override a parameter in a run file's [params] by its dotted name "
+            '(e.g. "seta.L" = 5.0). Each parameter\'s meaning is on the lines under it.',
+            "",
+        )
+    )
     print()
     rows = [("parameter", "value", "unit", "equation")]
     table = parameter_table(PRESETS[name])

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import ast
 import dataclasses
-import json
 import inspect
+import json
 import re
 import tomllib
 from pathlib import Path
