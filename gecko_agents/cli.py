@@ -460,7 +460,7 @@ COMMANDS: dict[str, Command] = {
         own_help=False,
     ),
 }
-"""Subcommand name → :class:`Command`."""
+"""Subcommand name → ``Command``."""
 
 
 def build_parser() -> argparse.ArgumentParser:
