@@ -2,11 +2,11 @@
 
 ::
 
-    gecko-agents run RUNFILE.toml [--out DIR] [--quick] [--gif|--mp4]
+    gecko-agents run RUNFILE.toml [--out DIR] [--quick] [--gif|--mp4] [--quiet|--verbose]
     gecko-agents sweep SWEEPFILE.toml [--out DIR] [--quick] [--dask ADDR] [--resume]
-    gecko-agents reproduce [--quick]
+    gecko-agents reproduce [--quick] [--quiet|--verbose]
     gecko-agents render RUN_DIR [--gif|--mp4]
-    gecko-agents bench [--quick]
+    gecko-agents bench [--quick] [--quiet|--verbose]
     gecko-agents params [PRESET]
     gecko-agents calibrate ...        (when gecko_agents/calibrate.py is present)
 
@@ -14,6 +14,10 @@ Run files are described in :mod:`gecko_agents.runfiles.run`, sweep files in
 :mod:`gecko_agents.runfiles.sweep`; ``examples/`` holds one of each kind of study. ``python -m
 gecko_agents`` is this command line too. Exit codes: 0 success, 1 the run failed, 2 a usage
 or input error (nothing was run), 130 interrupted (Ctrl-C; nothing half-written).
+
+Warnings (:mod:`gecko_agents.console`): ``run``, ``reproduce`` and ``bench`` print one short
+line per validity item per run family and end with a one-line validity summary; ``--quiet``
+keeps the summary only, ``--verbose`` prints every warning as it comes.
 
 Each subcommand is one ``_cmd_<name>(args, extra) -> int`` handler and one entry of
 :data:`COMMANDS`, which builds its parser; adding a subcommand touches nothing else.
