@@ -2,11 +2,11 @@
 
 ::
 
-    gecko-agents run RUNFILE.toml [--out DIR] [--quick] [--gif|--mp4]
+    gecko-agents run RUNFILE.toml [--out DIR] [--quick] [--gif|--mp4] [--quiet|--verbose]
     gecko-agents sweep SWEEPFILE.toml [--out DIR] [--quick] [--dask ADDR] [--resume]
-    gecko-agents reproduce [--quick]
+    gecko-agents reproduce [--quick] [--quiet|--verbose]
     gecko-agents render RUN_DIR [--gif|--mp4]
-    gecko-agents bench [--quick]
+    gecko-agents bench [--quick] [--quiet|--verbose]
     gecko-agents params [PRESET]
     gecko-agents calibrate ...        (when gecko_agents/calibrate.py is present)
 
@@ -14,6 +14,10 @@ Run files are described in :mod:`gecko_agents.runfiles.run`, sweep files in
 :mod:`gecko_agents.runfiles.sweep`; ``examples/`` holds one of each kind of study. ``python -m
 gecko_agents`` is this command line too. Exit codes: 0 success, 1 the run failed, 2 a usage
 or input error (nothing was run), 130 interrupted (Ctrl-C; nothing half-written).
+
+Warnings (:mod:`gecko_agents.console`): ``run``, ``reproduce`` and ``bench`` print one short
+line per validity item per run family and end with a one-line validity summary; ``--quiet``
+keeps the summary only, ``--verbose`` prints every warning as it comes.
 
 Each subcommand is one ``_cmd_<name>(args, extra) -> int`` handler and one entry of
 :data:`COMMANDS`, which builds its parser; adding a subcommand touches nothing else.
@@ -30,6 +34,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from gecko_agents import __version__
+from gecko_agents.console import WarningLog, add_verbosity_arguments, summary_line, verbosity
 from gecko_agents.output_paths import check_output_dir, output_dir_arg
 from gecko_agents.params.table import parameter_table
 
@@ -45,6 +50,7 @@ __all__ = [
 
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 PROG = "gecko-agents"
+HELP_WIDTH = 100  # longest line ``params`` prints
 
 
 class UsageError(Exception):
@@ -94,6 +100,7 @@ def _add_run(p: argparse.ArgumentParser) -> None:
         help="also write detachment.mp4 (needs pip install -e '.[video]')",
     )
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
+    add_verbosity_arguments(p)
 
 
 def _default_run_dir(runfile: Path) -> Path:
@@ -120,9 +127,11 @@ def _cmd_run(args, extra) -> int:
     argv = [str(args.runfile)] + (["--quick"] if args.quick else [])
     t0 = time.perf_counter()
     try:
-        out, history = runfile.execute_run(
-            spec, out, animation=args.animation, progress=not args.no_progress, argv=argv
-        )
+        with WarningLog(verbosity(args)) as log:
+            log.family(args.runfile.name)
+            out, history = runfile.execute_run(
+                spec, out, animation=args.animation, progress=not args.no_progress, argv=argv
+            )
     except runfile.RunFileError:
         raise
     except KeyboardInterrupt:
@@ -148,6 +157,7 @@ def _cmd_run(args, extra) -> int:
         f"re-run it with: {PROG} run {shlex.quote(str(out / runfile.RUN_FILE_NAME))}"
         f"{' --quick' if args.quick else ''}"
     )
+    print(summary_line([m["validity"]], f"'validity' in {out / 'metadata.json'}"))
     return EXIT_OK
 
 
@@ -269,13 +279,16 @@ def _add_reproduce(p: argparse.ArgumentParser) -> None:
         "--out", type=output_dir_arg, default=None, help="output folder (default renders/)"
     )
     p.add_argument("--no-progress", action="store_true", help="hide progress bars")
+    add_verbosity_arguments(p)
 
 
 def _cmd_reproduce(args, extra) -> int:
     from gecko_agents.studies import reproduce_paper
 
     argv = (["--quick"] if args.quick else []) + (["--out", str(args.out)] if args.out else [])
-    argv += (["--no-progress"] if args.no_progress else []) + list(extra)
+    argv += ["--no-progress"] if args.no_progress else []
+    argv += (["--quiet"] if args.quiet else []) + (["--verbose"] if args.verbose else [])
+    argv += list(extra)
     try:
         reproduce_paper.main(argv)
     except KeyboardInterrupt:
@@ -306,14 +319,19 @@ def _add_bench(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--no-dask", action="store_true", help="skip the 1- vs 2-worker Dask sweep throughput"
     )
+    add_verbosity_arguments(p)
 
 
 def _cmd_bench(args, extra) -> int:
     from gecko_agents import bench
 
-    bench.main(
-        (["--quick"] if args.quick else []) + (["--no-dask"] if args.no_dask else []) + list(extra)
-    )
+    with WarningLog(verbosity(args)) as log:
+        log.family("bench")
+        bench.main(
+            (["--quick"] if args.quick else [])
+            + (["--no-dask"] if args.no_dask else [])
+            + list(extra)
+        )
     return EXIT_OK
 
 
@@ -328,32 +346,44 @@ def _add_params(p: argparse.ArgumentParser) -> None:
 
 
 def _cmd_params(args, extra) -> int:
+    import textwrap
+
     from gecko_agents.runfiles.run import PRESETS, preset_docs
+
+    def wrapped(text: str, indent: str, first: str = "") -> str:
+        return textwrap.fill(" ".join(text.split()), HELP_WIDTH, initial_indent=first or indent,
+                             subsequent_indent=indent, break_on_hyphens=False)  # fmt: skip
 
     docs = preset_docs()
     if args.preset is None:
         print("Presets (show one with: gecko-agents params NAME):")
-        width = max(map(len, PRESETS))
         for name in PRESETS:
-            line = docs.get(name, "").split("\n", 1)[0]
-            print(f"  {name:<{width}}  {line}")
+            print(wrapped(docs.get(name, "").split("\n\n", 1)[0], " " * 4, f"  {name}: "))
         return EXIT_OK
     match = [n for n in PRESETS if n.lower() == args.preset.lower()]
     if not match:
         raise UsageError(f"unknown preset {args.preset!r}; allowed: {', '.join(PRESETS)}")
     name = match[0]
-    print(f"{name}: {docs.get(name, '').split(chr(10), 1)[0]}")
+    print(wrapped(docs.get(name, "").split("\n\n", 1)[0], "  ", f"{name}: "))
     print(
-        "Units: µm, µN, µs, ng; MPa = µN/µm², µN/µm = N/m = J/m². Derived quantities in "
-        "parentheses; override a parameter in a run file's [params] by its dotted name.\n"
+        wrapped(
+            "Units: µm, µN, µs, ng; MPa = µN/µm², µN/µm = N/m = J/m². Derived quantities in "
+            "parentheses; override a parameter in a run file's [params] by its dotted name "
+            '(e.g. "seta.L" = 5.0). Each parameter\'s meaning is on the lines under it.',
+            "",
+        )
     )
-    rows = [("parameter", "value", "unit", "equation", "meaning")]
-    rows += [(n, v, u, e, m) for n, v, u, m, e in parameter_table(PRESETS[name])]
+    print()
+    rows = [("parameter", "value", "unit", "equation")]
+    table = parameter_table(PRESETS[name])
+    rows += [(n, v, u, e) for n, v, u, _, e in table]
     widths = [max(len(r[i]) for r in rows) for i in range(4)]
     for i, row in enumerate(rows):
-        print("  ".join(c.ljust(w) for c, w in zip(row[:4], widths, strict=True)) + "  " + row[4])
+        print("  ".join(c.ljust(w) for c, w in zip(row, widths, strict=True)).rstrip())
         if i == 0:
-            print("  ".join("-" * w for w in widths) + "  " + "-" * 7)
+            print("  ".join("-" * w for w in widths))
+        elif table[i - 1][3]:
+            print(wrapped(table[i - 1][3], " " * 4))
     return EXIT_OK
 
 
@@ -434,7 +464,7 @@ COMMANDS: dict[str, Command] = {
         own_help=False,
     ),
 }
-"""Subcommand name → :class:`Command`."""
+"""Subcommand name → ``Command``."""
 
 
 def build_parser() -> argparse.ArgumentParser:

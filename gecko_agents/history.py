@@ -12,13 +12,14 @@ Sign conventions (units µm, µN, µs, pJ):
   contact force in the quasi-static limit);
 * per-seta ``state``: 0 free, 1 attached and sticking, 2 attached and sliding.
 
-Run directory integrity. Every file of a saved run carries the run's identifier
-(:meth:`History.run_id`: a hash of the parameters, seed, protocol, code version and the recorded
-series): ``metadata.json`` as ``"run_id"``, ``setae.npz`` as the array ``run_id`` and
-``history.csv`` as its first line ``# run_id: <id>`` (a comment: ``numpy.loadtxt`` skips it,
-``pandas.read_csv(path, comment="#")`` too). :func:`load` refuses a directory whose files
-disagree, whose table is not the one the identifier was made from, or whose row count is not
-``n_records``: a save interrupted half-way or a truncated file never loads as a result.
+Run directory integrity. ``history.csv`` is plain CSV (a header of column names, one row per
+record: ``pandas.read_csv(path)`` reads it). ``metadata.json``, written last, holds the run's
+identifier (:meth:`History.run_id`, a hash of the parameters, seed, protocol, code version and
+series) as ``"run_id"`` and the SHA-256 of each data file as ``"files"``; ``setae.npz`` carries
+the identifier too. :func:`load` refuses files that disagree, a table not the one the identifier
+was made from or not ``n_records`` long, and a file whose SHA-256 is not the recorded one
+(naming it). Directories saved before the checksums (a ``# run_id: <id>`` first line in
+``history.csv``, no ``"files"``) still load, checked by that line.
 """
 
 from __future__ import annotations
@@ -253,6 +254,11 @@ class History:
         text = json.dumps(ident, sort_keys=True, default=_json_default)
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
+    @classmethod
+    def load(cls, directory) -> History:
+        """Read a run directory written by :meth:`save` (the same as :func:`load`)."""
+        return load(directory)
+
     def metadata(self) -> dict:
         """Everything needed to reproduce the run: parameters, seed, meta, versions, run_id."""
         meta = {
@@ -270,8 +276,9 @@ class History:
         """Write ``history.csv``, ``metadata.json`` and ``setae.npz`` into ``directory``.
 
         Each file is written to a temporary name and renamed, so a killed run never leaves a
-        half-written file under the final name; every file carries :meth:`run_id`, and
-        ``metadata.json`` is written last, so a save interrupted half-way does not load.
+        half-written file under the final name; ``metadata.json`` carries :meth:`run_id` and
+        the SHA-256 of the other two files and is written last, so a save interrupted half-way
+        does not load.
         If ``directory`` holds a different run, its files (:data:`RUN_FILES`, e.g. a
         ``detachment.gif`` drawn from it) are removed first; other files are left alone.
         """
@@ -284,13 +291,13 @@ class History:
             for name in RUN_FILES:  # metadata.json before the data it describes is replaced
                 (d / name).unlink(missing_ok=True)
         buf = io.StringIO()
-        buf.write(f"# run_id: {run_id}\n")
         writer = csv.writer(buf, lineterminator="\n")
         writer.writerow(self.columns)
         cols = [np.asarray(self.scalars[c]) for c in self.columns]
         for row in zip(*cols, strict=True):
             writer.writerow([repr(float(v)) for v in row])
-        atomic_write_bytes(d / "history.csv", buf.getvalue().encode())
+        files = {"history.csv": buf.getvalue().encode()}
+        atomic_write_bytes(d / "history.csv", files["history.csv"])
         arrays = {f"setae__{k}": np.asarray(v) for k, v in self.setae.items()}
         arrays |= {f"geometry__{k}": np.asarray(v) for k, v in self.geometry.items()}
         arrays |= {f"detachments__{k}": np.asarray(v) for k, v in self.detachments.items()}
@@ -298,8 +305,11 @@ class History:
         arrays["run_id"] = np.array(run_id)
         npz = io.BytesIO()
         np.savez_compressed(npz, **arrays)
-        atomic_write_bytes(d / "setae.npz", npz.getvalue())
-        text = json.dumps(self.metadata(), indent=2, default=_json_default)
+        files["setae.npz"] = npz.getvalue()
+        atomic_write_bytes(d / "setae.npz", files["setae.npz"])
+        meta = self.metadata()
+        meta["files"] = {name: hashlib.sha256(data).hexdigest() for name, data in files.items()}
+        text = json.dumps(meta, indent=2, default=_json_default)
         atomic_write_bytes(d / "metadata.json", text.encode())
         return d
 
@@ -347,7 +357,8 @@ def load(directory) -> History:
             f"{csv_path} has {what}, but {meta_path.name} says n_records = {n_records}: the "
             "file was truncated or the save was interrupted; re-run to regenerate it"
         )
-    if csv_id != saved_id:
+    checksums = meta.pop("files", None)  # None: saved before them, with a run_id comment line
+    if checksums is None and csv_id != saved_id:
         raise ValueError(
             f"{csv_path} belongs to run {csv_id}, but {meta_path.name} to run {saved_id}: "
             "the directory mixes files of two runs (an interrupted save?); re-run to "
@@ -361,6 +372,8 @@ def load(directory) -> History:
                 f"{npz_path} belongs to run {npz_id}, but {meta_path.name} to run "
                 f"{saved_id}: the directory mixes files of two runs; re-run to regenerate it"
             )
+    if checksums is not None:
+        _check_checksums(d, checksums, saved_id)
     meta.pop("columns", None)
     saved_id = meta.pop("run_id", None)
     try:
@@ -384,6 +397,19 @@ def load(directory) -> History:
     return h
 
 
+def _check_checksums(d: Path, checksums: dict, run_id) -> None:
+    """Refuse a file of ``d`` whose SHA-256 is not the one ``metadata.json`` recorded."""
+    for name, expected in checksums.items():
+        path = d / name
+        if not path.is_file():
+            raise FileNotFoundError(f"{name} is missing from run directory {str(d)!r}")
+        if hashlib.sha256(path.read_bytes()).hexdigest() != expected:
+            raise ValueError(
+                f"{path} is not the file run {run_id} saved: its SHA-256 is not the one "
+                "metadata.json recorded (edited, truncated or of another run); re-run it"
+            )
+
+
 def _read_metadata(meta_path: Path) -> tuple[dict, dict, SetaArray, int, int | None]:
     """metadata.json as (the rest of its dict, its params as recorded, params, seed,
     n_records or None)."""
@@ -404,8 +430,9 @@ def _read_metadata(meta_path: Path) -> tuple[dict, dict, SetaArray, int, int | N
 
 
 def _read_series(csv_path: Path) -> tuple[str | None, tuple[str, ...], np.ndarray]:
-    """history.csv as (the run_id of its ``#`` header, its columns, the table, one row per
-    record); refuses a table that does not start with SCALAR_COLUMNS."""
+    """history.csv as (the run_id of its ``#`` header line, which files saved before the
+    checksums carry, else None; its columns; the table, one row per record); refuses a table
+    that does not start with SCALAR_COLUMNS."""
     try:
         text = csv_path.read_text(encoding="utf-8")
         lines = text.split("\n")

@@ -52,7 +52,7 @@ def drag_span(h, drag: float | None = None) -> tuple[int, int]:
     """Indices of the records where the drag starts and ends.
 
     Start: the last record before the plate moves along x. End: the first record with the
-    plate at its start + ``drag`` [µm] (within :data:`AT_END_UM`) and still at the drag's
+    plate at its start + ``drag`` [µm] (within ``AT_END_UM``) and still at the drag's
     height; if that record was not kept (``record_every`` > 1), the last record at the drag's
     height, before the pull lifted the plate (a pull along the floor, at 0° or 180°, never
     lifts it: keep every record for those). Without a drag (``drag == 0``) both are the

@@ -1,7 +1,8 @@
 """The pull of a load–(drag–)pull: the release point and the pull-off, each defined once.
 
-The pull phase is every record from the end of the drag (:func:`gecko_agents.analysis.drag.
-drag_span`; without a drag, from the press's largest force) to the end of the history.
+The pull phase is every record from the end of the drag
+(:func:`gecko_agents.analysis.drag.drag_span`; without a drag, from the press's largest force)
+to the end of the history.
 
 * **Release point** — the record of the largest force |F| = √(F⊥² + F∥²) the seta held *in
   tension* in the pull: the limit it withstood, the point of a limit curve

@@ -73,7 +73,7 @@ class ChainPivots:
 
     :meth:`forces` returns the pivot forces and torques of a step; :attr:`gap_max` [µm] is the
     largest pivot gap at the positions that step reached (before its correction), and
-    :attr:`gap_next` [µm] the largest the pivot forces leave at the positions after it.
+    ``gap_next`` [µm] the largest the pivot forces leave at the positions after it.
     ``newton`` extra solves with the same factorisation remove the rotation's curvature term
     from the gap after the step as well (position-level, as SHAKE: Ryckaert, Ciccotti &
     Berendsen 1977, J Comput Phys 23:327); 0 is the velocity-level solve with β alone."""

@@ -73,8 +73,8 @@ class Strip:
     * :attr:`kinetic` [pJ]: Σ ½m·v_n·v_{n+1} + ½I·ω_n·ω_{n+1} (the form semi-implicit Euler
       conserves for a linear spring, as :meth:`gecko_agents.model.Model.kinetic_energy`);
     * :attr:`dissipated` [pJ]: the joint dampers' dissipation in the step;
-    * :attr:`rows`: the links' (x, y, φ, vx, vy, ω) after the step (those before it in
-      :attr:`rows_before`).
+    * ``rows``: the links' (x, y, φ, vx, vy, ω) after the step (those before it in
+      ``rows_before``).
 
     The pivot forces are not booked: they do no work as long as the pivots hold (their gap,
     :attr:`gap_max` [µm] at the positions each step reaches, stays at the one-step curvature
@@ -198,7 +198,7 @@ class Strip:
     def step(self, dt, fx=0.0, fy=0.0, torque=0.0) -> np.ndarray:
         """One step of ``dt`` [µs] under external forces ``fx``, ``fy`` [µN] and torques
         ``torque`` [pJ] on the links (link order, evaluated at the positions the step
-        reaches) besides the joints' own and the pivots'; returns :attr:`rows` after it."""
+        reaches) besides the joints' own and the pivots'; returns ``rows`` after it."""
         d = self.rows
         n = self.n
         fx = np.broadcast_to(np.asarray(fx, dtype=float), n)

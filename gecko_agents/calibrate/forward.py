@@ -21,8 +21,11 @@ from gecko_agents.physics.beam import touchdown_height
 
 @dataclass
 class Forward:
-    """How the model is evaluated.
+    """How the model is evaluated. The defaults are set by the forward model's noise (see
+    :func:`gecko_agents.calibrate.fit`).
 
+    Attributes
+    ----------
     kind : ``"quasistatic"`` (default; :mod:`quasistatic` on representative heights) or
         ``"agent"`` (the pymunk model on an ``n_sim`` patch, scaled to the array; slow, for a
         final check of a fitted point).
@@ -36,8 +39,6 @@ class Forward:
         on it, measured: 0.0072 and 0.02 µm give the same pull-offs to 5 digits).
     retract_dz : largest retract step [µm] (the step is travel/retract_steps or this, the
         smaller); the peak is refined by bisection (``preload_pulls(refine_peak=True)``).
-
-    The defaults are set by the forward model's noise (see :func:`gecko_agents.calibrate.fit`).
     """
 
     kind: str = "quasistatic"
@@ -70,7 +71,7 @@ def predict_quasistatic(
     data: Data, params: SetaArray, stiffness_scale: float, forward: Forward
 ) -> np.ndarray:
     """Quasi-static model values for each observation of ``data`` [µN, µm] (see
-    :func:`gecko_agents.calibrate.predict`)."""
+    ``gecko_agents.calibrate.predict``)."""
     if data.kind == "preload":
         return _pull_offs(data, params, stiffness_scale, forward)
     c = data.columns

@@ -19,6 +19,8 @@ from gecko_agents.output_paths import atomic_write_bytes
 class FitResult:
     """Outcome of :func:`gecko_agents.calibrate.fit`.
 
+    Attributes
+    ----------
     values, stderr : fitted value and one standard error per free parameter (dicts by name);
         the standard error is NaN where none holds (on a bound, or zero residual degrees of
         freedom without stated uncertainties: see the module docstring).

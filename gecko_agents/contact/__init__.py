@@ -30,8 +30,8 @@ Each law gives the same formulas twice, kept side by side so that they cannot dr
 vectorized numpy methods (the general floor path, recording, energies) and scalar
 ``@staticmethod`` functions with ``k``, the law's constants, as last argument
 (:attr:`ContactLaw.constants`, a float64 array read by the named indices ``K_*`` of each law's
-module; the slots every tangential law fills on attachment are :data:`.base.K_ATTACH_RADIUS` and
-:data:`.base.K_ATTACH_FILM`) that the per-seta loop calls, compiled by numba or interpreted
+module; the slots every tangential law fills on attachment are ``base.K_ATTACH_RADIUS`` and
+``base.K_ATTACH_FILM``) that the per-seta loop calls, compiled by numba or interpreted
 (:mod:`gecko_agents.model.step_numpy`). ``tests/test_contact.py`` pins both forms of every law to
 its closed form (:mod:`gecko_agents.physics.jkr`) point by point. Formulas the laws share with
 the rest of the model have one home in :mod:`gecko_agents.physics` (the friction cap and

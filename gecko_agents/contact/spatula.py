@@ -103,7 +103,7 @@ def _friction_cap(z, ell, k):
     attached: ``adhesive`` μ·2Fc·ℓ/ℓ0, the adhesion part of Thornton's μ|P + 2Fc| (Fc = w·b), or
     ``paper`` 0 (eq 27's μ·max(P, 0) with no load on the pad). The pad carries no normal load:
     the film's pull acts at the peel front (Kendall's picture) and the Hertz compression P_c on
-    the tip body, whose own friction μ·P_c is :func:`_tip_stick`'s (counted once, there)."""
+    the tip body, whose own friction μ·P_c is ``_tip_stick``'s (counted once, there)."""
     return friction_cap(0.0, k[K_FC], k[K_MU], k[K_PAPER] > 0.0) * ell / k[K_ELL0]
 
 
@@ -177,7 +177,7 @@ def _stretch(dx, zf, ell, p0, s0, K, c):
     """The pad pulled away from itself beyond its pre-tension (H > P0, dx < 0): it stretches
     (material kept, far end held) until H = P0 or P0 reaches the cap c·ℓ, then the whole pad
     slides towards the tip to where H = cap. Returns (stretch + slide [µm] towards the tip,
-    ℓ, P0, slid) (:func:`_slide`)."""
+    ℓ, P0, slid) (``_slide``)."""
     rate = (K + p0) / ell - c  # d(P0 − cap)/dv
     v_cap = (c * ell - p0) / rate if rate > 0.0 else math.inf  # P0 reaches the cap
     if v_cap < -dx and _pull_on_front(dx + v_cap, zf, s0, K) >= c * (ell + v_cap):
@@ -284,7 +284,7 @@ class SpatulaTip(ContactLaw):
     Every step, at the tip's position (a quasi-static front: the energy balance holds at the
     end of each step):
 
-    1. **Slide** (:func:`_slide`). The film pulls the front along the floor with H = F·|dx|/s
+    1. **Slide** (``_slide``). The film pulls the front along the floor with H = F·|dx|/s
        against the pad's friction cap: adhesive μ·2Fc·ℓ/ℓ0 — friction acts on what is still
        attached, at zero and tensile load too (the adhesion part of Thornton's μ|P + 2Fc|,
        Fc = w·b: the film's pull acts at the front and the compression on the tip body, so the
@@ -303,7 +303,7 @@ class SpatulaTip(ContactLaw):
        it is Chen, Wu & Gao's G = P(1 − cos φ) + (P − P0)²/(2E_f·h) (per width).
     3. **Forces.** On the tip: −F·(dx, z)/s from the film plus the Hertz compression
        P_c = (4/3)E*√R·δ^(3/2) of the tip body while δ = R − z > 0 (pressing).
-    4. **Tip friction** (:func:`_tip_stick`). The pressed tip body holds tangentially by its
+    4. **Tip friction** (``_tip_stick``). The pressed tip body holds tangentially by its
        own Coulomb friction, capped at μ·P_c (Amontons–Coulomb on the compressive part of the
        normal load, both friction laws), on a stick spring k_t = 8G*·a (Mindlin 1949, at the
        radius of :class:`~gecko_agents.contact.HertzSphere`'s reference) from its anchor

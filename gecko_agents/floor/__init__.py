@@ -13,8 +13,7 @@ Two more floors are not from eq 28:
 * :func:`self_affine` — a random self-affine (fractal) profile with Hurst exponent H between a
   short and a long wavelength cutoff, by spectral synthesis (Persson et al. 2005);
 * :func:`from_profile` — a measured profile (arrays; files through
-:mod:`gecko_agents.floor.readers`),
-  detrended, converted to µm and resampled to a uniform spacing.
+  :mod:`gecko_agents.floor.readers`), detrended, converted to µm and resampled to a uniform spacing.
 
 :func:`for_array` is the one place the models turn ``params.Floor`` (or a measured profile)
 into the floor under an array; :func:`statistics` summarises any profile (RMS height and slope,
@@ -341,7 +340,7 @@ def for_array(
 
     ``measured`` (a profile object, e.g. from :func:`from_profile` or
     :mod:`gecko_agents.floor.readers`) wins: its start is put under the left edge of the floor,
-    x_centres.min() − margin (:func:`place`), and it must reach x_centres.max() + margin.
+    x_centres.min() − margin (``place``), and it must reach x_centres.max() + margin.
     Otherwise ``floor_params.kind`` chooses: ``"gaussian"`` → :func:`make_profile` (eq 28; the
     floor every earlier run used, drawn identically), ``"self_affine"`` → :func:`self_affine`
     with RMS height ``sigma`` (or ``rms_slope``), ``hurst``, ``short_cutoff``,

@@ -6,13 +6,12 @@ conventions: :mod:`gecko_agents.contact` and ``docs/physics.md``.
 :class:`Model` builds a run from parameters and conducts it; the pieces live in their own
 modules:
 
-* :mod:`gecko_agents.model.world` — the pymunk space (tips, plate, floor, collision events, batch
-I/O);
+* :mod:`gecko_agents.model.world` — the pymunk space (tips, plate, floor, collision events,
+  batch I/O);
 * :mod:`gecko_agents.model.state` — per-seta state as named arrays;
 * :mod:`gecko_agents.contact` — the tip law (JKR sphere by default), chosen by ``params.tip``;
-* :mod:`gecko_agents.model.step_numpy`, :mod:`gecko_agents.model.step_loop` — the per-step forces
-(numpy, or one
-  loop compiled by numba);
+* :mod:`gecko_agents.model.step_numpy`, :mod:`gecko_agents.model.step_loop` — the per-step
+  forces (numpy, or one loop compiled by numba);
 * :mod:`gecko_agents.backing` — what holds the seta roots (``model.backing``, chosen by
   ``params.backing.kind``): the rigid plate, or an elastic strip pulled through a handle spring;
 * :mod:`gecko_agents.protocol` — what the plate does; :mod:`gecko_agents.model.recorder` — what is
@@ -76,7 +75,7 @@ class Model:
     ----------
     params : the array. ``params.array.count`` is the physical array; the model simulates
         ``n_sim`` setae of it (default: all of them; refused above
-        :data:`gecko_agents.model.setup.MAX_N`) in one row at
+        ``gecko_agents.model.setup.MAX_N``) in one row at
         ``params.array.pitch`` and reports ``scale = count / n_sim`` in the metadata.
     seed : seed of the run's single ``numpy.random.Generator`` (default ``params.floor.seed``):
         an integer ≥ 0 (Python or numpy; bool, float and str are refused, naming ``seed``), or
@@ -98,7 +97,7 @@ class Model:
         same history to rounding; the one used is ``meta["kernel"]`` of the history.
     threads : with more than 1, the numba loop runs its blocks of setae on numba's threads
         (``NUMBA_NUM_THREADS``; the same history bit for bit, ``meta["loop_threads"]``).
-        None (default): from :data:`gecko_agents.model.step_loop.PARALLEL_MIN_SETAE` setae on, as
+        None (default): from ``gecko_agents.model.step_loop.PARALLEL_MIN_SETAE`` setae on, as
         many as
         the cores other processes leave idle when the model is built
         (:func:`gecko_agents.model.setup.choose_threads`), 1 below. Threads pay on an idle
@@ -401,7 +400,7 @@ class Model:
 
     def advance(self, vpx: float, vpy: float) -> None:
         """One time step with the plate (handle) at velocity (``vpx``, ``vpy``) [µm/µs]; leaves
-        the step's reaction, work and dissipation in :attr:`reaction` [µN],
+        the step's reaction, work and dissipation in ``reaction`` [µN],
         :attr:`work_step` [pJ] and ``physics.diss`` [pJ], the tips that let go in
         ``physics.events`` (:meth:`pop_releases`). The backing (:attr:`backing`) gives the
         roots the setae pull on and steps after the tips."""

@@ -17,6 +17,8 @@ __all__ = ["Damping", "DEFAULT_DAMPING", "seta_mass"]
 class Damping:
     """Damping ratios [-] (fractions of critical damping c = 2ζ√(k·m)).
 
+    Attributes
+    ----------
     seta : isotropic damping of the tip relative to the plate, on the seta's softest
         stiffness Ky; 1 = critical, so a free seta follows the plate without ringing and a
         tip moving with the plate feels none.

@@ -23,7 +23,7 @@ from gecko_agents.model.setup import floor_statistics
 from gecko_agents.protocol import Segment
 from gecko_agents.provenance import versions
 
-__all__ = ["SimulationUnstable", "run_protocol"]
+__all__ = ["SimulationUnstable", "SegmentBar", "run_protocol"]
 
 
 class SimulationUnstable(RuntimeError):
@@ -47,8 +47,6 @@ class _Run:
 
 def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> History:
     """:meth:`gecko_agents.model.Model.run` (its docstring has the arguments)."""
-    from tqdm.auto import tqdm
-
     segments = list(protocol)
     if not segments:
         raise ValueError("protocol is empty: give at least one segment")
@@ -59,19 +57,16 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
     run = _Run(Recorder(m.record_setae, film=m.law.film), ke_bound, max_steps, fast_approach)
     for seg in segments:
         seg.check(m)  # a depth this plate cannot reach is refused before any step
-    est = sum(seg.estimated_duration(m) for seg in segments)
     # refuse or warn before stepping when absurd, force control at its longest
     check_cost(m.n, sum(seg.longest_duration(m) for seg in segments), m.dt)
-    # Whole microseconds of simulated time; the total is an estimate and may be exceeded.
-    desc = f"gecko_agents (dt = {m.dt:.3g} µs)"
-    bar = tqdm(total=max(int(est), 1), unit="µs", disable=not progress, desc=desc,
-               mininterval=0.5)  # fmt: skip
     t_wall = time.perf_counter()
-    try:
-        for seg in segments:
+    for i, seg in enumerate(segments, 1):
+        bar = SegmentBar(m, seg, f"{i}/{len(segments)}", progress)
+        try:
             _run_segment(m, seg, run, bar)
-    finally:
-        bar.close()
+            bar.finish()
+        finally:
+            bar.close()
     run.recorder.record(m, run.work, run.dissipated)
     meta = {
         "dt_us": m.dt, "n_steps": run.n_steps, "record_every": m.record_every,
@@ -99,7 +94,62 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
     return history
 
 
-def _run_segment(m, seg: Segment, run: _Run, bar) -> None:
+class SegmentBar:
+    """The progress bar of one protocol segment, over simulated time in whole µs.
+
+    A segment that ends at a fixed time or point (:class:`~gecko_agents.protocol.Hold`,
+    :class:`~gecko_agents.protocol.PressTo`, :class:`~gecko_agents.protocol.Move`) gets a bar
+    whose total is its duration from where the plate stands (travel / speed, or the hold's
+    duration), never passed and filled to exactly 100 % when the segment ends (it ends within
+    a step of that total). One that ends on a measured condition (a
+    :class:`~gecko_agents.protocol.Press` to a preload, a
+    :class:`~gecko_agents.protocol.PullOff` until every tip let go) has no total while it
+    runs: a spinner counting µs, whose total is set to what it ran when it ends.
+    """
+
+    def __init__(self, m, seg: Segment, label: str, progress: bool):
+        from tqdm.auto import tqdm
+
+        self.m, self.t0 = m, m.time
+        total = _segment_total(m, seg)
+        desc = f"{label} {type(seg).__name__} (dt = {m.dt:.3g} µs)"
+        self.bar = tqdm(total=total, unit="µs", disable=not progress, desc=desc,
+                        mininterval=0.5)  # fmt: skip
+
+    def update(self) -> None:
+        """Advance to the segment's elapsed simulated time [whole µs], never past the total."""
+        n = int(self.m.time - self.t0)
+        if self.bar.total is not None:
+            n = min(n, int(self.bar.total))
+        if n > self.bar.n:
+            self.bar.update(n - self.bar.n)
+
+    def finish(self) -> None:
+        """The segment ended: a bar fills to exactly its total, a spinner gets one."""
+        if self.bar.total is None:
+            self.bar.total = max(int(self.m.time - self.t0), self.bar.n)
+        self.bar.update(int(self.bar.total) - self.bar.n)
+        self.bar.refresh()
+
+    def close(self) -> None:
+        self.bar.close()
+
+
+def _segment_total(m, seg: Segment) -> int | None:
+    """Whole µs a segment that ends at a fixed time or point runs from now (None: it ends on
+    a measured condition)."""
+    duration = getattr(seg, "duration", None)
+    if duration is not None:
+        return max(round(duration), 1)
+    target = seg.target(m, {"start": m.plate_position, "t0": m.time})
+    speed = getattr(seg, "speed", None)
+    if target is None or not speed:
+        return None
+    px, py = m.plate_position
+    return max(round(math.hypot(target[0] - px, target[1] - py) / speed), 1)
+
+
+def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
     """Step through one protocol segment, recording every ``record_every`` steps."""
     state = {"start": m.plate_position, "t0": m.time}
     may_skip = run.fast_approach and seg.skips_free_travel
@@ -120,7 +170,7 @@ def _run_segment(m, seg: Segment, run: _Run, bar) -> None:
             if bound is None:
                 bound = 100 * (e_scale + abs(run.work))
             _check_stable(m, row, bound)
-            bar.update(int(m.time) - bar.n)
+            bar.update()
         if run.n_steps >= run.max_steps:
             raise RuntimeError(f"max_steps = {run.max_steps} reached in segment {seg}")
 

@@ -82,7 +82,7 @@ def choose_threads(threads, n: int, contact: str = "batch") -> int:
     """Threads of a model of ``n`` setae: ``threads`` if given (an integer in [1,
     MAX_THREADS], refused otherwise, naming it), else (None) numba's thread count
     (``NUMBA_NUM_THREADS``; the machine's cores without numba) from
-    :data:`gecko_agents.model.step_loop.PARALLEL_MIN_SETAE` setae on, where a step is long enough
+    ``gecko_agents.model.step_loop.PARALLEL_MIN_SETAE`` setae on, where a step is long enough
     to pay
     for them, and 1 below; at most the cores that other processes leave idle when the model is
     built (:func:`idle_cores`: threads that wait for a busy core make a step 2–3× slower).

@@ -50,7 +50,7 @@ ROWS = (
 class SetaState:
     """The state of N setae between steps.
 
-    Float views (shape (N,) each, or (2, N) for the paired ones), all into :attr:`block`:
+    Float views (shape (N,) each, or (2, N) for the paired ones), all into ``block``:
 
     * ``pv`` (4, N): tip position (px, py) [µm] and velocity (vx, vy) [µm/µs] at the start of
       the step, as pymunk holds them;

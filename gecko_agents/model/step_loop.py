@@ -1,11 +1,11 @@
 """The per-seta loop of a pad-floor step, compiled by numba or run by the interpreter.
 
 Units and sign conventions as :mod:`gecko_agents.model.step_numpy`, whose
-:class:`~gecko_agents.model.step_numpy.
-NumpyStep` computes the same step vectorized: the loop follows its formulas and its order of
-operations, so both give the same history to rounding (``tests/test_model.py``), and it calls
-the contact law's scalar functions (:mod:`gecko_agents.contact`), so a new law needs nothing
-here. Built once per law class and mode by :func:`pad_loop`.
+:class:`~gecko_agents.model.step_numpy.NumpyStep` computes the same step vectorized: the loop
+follows its formulas and its order of operations, so both give the same history to rounding
+(``tests/test_model.py``), and it calls the contact law's scalar functions
+(:mod:`gecko_agents.contact`), so a new law needs nothing here. Built once per law class and
+mode by :func:`pad_loop`.
 """
 
 from __future__ import annotations
@@ -269,7 +269,7 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
     ``lost_idx``/``gone_idx`` (ascending) and into ``res``: plate force (x, y), dissipation,
     #lost, #gone, max |u|², max pad-window drift. ``c`` is a :class:`LoopConstants`, ``k`` the
     law's constants. ``compiled``: numba (None if numba is missing) or the interpreter.
-    ``parallel``: the blocks of :data:`BLOCK` setae run on numba's threads. Setae are
+    ``parallel``: the blocks of ``BLOCK`` setae run on numba's threads. Setae are
     independent within a step and every sum is taken per block, then over the blocks in
     their order, so the result is the same bit for bit with and without threads (and, for
     N ≤ ``BLOCK``, the same as one running sum). Built once per law and mode.

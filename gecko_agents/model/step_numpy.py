@@ -6,17 +6,16 @@ Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`); sign conventions in
 Every step, all forces are computed at the positions pymunk is about to integrate velocities
 with (x + v·dt): the seta spring (``linear``: −K·u with eq 20–21's 2×2 stiffness; ``rod``: a
 rigid rod on a rotary spring Kp·L² plus an axial spring Ka,
-:func:`gecko_agents.physics.beam.rod_spring_force`),
+``gecko_agents.physics.beam.rod_spring_force``),
 damping relative to the plate, and the contact (the normal force of the tip law,
 :mod:`gecko_agents.contact`; a stick spring with a Coulomb cap tangentially). Two ways:
 
 * :class:`NumpyStep` — vectorized over setae; any floor, and the per-contact reference path;
-* :func:`gecko_agents.model.step_loop.pad_loop` — pad floors: the same formulas and the same order
-of
-  operations as one loop
-  over setae, compiled with numba when installed (``kernel="numba"``) or run by the interpreter
-  (``kernel="python"``, the fastest for a handful of setae). Built once per contact law by a
-  factory; both give the numpy path's history to rounding.
+* :func:`gecko_agents.model.step_loop.pad_loop` — pad floors: the same formulas and the same
+  order of operations as one loop over setae, compiled with numba when installed
+  (``kernel="numba"``) or run by the interpreter (``kernel="python"``, the fastest for a handful
+  of setae). Built once per contact law by a factory; both give the numpy path's history to
+  rounding.
 
 Stick/slip (return mapping): the trial stretch ξ of the stick spring k_t is the tip's
 tangential displacement from its anchor; if k_t|ξ| exceeds the cap, the anchor slides so that

@@ -60,7 +60,7 @@ class World:
     detection : ``"full"`` (every sensor in the space every step: the reference),
         ``"lazy"`` (pad floors only: a sensor only near its edge, :meth:`update_sensors`; the
         same flags on every step) or ``"auto"`` (lazy on a pad floor, else full); the one used
-        is :attr:`detection`.
+        is ``detection``.
     """
 
     band = 0.05

@@ -2,24 +2,23 @@
 
 Unit system (the one used everywhere in gecko_agents)
 -----------------------------------------------------
-========================  =========  ==================================================
-quantity                  unit       note
-========================  =========  ==================================================
-length                    µm
-force                     µN
-time                      µs
-mass                      ng         = µN·µs²/µm, so F = m·a holds without factors
-elastic modulus, pressure MPa        = µN/µm²
-stiffness                 µN/µm      = N/m
-surface / adhesion energy µN/µm      = J/m²  (40 mJ/m² is 0.04)
-energy                    pJ         = µN·µm
-density                   ng/µm³     = 10⁶ kg/m³  (polyurethane 1200 kg/m³ is 1.2e-3)
-angles                    degrees in parameter sets, radians inside formulas
-========================  =========  ==================================================
+==========================  =========  ==================================================
+quantity                    unit       note
+==========================  =========  ==================================================
+length                      µm
+force                       µN
+time                        µs
+mass                        ng         = µN·µs²/µm, so F = m·a holds without factors
+elastic modulus, pressure   MPa        = µN/µm²
+stiffness                   µN/µm      = N/m
+surface / adhesion energy   µN/µm      = J/m²  (40 mJ/m² is 0.04)
+energy                      pJ         = µN·µm
+density                     ng/µm³     = 10⁶ kg/m³  (polyurethane 1200 kg/m³ is 1.2e-3)
+angles                      degrees    in parameter sets; radians inside formulas
+==========================  =========  ==================================================
 
-The pure functions in :mod:`gecko_agents.physics.jkr` and :mod:`gecko_agents.physics.beam` hold in
-any
-consistent unit set; the parameter sets and the pymunk model use the table above.
+The pure functions in :mod:`gecko_agents.physics.jkr` and :mod:`gecko_agents.physics.beam` hold
+in any consistent unit set; the parameter sets and the pymunk model use the table above.
 
 Every dataclass validates itself on construction: a bad value raises ``ValueError`` naming the
 field, the value and the allowed range, before anything is simulated.
@@ -53,7 +52,7 @@ MECHANICS = ("linear", "rod", "elastica")
 DETACHMENT_RULES = ("fold", "delta_s", "load_control")
 SHEAR_COUPLINGS = ("none", "savkoor_briggs")
 TIPS = ("sphere", "hertz", "spatula", "flat_punch")
-"""Tip contact laws (:data:`gecko_agents.contact.TIP_LAWS`): the adhesive JKR sphere of the
+"""Tip contact laws (``gecko_agents.contact.TIP_LAWS``): the adhesive JKR sphere of the
 paper, a Hertz sphere without adhesion, a thin-film spatula that peels (:class:`Spatula`) or
 the flat end of a pillar, a punch of radius ``contact.R`` (Kendall 1971, J Phys D 4:1186)."""
 FRICTION_LAWS = ("adhesive", "paper")

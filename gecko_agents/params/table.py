@@ -19,7 +19,13 @@ _EXTRA_DOCS = {
         "-",
         "seta model: 'linear' (2×2 beam stiffness) or 'rod' (rotary bending spring + axial spring)",
         "eq 20–21",
-    )
+    ),
+    "tip": (
+        "-",
+        "the tip's contact law: 'sphere' (JKR; the default), 'hertz' (the same sphere without "
+        "adhesion) or 'spatula' (a peeling thin film, parameters spatula.*)",
+        "eq 1–15",
+    ),
 }
 _EQ = re.compile(r"\beq ([0-9][0-9–\-, ]*[0-9])")
 

@@ -14,9 +14,10 @@ from gecko_agents.history import STATE_FREE as FREE
 
 @dataclass
 class QuasiStaticResult:
-    """Quasi-static history of an array.
+    """Quasi-static history of an array (n = number of plate positions, N = number of
+    (representative) setae).
 
-    Attributes (n = number of plate positions, N = number of (representative) setae)
+    Attributes
     ----------
     plate_y : plate height above the floor's mean plane [µm], (n,).
     force_normal : total normal contact force [µN], positive compressive, (n,).

@@ -71,10 +71,12 @@ def draw_psd(
 def plot_floor(
     profile: floor.Profile, path=None, title: str | None = None, stats: dict | None = None
 ) -> Figure:
-    """Two panels: the profile and its PSD. Saved to ``path`` (atomic) if given."""
-    fig = Figure(figsize=(9.0, 3.4), dpi=PNG_DPI, layout="constrained")
+    """The profile and, where it has one, its PSD (a pad floor of independent heights or a
+    flat floor has none: one panel). Saved to ``path`` (atomic) if given."""
+    spectrum = profile.pad_heights is None and float(np.ptp(profile.y)) > 0
+    fig = Figure(figsize=(9.0 if spectrum else 6.0, 3.4), dpi=PNG_DPI, layout="constrained")
     FigureCanvasAgg(fig)
-    ax_h, ax_c = fig.subplots(1, 2, width_ratios=[1.6, 1.0])
+    ax_h, ax_c = fig.subplots(1, 2, width_ratios=[1.6, 1.0]) if spectrum else (fig.subplots(), None)
     stats = floor.statistics(profile) if stats is None else stats
     draw_profile(ax_h, profile)
     rms = stats["rms_height_um"]
@@ -83,7 +85,8 @@ def plot_floor(
         f"RMS height {rms:.3g} µm" + ("" if slope is None else f", RMS slope {slope:.3g}"),
         fontsize="medium",
     )
-    draw_psd(ax_c, profile, stats)
+    if ax_c is not None:
+        draw_psd(ax_c, profile, stats)
     if title:
         fig.suptitle(title)
     if path is not None:

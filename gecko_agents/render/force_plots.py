@@ -203,6 +203,18 @@ def _mark_snap_offs(ax: Axes, history: History) -> None:
                 )
 
 
+def _count_title(history: History) -> str:
+    """How many setae were simulated (the forces drawn are theirs) and, if different, the
+    array size the run stands for (``meta["scale_to_array"]``), e.g. "3 setae simulated,
+    scaled to 10 000 000"."""
+    count = int(history.params.array.count)
+    n_sim = int(history.meta.get("n_sim", count))
+    text = f"{n_sim} seta{'e' * (n_sim != 1)} simulated"
+    if n_sim != count:
+        text += ", scaled to " + f"{count:,}".replace(",", " ")
+    return text
+
+
 def plot_history(history: History, path=None, ax: Axes | None = None) -> Figure:
     """Total contact force vs pressing displacement, approach and retract in different colours.
 
@@ -226,10 +238,8 @@ def plot_history(history: History, path=None, ax: Axes | None = None) -> Figure:
             fig = ax.figure
         apply_style(ax)
         draw_force_curve(ax, history, annotate=True)
-        ax.set_title(
-            f"N = {history.params.array.count} setae, {history.params.mechanics} "
-            f"mechanics, {len(history)} records"
-        )
+        ax.set_title(f"{_count_title(history)}, {history.params.mechanics} mechanics, "
+                     f"{len(history)} records", fontsize="medium")  # fmt: skip
         ax.legend(loc="best")
     if path is not None:
         save_figure(fig, path)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import ast
 import dataclasses
 import inspect
+import json
 import re
 import tomllib
 from pathlib import Path
@@ -212,6 +213,15 @@ def apply_params(
     out = base
     for key, value in overrides.items():
         where = f"[{'quick.' if key in quick_keys else ''}{table}] {key!r}"
+        if isinstance(value, dict):  # a nested table, [params.seta]: say it in TOML
+            head = f"[{'quick.' if key in quick_keys else ''}{table}]"
+            lines = "; ".join(f'"{key}.{k}" = {_toml_value(v)}' for k, v in value.items())
+            lines = lines or f'"{key}.<field>" = <value>'
+            raise ctx.error(
+                where,
+                f"is a nested table ([{table}.{key}]); give its fields by dotted name under "
+                f"{head} instead: {lines}",
+            )
         kind = override_kind(base, key)
         if kind is None:
             try:
@@ -225,6 +235,15 @@ def apply_params(
         except (ValueError, TypeError) as err:
             raise ctx.error(where, str(err)) from None
     return out
+
+
+def _toml_value(value) -> str:
+    """A value as TOML writes it (for advice in error messages)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return json.dumps(value)
+    return repr(value)
 
 
 def sub_table(ctx: Ctx, data: dict, key: str, where: str | None = None) -> dict:

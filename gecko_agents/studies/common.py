@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from gecko_agents.console import add_verbosity_arguments
 from gecko_agents.output_paths import atomic_write_bytes, output_dir_arg
 from gecko_agents.physics import jkr
 from gecko_agents.provenance import versions
@@ -68,6 +69,7 @@ def parse_args(doc: str, argv=None, extra=None) -> argparse.Namespace:
         help="output folder, created if needed (default renders/<scenario>/)",
     )
     parser.add_argument("--no-progress", action="store_true", help="hide progress bars")
+    add_verbosity_arguments(parser)
     if extra is not None:
         extra(parser)
     return parser.parse_args(argv)
@@ -142,12 +144,17 @@ def jkr_curves(contact, n: int, P_max: float) -> dict:
     }
 
 
-def run_scenario(name: str, argv: list[str]) -> tuple[dict, float]:
+def run_scenario(name: str, argv: list[str], verbosity: int = 1) -> tuple[dict, float, dict]:
     """Run scenario ``name``'s ``main(argv)`` (here or in a worker process: a module-level
-    function, so it pickles by name); returns (its result, wall time [s])."""
+    function, so it pickles by name); returns (its result, wall time [s], the warnings it
+    gave as :meth:`gecko_agents.console.WarningLog.records`). At ``verbosity`` 2 the warnings
+    are printed as they come; otherwise the caller reports them."""
     import importlib
     import time
 
+    from gecko_agents.console import WarningLog
+
     t0 = time.perf_counter()
-    res = importlib.import_module(f"gecko_agents.studies.{name}").main(argv)
-    return res, time.perf_counter() - t0
+    with WarningLog(verbosity=2 if verbosity >= 2 else -1) as log:
+        res = importlib.import_module(f"gecko_agents.studies.{name}").main(argv)
+    return res, time.perf_counter() - t0, log.records()

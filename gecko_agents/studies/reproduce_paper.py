@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from gecko_agents import quasistatic as qs
+from gecko_agents.console import WarningLog, summary_line, verbosity
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.provenance import versions
@@ -127,10 +128,11 @@ def _add_jobs(parser) -> None:
     )  # fmt: skip
 
 
-def run_scenarios(base: Path, args) -> dict:
+def run_scenarios(base: Path, args, log: WarningLog) -> dict:
     """Every scenario of :data:`SCENARIOS` (and :data:`BEYOND` with ``--beyond``),
     ``args.jobs`` at a time (longest first, so the long fig10 overlaps the rest);
-    {name: (result, wall time)} in that order."""
+    {name: (result, wall time)} in that order. Each scenario's warnings go to ``log`` as one
+    family."""
     names = SCENARIOS + (BEYOND if args.beyond else ())
     subs = {
         name: ["--out", str(base / name)]
@@ -142,8 +144,9 @@ def run_scenarios(base: Path, args) -> dict:
     if args.jobs <= 1:
         for i, name in enumerate(names, 1):
             print(f"[{i}/{len(names)}] {name} …", flush=True)
-            done[name] = run_scenario(name, subs[name])
+            *done[name], records = run_scenario(name, subs[name], log.verbosity)
             print(f"      done in {done[name][1]:.0f} s", flush=True)
+            log.report(name, records)
         return done
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -151,18 +154,18 @@ def run_scenarios(base: Path, args) -> dict:
     order = sorted(names, key=lambda n: n not in LONGEST)
     ctx = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(max_workers=args.jobs, mp_context=ctx) as pool:
-        futures = {pool.submit(run_scenario, n, subs[n]): n for n in order}
+        futures = {pool.submit(run_scenario, n, subs[n], log.verbosity): n for n in order}
         for k, fut in enumerate(as_completed(futures), 1):
             name = futures[fut]
-            done[name] = fut.result()
+            *done[name], records = fut.result()
             print(f"[{k}/{len(names)}] {name} done in {done[name][1]:.0f} s", flush=True)
+            log.report(name, records)
     return {n: done[n] for n in names}
 
 
-def validity_section(base: Path) -> str:
-    """How far the runs of this report stay within their models' validity: every saved agent
-    run's ``meta["validity"]`` (:mod:`gecko_agents.diagnostics`)."""
-    from gecko_agents.diagnostics import validity_table
+def saved_runs(base: Path) -> dict:
+    """Every saved agent run under ``base`` that carries ``meta["validity"]``: its folder
+    (relative to ``base``) → its :class:`~gecko_agents.history.History`."""
     from gecko_agents.history import load
 
     runs = {}
@@ -171,6 +174,15 @@ def validity_section(base: Path) -> str:
             h = load(meta.parent)
             if "validity" in h.meta:
                 runs[str(meta.parent.relative_to(base))] = h
+    return runs
+
+
+def validity_section(runs: dict) -> str:
+    """How far the runs of this report stay within their models' validity: every saved agent
+    run's ``meta["validity"]`` (:mod:`gecko_agents.diagnostics`), ``runs`` as
+    :func:`saved_runs` gives them."""
+    from gecko_agents.diagnostics import validity_table
+
     if not runs:
         return ""
     return "\n".join([
@@ -185,10 +197,10 @@ def validity_section(base: Path) -> str:
     ])  # fmt: skip
 
 
-def extra_sections(base: Path, args) -> str:
-    """The validity table, and with ``--beyond`` the sections the studies beyond the paper
-    wrote in this run."""
-    parts = [validity_section(base)]
+def extra_sections(base: Path, args, runs: dict) -> str:
+    """The validity table of ``runs`` (:func:`saved_runs`), and with ``--beyond`` the sections
+    the studies beyond the paper wrote in this run."""
+    parts = [validity_section(runs)]
     if args.beyond:
         for name, files in (("calibrate_paper", ("calibration_section.md",
                                                  "validation_section.md")),
@@ -233,21 +245,34 @@ def pull_speed_section(out: Path) -> str:
 
 
 def main(argv=None) -> dict:
+    """The main job (module docstring); its console ends with the validity summary line."""
     args = parse_args(__doc__, argv, _add_jobs)
     if args.jobs < 1:
         raise SystemExit(f"--jobs = {args.jobs} must be ≥ 1")
     base = args.out if args.out is not None else RENDERS
     base.mkdir(parents=True, exist_ok=True)
+    with WarningLog(verbosity(args)) as log:
+        out = _main(args, base, log)
+    validities = [h.meta["validity"] for h in out.pop("runs").values()]
+    where = f"the report's table in {base / 'paper_comparison.md'}"
+    print(summary_line(validities, where), flush=True)
+    return out
+
+
+def _main(args, base: Path, log: WarningLog) -> dict:
     rows, timings, results = [], {}, {}
     t_all = time.perf_counter()
-    for name, (res, wall) in run_scenarios(base, args).items():
+    for name, (res, wall) in run_scenarios(base, args, log).items():
         timings[name] = wall
         rows += res.get("claims", [])
         results[name] = {k: v for k, v in res.items() if k != "claims"}
     t0 = time.perf_counter()
+    log.family("conclusions")
     rows += conclusion_rows(args.quick) + [conclusion1_row()]
+    log.end_family()
     timings["conclusions"] = time.perf_counter() - t0
-    report = markdown(rows, timings, args.quick) + extra_sections(base, args)
+    runs = saved_runs(base)
+    report = markdown(rows, timings, args.quick) + extra_sections(base, args, runs)
     atomic_write_bytes(base / "paper_comparison.md", report.encode())
     write_json(
         base / "paper_comparison.json", {"rows": rows, "timings_s": timings, "quick": args.quick}
@@ -256,7 +281,8 @@ def main(argv=None) -> dict:
         run_scenario("validation", ["--out", str(base)] + (["--quick"] if args.quick else []))
     total = time.perf_counter() - t_all
     print(f"wrote {base / 'paper_comparison.md'} ({len(rows)} claims) in {total:.0f} s")
-    return {"claims": rows, "timings": timings, "total_s": total, "results": results}
+    return {"claims": rows, "timings": timings, "total_s": total, "results": results,
+            "runs": runs}  # fmt: skip
 
 
 if __name__ == "__main__":

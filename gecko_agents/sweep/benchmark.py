@@ -1,7 +1,7 @@
 """The Dask sweep-throughput benchmark: one sweep of CPU-bound points on 1, then 2 workers.
 
-Printed by ``python -m gecko_agents.bench``; the points are :func:`gecko_agents.sweep.points.
-cpu_bound_point`.
+Printed by ``python -m gecko_agents.bench``; the points are
+:func:`gecko_agents.sweep.points.cpu_bound_point`.
 """
 
 from __future__ import annotations
@@ -34,8 +34,9 @@ def benchmark_dask_scaling(
 
     Returns
     -------
-    ``{"t1_s": wall time with 1 worker [s], "t2_s": with 2 workers [s],
-    "speedup": t1_s / t2_s, "repeats": repeats per point}``.
+    dict
+        ``"t1_s"``: wall time with 1 worker [s], ``"t2_s"``: with 2 workers [s],
+        ``"speedup"``: t1_s / t2_s, ``"repeats"``: repeats per point.
     """
     distributed = import_distributed()
     from gecko_agents.params import PAPER_TABLE1
