@@ -21,7 +21,8 @@ def elastic_pressed_model(
     """:func:`gecko_agents.bench.pressed_model` on an elastic strip: handle, strip and tips
     moved ``depth`` [µm] below touch-down, then ``settle`` steps of rest, every tip attached.
     ``params``: the array (default: the paper's on a flat floor with the default
-    :class:`gecko_agents.params.Backing`, uniform drive), with ``n`` setae; ``model_kw`` go to
+    :class:`gecko_agents.params.backing.Backing`, uniform drive), with ``n`` setae; ``model_kw`` go
+    to
     :class:`gecko_agents.model.Model` (``seed``, ``leader_arm``, ... for
     :class:`gecko_agents.backing.elastic.ElasticBacking`)."""
     if params is None:

@@ -1,7 +1,7 @@
 """A compliant backing: an elastic strip under the setae, pulled through a handle spring.
 
 Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`); parameters in
-:class:`gecko_agents.params.Backing`.
+:class:`gecko_agents.params.backing.Backing`.
 
 The strip (plane strain, as wide as the row spacing b = ``array.pitch``) is a chain of rigid
 links of length ℓ, each a pymunk body of mass m = ρ_b·b·t_b·ℓ [ng] and moment of inertia

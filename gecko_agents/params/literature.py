@@ -1,5 +1,5 @@
 """Parameter sets for published experiments the package is checked against, one named preset
-each (:mod:`gecko_agents.studies.validation`, ``literature_comparison.md``).
+each (``gecko_agents.studies.validation``, ``literature_comparison.md``).
 
 Units as in :mod:`gecko_agents.params` (µm, µN, µs, MPa, µN/µm). Every value a preset takes
 from its source says so; every other value is an assumption, marked as such with its reason.
@@ -62,7 +62,7 @@ the abstract we read; the package's misalignment study cites Adv Mater Interface
 BOOTH2018_STIFF_MOUNT = PAPER_ARRAY.replace(
     **_STRIP, **{"backing.drive": "uniform", "backing.handle_stiffness": 1000.0}
 )
-"""The misalignment pad of :mod:`gecko_agents.studies.misalignment` (the paper's polyurethane,
+"""The misalignment pad of ``gecko_agents.studies.misalignment`` (the paper's polyurethane,
 stubby L = 5 µm setae, flat floor, default 1.413 MPa strip pulled uniformly) on the package's
 default 1000 µN/µm mount, the stiff end of the Booth et al. (2018) comparison. The mount
 stiffness is an assumption (the package default; their layers' stiffness relative to their
@@ -88,7 +88,7 @@ KIM_SITTI2007_THICK = KIM_SITTI2007_THIN.replace(**{"backing.t_b": 1120.0})
 GRAVISH2010_SETA = PAPER_ARRAY.replace(
     **{"mechanics": "rod", "seta.L": 5.0, "floor.sigma": 0.3, "contact.crack_speed": 1.0}
 )
-"""The pull-speed seta of :mod:`gecko_agents.studies.pull_speed` with crack kinetics, for the
+"""The pull-speed seta of ``gecko_agents.studies.pull_speed`` with crack kinetics, for the
 rate dependence of Gravish et al. (2010, J R Soc Interface 7:259, doi:10.1098/rsif.2009.0133).
 Assumed: the reference crack speed v* = 1 µm/µs and n = 0.5 (the package's Greenwood–Johnson
 default): neither gecko keratin nor their silicone is characterised in the text we read."""
@@ -97,7 +97,7 @@ FRICTIONAL_SPATULA = PAPER_ARRAY.replace(
     **{"mechanics": "rod", "floor.sigma": 0.0, "array.count": 1, "tip": "spatula",
        "friction.mu": 10.0}
 )  # fmt: skip
-"""The frictional-adhesion seta of :mod:`gecko_agents.studies.frictional_adhesion` (rod, θ =
+"""The frictional-adhesion seta of ``gecko_agents.studies.frictional_adhesion`` (rod, θ =
 60°, flat floor) with the spatula film tip (package defaults b = 3 µm, h = 1 µm, ℓ0 = 3 µm,
 all assumptions) and the nearly bonded pad μ = 10 of that study, for Autumn et al. (2006, J
 Exp Biol 209:3569) and Gillies & Fearing (2014, J R Soc Interface 11:20140021)."""

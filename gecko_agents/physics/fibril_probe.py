@@ -9,8 +9,9 @@ Phys Solids, doi:10.1016/j.jmps.2010.07.009; Bettscheider, Booth et al.'s open
 time-stepped probe test where the two coincide: vertical pillars with flat-punch tips (linear
 in compression and tension, Kendall's fixed pull-off) on a rigid backing.
 
-Fibril i stands under the probe at height h_i ≤ 0 below the apex (:func:`gecko_agents.floor.
-probe.probe_heights`). With the probe pressed a depth d past first touch, fibril i is compressed
+Fibril i stands under the probe at height h_i ≤ 0 below the apex
+(:func:`gecko_agents.floor.probe.probe_heights`). With the probe pressed a depth d past first
+touch, fibril i is compressed
 u_i = d + h_i. Pressing to d_max attaches every fibril with u_i > 0 at d_max. On retraction
 fibril i carries k·u_i (compression positive) until its tension reaches F_r, at
 u_i = −F_r/k; the outermost (lowest h) fibrils let go first. The force on the probe,

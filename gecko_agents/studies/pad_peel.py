@@ -2,7 +2,8 @@
 angle ψ, beside Kendall's tape law with the work of adhesion the same run dissipates.
 
 A row of N setae (the paper's polyurethane array, stubby L = 5 µm setae, flat floor) stands on
-the default elastic strip (:class:`gecko_agents.params.Backing`: E_b = 1.413 MPa, t_b = 50 µm;
+the default elastic strip (:class:`gecko_agents.params.backing.Backing`: E_b = 1.413 MPa, t_b = 50
+µm;
 bending length λ = 39 µm ≈ 10 setae), which continues beyond the pad's +x edge as a pre-peeled
 leader arm (``Model(params, leader_arm=…, peel_angle_deg=ψ)``, the elastic backing's options:
 links without setae, laid out
