@@ -20,7 +20,7 @@ Units: µm, µN, µs, ng (:mod:`gecko_agents.params`). Each item is a dict::
 ``ok`` is ``None`` where the item does not apply to the run (an adhesion measure for the Hertz
 tip, the beam's range for the rod, the crack number for elastic contact). The items:
 
-The contact items (``a_over_R``, ``tabor``) apply only to runs in which a tip touched.
+The contact items (``a_over_R``, ``tabor``) apply to sphere tips that touched (not a punch).
 
 ``a_over_R``
     Largest contact radius over tip radius, a/R, with a the larger of the zero-load JKR radius
@@ -305,7 +305,7 @@ def _facts(history) -> _Run:
     )  # fmt: skip
 
 
-def _a_over_R(f: _Run) -> dict:
+def _a_over_R(f: _Run, sphere: bool) -> dict:
     if f.adhesive:
         a_load = float(jkr.contact_radius_from_force(f.P_comp, f.R, f.w, f.E))
     else:
@@ -317,16 +317,11 @@ def _a_over_R(f: _Run) -> dict:
         f"largest contact radius {a_max:.3g} µm over tip radius {f.R:g} µm (JKR and Hertz "
         "treat the sphere as a paraboloid on a half-space: a ≪ R)",
         "Johnson 1985 Contact Mechanics §4.2, §5.5; Maugis 1995 Langmuir 11:679",
-        applies=a_max > 0 and f.touched,
+        applies=a_max > 0 and f.touched and sphere,
     )
 
 
-def _not_a_sphere(name: str) -> dict:
-    """A sphere's item for a flat-punch tip: it does not apply (the face is flat, a = R)."""
-    return _item(name, None, "a sphere tip's item: the flat punch's face is flat", "", False)
-
-
-def _tabor(f: _Run) -> dict:
+def _tabor(f: _Run, sphere: bool) -> dict:
     mu_t = (f.R * f.w**2 / (f.E**2 * Z0_UM**3)) ** (1 / 3) if f.adhesive else None
     return _item(
         "tabor",
@@ -335,7 +330,7 @@ def _tabor(f: _Run) -> dict:
         "μ ≳ 5, below it Maugis–Dugdale/DMT",
         "Tabor 1977 J Colloid Interface Sci 58:2; Johnson & Greenwood 1997 J Colloid "
         "Interface Sci 192:326; z0 as ε of Greenwood 1997 Proc R Soc A 453:1277",
-        applies=f.adhesive and f.touched,
+        applies=f.adhesive and f.touched and sphere,
     )
 
 
@@ -514,8 +509,8 @@ def diagnose(history, *, warn: bool = True) -> dict:
     f = _facts(history)
     sphere = history.params.tip != "flat_punch"  # a punch's radius is its face's, a = R
     items = {
-        "a_over_R": _a_over_R(f) if sphere else _not_a_sphere("a_over_R"),
-        "tabor": _tabor(f) if sphere else _not_a_sphere("tabor"),
+        "a_over_R": _a_over_R(f, sphere),
+        "tabor": _tabor(f, sphere),
         "linear_deflection": _linear_deflection(history, f),
         "quasi_static": _quasi_static(history, f),
         "time_step": _time_step(f),

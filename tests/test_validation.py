@@ -126,9 +126,9 @@ def test_gravish_row_is_the_pull_speed_study_with_crack_kinetics():
 
 def test_reproduce_beyond_writes_the_literature_comparison_beside_the_report(tmp_path, monkeypatch):
     calls = []
-    monkeypatch.setattr(reproduce_paper, "run_scenarios", lambda base, args: {})
+    monkeypatch.setattr(reproduce_paper, "run_scenarios", lambda base, args, log: {})
     monkeypatch.setattr(reproduce_paper, "conclusion_rows", lambda quick: [])
-    monkeypatch.setattr(reproduce_paper, "run_scenario", lambda *a: calls.append(a))
+    monkeypatch.setattr(reproduce_paper, "run_scenario", lambda *a: calls.append(a[:2]))
     reproduce_paper.main(["--quick", "--beyond", "--jobs", "1", "--out", str(tmp_path)])
     assert calls == [("validation", ["--out", str(tmp_path), "--quick"])]
     calls.clear()

@@ -278,7 +278,8 @@ def _main(args, base: Path, log: WarningLog) -> dict:
         base / "paper_comparison.json", {"rows": rows, "timings_s": timings, "quick": args.quick}
     )
     if args.beyond:  # the literature comparison beside the paper report (studies/validation)
-        run_scenario("validation", ["--out", str(base)] + (["--quick"] if args.quick else []))
+        argv = ["--out", str(base)] + (["--quick"] if args.quick else [])
+        run_scenario("validation", argv, log.verbosity)
     total = time.perf_counter() - t_all
     print(f"wrote {base / 'paper_comparison.md'} ({len(rows)} claims) in {total:.0f} s")
     return {"claims": rows, "timings": timings, "total_s": total, "results": results,
