@@ -125,3 +125,17 @@ def test_pillar_buckles_at_euler_in_the_model(case, tip, mu, L):
     depth = 2.5 * ref / p.axial_stiffness + 0.05  # past the contact's own compression
     h = m.run([protocol.PressTo(depth, 0.001), protocol.Hold(1500.0)], progress=False)
     assert h["force_normal_uN"][-1] == pytest.approx(ref, rel=0.02)
+
+
+def test_elastica_is_refused_where_it_is_not_modelled():
+    from gecko_agents import quasistatic as qs
+
+    p = PAPER_ARRAY.replace(
+        **{"seta.theta_deg": 90.0, "mechanics": "elastica", "array.count": 1, "floor.sigma": 0.0}
+    )
+    with pytest.raises(ValueError, match="mechanics = 'elastica' runs in the time-stepped Model"):
+        qs.press_pull(p, np.zeros(1), 0.2)
+    with pytest.raises(ValueError, match="kernel='python': mechanics='elastica' runs on kernel"):
+        Model(p, n_sim=1, seed=0, kernel="python")
+    with pytest.raises(ValueError, match=r"links = 1 is outside the allowed range \[2, 200\]"):
+        p.replace(**{"seta.links": 1})
