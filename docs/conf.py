@@ -9,7 +9,20 @@ Build (from the repository root, after ``pip install -e '.[docs]'``)::
 resolve a warning, so the API reference's internal links are checked by the same build.
 """
 
+import sys
+import types
+from pathlib import Path
+
+import gecko_agents
 from gecko_agents import __version__
+
+# The command-line entry points (``python -m gecko_agents[.render|.sweep|.calibrate]``) run on
+# import; autosummary's walk over the subpackages imports every submodule, so each is
+# registered as an empty module first and left out of the reference.
+_PKG = Path(gecko_agents.__file__).resolve().parent
+for _main in _PKG.rglob("__main__.py"):
+    _name = ".".join(("gecko_agents", *_main.relative_to(_PKG).with_suffix("").parts))
+    sys.modules.setdefault(_name, types.ModuleType(_name))
 
 project = "gecko_agents"
 author = "the gecko_agents authors"

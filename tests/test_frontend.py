@@ -112,11 +112,11 @@ def fake_tqdm(monkeypatch):
 
 
 def _check_bars(bars, kinds, spinners):
-    assert [b.desc.split()[1] for b in bars] == kinds
+    assert [b.desc.split()[2] for b in bars] == kinds
     for b in bars:
         assert b.total is not None and b.n == b.total  # exactly 100 % at the end
         assert all(n <= t for n, t in b.seen if t is not None)  # never past the total
-        is_spinner = b.desc.split()[1] in spinners
+        is_spinner = b.desc.split()[2] in spinners
         assert (b.total_while_running is None) == is_spinner
 
 

@@ -112,7 +112,7 @@ class SegmentBar:
 
         self.m, self.t0 = m, m.time
         total = _segment_total(m, seg)
-        desc = f"{label} {type(seg).__name__} (dt = {m.dt:.3g} µs)"
+        desc = f"gecko_agents {label} {type(seg).__name__} (dt = {m.dt:.3g} µs)"
         self.bar = tqdm(total=total, unit="µs", disable=not progress, desc=desc,
                         mininterval=0.5)  # fmt: skip
 
