@@ -36,7 +36,7 @@ def check_cost(n_setae: int, duration_us: float, dt_us: float) -> float:
     )
     fix = (
         "simulate fewer setae (n_sim), a shorter protocol (depth, travel, hold) or a faster "
-        "plate (keeping the quasi-static ratio ≤ 1), or check the moduli, which set dt"
+        "plate (keeping the validity item quasi_static ≤ 0.05), or check the moduli, which set dt"
     )
     if not cost <= COST_REFUSE:
         raise ValueError(f"{what}, above the limit {COST_REFUSE:.0e}; {fix}")
