@@ -15,8 +15,11 @@ Three cases side by side, one model each:
 
 * **flat punch, rigid backing** — the case the closed form describes: each pillar a linear
   spring that lets go at F_r. The closed form is evaluated at the force the press reached
-  (the larger of the preload and the largest recorded force). Measured: within 0.4 % at every
-  preload and radius (``tests/test_designs.py`` holds it to 1 %).
+  (the larger of the preload and the largest recorded force). Measured (full run): within
+  0.4 % wherever the attached pillars stand where the probe slopes less than ~10°; 1.7 % at
+  R_p = 30 µm and 3 µN, where the outer pillars sit on a 15° slope and carry their contact
+  force along its normal, which the closed form (vertical fibrils) does not tilt
+  (``tests/test_designs.py`` holds it to 1 % at smaller slopes).
 * **JKR sphere tips** (R = 1.5 µm) — the paper's tip on the same pillars: a contact that
   stiffens as it is pressed and lets go at its fold.
 * **flat punch, elastic backing** — the pillars on a 50 µm polyurethane strip held by a stiff
