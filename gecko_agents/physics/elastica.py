@@ -40,7 +40,7 @@ __all__ = ["Elastica", "DEFAULT_LINKS"]
 DEFAULT_LINKS = 16
 """Links of the chain: 16 put the three Euler loads within 1.3 % (see the module docstring)."""
 
-_MAX_ITER = 40
+_MAX_ITER = 200  # a snap of the chain between branches takes many 0.2 rad steps
 
 
 class Elastica:

@@ -186,6 +186,9 @@ def main(argv=None) -> dict:
                     row = run_point(tip, aspect, fl, eps, profile)
                     if row is not None:
                         rows.append(row)
+                        print(f"{NAME}: {fl}, {tip}, L/2r = {aspect:g}, pressed "
+                              f"{100 * eps:g} % of L: {row['pull_off_per_area_kPa']:.3g} kPa",
+                              flush=True)  # fmt: skip
     write_table(out / f"{NAME}.csv", rows)
     draw(rows, cfg, out)
     lines = winners(rows)
