@@ -40,6 +40,7 @@ from gecko_agents.backing import backing_class
 from gecko_agents.contact import contact_law
 from gecko_agents.floor import Profile
 from gecko_agents.history import History
+from gecko_agents.model.implicit import ImplicitStep, check_integrator, implicit_time_step
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping, seta_mass
 from gecko_agents.model.runner import SimulationUnstable, run_protocol
 from gecko_agents.model.setup import (
@@ -81,7 +82,12 @@ class Model:
         a ``numpy.random.Generator`` from which the seed is drawn (recorded in the history).
     dt : time step [µs]; default 0.75/ω_max from the stiffest spring and the tip mass (0.375/ω_max
         with crack kinetics, :class:`gecko_agents.contact.RateJKRSphere`). A dt at or above the
-        stability bound 2/ω_max is refused.
+        stability bound 2/ω_max is refused. Implicit: any dt > 0
+        (:func:`gecko_agents.model.implicit.implicit_time_step`).
+    integrator : ``"explicit"`` (default: pymunk's semi-implicit Euler on the model's forces,
+        stable below 2/ω_max) or ``"implicit"`` (each tip's force linearly implicit in its
+        seta, contact and stick springs and dampers, :mod:`gecko_agents.model.implicit`: a
+        step bounded by accuracy, not by the contact springs; batch contact only).
     contact : ``"batch"`` (fast, default) or ``"callback"`` (per-contact reference path).
     damping : :class:`Damping` ratios.
     record_every : record every this many steps (default: every 0.02 µm of plate travel at the
@@ -140,9 +146,11 @@ class Model:
         floor_profile: Profile | None = None,
         detection: str = "auto",
         threads: int | None = None,
+        integrator: str = "explicit",
         **backing_options,
     ):
         n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
+        self.integrator = check_integrator(integrator, contact)
         backing = backing_class(params.backing.kind)
         kernel = backing.kernel(kernel, contact)
         threads = choose_threads(threads, int(n), contact)
@@ -181,6 +189,11 @@ class Model:
         )
         if contact == "callback":
             self.world.on_pre_solve(self._pre_solve)
+        self._implicit = None
+        if integrator == "implicit":
+            self._implicit = ImplicitStep(self)
+            if not self.world.pads:  # contact normals of a continuous floor
+                self.physics.normal = self._implicit.normal = np.zeros((2, self.n))
         self._fast_pads = self.world.pads and contact == "batch"
         self.kernel, self._loop, self.loop_threads = choose_kernel(
             kernel, self._fast_pads, self.n, type(self.law), threads
@@ -229,6 +242,8 @@ class Model:
 
     def _time_step(self, dt) -> float:
         bound = 2.0 / self.omega_max
+        if self.integrator == "implicit":
+            return implicit_time_step(dt, self.omega_max)
         if dt is None:
             # A rate-dependent contact switches between its opening and closing branches within
             # a step during a jump-in's ring-down: half the step keeps that first-order error
@@ -403,7 +418,8 @@ class Model:
             x += s.pv[0]  # where pymunk will evaluate forces
             np.multiply(s.pv[3], dt, out=y)
             y += s.pv[1]
-            opx, opy = ph.spring_damp(*bk.roots(pnx, pny, vpx, vpy))
+            roots = bk.roots(pnx, pny, vpx, vpy)
+            opx, opy = ph.spring_damp(*roots)
             bk.hold(s)
             if not self._constants.rod:
                 self._check_linear(ph.max_u2)
@@ -415,6 +431,8 @@ class Model:
                 s.F_damp_contact.fill(0.0)
                 s.delta.fill(np.nan)
                 ph.any_contact_damping = True
+            if self._implicit is not None:
+                ph.diss += self._implicit.correct(roots)
             w.write_forces(s.F)
             if self.contact_path == "callback":
                 # Tips that lost their candidate while attached (no pre_solve will come).
@@ -463,7 +481,11 @@ class Model:
             self._gone_idx,
             res,
         )
-        w.write_forces()
+        if self._implicit is not None:
+            ph.diss += self._implicit.correct((pnx, pny, vpx, vpy), rebook_damping=True)
+            w.write_forces(s.F)
+        else:
+            w.write_forces()
         ph.diss += float(res[2])
         n_lost, n_gone = int(res[3]), int(res[4])
         if n_lost or n_gone:
@@ -541,7 +563,11 @@ class Model:
             free seta's motion does not depend on where it is, so the history is the same but
             for the skipped rows; the travel skipped is ``meta["skipped_travel_um"]``.
         """
-        return run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
+        h = run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
+        if self._implicit is not None:
+            h.meta["integrator"] = self.integrator
+            h.meta["implicit_dissipated_pJ"] = self._implicit.numerical_dissipated
+        return h
 
     def skip_free_travel(self, seg, state, vp) -> float:
         """Move plate and tips rigidly along ``vp`` (plate velocity [µm/µs]) towards where
