@@ -444,6 +444,8 @@ class Model:
         self.time += dt
         if self._loop is None:
             ph.bookkeeping(vpx, vpy)
+        if self._implicit is not None and ph.events:
+            ph.diss += self._implicit.book_releases(ph.events)
         opx, opy = bk.advance(dt, pnx, pny, vpx, vpy, (opx, opy))
         ppx, ppy = self._on_plate_prev
         self._work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
