@@ -31,15 +31,16 @@ v += F'·dt/m, x += v·dt runs unchanged; with J = 0 it is F, today's explicit s
 linear spring the step is exactly backward Euler: stable at any dt, first order, and it damps
 what rings faster than 1/dt.
 
-Energy books. ΔF = F' − F is a force no spring or damper of the model books; the recorder
-books the kinetic energy as ½m·v₀·v₁ (exact for semi-implicit Euler on a linear spring), whose
-change between two steps is ½dt·v₀·(F'_prev + F'), so the step books the work of ΔF as
-½dt·v₀·(ΔF_prev + ΔF) dissipated (cumulative in :attr:`ImplicitStep.numerical_dissipated`,
-``meta["implicit_dissipated_pJ"]``): for a linear spring exactly what the backward-Euler step
-takes out of the books, ½m|Δv|² + ½Δxᵀ·K·Δx per step in the energy ½mv² + ½xᵀKx, and the
-implicit share of the dampers' work. What it does not close are the events, as the explicit
-step's: a tip snapping in or off changes its force within one step, an error ∝ dt in the books
-(:data:`gecko_agents.history.ENERGY_RTOL`), 20 times the explicit one at a 20 times longer step.
+Energy books. ΔF = F' − F is a force no spring or damper of the model books. The recorder
+books the kinetic energy as ½m·v₀·v₁ and the springs at x₁ (semi-implicit Euler conserves that
+sum exactly for a linear spring); its change between two steps is then, for linear forces,
+exactly ½dt·v₀·(ΔF_prev + ΔF), so the step books that as dissipated: the scheme's numerical
+dissipation (the backward-Euler step's damping of what rings faster than 1/dt) plus the
+implicit share of the dampers' work, cumulative in :attr:`ImplicitStep.numerical_dissipated`
+and ``meta["implicit_dissipated_pJ"]``. Events, as in the explicit step, change a tip's force
+within one step, an error ∝ dt in the books (:data:`gecko_agents.history.ENERGY_RTOL`), k
+times the explicit one at a k times longer step: a snap-off's share is booked
+(:meth:`ImplicitStep.book_releases`), a jump-in's is not.
 """
 
 from __future__ import annotations
@@ -61,7 +62,7 @@ __all__ = [
 
 INTEGRATORS = ("explicit", "implicit")
 
-IMPLICIT_DT_FACTOR = 20.0
+IMPLICIT_DT_FACTOR = 10.0
 """Default implicit step in units of the explicit one (0.75/ω_max): chosen by the
 work-precision benchmark (``python -m gecko_agents.bench --work-precision``), not by
 stability."""
@@ -222,7 +223,7 @@ class ImplicitStep:
         energy is dissipated at the new position, so the books miss −½·P·(n·v₀)·dt, the work
         of the force the tip last felt over the step's displacement n·v₀·dt. It is ∝ dt, as
         the explicit step's own event error (:data:`gecko_agents.history.ENERGY_RTOL`), which
-        this implicit step, 20 times longer, books instead of leaving."""
+        this implicit step, ten times longer, books instead of leaving."""
         s, dt = self.m.state, self.m.dt
         out = 0.0
         for i, _, P in events:
