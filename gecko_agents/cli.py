@@ -320,18 +320,20 @@ def _add_bench(p: argparse.ArgumentParser) -> None:
         "--no-dask", action="store_true", help="skip the 1- vs 2-worker Dask sweep throughput"
     )
     add_verbosity_arguments(p)
+    p.add_argument(
+        "--work-precision", action="store_true",
+        help="the work-precision benchmark: explicit and implicit steps against their error",
+    )  # fmt: skip
 
 
 def _cmd_bench(args, extra) -> int:
     from gecko_agents import bench
 
+    flags = [f for f, on in (("--quick", args.quick), ("--no-dask", args.no_dask),
+                             ("--work-precision", args.work_precision)) if on]  # fmt: skip
     with WarningLog(verbosity(args)) as log:
         log.family("bench")
-        bench.main(
-            (["--quick"] if args.quick else [])
-            + (["--no-dask"] if args.no_dask else [])
-            + list(extra)
-        )
+        bench.main(flags + list(extra))
     return EXIT_OK
 
 

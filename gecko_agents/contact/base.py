@@ -105,6 +105,14 @@ class ContactLaw:
         """Energy stored in the contact at (a, δ), from attachment [pJ]."""
         raise NotImplementedError
 
+    def stiffness(self, a, delta):
+        """Normal contact stiffness dP/dδ [µN/µm] at contact radii ``a`` [µm] and overlaps
+        ``delta`` [µm] (arrays), what the linearly implicit step
+        (:mod:`gecko_agents.model.implicit`) treats implicitly; it clamps the value to
+        [0, :meth:`stiffest` at 5 Fc]. Default: the stiffness at zero load everywhere, a
+        scale, for a law that does not give its own."""
+        return np.full(np.shape(a), float(self.zero_load_stiffness))
+
     def stiffest(self, load: float) -> float:
         """Contact stiffness dP/dδ [µN/µm] at a compressive load [µN] (time-step bound)."""
         raise NotImplementedError

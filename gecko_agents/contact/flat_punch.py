@@ -68,6 +68,10 @@ class FlatPunch(ContactLaw):
     def stiffest(self, load: float) -> float:
         return self.zero_load_stiffness
 
+    def stiffness(self, a, delta=None):
+        """dP/dδ = 2E*a (Sneddon 1965), the same at every overlap while bonded."""
+        return np.full(np.shape(a), self.zero_load_stiffness)
+
     def radius(self, delta, a_prev=None, dt=0.0):
         return np.full(np.shape(delta), self.a)
 

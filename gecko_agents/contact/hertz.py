@@ -50,6 +50,10 @@ class HertzSphere(ContactLaw):
     def stiffest(self, load: float) -> float:
         return 2 * self.E_star * float(jkr.hertz_contact_radius(load, self.R, self.E_star))
 
+    def stiffness(self, a, delta=None):
+        """dP/dδ = 2E*a (Johnson, Contact Mechanics, 1985, eq 4.23 differentiated)."""
+        return 2.0 * self.E_star * np.asarray(a, dtype=float)
+
     def radius(self, delta, a_prev=None, dt=0.0):
         return np.sqrt(np.maximum(delta, 0.0) * self.R)
 

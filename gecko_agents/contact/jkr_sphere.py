@@ -69,6 +69,12 @@ class JKRSphere(ContactLaw):
         a = float(jkr.contact_radius_from_force(load, self.R, self.w, self.E_star))
         return 2 * self.E_star * a
 
+    def stiffness(self, a, delta=None):
+        """dP/dδ along the branch, (dP/da)/(dδ/da) of eq 7 and 10
+        (:func:`jkr.contact_stiffness`): 2E*a in the Hertz limit, 0 at the load-controlled
+        pull-off, negative below it."""
+        return jkr.contact_stiffness(a, self.R, self.w, self.E_star)
+
     def radius(self, delta, a_prev=None, dt=0.0):
         """:func:`jkr.radius_from_overlap` (Ferrari's closed form + one Newton step), written
         with fewer temporaries for the hot path; the previous radius does not matter."""

@@ -89,6 +89,11 @@ class RateJKRSphere(JKRSphere):
             ]
         )
 
+    def stiffness(self, a, delta):
+        """∂P/∂δ = 2E*a at the step's radius: the crack edge does not move within a step
+        (Barquins & Maugis 1981's P(a, δ), the force differentiated at fixed a)."""
+        return 2.0 * self.E_star * np.asarray(a, dtype=float)
+
     def force(self, a, delta):
         E, R = self.E_star, self.R
         return 2.0 * E * a * delta - 2.0 * E * a * a * a / (3.0 * R)

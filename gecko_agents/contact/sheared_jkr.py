@@ -189,6 +189,11 @@ class ShearedJKRSphere(ContactLaw):
         a = float(jkr.contact_radius_from_force(load, self.R, self.w, self.E_star))
         return 2 * self.E_star * a
 
+    def stiffness(self, a, delta):
+        """dP/dδ of the unsheared JKR branch at radius a (:func:`jkr.contact_stiffness`, eq 7
+        and 10): the normal stiffness the shear coupling starts from."""
+        return jkr.contact_stiffness(a, self.R, self.w, self.E_star)
+
     def energy(self, a, delta):
         raise NotImplementedError("ShearedJKRSphere stores its energy in the state (state.uc)")
 

@@ -371,6 +371,13 @@ class SpatulaTip(ContactLaw):
     def stiffest(self, load: float) -> float:
         return 2 * self.E_star * float(jkr.hertz_contact_radius(load, self.R, self.E_star))
 
+    def stiffness(self, a, delta):
+        """Normal stiffness of the tip [µN/µm], an upper bound: the tip body's Hertz
+        compression 2E*·√(Rδ) (Johnson 1985, eq 4.23 differentiated; 0 while δ ≤ 0) plus the
+        film at its stiffest, E_f·b = K/h (a film hanging straight down from the tip)."""
+        d = np.maximum(np.asarray(delta, dtype=float), 0.0)
+        return 2.0 * self.E_star * np.sqrt(self.R * d) + self.K / self.h
+
     def energy(self, a, delta):
         raise NotImplementedError("SpatulaTip stores its energy in the state (state.uc)")
 

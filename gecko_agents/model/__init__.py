@@ -39,6 +39,7 @@ from gecko_agents.backing import backing_class
 from gecko_agents.contact import contact_law
 from gecko_agents.floor import Profile
 from gecko_agents.history import History
+from gecko_agents.model.implicit import ImplicitStep, check_integrator, implicit_time_step
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping, seta_mass
 from gecko_agents.model.runner import SimulationUnstable, run_protocol
 from gecko_agents.model.setup import (
@@ -48,6 +49,7 @@ from gecko_agents.model.setup import (
     choose_threads,
     detection_mode,
     elastica_kernel,
+    explicit_time_step,
     numba_available,
 )
 from gecko_agents.model.state import SetaState
@@ -82,7 +84,12 @@ class Model:
         a ``numpy.random.Generator`` from which the seed is drawn (recorded in the history).
     dt : time step [µs]; default 0.75/ω_max from the stiffest spring and the tip mass (0.375/ω_max
         with crack kinetics, :class:`gecko_agents.contact.RateJKRSphere`). A dt at or above the
-        stability bound 2/ω_max is refused.
+        stability bound 2/ω_max is refused. Implicit: any dt > 0
+        (:func:`gecko_agents.model.implicit.implicit_time_step`).
+    integrator : ``"explicit"`` (default: pymunk's semi-implicit Euler on the model's forces,
+        stable below 2/ω_max) or ``"implicit"`` (each tip's force linearly implicit in its
+        seta, contact and stick springs and dampers, :mod:`gecko_agents.model.implicit`: a
+        step bounded by accuracy, not by the contact springs; batch contact only).
     contact : ``"batch"`` (fast, default) or ``"callback"`` (per-contact reference path).
     damping : :class:`Damping` ratios.
     record_every : record every this many steps (default: every 0.02 µm of plate travel at the
@@ -141,9 +148,11 @@ class Model:
         floor_profile: Profile | None = None,
         detection: str = "auto",
         threads: int | None = None,
+        integrator: str = "explicit",
         **backing_options,
     ):
         n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
+        self.integrator = check_integrator(integrator, contact)
         backing = backing_class(params.backing.kind)
         kernel = backing.kernel(kernel, contact)
         threads = choose_threads(threads, int(n), contact)
@@ -158,7 +167,11 @@ class Model:
         self.record_setae = record_setae
         self.law = law = contact_law(params)
         self._set_mechanics(params, law, damping)
-        self.dt = self._time_step(dt)
+        self.dt = (
+            implicit_time_step(dt, self.omega_max)
+            if self.integrator == "implicit"
+            else explicit_time_step(dt, self.omega_max, self.k_max, self.mass, law.rate_dependent)
+        )
         if verbose:
             print(
                 f"gecko_agents: dt = {self.dt:.4g} µs (ω_max·dt = {self.omega_max * self.dt:.2f}"
@@ -182,13 +195,15 @@ class Model:
         )
         if contact == "callback":
             self.world.on_pre_solve(self._pre_solve)
+        self._implicit = None
+        if integrator == "implicit":
+            self._implicit = ImplicitStep(self)
+            if not self.world.pads:  # contact normals of a continuous floor
+                self.physics.normal = self._implicit.normal = np.zeros((2, self.n))
         self._fast_pads = self.world.pads and contact == "batch"
         if params.mechanics == "elastica":
-            kernel = elastica_kernel(kernel)
-            s_ = params.seta
-            self.physics.chain = Elastica(
-                self.n, s_.L, s_.r, params.contact.E1, s_.theta, s_.links, s_.imperfection
-            )
+            kernel = elastica_kernel(kernel, self.integrator)
+            self.physics.chain = Elastica.of(params, self.n)
             self.physics.chain_axis = self.axis
             self.physics.chain_damping_ratio = math.sqrt(self.Kp / params.Ky)
         self.kernel, self._loop, self.loop_threads = choose_kernel(
@@ -235,21 +250,6 @@ class Model:
             c_t=self.c_t, k_t=self.k_t, mu=p.friction.mu, paper=p.friction.law == "paper",
             Fc=self.Fc, hm=0.5 * self.dt / self.mass, release=self.law.release_radius,
         )  # fmt: skip
-
-    def _time_step(self, dt) -> float:
-        bound = 2.0 / self.omega_max
-        if dt is None:
-            # A rate-dependent contact switches between its opening and closing branches within
-            # a step during a jump-in's ring-down: half the step keeps that first-order error
-            # (energy balance 3.8 % → 1.5 % of the run's energy on a stubby seta) in bounds.
-            return (0.375 if self.law.rate_dependent else 0.75) / self.omega_max
-        if not (isinstance(dt, int | float) and math.isfinite(dt) and 0 < dt < bound):
-            raise ValueError(
-                f"dt = {dt!r} µs is outside the stable range (0, {bound:.4g}) µs: "
-                f"the stiffest spring ({self.k_max:.3g} µN/µm) on a tip of "
-                f"{self.mass:.3g} ng needs ω·dt < 2"
-            )
-        return float(dt)
 
     # ------------------------------------------------------------------ public state
     @property
@@ -334,14 +334,8 @@ class Model:
         if self.params.mechanics == "linear":
             u = d - self.L * self.axis
             return (*beam.linear_spring_force(u, self.K), u)
-        chain = self.physics.chain
-        if chain is not None:  # solved from the current shape, which it leaves as it was
-            kept = (chain.phi, chain.stretch, chain.lam, chain.iterations, chain.held,
-                    chain.clamp.copy(), chain.released)  # fmt: skip
-            F, U = chain.solve(d, chain.held)
-            (chain.phi, chain.stretch, chain.lam, chain.iterations, chain.held, chain.clamp,
-             chain.released) = kept  # fmt: skip
-            return F, U, None
+        if self.physics.chain is not None:
+            return (*self.physics.chain.peek(d), None)
         return (*beam.rod_spring_force(d, self.L, self.Ka, self.k_phi, self.theta), None)
 
     def spring_energies(self) -> np.ndarray:
@@ -420,7 +414,8 @@ class Model:
             x += s.pv[0]  # where pymunk will evaluate forces
             np.multiply(s.pv[3], dt, out=y)
             y += s.pv[1]
-            opx, opy = ph.spring_damp(*bk.roots(pnx, pny, vpx, vpy))
+            roots = bk.roots(pnx, pny, vpx, vpy)
+            opx, opy = ph.spring_damp(*roots)
             bk.hold(s)
             if self.params.mechanics == "linear":
                 self._check_linear(ph.max_u2)
@@ -432,6 +427,8 @@ class Model:
                 s.F_damp_contact.fill(0.0)
                 s.delta.fill(np.nan)
                 ph.any_contact_damping = True
+            if self._implicit is not None:
+                ph.diss += self._implicit.correct(roots)
             w.write_forces(s.F)
             if self.contact_path == "callback":
                 # Tips that lost their candidate while attached (no pre_solve will come).
@@ -443,6 +440,8 @@ class Model:
         self.time += dt
         if self._loop is None:
             ph.bookkeeping(vpx, vpy)
+        if self._implicit is not None and ph.events:
+            ph.diss += self._implicit.book_releases(ph.events)
         opx, opy = bk.advance(dt, pnx, pny, vpx, vpy, (opx, opy))
         ppx, ppy = self._on_plate_prev
         self._work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
@@ -480,7 +479,11 @@ class Model:
             self._gone_idx,
             res,
         )
-        w.write_forces()
+        if self._implicit is not None:
+            ph.diss += self._implicit.correct((pnx, pny, vpx, vpy), rebook_damping=True)
+            w.write_forces(s.F)
+        else:
+            w.write_forces()
         ph.diss += float(res[2])
         n_lost, n_gone = int(res[3]), int(res[4])
         if n_lost or n_gone:
@@ -558,7 +561,11 @@ class Model:
             free seta's motion does not depend on where it is, so the history is the same but
             for the skipped rows; the travel skipped is ``meta["skipped_travel_um"]``.
         """
-        return run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
+        h = run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
+        if self._implicit is not None:
+            h.meta["integrator"] = self.integrator
+            h.meta["implicit_dissipated_pJ"] = self._implicit.numerical_dissipated
+        return h
 
     def skip_free_travel(self, seg, state, vp) -> float:
         """Move plate and tips rigidly along ``vp`` (plate velocity [µm/µs]) towards where

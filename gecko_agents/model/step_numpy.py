@@ -90,6 +90,7 @@ class NumpyStep:
         self.max_u2 = 0.0  # largest |u|² of a linear seta this step [µm²]
         self.chain = None  # the elastica of mechanics="elastica" (physics.elastica.Elastica)
         self.holds_tip = law.name == "flat_punch"  # a bonded punch face keeps its direction
+        self.normal = None  # (2, N): contact normals kept for the implicit step, if it asks
 
     # ------------------------------------------------------------------ seta springs
     def spring_damp(self, pnx, pny, vpx, vpy):
@@ -288,6 +289,8 @@ class NumpyStep:
             s.F_damp_contact[0, ti] += dn * n_x + dt_ * n_y
             s.F_damp_contact[1, ti] += dn * n_y - dt_ * n_x
             s.P[ti], s.Ft[ti], s.slip[ti] = Pi, ft, sl
+            if self.normal is not None:
+                self.normal[0, ti], self.normal[1, ti] = n_x, n_y
             s.a[ti], s.xi[ti] = a, xi_new
             # Attachment starts the branch at U = 0: book the difference.
             jumped = ti[new[i]]

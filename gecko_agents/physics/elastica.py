@@ -79,6 +79,23 @@ class Elastica:
         self.released = 0.0  # clamp energy let go by tips released in the last solve [pJ]
         self.iterations = 0  # Newton iterations of the last solve (largest over setae)
 
+    @classmethod
+    def of(cls, params, n_setae: int) -> Elastica:
+        """The chains of ``n_setae`` setae of a :class:`gecko_agents.params.SetaArray`."""
+        s = params.seta
+        return cls(n_setae, s.L, s.r, params.contact.E1, s.theta, s.links, s.imperfection)
+
+    def peek(self, d) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`solve` at ``d`` with the tips held as in the last solve, leaving the chain's
+        state as it was (forces and energies at positions other than the step's)."""
+        kept = (self.phi, self.stretch, self.lam, self.iterations, self.held, self.clamp.copy(),
+                self.released)  # fmt: skip
+        try:
+            return self.solve(d, self.held)
+        finally:
+            (self.phi, self.stretch, self.lam, self.iterations, self.held, self.clamp,
+             self.released) = kept  # fmt: skip
+
     # ------------------------------------------------------------------ geometry
     def _end(self, phi, s):
         c, sn = np.cos(phi), np.sin(phi)

@@ -1,0 +1,232 @@
+"""The linearly implicit step: each tip's force made implicit in its own springs and dampers.
+
+Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`); sign conventions in
+:mod:`gecko_agents.contact`.
+
+pymunk integrates every tip with semi-implicit (symplectic) Euler: it moves the tip to
+x₁ = x₀ + v₀·dt, where the model evaluates the force F (seta spring and damping relative to
+its root, the contact's normal force and damping, the stick spring), then sets
+v₁ = v₀ + F·dt/m. Its step is stable for ω·dt < 2 on the stiffest spring a tip meets: the
+contact (JKR 12.9 µN/µm at 5 Fc) and the stick spring (7.4 µN/µm) on the paper's 0.36 ng tip,
+far stiffer than the seta (Ka 0.50 µN/µm).
+
+The linearly implicit (Rosenbrock–Euler) step evaluates the force where the step ends instead,
+linearised: F(x₁ + v₁·dt, v₁) ≈ F + J_x·(v₁·dt) + J_v·Δv with Δv = v₁ − v₀, J_x = ∂F/∂x and
+J_v = ∂F/∂v the tip's 2×2 Jacobians (Hairer & Wanner, Solving Ordinary Differential
+Equations II, 2nd ed. 1996, §IV.7, the linearly implicit Euler method; for mechanical
+systems, Baraff & Witkin 1998, SIGGRAPH '98 "Large steps in cloth simulation", eq 6). Then
+
+    (m·I − dt·J_v − dt²·J_x)·Δv = dt·[F + dt·J_x·(v₀ − v_root)]       (one 2×2 per tip)
+
+with −J_x = K the sum of the seta's stiffness (the linear seta's K of eq 20–21; the rod's
+axial Ka·e eᵀ plus rotary kφ/ℓ²·e⊥e⊥ᵀ plus its tension's Ka(ℓ − L)/ℓ·e⊥e⊥ᵀ clamped ≥ 0), the
+contact's normal stiffness dP/dδ·n nᵀ (:meth:`gecko_agents.contact.ContactLaw.stiffness`,
+clamped to [0, the contact's stiffness at 5 Fc]: past the load-controlled pull-off it turns
+negative and at the end of the JKR branch infinite, where a linearisation would nearly make
+the 2×2 singular or freeze the tip) and the stick spring k_t·t tᵀ while the tip sticks; −J_v
+the seta's, the normal and (while sticking) the tangential dampers. The seta's part acts on
+the tip's motion relative to its root (the root moves with the plate), the contact's on its
+motion over the fixed floor. The model hands pymunk the force F' = m·Δv/dt, so pymunk's own
+v += F'·dt/m, x += v·dt runs unchanged; with J = 0 it is F, today's explicit step. For one
+linear spring the step is exactly backward Euler: stable at any dt, first order, and it damps
+what rings faster than 1/dt.
+
+Energy books. ΔF = F' − F is a force no spring or damper of the model books. The recorder
+books the kinetic energy as ½m·v₀·v₁ and the springs at x₁ (semi-implicit Euler conserves that
+sum exactly for a linear spring); its change between two steps is then, for linear forces,
+exactly ½dt·v₀·(ΔF_prev + ΔF), so the step books that as dissipated: the scheme's numerical
+dissipation (the backward-Euler step's damping of what rings faster than 1/dt) plus the
+implicit share of the dampers' work, cumulative in :attr:`ImplicitStep.numerical_dissipated`
+and ``meta["implicit_dissipated_pJ"]``. Events, as in the explicit step, change a tip's force
+within one step, an error ∝ dt in the books (:data:`gecko_agents.history.ENERGY_RTOL`), k
+times the explicit one at a k times longer step: a snap-off's share is booked
+(:meth:`ImplicitStep.book_releases`), a jump-in's is not.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gecko_agents.protocol import DEFAULT_SPEED
+
+__all__ = [
+    "INTEGRATORS",
+    "IMPLICIT_DT_FACTOR",
+    "IMPLICIT_TRAVEL",
+    "ImplicitStep",
+    "check_integrator",
+    "implicit_time_step",
+]
+
+INTEGRATORS = ("explicit", "implicit")
+
+IMPLICIT_DT_FACTOR = 10.0
+"""Default implicit step in units of the explicit one (0.75/ω_max): chosen by the
+work-precision benchmark (``python -m gecko_agents.bench --work-precision``), not by
+stability."""
+
+IMPLICIT_TRAVEL = 0.01
+"""Largest plate travel per default implicit step at the default plate speed [µm]."""
+
+
+def check_integrator(integrator, contact: str) -> str:
+    """``integrator`` if it is one of :data:`INTEGRATORS` (the implicit step with
+    ``contact = "batch"`` only: the callback path adds contact forces after the step's)."""
+    if integrator not in INTEGRATORS or (integrator == "implicit" and contact != "batch"):
+        raise ValueError(
+            f"integrator = {integrator!r} must be one of {INTEGRATORS} (the implicit step "
+            f"needs contact='batch', got {contact!r})"
+        )
+    return integrator
+
+
+def implicit_time_step(dt, omega_max: float) -> float:
+    """The implicit step's dt [µs]: ``dt`` if given (finite, > 0: no stability bound), else
+    the smaller of :data:`IMPLICIT_DT_FACTOR` explicit steps 0.75/ω_max (ω_max [1/µs] of the
+    stiffest spring on the tip) and :data:`IMPLICIT_TRAVEL` of plate travel at the default
+    plate speed (:data:`gecko_agents.protocol.DEFAULT_SPEED`)."""
+    if dt is None:
+        return min(IMPLICIT_DT_FACTOR * 0.75 / omega_max, IMPLICIT_TRAVEL / DEFAULT_SPEED)
+    if not (isinstance(dt, int | float) and math.isfinite(dt) and dt > 0):
+        raise ValueError(f"dt = {dt!r} µs must be finite and > 0 (integrator = 'implicit')")
+    return float(dt)
+
+
+class ImplicitStep:
+    """The implicit correction of a model's step (see the module docstring).
+
+    Parameters
+    ----------
+    model : the :class:`gecko_agents.model.Model` (its law, seta stiffnesses, mass, dampers,
+        state and physics are read every step).
+    """
+
+    def __init__(self, model):
+        self.m = model
+        law = model.law
+        self.k_cap = float(law.stiffest(5 * model.params.contact.pull_off_force))
+        self.normal = None  # (2, N) contact normals of a continuous floor (NumpyStep.contact)
+        self.numerical_dissipated = 0.0  # cumulative work of F' − F [pJ]
+        n = model.n
+        self._kn = np.zeros(n)
+        self._kt = np.zeros(n)
+        self._dF = np.zeros((2, n))  # the last step's F' − F [µN]
+
+    def seta_stiffness(self, rx, ry):
+        """The seta's stiffness K = −J_x (kxx, kxy, kyx, kyy) [µN/µm], scalars for the
+        linear seta, (N,) arrays for the rod with its root at (rx, ry) + root offset [µm]."""
+        m = self.m
+        if m.params.mechanics == "linear":
+            K = m.K
+            return K[0, 0], K[0, 1], K[1, 0], K[1, 1]
+        s, w = m.state, m.world
+        dx = s.xy[0] - rx - w.root_dx
+        dy = s.xy[1] - ry - w.root_dy
+        ell = np.sqrt(dx * dx + dy * dy)
+        ex, ey = dx / ell, dy / ell
+        ka = m.Ka
+        # Rotary spring kφ/ℓ² across the rod plus its tension Ka(ℓ − L)/ℓ (clamped ≥ 0).
+        kp = m.k_phi / (ell * ell) + np.maximum(ka * (ell - m.L) / ell, 0.0)
+        kxy = (ka - kp) * ex * ey
+        return ka * ex * ex + kp * ey * ey, kxy, kxy, ka * ey * ey + kp * ex * ex
+
+    def contact_stiffness(self):
+        """Normal stiffness k_n [µN/µm] and stick stiffness k_t [µN/µm] of every tip (0 where
+        free; k_t 0 where sliding), and the contact dampers c_n, c_t [µN·µs/µm] likewise."""
+        m = self.m
+        s, law = m.state, m.law
+        att = s.attached
+        kn, kt = self._kn, self._kt
+        kn.fill(0.0)
+        kt.fill(0.0)
+        idx = np.flatnonzero(att)
+        if idx.size:
+            k = law.stiffness(s.a[idx], s.delta[idx])
+            kn[idx] = np.clip(np.where(np.isfinite(k), k, 0.0), 0.0, self.k_cap)
+            kt[idx] = np.where(s.slip[idx], 0.0, m.k_t)
+        cn = np.where(att, m.c_n, 0.0)
+        if law.tangential and law.damp_sliding:
+            ct = np.where(att, m.c_t, 0.0)
+        else:
+            ct = np.where(kt > 0.0, m.c_t, 0.0)
+        return kn, kt, cn, ct
+
+    def correct(self, roots, rebook_damping: bool = False) -> float:
+        """Replace ``state.F`` by F' = m·Δv/dt of the linearly implicit step; ``roots`` are
+        (rx, ry, rvx, rvy), the seta springs' plate (scalars or (N,) arrays, as
+        :meth:`gecko_agents.backing.rigid.RigidPlate.roots`). Returns the energy to book as
+        dissipated [pJ]: the work of F' − F on the tips over the step and, with
+        ``rebook_damping`` (the per-seta loop booked its dampers at the explicit mid-step
+        velocity), the dampers' work on the difference, −dt·Σ F_damp·(F' − F)·dt/(2m)."""
+        m = self.m
+        s, dt, mass = m.state, m.dt, m.mass
+        rx, ry, rvx, rvy = roots
+        kxx, kxy, kyx, kyy = self.seta_stiffness(rx, ry)
+        kn, kt, cn, ct = self.contact_stiffness()
+        vx, vy = s.pv[2], s.pv[3]
+        wx, wy = vx - rvx, vy - rvy  # motion relative to the root
+        # Seta part: K·(v − v_root).
+        gx = kxx * wx + kxy * wy
+        gy = kyx * wx + kyy * wy
+        if self.normal is None:  # pad floor: n = (0, 1), t = (1, 0)
+            gx += kt * vx
+            gy += kn * vy
+            axx = 1.0 + (dt / mass) * (m.c_seta + ct) + (dt * dt / mass) * (kxx + kt)
+            ayy = 1.0 + (dt / mass) * (m.c_seta + cn) + (dt * dt / mass) * (kyy + kn)
+            axy = (dt * dt / mass) * kxy
+            ayx = (dt * dt / mass) * kyx
+        else:  # n the contact normal, t = (n_y, −n_x)
+            nx, ny = self.normal
+            cxx = cn * nx * nx + ct * ny * ny
+            cxy = (cn - ct) * nx * ny
+            cyy = cn * ny * ny + ct * nx * nx
+            qxx = kn * nx * nx + kt * ny * ny
+            qxy = (kn - kt) * nx * ny
+            qyy = kn * ny * ny + kt * nx * nx
+            gx += qxx * vx + qxy * vy
+            gy += qxy * vx + qyy * vy
+            h, h2 = dt / mass, dt * dt / mass
+            axx = 1.0 + h * (m.c_seta + cxx) + h2 * (kxx + qxx)
+            ayy = 1.0 + h * (m.c_seta + cyy) + h2 * (kyy + qyy)
+            axy = h * cxy + h2 * (kxy + qxy)
+            ayx = h * cxy + h2 * (kyx + qxy)
+        Fx, Fy = s.F
+        bx = Fx - dt * gx
+        by = Fy - dt * gy
+        det = axx * ayy - axy * ayx
+        fx = (ayy * bx - axy * by) / det
+        fy = (axx * by - ayx * bx) / det
+        # Work of ΔF = F' − F between the recorder's books at the previous step and this one,
+        # ½dt·v₀·(ΔF_prev + ΔF): they book ½m·v₀·v₁, whose change is ½dt·v₀·(F'_prev + F').
+        dF = self._dF
+        dxp, dyp = dF[0] + fx - Fx, dF[1] + fy - Fy
+        work = 0.5 * dt * float(np.sum(vx * dxp + vy * dyp))
+        np.subtract(fx, Fx, out=dF[0])
+        np.subtract(fy, Fy, out=dF[1])
+        self.numerical_dissipated -= work
+        hm = 0.5 * dt / mass
+        if rebook_damping:
+            fd, fc = s.F_damp_seta, s.F_damp_contact
+            dd = np.sum((fd[0] + fc[0]) * (fx - Fx) + (fd[1] + fc[1]) * (fy - Fy))
+            work += float(dd) * hm * dt
+        Fx[:] = fx
+        Fy[:] = fy
+        return -work
+
+    def book_releases(self, events) -> float:
+        """Energy to book as dissipated for the tips that let go this step [pJ]: ``events``
+        (seta, overlap, last normal force P [µN]) as ``physics.events``. The recorder's
+        kinetic energy ½m·v₀·v₁ credits a force switched off at a snap-off with half its
+        last value over the step (the trapezoid ½(P_prev + 0)·Δx); the contact's stored
+        energy is dissipated at the new position, so the books miss −½·P·(n·v₀)·dt, the work
+        of the force the tip last felt over the step's displacement n·v₀·dt. It is ∝ dt, as
+        the explicit step's own event error (:data:`gecko_agents.history.ENERGY_RTOL`), which
+        this implicit step, ten times longer, books instead of leaving."""
+        s, dt = self.m.state, self.m.dt
+        out = 0.0
+        for i, _, P in events:
+            vn = s.pv[3, i] if self.normal is None else s.pv[2:4, i] @ self.normal[:, i]
+            out -= 0.5 * P * vn * dt
+        return out
