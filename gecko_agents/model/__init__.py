@@ -195,17 +195,8 @@ class Model:
         )
         if contact == "callback":
             self.world.on_pre_solve(self._pre_solve)
-        self._implicit = None
-        if integrator == "implicit":
-            self._implicit = ImplicitStep(self)
-            if not self.world.pads:  # contact normals of a continuous floor
-                self.physics.normal = self._implicit.normal = np.zeros((2, self.n))
+        kernel = self._set_step_parts(params, kernel)
         self._fast_pads = self.world.pads and contact == "batch"
-        if params.mechanics == "elastica":
-            kernel = elastica_kernel(kernel, self.integrator)
-            self.physics.chain = Elastica.of(params, self.n)
-            self.physics.chain_axis = self.axis
-            self.physics.chain_damping_ratio = math.sqrt(self.Kp / params.Ky)
         self.kernel, self._loop, self.loop_threads = choose_kernel(
             kernel, self._fast_pads, self.n, type(self.law), threads
         )
@@ -219,6 +210,21 @@ class Model:
         self._work_step = 0.0
         self.reset_state_arrays()
         self.backing = backing(self, **backing_options)
+
+    def _set_step_parts(self, params, kernel: str) -> str:
+        """The implicit step and the elastica's chains, where chosen; returns the kernel
+        (the elastica runs on numpy)."""
+        self._implicit = None
+        if self.integrator == "implicit":
+            self._implicit = ImplicitStep(self)
+            if not self.world.pads:  # contact normals of a continuous floor
+                self.physics.normal = self._implicit.normal = np.zeros((2, self.n))
+        if params.mechanics == "elastica":
+            kernel = elastica_kernel(kernel, self.integrator)
+            self.physics.chain = Elastica.of(params, self.n)
+            self.physics.chain_axis = self.axis
+            self.physics.chain_damping_ratio = math.sqrt(self.Kp / params.Ky)
+        return kernel
 
     def _set_mechanics(self, params, law, damping) -> None:
         """The seta's stiffnesses (eq 16–21), mass, damping coefficients and the stiffest
