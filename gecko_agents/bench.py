@@ -460,11 +460,11 @@ def wp_case(case: str, factors, ref_div: float, speed: float) -> dict:
 def work_precision(
     quick: bool = False, cases=None, speed: float = DEFAULT_SPEED, factors=None
 ) -> dict:
-    """The work-precision benchmark (module docstring): every case of :data:`WP_CASES` (or
+    """The work-precision benchmark (module docstring): every case of ``WP_CASES`` (or
     ``cases``), each integrator, against the explicit reference at
-    1/:data:`WP_REFERENCE_DIVISOR` of its step (``quick``: the rod sphere alone, fewer
+    1/``WP_REFERENCE_DIVISOR`` of its step (``quick``: the rod sphere alone, fewer
     implicit steps), the plate at ``speed`` [µm/µs], the implicit step also at ``factors``
-    explicit steps (default :data:`WP_FACTORS`).
+    explicit steps (default ``WP_FACTORS``).
     The last line: ``steps explicit/default at ≤ 0.5 % error: X.X``, the smallest over the
     cases (the default integrator: :class:`gecko_agents.model.Model`'s)."""
     cases = cases or (["rod sphere"] if quick else list(WP_CASES))

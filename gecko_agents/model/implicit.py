@@ -36,7 +36,7 @@ books the kinetic energy as ½m·v₀·v₁ and the springs at x₁ (semi-implic
 sum exactly for a linear spring); its change between two steps is then, for linear forces,
 exactly ½dt·v₀·(ΔF_prev + ΔF), so the step books that as dissipated: the scheme's numerical
 dissipation (the backward-Euler step's damping of what rings faster than 1/dt) plus the
-implicit share of the dampers' work, cumulative in :attr:`ImplicitStep.numerical_dissipated`
+implicit share of the dampers' work, cumulative in ``ImplicitStep.numerical_dissipated``
 and ``meta["implicit_dissipated_pJ"]``. Events, as in the explicit step, change a tip's force
 within one step, an error ∝ dt in the books (:data:`gecko_agents.history.ENERGY_RTOL`), k
 times the explicit one at a k times longer step: a snap-off's share is booked
@@ -72,7 +72,7 @@ IMPLICIT_TRAVEL = 0.01
 
 
 def check_integrator(integrator, contact: str) -> str:
-    """``integrator`` if it is one of :data:`INTEGRATORS` (the implicit step with
+    """``integrator`` if it is one of ``INTEGRATORS`` (the implicit step with
     ``contact = "batch"`` only: the callback path adds contact forces after the step's)."""
     if integrator not in INTEGRATORS or (integrator == "implicit" and contact != "batch"):
         raise ValueError(
@@ -156,7 +156,7 @@ class ImplicitStep:
     def correct(self, roots, rebook_damping: bool = False) -> float:
         """Replace ``state.F`` by F' = m·Δv/dt of the linearly implicit step; ``roots`` are
         (rx, ry, rvx, rvy), the seta springs' plate (scalars or (N,) arrays, as
-        :meth:`gecko_agents.backing.rigid.RigidPlate.roots`). Returns the energy to book as
+        :meth:`gecko_agents.backing.rigid.RigidBacking.roots`). Returns the energy to book as
         dissipated [pJ]: the work of F' − F on the tips over the step and, with
         ``rebook_damping`` (the per-seta loop booked its dampers at the explicit mid-step
         velocity), the dampers' work on the difference, −dt·Σ F_damp·(F' − F)·dt/(2m)."""
