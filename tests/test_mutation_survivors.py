@@ -1,0 +1,63 @@
+"""Tests that kill the mutants of the physics modules that survived the suite (tools/mutation.sh),
+each against an oracle of its own: a compliance written out, a finite-difference stiffness, a
+clipped branch."""
+
+import math
+
+import numpy as np
+import pytest
+
+from gecko_agents.contact import HertzSphere, JKRSphere
+from gecko_agents.params import PAPER_TABLE1
+from gecko_agents.physics import beam, jkr
+
+
+def test_deflection_ratio_is_the_written_out_compliance_for_any_direction_and_forces():
+    """K = Ka·n nᵀ + Kp·t tᵀ with n ⟂ t unit vectors, so K⁻¹ = n nᵀ/Ka + t tᵀ/Kp: a force F
+    along the unit vector e moves the tip by F·(n(n·e)/Ka + t(t·e)/Kp). The direction need
+    not be normalised and forces may be an array (one ratio each)."""
+    Ka, Kp, th, L = 0.5, 0.002, math.radians(30.0), 20.0
+    n = np.array([math.cos(th), -math.sin(th)])
+    t = np.array([math.sin(th), math.cos(th)])
+    for direction in ((0.0, 3.0), (2.0, -1.0), (-0.3, 0.4)):
+        e = np.asarray(direction) / math.hypot(*direction)
+        forces = np.array([1e-3, 0.02, 1.5])
+        per_force = np.linalg.norm(n * (n @ e) / Ka + t * (t @ e) / Kp)
+        got = beam.deflection_ratio(forces, Ka, Kp, th, L, direction=direction)
+        assert got.shape == forces.shape
+        np.testing.assert_allclose(got, forces * per_force / L, rtol=1e-12)
+
+
+C = PAPER_TABLE1.contact
+R, W, E = C.jkr_args()
+
+
+def test_hertz_law_scales_are_hertz_closed_forms():
+    """The Hertz tip's reference radius is Hertz's under the JKR law's Fc = 1.5πRw,
+    a = (3R·Fc/(4E*))^(1/3); its damping and time-step stiffnesses are dP/dδ = 2E*·a of
+    P = (4/3)E*√R·δ^(3/2) (checked by central differences at the matching overlap a²/R);
+    it touches with zero radius."""
+    law = HertzSphere(C)
+    Fc = 1.5 * math.pi * R * W
+    a_ref = (3 * R * Fc / (4 * E)) ** (1 / 3)
+    assert law.a0 == pytest.approx(a_ref, rel=1e-12)
+    assert law.jump_radius == 0.0 and law.pull_off_force == 0.0
+
+    def dP_ddelta(delta, h=1e-7):
+        return (jkr.hertz_force(delta + h, R, E) - jkr.hertz_force(delta - h, R, E)) / (2 * h)
+
+    assert law.zero_load_stiffness == pytest.approx(dP_ddelta(a_ref**2 / R), rel=1e-6)
+    for load in (0.3, 3.0, 30.0):
+        a = (3 * R * load / (4 * E)) ** (1 / 3)
+        assert law.stiffest(load) == pytest.approx(dP_ddelta(a * a / R), rel=1e-6)
+
+
+def test_jkr_law_radius_is_clipped_at_the_end_of_the_branch():
+    """Below δc no contact exists; the law's vectorized radius, like
+    :func:`jkr.radius_from_overlap`, returns the radius at δc, a_c = (πwR²/(8E*))^(1/3)."""
+    law = JKRSphere(C)
+    dc = -0.75 * (math.pi**2 * W**2 * R / E**2) ** (1 / 3)
+    a_c = (math.pi * W * R * R / (8 * E)) ** (1 / 3)
+    d = np.array([1.5 * dc, 3.0 * dc, dc])
+    np.testing.assert_allclose(law.radius(d.copy()), a_c, rtol=1e-7)
+    np.testing.assert_allclose(jkr.radius_from_overlap(d, R, W, E), a_c, rtol=1e-7)
