@@ -61,3 +61,20 @@ def test_jkr_law_radius_is_clipped_at_the_end_of_the_branch():
     d = np.array([1.5 * dc, 3.0 * dc, dc])
     np.testing.assert_allclose(law.radius(d.copy()), a_c, rtol=1e-7)
     np.testing.assert_allclose(jkr.radius_from_overlap(d, R, W, E), a_c, rtol=1e-7)
+
+
+def test_linear_spring_force_is_minus_k_u_and_its_energy_the_quadratic_form():
+    """F = −K·u (eq 20–21's 2×2 K, K symmetric) and E = ½uᵀKu, with F = −∇E (central
+    differences, exact for a quadratic up to rounding)."""
+    K = beam.stiffness_matrix(0.5, 0.002, math.radians(60.0))
+    u = np.random.default_rng(7).uniform(-2.0, 2.0, (25, 2))
+    F, energy = beam.linear_spring_force(u, K)
+    np.testing.assert_allclose(F, -(u @ K.T), rtol=1e-13, atol=1e-16)
+    np.testing.assert_allclose(energy, 0.5 * np.einsum("ni,ij,nj->n", u, K, u), rtol=1e-13)
+    h = 1e-6
+    for axis in (0, 1):
+        e = np.zeros(2)
+        e[axis] = h
+        _, Ep = beam.linear_spring_force(u + e, K)
+        _, Em = beam.linear_spring_force(u - e, K)
+        np.testing.assert_allclose(F[:, axis], -(Ep - Em) / (2 * h), rtol=1e-7, atol=1e-12)
