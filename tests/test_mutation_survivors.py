@@ -2,6 +2,7 @@
 each against an oracle of its own: a compliance written out, a finite-difference stiffness, a
 clipped branch."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -78,3 +79,27 @@ def test_linear_spring_force_is_minus_k_u_and_its_energy_the_quadratic_form():
         _, Ep = beam.linear_spring_force(u + e, K)
         _, Em = beam.linear_spring_force(u - e, K)
         np.testing.assert_allclose(F[:, axis], -(Ep - Em) / (2 * h), rtol=1e-7, atol=1e-12)
+
+
+@pytest.mark.parametrize("v_close", [math.inf, 0.5])
+def test_rate_law_closes_its_edge_onto_the_jkr_branch_when_pressed(v_close):
+    """A crack-kinetics tip pressed to δ > 0 from a radius below JKR's there (G < w, the edge
+    closing): at an infinite closing speed it takes the equilibrium radius at once; at a finite
+    one it grows by dt·v_close·((w − G)/w)^(1/n), never past equilibrium (Maugis 2000 ch 5,
+    the law's docstring)."""
+    from gecko_agents.contact import RateJKRSphere
+
+    law = RateJKRSphere(dataclasses.replace(C, crack_speed=0.05, crack_closing_speed=v_close))
+    delta = 0.4
+    a_eq = float(jkr.radius_from_overlap(delta, R, W, E))
+    a_prev, dt = 0.6 * a_eq, 0.01
+    a_new = law.radius_scalar(delta, a_prev, dt, law.constants)
+    assert law.radius(np.array([delta]), np.array([a_prev]), dt)[0] == a_new
+    if math.isinf(v_close):
+        assert a_new == pytest.approx(a_eq, rel=1e-12)
+    else:
+        g = a_prev**2 / R - delta
+        G = E * g * g / (2 * math.pi * a_prev)
+        expected = a_prev + dt * v_close * ((W - G) / W) ** (1 / law.n_exp)
+        assert G < W and expected < a_eq
+        assert a_new == pytest.approx(expected, rel=1e-12)
