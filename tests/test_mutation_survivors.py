@@ -103,3 +103,50 @@ def test_rate_law_closes_its_edge_onto_the_jkr_branch_when_pressed(v_close):
         expected = a_prev + dt * v_close * ((W - G) / W) ** (1 / law.n_exp)
         assert G < W and expected < a_eq
         assert a_new == pytest.approx(expected, rel=1e-12)
+
+
+def _rate_law(v_close=math.inf):
+    from gecko_agents.contact import RateJKRSphere
+
+    return RateJKRSphere(dataclasses.replace(C, crack_speed=0.05, crack_closing_speed=v_close))
+
+
+@pytest.mark.parametrize("side", [-1.0, 1.0])
+def test_rate_law_opens_exactly_where_g_exceeds_w(side):
+    """At radius a the edge is in equilibrium (G = w) at δ_eq = a²/R − √(2πwa/E*) (eq 10);
+    pulled 0.1 % of that gap further (G > w) it opens and the radius falls, pressed as much
+    (G < w) it closes at the closing speed: a + dt·v_close·((w − G)/w)^(1/n)."""
+    law = _rate_law(0.5)
+    a, dt = 2.0, 0.01
+    gap = math.sqrt(2 * math.pi * W * a / E)
+    delta = a * a / R - gap * (1 + side * 1e-3)  # side −1: pressed, +1: pulled
+    a_new = law.radius_scalar(delta, a, dt, law.constants)
+    if side > 0:
+        assert a_new < a
+    else:
+        G = E * (a * a / R - delta) ** 2 / (2 * math.pi * a)
+        closing = a + dt * 0.5 * ((W - G) / W) ** (1 / law.n_exp)
+        assert a < closing < float(jkr.radius_from_overlap(delta, R, W, E))
+        assert a_new == pytest.approx(closing, rel=1e-12)
+
+
+def test_rate_law_opening_step_is_linearly_implicit_euler():
+    """An opening edge takes one Newton step of backward Euler on ȧ = −v*·((G − w)/w)^(1/n):
+    a_new = a − dt·v*·x^(1/n)/(1 + dt·v*·(1/n)·x^(1/n − 1)·G'(a)/w), x = (G − w)/w, with
+    G(a) = E*(a²/R − δ)²/(2πa) and G'(a) here by central differences (Maugis 2000 ch 5; the
+    law's docstring)."""
+    law = _rate_law()
+    a, delta, dt = 2.0, -0.2, 0.05
+    inv_n = 1.0 / law.n_exp
+
+    def G(x):
+        return E * (x * x / R - delta) ** 2 / (2 * math.pi * x)
+
+    h = 1e-6
+    dG = (G(a + h) - G(a - h)) / (2 * h)
+    x = (G(a) - W) / W
+    assert x > 0 and dG > 0
+    v = law.v_star
+    expected = a - dt * v * x**inv_n / (1 + dt * v * inv_n * x ** (inv_n - 1) * dG / W)
+    assert a - expected < 0.1 * a  # a resolved step, not a snap-off
+    assert law.radius_scalar(delta, a, dt, law.constants) == pytest.approx(expected, rel=1e-9)
