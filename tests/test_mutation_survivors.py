@@ -150,3 +150,28 @@ def test_rate_law_opening_step_is_linearly_implicit_euler():
     expected = a - dt * v * x**inv_n / (1 + dt * v * inv_n * x ** (inv_n - 1) * dG / W)
     assert a - expected < 0.1 * a  # a resolved step, not a snap-off
     assert law.radius_scalar(delta, a, dt, law.constants) == pytest.approx(expected, rel=1e-9)
+
+
+def test_rate_law_snaps_off_on_an_unresolved_step_and_runs_free_below_delta_c():
+    """A step that would shrink the radius by more than 10 % is a snap-off (a = 0); below δc
+    (no equilibrium radius) a resolved opening step is not clipped to any branch: it is the
+    same linearly implicit Euler step (law's docstring)."""
+    law = _rate_law()
+    inv_n, v = 1.0 / law.n_exp, law.v_star
+    # Small and pulled hard (δ < −3a²/R: G'(a) < 0, an explicit step, the edge running away):
+    a, delta, dt = 0.3, -0.5, 10.0
+    g = a * a / R - delta
+    x = (E * g * g / (2 * math.pi * a) - W) / W
+    assert 3 * a * a / R + delta < 0 and dt * v * x**inv_n > 0.1 * a
+    assert law.radius_scalar(delta, a, dt, law.constants) == 0.0
+    assert law.radius_scalar(delta, a, 1e-4 * dt, law.constants) > 0.9 * a  # resolved: no
+    a, delta, dt = 0.8, 1.5 * law.delta_c, 1e-4  # below δc: no branch radius exists
+    g = a * a / R - delta
+    G = E * g * g / (2 * math.pi * a)
+    dG = E * g * (3 * a * a / R + delta) / (2 * math.pi * a * a)  # d/da of G, by hand
+    x = (G - W) / W
+    step = dt * v * x**inv_n
+    if dG > 0:
+        step /= 1 + dt * v * inv_n * x ** (inv_n - 1) * dG / W
+    assert 0 < step < 0.1 * a
+    assert law.radius_scalar(delta, a, dt, law.constants) == pytest.approx(a - step, rel=1e-12)
