@@ -175,3 +175,40 @@ def test_rate_law_snaps_off_on_an_unresolved_step_and_runs_free_below_delta_c():
         step /= 1 + dt * v * inv_n * x ** (inv_n - 1) * dG / W
     assert 0 < step < 0.1 * a
     assert law.radius_scalar(delta, a, dt, law.constants) == pytest.approx(a - step, rel=1e-12)
+
+
+def test_rate_law_closes_at_once_when_its_edge_is_compressed_and_never_past_equilibrium():
+    """g = a²/R − δ ≤ 0 (edge in compression) closes onto the branch at once, at any closing
+    speed; a closing step that would pass the equilibrium radius stops on it."""
+    law = _rate_law(0.5)
+    a_prev, delta = 1.0, 0.5  # g = 0.25 − 0.5 < 0
+    a_eq = float(jkr.radius_from_overlap(delta, R, W, E))
+    assert law.radius_scalar(delta, a_prev, 1e-3, law.constants) == pytest.approx(a_eq, rel=1e-12)
+    a_prev, delta = 1.5, 0.4  # g > 0 but G < w: a slow closing, here over a long step
+    a_eq = float(jkr.radius_from_overlap(delta, R, W, E))
+    assert law.radius_scalar(delta, a_prev, 1e4, law.constants) == pytest.approx(a_eq, rel=1e-12)
+
+
+def test_rate_law_constants_and_attachment_energy():
+    """Its release radius is 1 % of a0 and its backstop detachment 20·δc (law docstring);
+    the energy of a JKR tip is zero where it attaches (a_j at δ = 0)."""
+    law = _rate_law()
+    a0 = (4.5 * math.pi * W * R * R / E) ** (1 / 3)
+    dc = -0.75 * (math.pi**2 * W**2 * R / E**2) ** (1 / 3)
+    assert law.release_radius == pytest.approx(0.01 * a0, rel=1e-12)
+    assert law.detach_overlap == pytest.approx(20.0 * dc, rel=1e-12)
+    for tip in (JKRSphere(C), law):
+        e = tip.energy(np.array([tip.jump_radius]), np.array([0.0]))
+        assert e == pytest.approx(0.0, abs=1e-12)
+        e = tip.energy_scalar(tip.jump_radius, 0.0, tip.constants)  # the kernels' form
+        assert e == pytest.approx(0.0, abs=1e-12)
+
+
+def test_rod_rotation_is_wrapped_to_the_shorter_way_round():
+    """A rod tip carried past the half turn (here 210° from rest, counter-clockwise) is a
+    rotation of −150°: E = ½kφ(150°)² (Δφ wrapped into (−π, π])."""
+    th, L, kphi = math.radians(60.0), 5.0, 0.7
+    ang = -th + math.radians(210.0)
+    d = np.array([[L * math.cos(ang), L * math.sin(ang)]])
+    _, energy = beam.rod_spring_force(d, L, 2.0, kphi, th)
+    assert energy[0] == pytest.approx(0.5 * kphi * math.radians(150.0) ** 2, rel=1e-12)
