@@ -122,7 +122,12 @@ def test_friction_invariants_on_every_step(law):
     dy = np.where(state == STATE_STICK, (P - br.Kxy * u) / br.Kyy, 0.0)
     Ft = br.Kxx * u + br.Kxy * dy
     stick = state == STATE_STICK
-    assert np.all(np.abs(Ft[stick]) <= br.cap(P[stick]) * (1 + 1e-9) + 1e-12)
+    # The cap written out (not the solver's br.cap): μ·max(P, 0) (eq 27) or μ|P + 2Fc|.
+    mu = p.friction.mu
+    cap = mu * np.maximum(P, 0.0) if law == "paper" else mu * np.abs(P + 2 * FC)
+    assert np.all(np.abs(Ft[stick]) <= cap[stick] * (1 + 1e-9) + 1e-12)
+    # The solver's own cap is that law.
+    assert_allclose(np.abs(br.cap(P)), cap, rtol=1e-12, atol=1e-15)
     # A sticking tip does not move sideways between two sticking steps.
     both = stick[1:] & stick[:-1]
     assert_allclose(u[1:][both], u[:-1][both], atol=1e-12)
