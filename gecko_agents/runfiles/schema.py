@@ -209,8 +209,10 @@ def override_kind(base: SetaArray, dotted: str):
 def apply_params(
     ctx: Ctx, base: SetaArray, overrides: dict, table: str, quick_keys=()
 ) -> SetaArray:
-    """``base`` with the overrides applied one by one, so an error names its key."""
-    out = base
+    """``base`` with the overrides, applied together (a constraint between fields, such as
+    ``floor.kind = "probe"`` with ``floor.sigma = 0``, holds whatever their order); if that
+    fails they are applied one by one, so the error names its key."""
+    typed = {}
     for key, value in overrides.items():
         where = f"[{'quick.' if key in quick_keys else ''}{table}] {key!r}"
         if isinstance(value, dict):  # a nested table, [params.seta]: say it in TOML
@@ -229,7 +231,14 @@ def apply_params(
             except (ValueError, TypeError) as err:
                 raise ctx.error(where, f"{err} (see `gecko-agents params`)") from None
             raise ctx.error(where, "is not a parameter (see `gecko-agents params`)")
-        value = ctx.type_(where, value, kind)
+        typed[key] = ctx.type_(where, value, kind)
+    try:
+        return base.replace(**typed)
+    except (ValueError, TypeError):
+        pass
+    out = base
+    for key, value in typed.items():
+        where = f"[{'quick.' if key in quick_keys else ''}{table}] {key!r}"
         try:
             out = out.replace(**{key: value})
         except (ValueError, TypeError) as err:
