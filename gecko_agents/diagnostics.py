@@ -233,6 +233,7 @@ class _Run:
     Ky: float  # the seta's stiffness Ky [µN/µm] (eq 20), the damper's scale
     zeta: float  # the seta's damping ratio (meta["damping"]["seta"], 1 if not recorded)
     film: bool  # the tip law peels a film (the spatula)
+    flat_face: bool  # the tip is a flat punch (a = R by construction)
     stroke: float | None  # |δc|, the JKR snap-off overlap [µm] (None if not adhesive)
     floor_top: float  # highest floor point [µm]
     reached: bool  # the plate went below the height at which the highest resting tip touches
@@ -294,7 +295,7 @@ def _facts(history) -> _Run:
         touched=bool(np.max(history["n_attached"], initial=0) > 0),
         a0=float(jkr.zero_load_contact_radius(R, w, E)) if adhesive else 0.0,
         v=float(m["protocol_speed_um_per_us"]), v_peak=_speed_at_peak(history),
-        Fc=float(law.pull_off_force), Ky=float(p.Ky),
+        Fc=float(law.pull_off_force), Ky=float(p.Ky), flat_face=bool(law.flat_face),
         zeta=float((history.meta.get("damping") or {}).get("seta", 1.0)), film=bool(law.film),
         stroke=abs(c.snap_off_overlap) if adhesive else None,
         floor_top=floor_top,
@@ -305,7 +306,7 @@ def _facts(history) -> _Run:
     )  # fmt: skip
 
 
-def _a_over_R(f: _Run, sphere: bool) -> dict:
+def _a_over_R(f: _Run) -> dict:
     if f.adhesive:
         a_load = float(jkr.contact_radius_from_force(f.P_comp, f.R, f.w, f.E))
     else:
@@ -317,11 +318,11 @@ def _a_over_R(f: _Run, sphere: bool) -> dict:
         f"largest contact radius {a_max:.3g} µm over tip radius {f.R:g} µm (JKR and Hertz "
         "treat the sphere as a paraboloid on a half-space: a ≪ R)",
         "Johnson 1985 Contact Mechanics §4.2, §5.5; Maugis 1995 Langmuir 11:679",
-        applies=a_max > 0 and f.touched and sphere,
+        applies=a_max > 0 and f.touched and not f.flat_face,
     )
 
 
-def _tabor(f: _Run, sphere: bool) -> dict:
+def _tabor(f: _Run) -> dict:
     mu_t = (f.R * f.w**2 / (f.E**2 * Z0_UM**3)) ** (1 / 3) if f.adhesive else None
     return _item(
         "tabor",
@@ -330,7 +331,7 @@ def _tabor(f: _Run, sphere: bool) -> dict:
         "μ ≳ 5, below it Maugis–Dugdale/DMT",
         "Tabor 1977 J Colloid Interface Sci 58:2; Johnson & Greenwood 1997 J Colloid "
         "Interface Sci 192:326; z0 as ε of Greenwood 1997 Proc R Soc A 453:1277",
-        applies=f.adhesive and f.touched and sphere,
+        applies=f.adhesive and f.touched,
     )
 
 
@@ -507,10 +508,9 @@ def diagnose(history, *, warn: bool = True) -> dict:
         If the plate went past the floor and no tip ever touched it.
     """
     f = _facts(history)
-    sphere = history.params.tip != "flat_punch"  # a punch's radius is its face's, a = R
     items = {
-        "a_over_R": _a_over_R(f, sphere),
-        "tabor": _tabor(f, sphere),
+        "a_over_R": _a_over_R(f),
+        "tabor": _tabor(f),
         "linear_deflection": _linear_deflection(history, f),
         "quasi_static": _quasi_static(history, f),
         "time_step": _time_step(f),

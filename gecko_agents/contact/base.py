@@ -76,6 +76,9 @@ class ContactLaw:
     rate_dependent: bool = False  # the radius is a state variable (crack kinetics)
     tangential: bool = False  # the law takes the tip's tangential position (step_scalar)
     film: bool = False  # a peeling film: anchor = peel front, a = attached length (recorded)
+    # A flat face (the punch): bonded, it holds the tip's direction (the elastica's clamp),
+    # and its radius is the face's, a = R (no sphere items in the diagnostics).
+    flat_face: bool = False
     # A tangential law's contact damping also acts while the tip slides (the spatula's film);
     # False: only while it sticks, as the sphere's stick spring (kernels, :mod:`.loop`).
     damp_sliding: bool = True

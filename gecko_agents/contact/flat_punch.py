@@ -44,6 +44,7 @@ class FlatPunch(ContactLaw):
 
     name = "flat_punch"
     label = "tip = 'flat_punch'"
+    flat_face = True
     # A punch lets go at its full pull-off force (a sphere at its fold, at 5/9 of Fc): the
     # seta's unbalanced force accelerates the tip F·dt/m in the release step, and the record's
     # half-step kinetic energy ½m·v·(v + F·dt/m) is off by O(F²dt²/m) on that one record (2.2 %

@@ -89,7 +89,7 @@ class NumpyStep:
         self.events = []  # (seta, overlap, force) of the tips that let go this step
         self.max_u2 = 0.0  # largest |u|² of a linear seta this step [µm²]
         self.chain = None  # the elastica of mechanics="elastica" (physics.elastica.Elastica)
-        self.holds_tip = law.name == "flat_punch"  # a bonded punch face keeps its direction
+        self.holds_tip = law.flat_face  # a bonded flat face keeps the tip's direction
         self.normal = None  # (2, N): contact normals kept for the implicit step, if it asks
 
     # ------------------------------------------------------------------ seta springs
