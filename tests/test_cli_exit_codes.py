@@ -4,25 +4,10 @@ way a user would reach it."""
 
 import sys
 
+from test_cli import GOOD as RUN  # the same minimal run file
+
 from gecko_agents import cli, history
 from gecko_agents.model import Model
-
-RUN = """\
-preset = "PAPER_TABLE1"
-[params]
-"seta.L" = 5.0
-mechanics = "rod"
-[model]
-n_sim = 1
-seed = 1
-[[protocol]]
-segment = "press_to"
-depth_um = 0.5
-speed_um_per_us = 0.05
-[[protocol]]
-segment = "pull_off"
-speed_um_per_us = 0.05
-"""
 
 SWEEP = """\
 preset = "PAPER_TABLE1"
