@@ -25,7 +25,7 @@ from gecko_agents import quasistatic as qs
 from gecko_agents.data import PAPER_FIGURES
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 from gecko_agents.physics.beam import rest_tip_offset
-from gecko_agents.studies.common import output_dir, parse_args, write_json
+from gecko_agents.studies.common import command_line, output_dir, parse_args, write_json
 
 DATA = PAPER_FIGURES
 
@@ -243,6 +243,7 @@ def validation_section(rows: list[dict]) -> str:
     return "\n".join(val) + "\n"
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir("calibrate_paper", args)

@@ -10,13 +10,15 @@ from __future__ import annotations
 
 import argparse
 import csv
+import functools
 import io
 import json
+import sys
 from pathlib import Path
 
 import numpy as np
 
-from gecko_agents.console import add_verbosity_arguments
+from gecko_agents.console import WarningLog, add_verbosity_arguments
 from gecko_agents.output_paths import atomic_write_bytes, output_dir_arg
 from gecko_agents.physics import jkr
 from gecko_agents.provenance import versions
@@ -54,6 +56,26 @@ def writable_dir(value: str) -> Path:
     path = output_dir_arg(value)
     path.mkdir(parents=True, exist_ok=True)
     return path
+
+
+def command_line(main):
+    """Decorate a study's ``main(argv=None)``: called from the command line (``argv`` None),
+    its warnings go through :class:`gecko_agents.console.WarningLog` at the ``--quiet`` /
+    ``--verbose`` level given (one short line per validity item at the end by default), as
+    under ``reproduce_paper``; called with ``argv`` (by another study or a test), the caller's
+    warning handling stands."""
+
+    @functools.wraps(main)
+    def run(argv=None):
+        if argv is not None:
+            return main(argv)
+        argv = sys.argv[1:]
+        level = 0 if "--quiet" in argv else 2 if "--verbose" in argv else 1
+        with WarningLog(level) as log:
+            log.family(main.__module__.rsplit(".", 1)[-1])
+            return main(argv)
+
+    return run
 
 
 def parse_args(doc: str, argv=None, extra=None) -> argparse.Namespace:

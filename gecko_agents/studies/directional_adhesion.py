@@ -21,7 +21,13 @@ from gecko_agents.analysis.pull import pull_off, release_point
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render import plot_force_curves, save_figure
-from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 PRELOAD_PER_SETA = 1.0  # µN
 DRAG = 4.0  # µm
@@ -109,6 +115,7 @@ def draw(rows: list[dict], drags: list, drag_len: float, pull_off_force: float, 
     save_figure(fig, out / "directional_adhesion.png")
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(
         __doc__,

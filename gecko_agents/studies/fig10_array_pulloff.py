@@ -20,7 +20,14 @@ from gecko_agents import quasistatic as qs
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY, PAPER_FIG5_READING
 from gecko_agents.render import PRESSING_LABEL, plot_force_curves, save_figure, touchdown_height
-from gecko_agents.studies.common import claim, output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    claim,
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 N_FULL = PAPER_ARRAY.array.count
 PRELOAD_N = 8.6  # N, where the paper's Fig 10 curve starts
@@ -233,6 +240,7 @@ def make_claims(full, alt, results, band, n_best, within, conv_sizes, z_touch) -
     ]
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(
         __doc__,

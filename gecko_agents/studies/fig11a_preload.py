@@ -37,7 +37,14 @@ import numpy as np
 
 from gecko_agents import render
 from gecko_agents.params import PAPER_ARRAY
-from gecko_agents.studies.common import claim, output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    claim,
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 from gecko_agents.studies.preload import (
     FULL_COUNT,
     PAPER_ONSET_N,
@@ -348,6 +355,7 @@ def metadata(args, cfg, base, adhesive, alt, result: dict) -> dict:
     }
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv, add_args)
     out = output_dir(NAME, args)

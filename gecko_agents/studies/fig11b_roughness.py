@@ -23,7 +23,14 @@ import numpy as np
 from gecko_agents import render
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.studies import preload as f11
-from gecko_agents.studies.common import claim, output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    claim,
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 NAME = "fig11b_roughness"
 SIGMAS = [0.5, 1.0, 1.5]  # RMS floor heights of Fig 11b [µm]
@@ -346,6 +353,7 @@ def metadata(args, cfg, base, adhesive, alt, result: dict) -> dict:
     }
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv, f11.add_args)
     out = output_dir(NAME, args)

@@ -34,6 +34,7 @@ from gecko_agents.studies.common import (
     GREY,
     PAPER_DELTA_S_COEF,
     claim,
+    command_line,
     num,
     off_paper,
     output_dir,
@@ -382,6 +383,7 @@ def summary(kp: dict) -> dict:
     }
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir(NAME, args)

@@ -26,6 +26,7 @@ from gecko_agents.render import STYLE_RC, plot_force_curves, save_figure
 from gecko_agents.studies.common import (
     GREY,
     claim,
+    command_line,
     jkr_curves,
     num,
     output_dir,
@@ -308,6 +309,7 @@ def build_claims(contacts: list, rows: list[dict], alt_rows: list[dict]) -> tupl
     return claims, numbers
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir(NAME, args)

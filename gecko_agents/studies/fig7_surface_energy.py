@@ -31,6 +31,7 @@ from gecko_agents.studies.common import (
     GREY,
     PAPER_DELTA_S_COEF,
     claim,
+    command_line,
     jkr_curves,
     num,
     output_dir,
@@ -337,6 +338,7 @@ def build_claims(rows: list[dict], e_rows: list[dict]) -> tuple[list, dict]:
     return claims, numbers
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir(NAME, args)

@@ -16,7 +16,14 @@ from gecko_agents import quasistatic as qs
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_FIG5_READING, PAPER_TABLE1
 from gecko_agents.render import PRESSING_LABEL, annotate_points, plot_force_curves, touchdown_height
-from gecko_agents.studies.common import claim, output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    claim,
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 DEPTH = 0.5  # µm past touch-down
 
@@ -94,6 +101,7 @@ def make_claims(results: dict, params) -> list[dict]:
     ]
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(
         __doc__,

@@ -60,7 +60,13 @@ from gecko_agents.model import Model
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import PAPER_ARRAY
-from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 NAME = "frictional_adhesion"
 BASE = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.0, "array.count": 1})
@@ -307,6 +313,7 @@ def _extra_args(p) -> None:
     )
 
 
+@command_line
 def main(argv=None) -> dict:
     from gecko_agents.studies import frictional_adhesion_report as report
 

@@ -24,7 +24,13 @@ from gecko_agents.floor import readers as profiles
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render.floor_plots import plot_floor
-from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 NAME = "measured_floor"
 DEFAULT_FILE = DEKTAK_PROFILE
@@ -83,6 +89,7 @@ def load_profile(args):
     return whole, part
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv, extra=_extra)
     out = output_dir(NAME, args)

@@ -49,7 +49,13 @@ import numpy as np
 from gecko_agents import protocol, render
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
-from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 NAME = "misalignment"
 BASE = PAPER_ARRAY.replace(
@@ -102,6 +108,7 @@ def draw(rows, out) -> None:
         render.save_figure(fig, out / f"{NAME}.png")
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir(NAME, args)

@@ -68,7 +68,14 @@ from gecko_agents.backing.bench import elastic_pressed_model
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render.backing import BackingTrack
-from gecko_agents.studies.common import GREY, output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    GREY,
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 NAME = "pad_peel"
 BASE = PAPER_ARRAY.replace(
@@ -236,6 +243,7 @@ def animate_peel(out) -> None:
     render.animate(h, out / f"{NAME}.gif", window=ANIMATED["n"])
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(
         __doc__,

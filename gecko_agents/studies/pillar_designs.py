@@ -61,7 +61,13 @@ from gecko_agents.data import DEKTAK_PROFILE
 from gecko_agents.floor import readers
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
-from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 NAME = "pillar_designs"
 R_PILLAR, N_PILLARS, SPEED, SEED = 1.5, 5, 0.05, 0
@@ -184,6 +190,7 @@ def draw(rows, cfg, out) -> None:
         render.save_figure(fig, out / f"{NAME}.png")
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir(NAME, args)

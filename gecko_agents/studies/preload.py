@@ -265,10 +265,14 @@ def block_check(base, cfg, preload_N: float = 1.0) -> dict:
     }
 
 
-def legend_below(fig, ax, ncol: int = 2) -> None:
-    """Put the legend under the axes (the curves fill the panel) and make room for it."""
-    fig.set_size_inches(7.4, 6.0)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=ncol, fontsize=8, frameon=False)
+def legend_below(fig, ax, ncol: int = 1) -> None:
+    """Put the legend under the axes (the curves fill the panel), one entry per line: the
+    labels are long, and an ``outside`` legend makes the constrained layout leave room for it."""
+    fig.set_size_inches(7.4, 6.6)
+    handles, labels = ax.get_legend_handles_labels()
+    if ax.get_legend() is not None:
+        ax.get_legend().remove()
+    fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8, frameon=False)
 
 
 def add_args(parser) -> None:

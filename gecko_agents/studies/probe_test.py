@@ -52,7 +52,13 @@ from gecko_agents.floor.probe import probe_heights
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import fibril_probe, punch
-from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 NAME = "probe_test"
 PILLARS = PAPER_ARRAY.replace(
@@ -141,6 +147,7 @@ def draw(rows, cfg, out) -> None:
         render.save_figure(fig, out / f"{NAME}.png")
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir(NAME, args)

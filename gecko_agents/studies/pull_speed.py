@@ -25,7 +25,13 @@ import time
 from gecko_agents import protocol, render
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
-from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 NAME = "pull_speed"
 BASE = PAPER_ARRAY.replace(**{"mechanics": "rod", "seta.L": 5.0, "floor.sigma": 0.3})
@@ -98,6 +104,7 @@ def draw(rows: list[dict], cfg: dict, Fc: float, out) -> None:
         render.save_figure(fig, out / f"{NAME}.png")
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir(NAME, args)

@@ -20,7 +20,13 @@ from gecko_agents import floor, protocol
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render.floor_plots import draw_profile, draw_psd
-from gecko_agents.studies.common import output_dir, parse_args, write_json, write_table
+from gecko_agents.studies.common import (
+    command_line,
+    output_dir,
+    parse_args,
+    write_json,
+    write_table,
+)
 
 NAME = "roughness_spectrum"
 
@@ -86,6 +92,7 @@ def run_row(cfg: dict, kind: str, sigma: float, hurst: float | None) -> dict:
     }
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir(NAME, args)

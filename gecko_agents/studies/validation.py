@@ -41,7 +41,7 @@ from gecko_agents.provenance import versions
 from gecko_agents.studies import frictional_adhesion as fa
 from gecko_agents.studies import misalignment as mis
 from gecko_agents.studies import pad_peel, pull_speed
-from gecko_agents.studies.common import RENDERS, parse_args, write_json, write_table
+from gecko_agents.studies.common import RENDERS, command_line, parse_args, write_json, write_table
 from gecko_agents.studies.validation_rows import ROWS
 
 NAME = "literature_comparison"
@@ -399,6 +399,7 @@ def draw(rows: list[dict], out) -> None:
         render.save_figure(fig, out / f"{NAME}.png")
 
 
+@command_line
 def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = args.out if args.out is not None else RENDERS

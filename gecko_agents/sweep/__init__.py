@@ -66,6 +66,7 @@ from gecko_agents.sweep.workers import (
     WATCHDOG_PERIOD,
     StopOnSignals,
     SweepInterrupted,
+    relay_warnings,
     run_local,
     run_point,
 )
@@ -182,6 +183,7 @@ def _finisher(point_dir: Path, bar) -> Callable[[dict], None]:
 
     def finish(record: dict) -> None:
         nonlocal n_errors
+        relay_warnings(record)
         write_record(point_dir, record)
         n_errors += record["status"] != "ok"
         bar.update(1)

@@ -17,6 +17,7 @@ import sys
 import threading
 import time
 import traceback
+import warnings
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures import as_completed as futures_as_completed
@@ -35,6 +36,7 @@ __all__ = [
 ]
 
 WATCHDOG_PERIOD = 1.0
+WARNINGS_KEY = "_warnings"  # a record's relayed warnings, never stored
 """How often [s] a worker checks that the sweep's process is still alive."""
 _PR_SET_PDEATHSIG = 1  # linux/prctl.h
 
@@ -104,18 +106,33 @@ def run_point(fn: Callable, fn_name: str, fn_kwargs: dict, point: SweepPoint, ke
     """Run one point (in a worker) and return its record; a raising point_fn gives "error"."""
     t0 = time.perf_counter()
     record = _new_record(fn_name, fn_kwargs, point, key)
-    try:
-        result = fn(point.params, point.seed, **(fn_kwargs | point.fn_overrides))
-        record["result"] = _check_result(
-            result, {"key", "seed", "status", "error", *point.overrides}
-        )
-    except Exception as err:
-        record.update(
-            status="error", error=f"{type(err).__name__}: {err}", traceback=traceback.format_exc()
-        )
+    # A worker process has no console of its own: its warnings travel with the record and
+    # are raised again in the sweep's process (relay_warnings), where the caller's filters
+    # and gecko_agents.console collect them like those of an in-process run.
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            result = fn(point.params, point.seed, **(fn_kwargs | point.fn_overrides))
+            record["result"] = _check_result(
+                result, {"key", "seed", "status", "error", *point.overrides}
+            )
+        except Exception as err:
+            record.update(
+                status="error",
+                error=f"{type(err).__name__}: {err}",
+                traceback=traceback.format_exc(),
+            )
+    record[WARNINGS_KEY] = [(w.category, str(w.message)) for w in caught]
     record["elapsed_s"] = time.perf_counter() - t0
     record["versions"] = versions()
     return record
+
+
+def relay_warnings(record: dict) -> None:
+    """Raise again, in this process, the warnings a point's run raised (and drop them from
+    ``record``, which is stored without them)."""
+    for category, message in record.pop(WARNINGS_KEY, ()):
+        warnings.warn(message, category, stacklevel=2)
 
 
 def failed_record(

@@ -1,0 +1,64 @@
+"""Warnings raised inside sweep worker processes reach the sweep's own process (and so the
+console's WarningLog), and a study run from the command line honours --quiet / --verbose."""
+
+import json
+import sys
+import warnings
+
+import pytest
+
+from gecko_agents import sweep
+from gecko_agents.diagnostics import ValidityWarning
+from gecko_agents.params import PAPER_TABLE1
+
+
+def warning_point(params, seed):
+    """A point that warns once with its radius in the message."""
+    warnings.warn(
+        f"validity: a_over_R = {params.contact.R / 10:g} violates x", ValidityWarning, stacklevel=2
+    )
+    return {"R_um": params.contact.R}
+
+
+@pytest.mark.parametrize("n_workers", [1, 2])
+def test_worker_warnings_are_raised_again_in_the_sweep_process(tmp_path, n_workers):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        rows = sweep.run_sweep(
+            "test_warning_relay:warning_point",
+            PAPER_TABLE1,
+            {"contact.R": [4.0, 8.0]},
+            [0],
+            tmp_path,
+            n_workers=n_workers,
+            progress=False,
+        )
+    relayed = sorted(str(w.message) for w in caught if w.category is ValidityWarning)
+    assert relayed == [
+        "validity: a_over_R = 0.4 violates x",
+        "validity: a_over_R = 0.8 violates x",
+    ]
+    assert sorted(r["R_um"] for r in rows) == [4.0, 8.0]
+    # the relayed warnings are not part of the stored point records
+    for path in (tmp_path / "points").glob("*.json"):
+        assert "_warnings" not in json.loads(path.read_text())
+
+
+@pytest.mark.parametrize(("flag", "n_lines"), [("--quiet", 0), (None, 1), ("--verbose", 1)])
+def test_a_study_from_the_command_line_honours_its_verbosity(monkeypatch, capsys, flag, n_lines):
+    from gecko_agents.studies.common import command_line
+
+    def main(argv):
+        for _ in range(3):  # three runs: one line at the default level, three with --verbose
+            warnings.warn(
+                "validity: a_over_R = 0.7 violates value ≤ 0.1: x", ValidityWarning, stacklevel=2
+            )
+        return argv
+
+    monkeypatch.setattr(sys, "argv", ["study.py", *([flag] if flag else [])])
+    assert command_line(main)() == sys.argv[1:]
+    lines = [ln for ln in capsys.readouterr().err.splitlines() if "a_over_R" in ln]
+    assert len(lines) == (3 if flag == "--verbose" else n_lines)
+    # called with argv (by reproduce_paper or a test), the caller's handling stands
+    with pytest.warns(ValidityWarning):
+        command_line(main)(["--quiet"])
