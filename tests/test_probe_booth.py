@@ -13,7 +13,7 @@ import pytest
 from gecko_agents.physics import fibril_probe
 from gecko_agents.physics import fibril_probe_halfspace as hs
 
-K, F_R = 0.45, 9.97  # µN/µm, µN: the probe study's pillar with its punch, Kendall's pull-off
+K, F_R = 0.451, 4.66  # µN/µm, µN: the probe study's pillar with its punch, Kendall's pull-off
 E, NU, C_FIB = 1.413, 0.3, 1.5  # MPa, -, µm: the study's polyurethane and pillar radius
 
 
@@ -75,6 +75,48 @@ def test_seven_fibrils_coupled_by_the_half_space_by_hand():
     assert res.pull_off == pytest.approx(expected, rel=1e-9)
     rigid = hs.probe_test(h, np.eye(7) / K, F_R, 50.0).pull_off
     assert expected != pytest.approx(rigid, rel=1e-3)  # the coupling matters here
+
+
+def _stepped(h, C, F_r, preload, step):
+    """The test as the ``sphericalprobe`` code runs it: the probe moved in fixed steps; after
+    each, attach every free tip the probe has reached (its root lowered by the attached
+    fibrils' forces) until none is added, or release every fibril past F_r until none is."""
+    att, d, force = np.zeros(h.size, bool), -h.max() - step, 0.0
+    while force < preload:
+        d += step
+        while True:
+            f = np.zeros(h.size)
+            A = np.flatnonzero(att)
+            f[A] = np.linalg.solve(C[np.ix_(A, A)], d + h[A]) if A.size else 0.0
+            new = ~att & (d + h >= C @ f)
+            if not new.any():
+                break
+            att |= new
+        force = f.sum()
+    best = 0.0
+    while att.any():
+        d -= step
+        while att.any():
+            A = np.flatnonzero(att)
+            f = np.linalg.solve(C[np.ix_(A, A)], d + h[A])
+            if not np.any(f < -F_r):
+                best = max(best, -f.sum())
+                break
+            att[A[f < -F_r]] = False
+    return best
+
+
+def test_event_to_event_meets_the_stepped_test():
+    """19 coupled fibrils: the stepped test meets the event-to-event pull-off; its largest
+    sampled tension falls short by at most a step times the contact's stiffness
+    (1e-2 µm × 19 × 0.45 µN/µm on ≈ 85 µN, 1e-3), so 2e-3."""
+    x, y = hs.hex_lattice(4.0, 8.0)
+    assert x.size == 19
+    h = hs.parabolic_heights(x, y, 100.0)
+    C = np.eye(x.size) / K + hs.halfspace_compliance(x, y, C_FIB, E, NU)
+    exact = hs.probe_test(h, C, F_R, 20.0)
+    assert exact.attached_max == 19
+    assert _stepped(h, C, F_R, 20.0, 1e-2) == pytest.approx(exact.pull_off, rel=2e-3)
 
 
 def test_self_compliance_is_the_mean_boussinesq_displacement_over_the_disc():
