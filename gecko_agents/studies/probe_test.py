@@ -221,16 +221,20 @@ def main(argv=None) -> dict:
         "scenario": NAME, "quick": args.quick, "params": PILLARS.to_dict(), "cases": CASES,
         "config": cfg, "speed_um_per_us": SPEED, "seed": SEED, "rows": rows, "results": results,
     })  # fmt: skip
-    shifts = [r["row_halfspace_uN"] / r["row_rigid_uN"] - 1.0 for r in booth]
-    soft = max(shifts, key=abs)
+    same = np.array([r["row_attached_halfspace"] == r["row_attached_rigid"] for r in booth])
+    shifts = np.array([100 * (r["row_halfspace_uN"] / r["row_rigid_uN"] - 1.0) for r in booth])
+    more = shifts[~same]
     (out / "section.md").write_text("\n".join([
         "## Beyond the paper: spherical-probe test", "",
         f"{cfg['n']} vertical pillars with flat punches under a rigid probe "
         "(`probe_test/probe_test.png`, table `probe_test.csv`): the time-stepped model against "
         f"the closed form of independent fibrils, largest difference {100 * worst:.2f} % "
         f"over {len(cfg['radii_um'])} probe radii and {len(cfg['preloads_uN'])} preloads.",
-        f"Bettscheider et al.'s model (`probe_booth.csv`): an elastic half-space backing moves "
-        f"the row's pull-off by {100 * soft:+.1f} % at most from the rigid backing's.", "",
+        "Bettscheider et al.'s model (`probe_booth.csv`): on an elastic half-space the row's "
+        f"pull-off moves by {shifts[same].min():+.1f} to {shifts[same].max():+.1f} % where the "
+        "same pillars attach as on a rigid backing"
+        + (f", and by up to {more.max():+.1f} % where the backing's compliance lets the press "
+           f"reach more ({more.size} of {shifts.size} points)." if more.size else "."), "",
     ]))  # fmt: skip
     print(f"{NAME}: model vs independent fibrils within {100 * worst:.2f} %; "
           f"{results['runtime_s']:.0f} s → {out}")  # fmt: skip
