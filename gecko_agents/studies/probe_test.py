@@ -4,7 +4,7 @@ of independent fibrils (:mod:`gecko_agents.physics.fibril_probe`).
 
 The row is the paper's polyurethane (E = 1.413 MPa) as vertical pillars, r = 1.5 µm,
 L = 20 µm, pitch 4 µm, each ending in a flat punch of radius 1.5 µm (Kendall's pull-off
-F_r = √(8πE*wa³) = 9.97 µN, Sneddon's stiffness 2E*a in series with the pillar's Ka), stuck
+F_r = √(8πE*wa³) = 4.66 µN, Sneddon's stiffness 2E*a in series with the pillar's Ka), stuck
 by friction (μ = 0.5), on a rigid backing, pressed and pulled at 0.01 µm/µs. A free pillar
 trails its root by v·c/Ka, 0.02 µm at that speed, well below the probe's height steps from
 pillar to pillar; at 0.04 µm/µs the trailing pillars swing down onto the probe when the press
@@ -32,7 +32,15 @@ closed form with ring weights 2πr·n (:func:`~gecko_agents.physics.fibril_probe
 given in the table as ``field_pull_off_uN``: the row counts each pillar once, the field each
 ring.
 
-Output: ``probe_test.csv`` (one row per case, radius and preload), ``probe_test.png`` (pull-off
+Beside them, Bettscheider et al.'s open model of the test (J Mech Phys Solids 2021, 104365;
+:mod:`gecko_agents.physics.fibril_probe_halfspace`): the same springs, on a rigid backing (the
+closed form) and on an elastic half-space of the backing's polyurethane that couples them, for
+the row and for the square field under the probe (``probe_booth.csv``; the row on the
+half-space is drawn dotted), with one more, saturating preload (1.5× the continuum's saturated
+pull-off π·n·R_p·F_r²/k) in the full run.
+
+Output: ``probe_test.csv`` (one row per case, radius and preload), ``probe_booth.csv``,
+``probe_test.png`` (pull-off
 against preload, one panel per probe radius), ``detachment.gif`` (the largest probe at the
 largest preload, flat punches on the rigid backing) and ``metadata.json``.
 
@@ -52,6 +60,7 @@ from gecko_agents.floor.probe import probe_heights
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import fibril_probe, punch
+from gecko_agents.physics import fibril_probe_halfspace as halfspace
 from gecko_agents.studies.common import (
     command_line,
     output_dir,
@@ -77,9 +86,9 @@ COLOURS = ("black", "#1f77b4", "#d62728")
 def config(quick: bool) -> dict:
     if quick:
         return {"n": 5, "radii_um": [30.0], "preloads_uN": [0.1, 1.0], "cases": list(CASES)[:1],
-                "animate": False}  # fmt: skip
+                "animate": False, "booth_saturation": False}  # fmt: skip
     return {"n": 11, "radii_um": [30.0, 100.0], "preloads_uN": [0.05, 0.2, 0.5, 1.0, 3.0],
-            "cases": list(CASES), "animate": True}  # fmt: skip
+            "cases": list(CASES), "animate": True, "booth_saturation": True}  # fmt: skip
 
 
 def fibril_stiffness(params) -> float:
@@ -104,6 +113,47 @@ def closed_form(model: Model, params, preload_reached: float) -> dict:
             "field": fibril_probe.probe_pull_off(h, k, F_r, d_field, w)}  # fmt: skip
 
 
+def booth_point(radius: float, preload: float, n: int) -> dict:
+    """Bettscheider et al.'s model of the test (:mod:`~gecko_agents.physics.fibril_probe_halfspace`)
+    for the study's pillars: pull-offs [µN] of the simulated row of ``n`` pillars and of the
+    square field (pitch ``array.pitch``) under the probe's footprint, each on a rigid backing
+    (the closed form) and on a half-space of the backing's polyurethane (E_b, ν_b); and the
+    continuum's saturated pull-off π·n_A·R_p·F_r²/k. Each pillar is the engine's spring k
+    (pillar and punch in series) letting go at Kendall's F_r; the probe the exact sphere."""
+    p = PILLARS
+    c, b, pitch = p.contact, p.backing, p.array.pitch
+    k = fibril_stiffness(p)
+    F_r = float(punch.kendall_pull_off(c.R, c.work_of_adhesion, c.E_star))
+    row = {"probe_radius_um": radius, "preload_uN": preload}
+    x_row = (np.arange(n) - (n - 1) / 2.0) * pitch
+    x_field, y_field = halfspace.square_lattice(pitch, radius)
+    for name, (x, y) in {"row": (x_row, 0.0 * x_row), "field": (x_field, y_field)}.items():
+        h = probe_heights(np.hypot(x, y), radius)
+        fibrils = np.eye(x.size) / k
+        backing = halfspace.halfspace_compliance(x, y, p.seta.r, b.E_b, b.nu_b)
+        rigid = halfspace.probe_test(h, fibrils, F_r, preload)
+        soft = halfspace.probe_test(h, fibrils + backing, F_r, preload)
+        row |= {f"{name}_rigid_uN": rigid.pull_off, f"{name}_halfspace_uN": soft.pull_off,
+                f"{name}_attached_rigid": rigid.attached_max,
+                f"{name}_attached_halfspace": soft.attached_max}  # fmt: skip
+    row["continuum_saturation_uN"] = float(
+        halfspace.saturation_pull_off_continuum(radius, 1.0 / pitch**2, k, F_r)
+    )
+    return row
+
+
+def booth_table(cfg) -> list[dict]:
+    """:func:`booth_point` over the study's radii and preloads, plus (``booth_saturation``) a
+    preload of 1.5× the continuum's saturated pull-off for each radius."""
+    rows = []
+    for radius in cfg["radii_um"]:
+        preloads = list(cfg["preloads_uN"])
+        if cfg["booth_saturation"]:
+            preloads.append(1.5 * booth_point(radius, preloads[0], 1)["continuum_saturation_uN"])
+        rows += [booth_point(radius, preload, cfg["n"]) for preload in preloads]
+    return rows
+
+
 def run_point(case: str, n: int, radius: float, preload: float, record: bool = False):
     """One press to ``preload`` [µN] and pull of ``n`` pillars under a probe of ``radius``
     [µm] for ``case`` (:data:`CASES`); returns (table row, history)."""
@@ -122,7 +172,7 @@ def run_point(case: str, n: int, radius: float, preload: float, record: bool = F
     return row, h
 
 
-def draw(rows, cfg, out) -> None:
+def draw(rows, cfg, out, booth=()) -> None:
     import matplotlib as mpl
     from matplotlib.figure import Figure
 
@@ -139,6 +189,11 @@ def draw(rows, cfg, out) -> None:
                     ax.plot([r["preload_reached_uN"] for r in sel],
                             [r["closed_form_uN"] for r in sel], "k--", lw=1,
                             label="closed form: independent fibrils")  # fmt: skip
+            sel = [r for r in booth if r["probe_radius_um"] == radius]
+            sel = [r for r in sel if r["preload_uN"] <= max(cfg["preloads_uN"])]
+            if sel:
+                ax.plot([r["preload_uN"] for r in sel], [r["row_halfspace_uN"] for r in sel],
+                        "k:", lw=1.2, label="Bettscheider et al.: row on a half-space")  # fmt: skip
             ax.set_xscale("log")
             ax.set_xlabel("preload [µN]")
             ax.set_title(f"probe R_p = {radius:g} µm, {cfg['n']} pillars")
@@ -159,23 +214,34 @@ def main(argv=None) -> dict:
             for preload in cfg["preloads_uN"]:
                 rows.append(run_point(case, cfg["n"], radius, preload)[0])
     write_table(out / f"{NAME}.csv", rows)
-    draw(rows, cfg, out)
+    booth = booth_table(cfg)
+    write_table(out / "probe_booth.csv", booth)
+    draw(rows, cfg, out, booth)
     if cfg["animate"]:
         h = run_point(cfg["cases"][0], cfg["n"], max(cfg["radii_um"]),
                       max(cfg["preloads_uN"]), record=True)[1]  # fmt: skip
         render.animate(h, out / "detachment.gif", window=cfg["n"], frames=120)
     worst = max(abs(r["off_closed_form"]) for r in rows if "off_closed_form" in r)
-    results = {"largest_off_closed_form": worst, "runtime_s": time.perf_counter() - t0}
+    results = {"largest_off_closed_form": worst, "runtime_s": time.perf_counter() - t0,
+               "booth": booth}  # fmt: skip
     write_json(out / "metadata.json", {
         "scenario": NAME, "quick": args.quick, "params": PILLARS.to_dict(), "cases": CASES,
         "config": cfg, "speed_um_per_us": SPEED, "seed": SEED, "rows": rows, "results": results,
     })  # fmt: skip
+    same = np.array([r["row_attached_halfspace"] == r["row_attached_rigid"] for r in booth])
+    shifts = np.array([100 * (r["row_halfspace_uN"] / r["row_rigid_uN"] - 1.0) for r in booth])
+    more = shifts[~same]
     (out / "section.md").write_text("\n".join([
         "## Beyond the paper: spherical-probe test", "",
         f"{cfg['n']} vertical pillars with flat punches under a rigid probe "
         "(`probe_test/probe_test.png`, table `probe_test.csv`): the time-stepped model against "
         f"the closed form of independent fibrils, largest difference {100 * worst:.2f} % "
-        f"over {len(cfg['radii_um'])} probe radii and {len(cfg['preloads_uN'])} preloads.", "",
+        f"over {len(cfg['radii_um'])} probe radii and {len(cfg['preloads_uN'])} preloads.",
+        "Bettscheider et al.'s model (`probe_booth.csv`): on an elastic half-space the row's "
+        f"pull-off moves by {shifts[same].min():+.1f} to {shifts[same].max():+.1f} % where the "
+        "same pillars attach as on a rigid backing"
+        + (f", and by up to {more.max():+.1f} % where the backing's compliance lets the press "
+           f"reach more ({more.size} of {shifts.size} points)." if more.size else "."), "",
     ]))  # fmt: skip
     print(f"{NAME}: model vs independent fibrils within {100 * worst:.2f} %; "
           f"{results['runtime_s']:.0f} s → {out}")  # fmt: skip
