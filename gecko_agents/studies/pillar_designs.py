@@ -60,7 +60,14 @@ mushroom's not, once in full contact (Kroner & Arzt, "Single macropillars as mod
 for tilt angle dependent adhesion measurements", abstract read; journal details not checked):
 the same trend, not a quantitative comparison (their tilt is of the probe before contact).
 The dynamic law does not use this yet: the elastica holds the bonded face rigidly and its
-moment does not reach the contact law's detachment.
+moment does not reach the contact law's detachment. What it would change is measured here:
+each flat-punch run logs, by the same criterion, the largest K/K_c its faces' edges reach while
+pressed and the face moment's share 3|M|/a over F_K while pulled (:class:`EdgeLog`, table
+columns ``edge_K_over_Kc_pressed`` and ``moment_share_pulled``). Quick run on flat glass,
+L/2r = 5: pressed past buckling (20 % of L) the edge reaches K/K_c = 0.31 (G = 0.10 w), below
+Euler's load it stays closed (K ≤ 0); pulled, the moment adds 0.05 % of F_K. (L/2r = 10,
+measured once: 0.36 and 0.02 %.) So the clamped face's moment would not open the edge in
+these straight press-pulls, and the buckling loss of the experiments is not this moment.
 
 ``--quick``: flat glass, one aspect ratio (L/2r = 5), the sphere and the flat punch, two
 press depths (1 % and 20 % of L).
@@ -117,6 +124,31 @@ def params_for(tip: str, aspect: float, floor_kind: str):
     return BASE.replace(**over)
 
 
+class EdgeLog(Elastica):
+    """The study's elastica, logging what a bonded punch face's edge sees by the tilted-punch
+    criterion (:func:`gecko_agents.physics.punch.edge_stress_intensity`): the largest
+    K/K_c = (3|M|/a − P)/F_K over the steps its faces are pressed (P > 0 compressive) and the
+    largest share 3|M|/a/F_K of the face moment M (its clamp spring's torque) while they are
+    pulled. Observation only: the run is the plain elastica's, step for step."""
+
+    edge_a = edge_FK = math.nan
+    press_peak = pull_share = -math.inf
+
+    def solve(self, d, held):
+        F, U = super().solve(d, held)
+        if np.any(self.held):
+            M = np.abs(self.k[-1] * (self.phi[self.held, -1] - self.clamp[self.held]))
+            P = -F[self.held, 1]  # the tip sits below its root: pressed, the pillar pushes down
+            pressed, pulled = P > 0, P < 0
+            term = 3.0 * M / self.edge_a
+            if pressed.any():
+                peak = float(np.max(term[pressed] - P[pressed])) / self.edge_FK
+                self.press_peak = max(self.press_peak, peak)
+            if pulled.any():
+                self.pull_share = max(self.pull_share, float(np.max(term[pulled])) / self.edge_FK)
+        return F, U
+
+
 def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
     """Pull-off per area of one design and floor pressed ``strain``·L past touch-down; None
     where the tip cannot stand on the floor (the spatula needs pads)."""
@@ -125,6 +157,11 @@ def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
     p = params_for(tip, aspect, floor_kind)
     m = Model(p, n_sim=N_PILLARS, seed=SEED,
               floor_profile=profile if floor_kind == "measured" else None)  # fmt: skip
+    log = None
+    if tip == "flat_punch":  # the same chain, observed (EdgeLog)
+        log = m.physics.chain = EdgeLog.of(p, N_PILLARS)
+        a, w, E = p.contact.jkr_args()
+        log.edge_a, log.edge_FK = a, float(punch.kendall_pull_off(a, w, E))
     h = m.run(protocol.press_pull(strain * p.seta.L, speed=SPEED), progress=False)
     preload = float(np.max(h["force_normal_uN"])) / N_PILLARS
     area = N_PILLARS * p.array.pitch**2  # µm² of backing
@@ -134,7 +171,9 @@ def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
             "press_strain": strain, "preload_per_pillar_uN": preload, "euler_load_uN": P_E,
             "buckled": bool(preload >= 0.98 * P_E), "pull_off_uN": F,
             "pull_off_per_area_kPa": 1e3 * F / area,
-            "attached_max": int(np.max(h["n_attached"]))}  # fmt: skip
+            "attached_max": int(np.max(h["n_attached"])),
+            "edge_K_over_Kc_pressed": log.press_peak if log else math.nan,
+            "moment_share_pulled": log.pull_share if log else math.nan}  # fmt: skip
 
 
 def tilt_rows(aspects, n: int = 25) -> list[dict]:
@@ -252,6 +291,11 @@ def section(rows, lines) -> str:
                     f"- {tip}, {fl} floor: after a buckling preload "
                     f"{np.mean(above) / np.mean(below):.3f} × the pull-off below it"
                 )
+    edges = [f"- flat_punch, {r['floor']} floor, L/2r = {r['aspect_L_over_2r']:g}, pressed "
+             f"{100 * r['press_strain']:g} % of L: edge K/K_c up to "
+             f"{r['edge_K_over_Kc_pressed']:.3g} pressed, moment share "
+             f"{r['moment_share_pulled']:.2g} of F_K pulled"
+             for r in rows if r["tip"] == "flat_punch"]  # fmt: skip
     return "\n".join([
         "## Beyond the paper: pillar designs", "",
         f"Vertical elastica pillars, r = {R_PILLAR:g} µm, {N_PILLARS} per run "
@@ -260,6 +304,8 @@ def section(rows, lines) -> str:
         "Pull-off after a preload that buckled the pillars, over that below it "
         "(experiments on PDMS pillars lose adhesion there; the model's punch face does not "
         "tilt, see the study's docstring):", "", *kept, "",
+        "The punch faces' edges by the tilted-punch criterion (K/K_c = (3|M|/a − P)/F_K, "
+        "M the clamped face's moment; 1 would open the edge):", "", *edges, "",
     ])  # fmt: skip
 
 
