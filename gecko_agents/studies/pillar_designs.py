@@ -63,11 +63,12 @@ The dynamic law does not use this yet: the elastica holds the bonded face rigidl
 moment does not reach the contact law's detachment. What it would change is measured here:
 each flat-punch run logs, by the same criterion, the largest K/K_c its faces' edges reach while
 pressed and the face moment's share 3|M|/a over F_K while pulled (:class:`EdgeLog`, table
-columns ``edge_K_over_Kc_pressed`` and ``moment_share_pulled``). Quick run on flat glass,
-L/2r = 5: pressed past buckling (20 % of L) the edge reaches K/K_c = 0.31 (G = 0.10 w), below
-Euler's load it stays closed (K ≤ 0); pulled, the moment adds 0.05 % of F_K. (L/2r = 10,
-measured once: 0.36 and 0.02 %.) So the clamped face's moment would not open the edge in
-these straight press-pulls, and the buckling loss of the experiments is not this moment.
+columns ``edge_K_over_Kc_pressed`` and ``moment_share_pulled``). Full run: pressed past
+buckling (20 % of L) the edge reaches K/K_c = 0.28–0.37 on the three floors (G ≤ 0.14 w);
+below Euler's load it stays closed (K ≤ 0; 0.08–0.11 for L/2r = 10 pressed 5 %, just
+past its load). Pulled, the moment adds at most 0.07 % of F_K. So the clamped face's moment
+would not open the edge in these straight press-pulls, and the buckling loss of the
+experiments is not this moment.
 
 ``--quick``: flat glass, one aspect ratio (L/2r = 5), the sphere and the flat punch, two
 press depths (1 % and 20 % of L).
@@ -172,7 +173,8 @@ def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
             "buckled": bool(preload >= 0.98 * P_E), "pull_off_uN": F,
             "pull_off_per_area_kPa": 1e3 * F / area,
             "attached_max": int(np.max(h["n_attached"])),
-            "edge_K_over_Kc_pressed": log.press_peak if log else math.nan,
+            "edge_K_over_Kc_pressed": log.press_peak if log and log.press_peak > -math.inf
+                                      else math.nan,
             "moment_share_pulled": log.pull_share if log else math.nan}  # fmt: skip
 
 
@@ -293,7 +295,9 @@ def section(rows, lines) -> str:
                 )
     edges = [f"- flat_punch, {r['floor']} floor, L/2r = {r['aspect_L_over_2r']:g}, pressed "
              f"{100 * r['press_strain']:g} % of L: edge K/K_c up to "
-             f"{r['edge_K_over_Kc_pressed']:.3g} pressed, moment share "
+             + (f"{r['edge_K_over_Kc_pressed']:.3g} pressed"
+                if math.isfinite(r["edge_K_over_Kc_pressed"]) else "— (no face pressed)")
+             + ", moment share "
              f"{r['moment_share_pulled']:.2g} of F_K pulled"
              for r in rows if r["tip"] == "flat_punch"]  # fmt: skip
     return "\n".join([
@@ -305,7 +309,7 @@ def section(rows, lines) -> str:
         "(experiments on PDMS pillars lose adhesion there; the model's punch face does not "
         "tilt, see the study's docstring):", "", *kept, "",
         "The punch faces' edges by the tilted-punch criterion (K/K_c = (3|M|/a − P)/F_K, "
-        "M the clamped face's moment; 1 would open the edge):", "", *edges, "",
+        "M the clamped face's moment; 1 would open the edge):", "", *edges, "", "",
     ])  # fmt: skip
 
 
