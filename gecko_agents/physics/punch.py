@@ -206,9 +206,11 @@ def lateral_load_moment(Q, L, EI, k_r):
     at its end, the face's turn resisted by a rotary spring k_r [force·length]:
     M = (QL/2)/(1 + EI/(k_r·L)).
 
-    Derived from the Euler–Bernoulli cantilever (end slope QL²/(2EI) under an end force Q,
-    ML/(EI) under an end moment M; Timoshenko & Gere, Theory of Elastic Stability, 1961,
-    ch. 1): the face's turn QL²/(2EI) − ML/(EI) equals M/k_r. A rigidly held face
+    Derived here from the Euler–Bernoulli cantilever: integrating EI·w″ = bending moment from
+    the clamped root gives the end slope QL²/(2EI) under an end force Q and ML/(EI) under an
+    end moment M; the face's turn QL²/(2EI) − ML/(EI) equals M/k_r. (No text was read for
+    these two elementary slopes; ``tests/test_punch_tilt.py`` checks the rigid-face limit
+    against the model's bar-chain elastica.) A rigidly held face
     (k_r → ∞, the elastica's clamp) carries QL/2, the guided cantilever's end moment. Axial
     load's effect on bending (beam-column) is left out: it is small while |P| ≪ π²EI/L².
 
