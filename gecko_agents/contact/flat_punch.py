@@ -34,7 +34,8 @@ class FlatPunch(ContactLaw):
     floor at the nearest point (a punch on a curved probe of radius ≫ a).
 
     The face does not tilt: a punch whose pillar end rotates opens at one edge first and lets
-    go earlier; this law is the aligned limit.
+    go earlier (:func:`gecko_agents.physics.punch.tilted_pull_off`, F = F_K − 3|M|/a, not yet
+    used here); this law is the aligned limit.
 
     Parameters
     ----------

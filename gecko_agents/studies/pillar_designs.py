@@ -44,6 +44,32 @@ pillars' ends tilt and peel at the edge when the column buckles. The model's pun
 tilt, so it cannot show that loss; a tilting face is the missing physics, not a parameter to
 tune.
 
+The tilted face in closed form (``pillar_tilt.png``, table ``pillar_tilt.csv``): a punch face
+bonded at a tilt α, or carrying the moment a lateral load Q puts on it, opens at one edge
+first (:func:`gecko_agents.physics.punch.tilted_pull_off`: F = F_K − 3|M|/a, the face's
+rotational stiffness k_r = 4E*a³/3, the pillar's end moment M = (QL/2)/(1 + EI/(k_r·L))). For
+the study's punch (a = 1.5 µm, F_K = 4.66 µN) the pull-off falls linearly with the tilt and is
+gone at α = √(πw/(2E*a)) = 19.1°. A lateral load removes it at 0.33 µN (L/2r = 5) and 0.16 µN
+(L/2r = 10), 7 % and 3.4 % of F_K: the moment's arm, L/2, is 15 and 30 times the edge's a/3.
+The points on the rigid-clamp lines are the model's own elastica pushed sideways with its face
+clamped and no axial force, its face moment put into the same criterion: the end moment is
+0.99 and 0.97 × QL/2 at u/L = 0.10 and 0.21 (pull-off within 0.3 % of the closed form), 0.82 ×
+at u/L = 0.52 (pull-off 9 % above it): large deflection lowers the end moment. Experiments
+on 400 µm PDMS pillars find the flat tip's pull-off "strongly" tilt dependent and the
+mushroom's not, once in full contact (Kroner & Arzt, "Single macropillars as model systems
+for tilt angle dependent adhesion measurements", abstract read; journal details not checked):
+the same trend, not a quantitative comparison (their tilt is of the probe before contact).
+The dynamic law does not use this yet: the elastica holds the bonded face rigidly and its
+moment does not reach the contact law's detachment. What it would change is measured here:
+each flat-punch run logs, by the same criterion, the largest K/K_c its faces' edges reach while
+pressed and the face moment's share 3|M|/a over F_K while pulled (:class:`EdgeLog`, table
+columns ``edge_K_over_Kc_pressed`` and ``moment_share_pulled``). Full run: pressed past
+buckling (20 % of L) the edge reaches K/K_c = 0.28–0.37 on the three floors (G ≤ 0.14 w);
+below Euler's load it stays closed (K ≤ 0; 0.08–0.11 for L/2r = 10 pressed 5 %, just
+past its load). Pulled, the moment adds at most 0.07 % of F_K. So the clamped face's moment
+would not open the edge in these straight press-pulls, and the buckling loss of the
+experiments is not this moment.
+
 ``--quick``: flat glass, one aspect ratio (L/2r = 5), the sphere and the flat punch, two
 press depths (1 % and 20 % of L).
 """
@@ -61,6 +87,8 @@ from gecko_agents.data import DEKTAK_PROFILE
 from gecko_agents.floor import readers
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
+from gecko_agents.physics import punch
+from gecko_agents.physics.elastica import Elastica
 from gecko_agents.studies.common import (
     command_line,
     output_dir,
@@ -103,6 +131,31 @@ def params_for(tip: str, aspect: float, floor_kind: str):
     return BASE.replace(**over)
 
 
+class EdgeLog(Elastica):
+    """The study's elastica, logging what a bonded punch face's edge sees by the tilted-punch
+    criterion (:func:`gecko_agents.physics.punch.edge_stress_intensity`): the largest
+    K/K_c = (3|M|/a − P)/F_K over the steps its faces are pressed (P > 0 compressive) and the
+    largest share 3|M|/a/F_K of the face moment M (its clamp spring's torque) while they are
+    pulled. Observation only: the run is the plain elastica's, step for step."""
+
+    edge_a = edge_FK = math.nan
+    press_peak = pull_share = -math.inf
+
+    def solve(self, d, held):
+        F, U = super().solve(d, held)
+        if np.any(self.held):
+            M = np.abs(self.k[-1] * (self.phi[self.held, -1] - self.clamp[self.held]))
+            P = -F[self.held, 1]  # the tip sits below its root: pressed, the pillar pushes down
+            pressed, pulled = P > 0, P < 0
+            term = 3.0 * M / self.edge_a
+            if pressed.any():
+                peak = float(np.max(term[pressed] - P[pressed])) / self.edge_FK
+                self.press_peak = max(self.press_peak, peak)
+            if pulled.any():
+                self.pull_share = max(self.pull_share, float(np.max(term[pulled])) / self.edge_FK)
+        return F, U
+
+
 def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
     """Pull-off per area of one design and floor pressed ``strain``·L past touch-down; None
     where the tip cannot stand on the floor (the spatula needs pads)."""
@@ -111,6 +164,11 @@ def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
     p = params_for(tip, aspect, floor_kind)
     m = Model(p, n_sim=N_PILLARS, seed=SEED,
               floor_profile=profile if floor_kind == "measured" else None)  # fmt: skip
+    log = None
+    if tip == "flat_punch":  # the same chain, observed (EdgeLog)
+        log = m.physics.chain = EdgeLog.of(p, N_PILLARS)
+        a, w, E = p.contact.jkr_args()
+        log.edge_a, log.edge_FK = a, float(punch.kendall_pull_off(a, w, E))
     h = m.run(protocol.press_pull(strain * p.seta.L, speed=SPEED), progress=False)
     preload = float(np.max(h["force_normal_uN"])) / N_PILLARS
     area = N_PILLARS * p.array.pitch**2  # µm² of backing
@@ -120,7 +178,99 @@ def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
             "press_strain": strain, "preload_per_pillar_uN": preload, "euler_load_uN": P_E,
             "buckled": bool(preload >= 0.98 * P_E), "pull_off_uN": F,
             "pull_off_per_area_kPa": 1e3 * F / area,
-            "attached_max": int(np.max(h["n_attached"]))}  # fmt: skip
+            "attached_max": int(np.max(h["n_attached"])),
+            "edge_K_over_Kc_pressed": log.press_peak if log and log.press_peak > -math.inf
+                                      else math.nan,
+            "moment_share_pulled": log.pull_share if log else math.nan}  # fmt: skip
+
+
+def tilt_rows(aspects, n: int = 25) -> list[dict]:
+    """Closed-form pull-off of the study's flat punch against the face's tilt α and against a
+    lateral load Q at the pillar's end (:mod:`gecko_agents.physics.punch`), for pillars of the
+    given aspect ratios, the face's turn resisted by the half-space (k_r = 4E*a³/3) or held
+    rigidly (the elastica's clamp); plus, on the rigid line, the elastica's own face moment
+    under a lateral push (one row per aspect ratio, ``source = "elastica"``)."""
+    a, w, E = BASE.contact.jkr_args()
+    F_K = float(punch.kendall_pull_off(a, w, E))
+    k_r = float(punch.punch_rotation_stiffness(a, E))
+    EI = BASE.contact.E1 * math.pi * R_PILLAR**4 / 4.0
+    rows = []
+    for alpha in np.linspace(0.0, math.sqrt(math.pi * w / (2 * E * a)), n):
+        F = float(punch.tilt_pull_off(a, w, E, alpha))
+        rows.append({"load": "tilt", "source": "closed form", "face": "half-space",
+                     "aspect_L_over_2r": math.nan, "tilt_deg": math.degrees(alpha),
+                     "lateral_uN": math.nan, "pull_off_uN": F,
+                     "over_kendall": F / F_K})  # fmt: skip
+    for aspect in aspects:
+        L = 2.0 * R_PILLAR * aspect
+        for face, kr in (("half-space", k_r), ("rigid clamp", math.inf)):
+            Q0 = 2.0 * a * F_K * (1.0 + EI / (kr * L)) / (3.0 * L)  # where F reaches 0
+            for Q in np.linspace(0.0, Q0, n):
+                F = float(punch.tilted_pull_off(a, w, E, punch.lateral_load_moment(Q, L, EI, kr)))
+                rows.append({"load": "lateral", "source": "closed form", "face": face,
+                             "aspect_L_over_2r": aspect, "tilt_deg": math.nan,
+                             "lateral_uN": float(Q), "pull_off_uN": F,
+                             "over_kendall": F / F_K})  # fmt: skip
+        for frac in (0.1, 0.25):  # pushed as far as the linear beam would be at frac·Q0
+            Q, M = elastica_face_moment(L, frac * Q0 * L**3 / (12.0 * EI))
+            F = float(punch.tilted_pull_off(a, w, E, M))
+            rows.append({"load": "lateral", "source": "elastica", "face": "rigid clamp",
+                         "aspect_L_over_2r": aspect, "tilt_deg": math.nan,
+                         "lateral_uN": Q, "pull_off_uN": F, "over_kendall": F / F_K})  # fmt: skip
+    return rows
+
+
+def elastica_face_moment(L: float, u: float) -> tuple[float, float]:
+    """Lateral force [µN] and face moment [µN·µm] of the study's pillar (bar-chain elastica,
+    length L [µm]) whose face, bonded at rest and clamped there, is pushed u [µm] sideways with
+    no axial force (its end's height found by the secant method)."""
+    chain = Elastica(1, L, R_PILLAR, BASE.contact.E1, math.pi / 2)
+    rest = chain.rest_end()
+    chain.solve(rest[None, :], True)  # the face bonds at rest and is clamped there
+
+    def axial(y):
+        chain.solve(np.array([[rest[0] + u, y]]), True)
+        return float(chain.lam[0, 1])
+
+    y0, y1 = rest[1], rest[1] + 1e-3 * L
+    f0, f1 = axial(y0), axial(y1)
+    for _ in range(50):
+        if abs(f1) < 1e-12 or f1 == f0:
+            break
+        y0, y1, f0 = y1, y1 - f1 * (y1 - y0) / (f1 - f0), f1
+        f1 = axial(y1)
+    return float(chain.lam[0, 0]), float(chain.k[-1] * (chain.phi[0, -1] - chain.clamp[0]))
+
+
+def draw_tilt(rows, out) -> None:
+    """Pull-off over Kendall's against the face's tilt and against the lateral load."""
+    import matplotlib as mpl
+    from matplotlib.figure import Figure
+
+    with mpl.rc_context(render.STYLE_RC):
+        fig = Figure(figsize=(9.5, 4.0), layout="constrained")
+        ax_t, ax_q = fig.subplots(1, 2, sharey=True)
+        tilt = [r for r in rows if r["load"] == "tilt"]
+        ax_t.plot([r["tilt_deg"] for r in tilt], [r["over_kendall"] for r in tilt], "-")
+        ax_t.set_xlabel("tilt of the bonded face against the floor α [°]")
+        ax_t.set_ylabel("pull-off / Kendall's √(8πE*wa³)")
+        ax_t.set_title("face held at a tilt: F = F_K − 4E*a²α")
+        for aspect in dict.fromkeys(r["aspect_L_over_2r"] for r in rows if r["load"] != "tilt"):
+            color = None
+            for face, ls in (("half-space", "-"), ("rigid clamp", "--")):
+                sel = [r for r in rows if r["aspect_L_over_2r"] == aspect and r["face"] == face
+                       and r["source"] == "closed form"]  # fmt: skip
+                (line,) = ax_q.plot([r["lateral_uN"] for r in sel],
+                                    [r["over_kendall"] for r in sel], ls=ls, color=color,
+                                    label=f"L/2r = {aspect:g}, face: {face}")  # fmt: skip
+                color = line.get_color()
+            pts = [r for r in rows if r["aspect_L_over_2r"] == aspect and r["source"] == "elastica"]
+            ax_q.plot([r["lateral_uN"] for r in pts], [r["over_kendall"] for r in pts], "o",
+                      color=color, label=f"L/2r = {aspect:g}, elastica's clamped face")  # fmt: skip
+        ax_q.set_xlabel("lateral load at the pillar's end Q [µN]")
+        ax_q.set_title("pillar pushed sideways: M = (QL/2)/(1 + EI/(k_r L))")
+        ax_q.legend(fontsize="small")
+        render.save_figure(fig, out / "pillar_tilt.png")
 
 
 def winners(rows) -> list[str]:
@@ -149,6 +299,13 @@ def section(rows, lines) -> str:
                     f"- {tip}, {fl} floor: after a buckling preload "
                     f"{np.mean(above) / np.mean(below):.3f} × the pull-off below it"
                 )
+    edges = [f"- flat_punch, {r['floor']} floor, L/2r = {r['aspect_L_over_2r']:g}, pressed "
+             f"{100 * r['press_strain']:g} % of L: edge K/K_c up to "
+             + (f"{r['edge_K_over_Kc_pressed']:.3g} pressed"
+                if math.isfinite(r["edge_K_over_Kc_pressed"]) else "— (no face pressed)")
+             + ", moment share "
+             f"{r['moment_share_pulled']:.2g} of F_K pulled"
+             for r in rows if r["tip"] == "flat_punch"]  # fmt: skip
     return "\n".join([
         "## Beyond the paper: pillar designs", "",
         f"Vertical elastica pillars, r = {R_PILLAR:g} µm, {N_PILLARS} per run "
@@ -157,6 +314,22 @@ def section(rows, lines) -> str:
         "Pull-off after a preload that buckled the pillars, over that below it "
         "(experiments on PDMS pillars lose adhesion there; the model's punch face does not "
         "tilt, see the study's docstring):", "", *kept, "",
+        "The punch faces' edges by the tilted-punch criterion (K/K_c = (3|M|/a − P)/F_K, "
+        "M the clamped face's moment; 1 would open the edge):", "", *edges, "", "",
+    ])  # fmt: skip
+
+
+def tilt_section(tilt) -> str:
+    """The report's lines on the tilted face: where each load leaves no pull-off."""
+    gone = [r for r in tilt if r["source"] == "closed form" and r["over_kendall"] <= 1e-9]
+    lines = [f"- face held at a tilt: no pull-off left from α = {r['tilt_deg']:.3g}°"
+             if r["load"] == "tilt" else
+             f"- L/2r = {r['aspect_L_over_2r']:g}, face {r['face']}: no pull-off left from a "
+             f"lateral load of {r['lateral_uN']:.3g} µN" for r in gone]  # fmt: skip
+    return "\n".join([
+        "Flat punch with a tilted face or a lateral load (closed form, "
+        "`pillar_designs/pillar_tilt.png`; F = F_K − 3|M|/a, not yet in the dynamic law):",
+        "", *lines, "",
     ])  # fmt: skip
 
 
@@ -210,6 +383,9 @@ def main(argv=None) -> dict:
                               flush=True)  # fmt: skip
     write_table(out / f"{NAME}.csv", rows)
     draw(rows, cfg, out)
+    tilt = tilt_rows(cfg["aspect"])
+    write_table(out / "pillar_tilt.csv", tilt)
+    draw_tilt(tilt, out)
     lines = winners(rows)
     results = {"winners": lines, "runtime_s": time.perf_counter() - t0}
     write_json(out / "metadata.json", {
@@ -218,7 +394,7 @@ def main(argv=None) -> dict:
         "floor_file": DEKTAK_PROFILE.name if profile is not None else None,
         "results": results,
     })  # fmt: skip
-    (out / "section.md").write_text(section(rows, lines))
+    (out / "section.md").write_text(section(rows, lines) + tilt_section(tilt))
     print("\n".join(f"{NAME}: {line}" for line in lines))
     print(f"{NAME}: {len(rows)} runs, {results['runtime_s']:.0f} s → {out}")
     return results
