@@ -157,7 +157,20 @@ def test_validity_table(run):
     lines = table.strip().splitlines()
     assert lines[0].startswith("| run | a_over_R (≤ 0.1) | tabor (≥ 5)")
     assert lines[2].startswith("| stiff seta | ") and lines[3].startswith("| as metadata | ")
-    assert " ✗" in lines[2] and "—" in lines[2]  # a/R violated; crack number not applicable
+    # Each cell is its item's value to 3 significant figures, marked where it violates its
+    # limit, blank ("—") where the item does not apply: read back, they are the run's items.
+    items = h.meta["validity"]["items"]
+    for line in lines[2:4]:
+        cells = [c.strip() for c in line.strip("|").split("|")][1:]
+        assert len(cells) == len(dg.LIMITS)
+        for name, cell in zip(dg.LIMITS, cells, strict=True):
+            it = items[name]
+            if it["ok"] is None:
+                assert cell == "—", name
+            elif it["value"] is not None:
+                assert float(cell.split()[0]) == pytest.approx(it["value"], rel=5e-3), name
+                assert cell.endswith("✗") is (it["ok"] is False), name
+    assert items["a_over_R"]["ok"] is False and items["crack_deborah"]["ok"] is None
     assert dg.validity_table([h]).splitlines()[2].startswith("| run 1 |")
 
 
