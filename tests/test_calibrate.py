@@ -82,7 +82,7 @@ def test_unidentifiable_parameter_is_flagged():
         **FAST,
     )
     assert not r.identifiable["seta.density"]
-    assert "flat" in r.notes["seta.density"]
+    assert r.stderr["seta.density"] == np.inf  # a flat direction: the data do not depend on it
     assert r.identifiable["contact.w"]
 
 
@@ -149,7 +149,7 @@ def test_command_line(tmp_path, capsys):
         cal.main([str(f), "--free", "contact.w=bad"])
     assert exc.value.code == 2
     assert cal.main([str(f), "--free", "contact.nope=0.01:0.2"]) == 2
-    assert "unknown parameter name" in capsys.readouterr().err
+    assert "contact.nope" in capsys.readouterr().err  # the refused name, not its wording
 
 
 # Uncertainties that mean nothing are not given (reliability probes) --------------------------
@@ -197,7 +197,6 @@ def test_a_fit_on_its_bound_is_not_identifiable_and_has_no_standard_error():
     r = cal.fit(_two_preloads(y), {"contact.w": (0.05, 0.06)}, base=base, n_starts=1, **FAST)
     assert r.values["contact.w"] == pytest.approx(0.06, rel=1e-5)
     assert not r.identifiable["contact.w"] and np.isnan(r.stderr["contact.w"])
-    assert "high bound" in r.notes["contact.w"]
 
 
 def test_pull_offs_in_either_sign_convention_fit_alike_and_mixed_signs_are_refused():

@@ -11,6 +11,7 @@ of Fig 11a/11b (:mod:`gecko_agents.sweep.points`).
 import importlib
 import json
 import pkgutil
+import re
 import runpy
 import sys
 from pathlib import Path
@@ -88,11 +89,20 @@ def test_scenario_quick(name, tmp_path):
 def test_reproduce_paper_quick_writes_the_report(tmp_path, monkeypatch):
     monkeypatch.setattr(sys, "argv", ["reproduce_paper.py"])
     res = _run(AGGREGATE, tmp_path)
-    report = (tmp_path / "paper_comparison.md").read_text()
-    assert "| figure | claim | paper | ours | alternative | verdict | reason |" in report
-    assert len(res["claims"]) >= 10
-    for fig in ("Fig 5", "Fig 6", "Fig 7", "Fig 8", "Fig 10", "Fig 11"):
-        assert fig in report
+    report = (tmp_path / "paper_comparison.md").read_text().splitlines()
+    # The report's table holds one row per returned claim, its figure and verdict cells the
+    # claim's (cells split on the unescaped bars).
+    columns = ("figure", "claim", "paper", "ours", "alternative", "verdict", "reason")
+    start = report.index("| " + " | ".join(columns) + " |")
+    rows = [re.split(r"(?<!\\)\|", line)[1:-1] for line in report[start + 2 :]]
+    rows = rows[: next(i for i, r in enumerate(rows) if not r)]
+    claims = res["claims"]
+    assert len(claims) >= 10 and len(rows) == len(claims)
+    for cells, c in zip(rows, claims, strict=True):
+        assert len(cells) == len(columns)
+        assert cells[0].strip() == c["figure"] and cells[5].strip() == c["verdict"]
+    figures = {c["figure"].split(",")[0].rstrip("ab") for c in claims}
+    assert {"Fig 5", "Fig 6", "Fig 7", "Fig 8", "Fig 10", "Fig 11"} <= figures
 
 
 # Sweep points of Fig 11 (gecko_agents.sweep.points) ------------------------------------------
