@@ -45,9 +45,9 @@ def test_explicit_is_the_default_bit_for_bit():
     p = ROD.replace(**{"array.count": 3})
     runs = []
     for kw in ({}, {"integrator": "explicit"}):
-        m = Model(p, **kw)
-        runs.append(_hash(m.run(protocol.press_pull(0.05, 0.02), progress=False)))
-    assert runs[0] == runs[1]
+        h = Model(p, **kw).run(protocol.press_pull(0.05, 0.02), progress=False)
+        runs.append((_hash(h), h.meta["integrator"]))
+    assert runs[0] == runs[1] and runs[0][1] == "explicit"
 
 
 def test_bad_integrator_and_dt_are_refused():
@@ -150,3 +150,40 @@ def test_energy_books_close_with_the_scheme_dissipation():
     assert h.meta["implicit_dissipated_pJ"] > 0.0
     dt = Model(ROD, n_sim=1, integrator="implicit").dt / 4
     assert energy_balance_error(_pull(ROD, 0.01, integrator="implicit", dt=dt)[3]) < 0.02
+
+
+_RUN_FILE = """preset = "PAPER_TABLE1"
+[params]
+mechanics = "rod"
+"seta.L" = 5.0
+[model]
+n_sim = 1
+integrator = "{integrator}"
+[protocol]
+preset = "press_pull"
+depth_um = 0.1
+speed_um_per_us = 0.05
+"""
+
+
+def test_run_file_chooses_the_integrator(tmp_path, capsys):
+    """A run file's ``[model] integrator`` reaches the model and its metadata; a value not
+    in ``INTEGRATORS`` is refused when the file loads, naming the key, value and choices."""
+    import json
+
+    from gecko_agents import cli
+    from gecko_agents.runfiles import run as runfile
+
+    path = tmp_path / "implicit.toml"
+    path.write_text(_RUN_FILE.format(integrator="implicit"))
+    assert runfile.load_run(path).model["integrator"] == "implicit"
+    out = tmp_path / "out"
+    assert cli.main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
+    meta = json.loads((out / "metadata.json").read_text())
+    assert meta["integrator"] == "implicit" and meta["implicit_dissipated_pJ"] > 0.0
+    bad = tmp_path / "bad.toml"
+    bad.write_text(_RUN_FILE.format(integrator="rk4"))
+    with pytest.raises(runfile.RunFileError, match=r"\[model\] integrator.*rk4.*'implicit'"):
+        runfile.load_run(bad)
+    assert cli.main(["run", str(bad), "--out", str(tmp_path / "o2"), "--no-progress"]) == 2
+    assert "integrator" in capsys.readouterr().err and not (tmp_path / "o2").exists()
