@@ -250,7 +250,7 @@ class ImplicitStep:
 
     def substeps(self, vp) -> int:
         """How many steps of ``dt_full``/k the next step takes [-], with the model's dt set
-        for them: :attr:`k_event` (the explicit step's length) near an event, else 1.
+        for them: ``k_event`` (the explicit step's length) near an event, else 1.
 
         Near an event means an attached tip running away from its branch (faster than twice
         the plate speed ``vp`` [µm/µs], as the release marks of
