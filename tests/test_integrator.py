@@ -161,3 +161,25 @@ def test_run_file_chooses_the_integrator(tmp_path, capsys):
         runfile.load_run(bad)
     assert cli.main(["run", str(bad), "--out", str(tmp_path / "o2"), "--no-progress"]) == 2
     assert "integrator" in capsys.readouterr().err and not (tmp_path / "o2").exists()
+
+
+def test_a_change_of_step_is_booked_exactly(monkeypatch):
+    """Steps alternating between dt and dt/5 all run long (event location's switch, here
+    forced on every other step): the books still close within the explicit tolerance
+    (:data:`gecko_agents.history.ENERGY_RTOL`, 2 %; 0.29 pJ of 23 pJ measured, 0.22 pJ at a
+    constant step). Without the switch term, ½v·F'·(dt_prev − dt), they are off by 3.8 pJ
+    (16 %)."""
+    from gecko_agents.model.implicit import ImplicitStep
+
+    calls = []
+
+    def alternate(self, vp):
+        calls.append(None)
+        k = 5 if len(calls) % 2 else 1
+        self.set_dt(self.dt_full / k)
+        return k
+
+    monkeypatch.setattr(ImplicitStep, "substeps", alternate)
+    f, d, n, h = _pull(ROD, 0.01, integrator="implicit")
+    assert energy_balance_error(h) <= 0.02
+    assert h.meta["dt_us"] == Model(ROD, n_sim=1, integrator="implicit").dt
