@@ -568,8 +568,8 @@ class Model:
             for the skipped rows; the travel skipped is ``meta["skipped_travel_um"]``.
         """
         h = run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
+        h.meta["integrator"] = self.integrator
         if self._implicit is not None:
-            h.meta["integrator"] = self.integrator
             h.meta["implicit_dissipated_pJ"] = self._implicit.numerical_dissipated
         return h
 

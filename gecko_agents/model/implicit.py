@@ -41,6 +41,13 @@ and ``meta["implicit_dissipated_pJ"]``. Events, as in the explicit step, change 
 within one step, an error ∝ dt in the books (:data:`gecko_agents.history.ENERGY_RTOL`), k
 times the explicit one at a k times longer step: a snap-off's share is booked
 (:meth:`ImplicitStep.book_releases`), a jump-in's is not.
+
+Event location. Near an event (:meth:`ImplicitStep.substeps`) the runner takes k steps of
+dt/k, each no longer than the explicit step, so the event and its share of the books are
+resolved as the explicit step resolves them; a change of step is booked exactly
+(``ImplicitStep._switch_term``). A rod seta's press-pull at 0.005 µm/µs: energy-balance
+error 1.00 % → 0.46 % of its energy scale, 4 783 steps instead of 3 605 (the explicit step:
+36 007).
 """
 
 from __future__ import annotations
@@ -110,6 +117,12 @@ class ImplicitStep:
         self.normal = None  # (2, N) contact normals of a continuous floor (NumpyStep.contact)
         self.numerical_dissipated = 0.0  # cumulative work of F' − F [pJ]
         n = model.n
+        self.dt_full = model.dt  # the step between events [µs]
+        # Near an event: k steps of dt/k, no longer than the explicit step 0.75/ω_max.
+        self.k_event = max(1, math.ceil(model.dt * model.omega_max / 0.75 - 1e-9))
+        self.n_located = 0  # steps taken at dt/k near events
+        self._J = np.zeros((2, n))  # the last step's impulse F'·dt [µN·µs]
+        self._dt_prev = model.dt
         self._kn = np.zeros(n)
         self._kt = np.zeros(n)
         self._dF = np.zeros((2, n))  # the last step's F' − F [µN]
@@ -193,6 +206,7 @@ class ImplicitStep:
             axy = h * cxy + h2 * (kxy + qxy)
             ayx = h * cxy + h2 * (kyx + qxy)
         Fx, Fy = s.F
+        switch = self._switch_term(vx, vy, dt)
         bx = Fx - dt * gx
         by = Fy - dt * gy
         det = axx * ayy - axy * ayx
@@ -213,7 +227,70 @@ class ImplicitStep:
             work += float(dd) * hm * dt
         Fx[:] = fx
         Fy[:] = fy
-        return -work
+        J = self._J  # the impulse of the forces the books pair with the next step's dt
+        np.subtract(s.F, s.F_damp_seta, out=J)
+        J -= s.F_damp_contact
+        J *= dt
+        self._dt_prev = dt
+        return switch - work
+
+    def _switch_term(self, vx, vy, dt) -> float:
+        """Energy to book when the step changes from ``dt_prev`` to ``dt`` [pJ]: the recorder's
+        kinetic energy ½m·v(n−1)·v(n) changes over a step by ½v(n)·(J(n) + J(n+1)), J the
+        impulses F'·dt of the two steps, while every other book (springs at the new position,
+        dampers, F' − F) takes both at the new step's dt; the difference
+        ½v(n)·F'(n)·(dt_prev − dt) is booked as dissipated (0 at a constant step)."""
+        if dt == self._dt_prev:
+            return 0.0
+        J = self._J
+        Fdt = J * (dt / self._dt_prev)  # F'(n)·dt
+        out = -0.5 * float(np.sum(vx * (J[0] - Fdt[0]) + vy * (J[1] - Fdt[1])))
+        self.numerical_dissipated += out
+        return out
+
+    def substeps(self, vp) -> int:
+        """How many steps of ``dt_full``/k the next step takes [-], with the model's dt set
+        for them: ``k_event`` (the explicit step's length) near an event, else 1.
+
+        Near an event means an attached tip running away from its branch (faster than twice
+        the plate speed ``vp`` [µm/µs], as the release marks of
+        :meth:`gecko_agents.model.step_numpy.NumpyStep.bookkeeping`: past a fold, a crack
+        running through, a slip), or a tip whose overlap δ would cross the law's snap-off
+        overlap (attached) or, moving towards the floor, its jump-in overlap (free) within two
+        steps at its normal speed. A step of the explicit length there resolves the event as
+        the explicit step does; between events the long step stands. Not with an elastic
+        backing (its strip keeps its own step)."""
+        m = self.m
+        k = self.k_event if (self.k_event > 1 and m.backing.rigid) else 1
+        if k > 1:
+            s, dt = m.state, self.dt_full
+            v_ref = max(math.hypot(*vp), 1e-4)
+            vx, vy = s.pv[2], s.pv[3]
+            att = s.attached
+            vn = vy if self.normal is None else np.where(att, vx * self.normal[0]
+                                                         + vy * self.normal[1], vy)  # fmt: skip
+            reach = 2.0 * dt * np.abs(vn)
+            d = s.delta
+            with np.errstate(invalid="ignore"):
+                near = vx * vx + vy * vy > 4.0 * v_ref * v_ref
+                near |= att & (d - m.law.detach_overlap < reach)
+                near |= ~att & (vn < 0.0) & (m.law.attach_overlap - d < reach)
+            if not near.any():
+                k = 1
+        self.set_dt(self.dt_full / k)
+        self.n_located += k if k > 1 else 0
+        return k
+
+    def set_dt(self, dt: float) -> None:
+        """Set the model's step to ``dt`` [µs] (its loop constants too). The recorder's
+        kinetic energy reads the last step's velocity change as F'·dt/m with the model's
+        dt, so the tips' force is rescaled to keep that change."""
+        m = self.m
+        if dt == m.dt:
+            return
+        m.state.F *= m.dt / dt
+        m.dt = dt
+        m._constants = m.physics.c = m._constants._replace(dt=dt, hm=0.5 * dt / m.mass)
 
     def book_releases(self, events) -> float:
         """Energy to book as dissipated for the tips that let go this step [pJ]: ``events``

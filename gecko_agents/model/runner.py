@@ -155,24 +155,30 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
     may_skip = run.fast_approach and seg.skips_free_travel
     every, rec = m.record_every, run.recorder
     e_scale = m.n * max(m.Fc, 1e-300) * abs(m.law.detach_overlap)
+    implicit = m._implicit
     while (vp := seg.velocity(m, state)) is not None:
         if may_skip and run.n_steps % every == 0 and not m.state.attached.any():
             run.skipped += m.skip_free_travel(seg, state, vp)
-        m.advance(vp[0], vp[1])
-        run.work += m.work_step
-        run.dissipated += m.physics.diss
-        if m.physics.events:
-            rec.note_detachments(m.time, m.plate_position, m.pop_releases())
-        run.n_steps += 1
-        if run.n_steps % every == 0 or run.n_steps == 1:
-            row = rec.record(m, run.work, run.dissipated)
-            bound = run.ke_bound
-            if bound is None:
-                bound = 100 * (e_scale + abs(run.work))
-            _check_stable(m, row, bound)
-            bar.update()
-        if run.n_steps >= run.max_steps:
-            raise RuntimeError(f"max_steps = {run.max_steps} reached in segment {seg}")
+        # The implicit step takes k steps of dt/k near an event (ImplicitStep.substeps).
+        k = 1 if implicit is None else implicit.substeps(vp)
+        for _ in range(k):
+            m.advance(vp[0], vp[1])
+            run.work += m.work_step
+            run.dissipated += m.physics.diss
+            if m.physics.events:
+                rec.note_detachments(m.time, m.plate_position, m.pop_releases())
+            run.n_steps += 1
+            if run.n_steps % every == 0 or run.n_steps == 1:
+                row = rec.record(m, run.work, run.dissipated)
+                bound = run.ke_bound
+                if bound is None:
+                    bound = 100 * (e_scale + abs(run.work))
+                _check_stable(m, row, bound)
+                bar.update()
+            if run.n_steps >= run.max_steps:
+                raise RuntimeError(f"max_steps = {run.max_steps} reached in segment {seg}")
+        if k > 1:
+            implicit.set_dt(implicit.dt_full)
 
 
 def _check_stable(m, row, bound):

@@ -21,6 +21,8 @@ Run file
     dt_us = 0.01                       # time step [µs] (default: 0.75/ω_max)
     record_setae = true                # per-seta arrays (animations need them)
     kernel = "auto"                    # auto | numpy | numba | python
+    integrator = "explicit"            # explicit | implicit (gecko_agents.model.implicit;
+                                       # default: the model's)
 
     [[protocol]]                       # segments in order ...
     segment = "press_to"
@@ -79,6 +81,7 @@ import numpy as np
 
 from gecko_agents.diagnostics import MeaninglessRunError
 from gecko_agents.history import History, invariant_violations
+from gecko_agents.model.implicit import INTEGRATORS
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import SetaArray
 from gecko_agents.runfiles.schema import (
@@ -116,8 +119,16 @@ __all__ = [
 RUN_FILE_NAME = "run.toml"
 """Name of the run file's copy inside a run directory."""
 
-_MODEL_KEYS = {"n_sim": int, "seed": int, "dt_us": float, "record_setae": bool, "kernel": str}
+_MODEL_KEYS = {
+    "n_sim": int,
+    "seed": int,
+    "dt_us": float,
+    "record_setae": bool,
+    "kernel": str,
+    "integrator": str,
+}
 _MODEL_RANGES = {
+    "integrator": f"one of {INTEGRATORS}",
     "seed": "an integer ≥ 0",
     "n_sim": "an integer ≥ 1 (the model refuses more than gecko_agents.model.setup.MAX_N)",
     "dt_us": "a time step > 0 µs (below the stability bound the model states)",
@@ -136,7 +147,8 @@ class RunSpec:
     preset : preset name; ``overrides`` the ``[params]`` in effect (dotted name → value).
     params : the validated :class:`SetaArray`.
     model : keyword arguments of :class:`~gecko_agents.model.Model` (``n_sim``, ``seed``,
-        ``dt``, ``record_setae``, ``kernel``; absent ones take the model's defaults).
+        ``dt``, ``record_setae``, ``kernel``, ``integrator``; absent ones take the model's
+        defaults).
     protocol : the protocol segments.
     description : the file's description (may be empty).
     resolved : the tables in effect (after ``--quick``), for metadata.json.
@@ -160,7 +172,7 @@ class RunSpec:
         try:
             return Model(self.params, **self.model)
         except (ValueError, TypeError) as err:
-            m = re.match(r"(n_sim|dt|kernel|seed)\b", str(err))
+            m = re.match(r"(n_sim|dt|kernel|seed|integrator)\b", str(err))
             key = {"dt": "dt_us"}.get(m.group(1), m.group(1)) if m else None
             where = f"[model] {key}" if key else "[model]"
             raise RunFileError(f"{self.path}: {where}: {err}") from None
@@ -187,6 +199,7 @@ def _run_variant(ctx: Ctx, data: dict, quick: dict | None, path: Path, raw: byte
             "seed": lambda v: v < 0,
             "n_sim": lambda v: v < 1,
             "dt_us": lambda v: not 0 < v < float("inf"),
+            "integrator": lambda v: v not in INTEGRATORS,
         }.get(key, lambda v: False)
         if bad(value):
             raise ctx.error(where, f"{value} must be {_MODEL_RANGES[key]}")
