@@ -228,6 +228,14 @@ def newton_loop():
     return loop
 
 
+def _batch(v, shape) -> np.ndarray:
+    """``v`` as a contiguous float array of ``shape`` (a copy only where needed)."""
+    v = np.asarray(v, dtype=float)
+    if v.shape != shape or not v.flags.c_contiguous:
+        v = np.ascontiguousarray(np.broadcast_to(v, shape))
+    return v
+
+
 def rod_newton(
     rs: RodSetup,
     c,
@@ -262,10 +270,10 @@ def rod_newton(
     """
     x_start = np.asarray(x, dtype=float)
     x, a = np.array(x, dtype=float), np.array(a, dtype=float)
-    c = np.ascontiguousarray(np.broadcast_to(np.asarray(c, dtype=float), x.shape))
+    c = _batch(c, x.shape)
     mode = SLIDE if anchor is None else (STICK_RIGID if math.isinf(rs.k_t) else STICK_SPRING)
-    anc = np.zeros_like(x) if anchor is None else np.broadcast_to(anchor, x.shape) + 0.0
-    dirs = np.zeros_like(x) if s is None else np.broadcast_to(s, x.shape) + 0.0
+    anc = np.zeros(x.shape) if anchor is None else _batch(anchor, x.shape)
+    dirs = np.zeros(x.shape) if s is None else _batch(s, x.shape)
     a_min = rs.a_c * (1.0 + 1e-9)
     loop = newton_loop() if compiled or compiled is None else None
     if compiled and loop is None:
