@@ -132,3 +132,14 @@ def test_compiled_without_numba_is_refused(monkeypatch):
     one = np.ones(1)
     with pytest.raises(ValueError, match="compiled = True needs numba"):
         req.rod_newton(rs, one, one, one, compiled=True)
+
+
+def test_no_compiled_loop_when_numba_compilation_is_off(monkeypatch):
+    """NUMBA_DISABLE_JIT would run the per-seta loop interpreted: the vectorized path is used."""
+    numba = pytest.importorskip("numba")
+    monkeypatch.setattr(numba.config, "DISABLE_JIT", True)
+    req.newton_loop.cache_clear()
+    try:
+        assert req.newton_loop() is None
+    finally:
+        req.newton_loop.cache_clear()

@@ -197,10 +197,13 @@ def newton_masked(mode, K, c, x, a, anchor, s, iters, a_min):
 def newton_loop():
     """:func:`newton_masked` as one loop over the setae compiled by numba (None without numba):
     each seta iterates until it converges or has taken ``iters`` steps, with the same
-    residual, step and test. Returns (converged, stable there: :func:`rod_stable`)."""
+    residual, step and test. Returns (converged, stable there: :func:`rod_stable`). None
+    also when numba's compilation is switched off (``NUMBA_DISABLE_JIT=1``)."""
     try:
         import numba
     except ImportError:
+        return None
+    if numba.config.DISABLE_JIT:  # interpreted, the loop would be far slower than numpy's
         return None
 
     @numba.njit(cache=True, error_model="numpy")
