@@ -46,15 +46,15 @@ Units: µm, µN (see :mod:`gecko_agents.params`). The plate only moves verticall
 
 The code lives in one module per concept and this module gathers them, so everything is
 importable from here: :mod:`~gecko_agents.quasistatic.branches` (the linear seta's tabulated
-branches
-and release radius), :mod:`~gecko_agents.quasistatic.linear` (one plate position of linear setae),
-:mod:`~gecko_agents.quasistatic.blocks` (blocks of a sorted sample split on the fly),
-:mod:`~gecko_agents.quasistatic.rod` (the rod seta), :mod:`~gecko_agents.quasistatic.solve` (a
-given plate path;
-displacement control), :mod:`~gecko_agents.quasistatic.preload` (force control),
+branches and release radius), :mod:`~gecko_agents.quasistatic.linear` (one plate position of
+linear setae), :mod:`~gecko_agents.quasistatic.blocks` (blocks of a sorted sample split on the
+fly), :mod:`~gecko_agents.quasistatic.rod` (the rod seta),
+:mod:`~gecko_agents.quasistatic.rod_equilibrium` (the rod's force and its Newton solve per
+seta), :mod:`~gecko_agents.quasistatic.solve` (a given plate path; displacement control),
+:mod:`~gecko_agents.quasistatic.preload` (force control),
 :mod:`~gecko_agents.quasistatic.heights` (representative floor heights),
-:mod:`~gecko_agents.quasistatic.state`
-and :mod:`~gecko_agents.quasistatic.result` (what a solve carries and returns).
+:mod:`~gecko_agents.quasistatic.state` and :mod:`~gecko_agents.quasistatic.result` (what a
+solve carries and returns).
 """
 
 from __future__ import annotations

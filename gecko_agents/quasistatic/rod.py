@@ -20,46 +20,8 @@ from gecko_agents.params import SetaArray
 from gecko_agents.physics import beam, jkr
 from gecko_agents.physics.friction import friction_cap, friction_cap_slope
 from gecko_agents.quasistatic.heights import plate_start_height
+from gecko_agents.quasistatic.rod_equilibrium import rod_force, rod_newton
 from gecko_agents.quasistatic.state import State, jump_in
-
-
-def rod_force(x, y, Ka, k_phi, L, theta):
-    """Force of a rod seta on its tip and the tip's tangent stiffness (the agent's ``rod`` law).
-
-    The rod is rigid, pivots at its root on a rotary spring k_φ = Kp·L² and has an axial spring
-    Ka (Kp, Ka: eq 19, 17). With the tip at d = (x, y) from the root, ℓ = |d|, e = d/ℓ,
-    e⊥ = (−e_y, e_x) and Δφ = atan2(y, x) + θ wrapped to (−π, π]:
-
-        U = ½Ka(ℓ − L)² + ½k_φΔφ²,    F = −∇U = −Ka(ℓ − L)·e − (k_φΔφ/ℓ)·e⊥,
-        H = ∇∇U = Ka·e eᵀ + (Ka(ℓ − L)/ℓ + k_φ/ℓ²)·e⊥e⊥ᵀ − (k_φΔφ/ℓ²)(e e⊥ᵀ + e⊥eᵀ).
-
-    At rest (ℓ = L, Δφ = 0) H is the paper's 2×2 stiffness K of eq 20–21 (Ka along the rod,
-    Kp across it), so rod and ``linear`` agree for small deflections. The same formula as
-    :meth:`gecko_agents.model.Model.spring_force`.
-
-    Parameters
-    ----------
-    x, y : tip position relative to the root [µm] (y up, the rest tip at L(cos θ, −sin θ)).
-    Ka : axial stiffness [µN/µm]. k_phi : rotary stiffness [µN·µm/rad]. L : rod length [µm].
-    theta : rest angle below the plate [rad].
-
-    Returns
-    -------
-    (Fx, Fy) [µN] and (H_xx, H_xy, H_yy) [µN/µm].
-    """
-    ell = np.hypot(x, y)
-    ex, ey = x / ell, y / ell
-    dphi = np.remainder(np.arctan2(y, x) + theta + np.pi, 2 * np.pi) - np.pi
-    fa = Ka * (ell - L)
-    ft = k_phi * dphi / ell
-    Fx = -fa * ex + ft * ey
-    Fy = -fa * ey - ft * ex
-    perp = fa / ell + k_phi / (ell * ell)
-    cross = ft / ell
-    Hxx = Ka * ex * ex + perp * ey * ey + 2.0 * cross * ex * ey
-    Hyy = Ka * ey * ey + perp * ex * ex - 2.0 * cross * ex * ey
-    Hxy = Ka * ex * ey - perp * ex * ey + cross * (ey * ey - ex * ex)
-    return (Fx, Fy), (Hxx, Hxy, Hyy)
 
 
 @dataclass(frozen=True)
@@ -142,93 +104,6 @@ class RodSetup:
     def rest(self) -> tuple[float, float]:
         """Free tip position relative to the root [µm]."""
         return self.L * math.cos(self.theta), -self.L * math.sin(self.theta)
-
-
-def _residual(rs: RodSetup, c, x, a, anchor, s):
-    """Residual (r1, r2) of F_rod(x, y) + (F_t, P) = 0 at (x, a), its Jacobian
-    (j11, j12, j21, j22) in (x, a), and P [µN] and the rod's F_x [µN] that scale it."""
-    P, dP, d, dd = jkr.branch_terms(a, rs.R, rs.w, rs.E_star)
-    y = c - d
-    (Fx, Fy), (Hxx, Hxy, Hyy) = rod_force(x, y, rs.Ka, rs.k_phi, rs.L, rs.theta)
-    # dy/da = −δ'(a).
-    if anchor is not None and math.isinf(rs.k_t):  # rigid stick: x = anchor
-        r1 = rs.Ka * (anchor - x)
-        j11, j12 = -rs.Ka * np.ones_like(x), np.zeros_like(x)
-    elif anchor is not None:  # stick on the contact's spring k_t
-        r1 = Fx - rs.k_t * (x - anchor)
-        j11, j12 = -Hxx - rs.k_t, Hxy * dd
-    else:  # slide in direction s
-        r1 = Fx + s * rs.cap(P)
-        j11, j12 = -Hxx, Hxy * dd + s * rs.dcap(P) * dP
-    r2 = Fy + P
-    j21, j22 = -Hxy, Hyy * dd + dP
-    return (r1, r2), (j11, j12, j21, j22), P, Fx
-
-
-def _stable(rs: RodSetup, c, x, a, anchor, s):
-    """Where the equilibrium at (x, a) is stable: the tangent stiffness K_tot = H + contact
-    (+ stick spring) in (x, y) has positive determinant and trace."""
-    P, dP, d, dd = jkr.branch_terms(a, rs.R, rs.w, rs.E_star)
-    y = c - d
-    _, (Hxx, Hxy, Hyy) = rod_force(x, y, rs.Ka, rs.k_phi, rs.L, rs.theta)
-    kc = dP / np.maximum(dd, 1e-300)  # dP/dδ
-    stick = anchor is not None
-    if stick and math.isinf(rs.k_t):
-        return Hyy + kc > 0
-    kxx = Hxx + (rs.k_t if stick else 0.0)
-    kxy = Hxy + (0.0 if stick else s * rs.dcap(P) * kc)
-    return (kxx * (Hyy + kc) - kxy * Hxy > 0) & (kxx + Hyy + kc > 0)
-
-
-def rod_newton(
-    rs: RodSetup, c, x, a, anchor=None, s=None, iters: int = 60, max_jump: float = math.inf
-):
-    """Equilibrium of rod + JKR tip for each seta, by damped Newton on (x, a).
-
-    The tip sits at (x, y) from its root with y = c − δ(a) (c = h + R − Z [µm]: floor height
-    h, plate height Z), the normal force is P(a) (eq 7), the overlap δ(a) (eq 10). Lateral:
-    ``anchor`` given: stick, F_t = −k_t(x − anchor) (``k_t = inf``: x = anchor); else slide in
-    direction ``s`` = ±1 with F_t = s·cap(P). Equations: F_rod(x, y) + (F_t, P) = 0.
-
-    ``max_jump`` [µm]: an equilibrium whose x is farther than this from the start does not
-    count (it lies beyond a snap of the branch the tip was on).
-
-    Returns (x, a, ok): ok where Newton converged to a stable equilibrium (the tangent
-    stiffness of rod + contact + stick spring has positive determinant and trace) on the
-    stable JKR branch (a > a_c). Where the equilibrium has folded away, ok is False.
-    """
-    x_start = x
-    x, a = x.copy(), a.copy()
-    a_min = rs.a_c * (1.0 + 1e-9)
-    tol = 1e-10 * rs.Fc
-    conv = np.zeros(x.size, dtype=bool)
-    for _ in range(iters):
-        (r1, r2), (j11, j12, j21, j22), P, Fx = _residual(rs, c, x, a, anchor, s)
-        det = j11 * j22 - j12 * j21
-        scale = tol + 1e-12 * (np.abs(P) + np.abs(Fx))
-        conv = (np.abs(r1) <= scale) & (np.abs(r2) <= scale)
-        if conv.all():
-            break
-        det = np.where(det == 0.0, 1e-300, det)
-        dx = -(j22 * r1 - j12 * r2) / det
-        da = -(-j21 * r1 + j11 * r2) / det
-        # Damping: keep steps to a fraction of the rod length and of the contact radius.
-        lim = np.minimum(
-            1.0,
-            np.minimum(
-                0.1 * rs.L / np.maximum(np.abs(dx), 1e-300),
-                0.3 * a / np.maximum(np.abs(da), 1e-300),
-            ),
-        )
-        lim = np.where(conv, 0.0, lim)
-        x = x + lim * dx
-        a = np.maximum(a + lim * da, a_min)
-    ok = _stable(rs, c, x, a, anchor, s)
-    ok &= conv & (a > a_min) & np.isfinite(x)
-    # An equilibrium far from the last one is the far side of a snap (e.g. the rod swinging
-    # through upright): the branch the tip was on has folded; dynamically the tip lets go.
-    ok &= np.abs(x - x_start) <= max_jump
-    return x, a, ok
 
 
 class RodState(State):
