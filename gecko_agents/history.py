@@ -16,9 +16,11 @@ Run directory integrity. ``history.csv`` is plain CSV (a header of column names,
 record: ``pandas.read_csv(path)`` reads it). ``metadata.json``, written last, holds the run's
 identifier (:meth:`History.run_id`, a hash of the parameters, seed, protocol, code version and
 series) as ``"run_id"`` and the SHA-256 of each data file as ``"files"``; ``setae.npz`` carries
-the identifier too. :func:`load` refuses files that disagree, a table not the one the identifier
-was made from or not ``n_records`` long, and a file whose SHA-256 is not the recorded one
-(naming it). Directories saved before the checksums (a ``# run_id: <id>`` first line in
+the identifier too; every other field of ``metadata.json`` (``dt_us``, ``n_sim``,
+``record_every``, ``scale_to_array``, …) has the SHA-256 of its value in ``"fields_sha256"``.
+:func:`load` refuses files that disagree, a table not the one the identifier was made from or
+not ``n_records`` long, a file whose SHA-256 is not the recorded one (naming it), and a
+metadata field edited, added or removed after the save (naming it). Directories saved before the checksums (a ``# run_id: <id>`` first line in
 ``history.csv``, no ``"files"``) still load, checked by that line.
 """
 
@@ -309,9 +311,49 @@ class History:
         atomic_write_bytes(d / "setae.npz", files["setae.npz"])
         meta = self.metadata()
         meta["files"] = {name: hashlib.sha256(data).hexdigest() for name, data in files.items()}
+        # Each field the run id does not cover, as it will read back (a tuple as a list).
+        stored = json.loads(json.dumps(meta, default=_json_default))
+        meta["fields_sha256"] = {
+            k: _field_digest(v) for k, v in stored.items() if k not in _ID_FIELDS
+        }
         text = json.dumps(meta, indent=2, default=_json_default)
         atomic_write_bytes(d / "metadata.json", text.encode())
         return d
+
+
+_ID_FIELDS = ("params", "seed", "n_records", "columns", "run_id", "files", "fields_sha256")
+"""Fields of metadata.json that the run id, the checksums or the table's own checks cover;
+every other field carries its digest in ``"fields_sha256"``."""
+
+
+def _field_digest(value) -> str:
+    """16 hex digits of the SHA-256 of a metadata field's value as JSON (keys sorted)."""
+    text = json.dumps(value, sort_keys=True, allow_nan=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _check_fields(meta_path: Path, meta: dict) -> None:
+    """Refuse a metadata.json field (dt_us, n_sim, record_every, scale_to_array, …) edited,
+    added or removed after the save, naming it; pops ``"fields_sha256"`` (absent from runs
+    saved before it: nothing to check)."""
+    digests = meta.pop("fields_sha256", None)
+    if digests is None:
+        return
+    if not isinstance(digests, dict):
+        raise ValueError(f"{meta_path}: fields_sha256 = {digests!r} is not an object")
+    names = [k for k in meta if k not in _ID_FIELDS]
+    for key in sorted(set(names) | set(digests)):
+        if key not in meta or key not in digests:
+            done = "removed from" if key not in meta else "added to"
+            raise ValueError(
+                f"{meta_path}: the field {key!r} was {done} it after the run was saved; "
+                "re-run to regenerate the directory"
+            )
+        if _field_digest(meta[key]) != digests[key]:
+            raise ValueError(
+                f"{meta_path}: {key} = {str(meta[key])[:80]} is not the value the run saved "
+                "(the file was edited after the save); re-run to regenerate the directory"
+            )
 
 
 def _saved_run_id(d: Path) -> str | None:
@@ -417,6 +459,11 @@ def _read_metadata(meta_path: Path) -> tuple[dict, dict, SetaArray, int, int | N
         meta = json.loads(meta_path.read_text(encoding="utf-8"))
         if not isinstance(meta, dict):
             raise TypeError(f"it holds a {type(meta).__name__}, not an object")
+    except (ValueError, TypeError) as err:
+        # UnicodeDecodeError and JSONDecodeError are ValueErrors: a binary or garbled file.
+        raise ValueError(f"{meta_path} is not a gecko_agents metadata file: {err}") from err
+    _check_fields(meta_path, meta)
+    try:
         raw_params = meta.pop("params")
         params = SetaArray.from_dict(raw_params)
         seed = check_seed(meta.pop("seed"), "seed")
@@ -424,7 +471,6 @@ def _read_metadata(meta_path: Path) -> tuple[dict, dict, SetaArray, int, int | N
         if n_records is not None:
             n_records = check_seed(n_records, "n_records")
     except (ValueError, KeyError, TypeError, AttributeError) as err:
-        # UnicodeDecodeError and JSONDecodeError are ValueErrors: a binary or garbled file.
         raise ValueError(f"{meta_path} is not a gecko_agents metadata file: {err}") from err
     return meta, raw_params, params, seed, n_records
 
