@@ -347,3 +347,49 @@ def test_a_run_file_whose_tips_never_touch_says_so_and_writes_nothing(tmp_path, 
     assert "MeaninglessRunError" in err and "no tip ever touched" in err
     assert "energy balance" not in err
     assert not (tmp_path / "out").exists()
+
+
+# Large profile files are parsed whole by numpy, as the line-by-line reader reads them ----------
+
+
+def _profile_texts():
+    rng = np.random.default_rng(3)
+    xs, hs = (np.arange(300) * 0.25).tolist(), rng.normal(0.0, 0.4, 300).tolist()
+    rows = [f"{x!r}, {h!r}" for x, h in zip(xs, hs, strict=True)]
+    yield "plain", "x [um], h [um]\n" + "\n".join(rows) + "\n"
+    yield "crlf_semicolons", "x_um; h_um\r\n" + "\r\n".join(r.replace(",", ";") for r in rows)
+    yield (
+        "extra_columns",
+        "# scan\nx um  h um  q\n"
+        + "\n".join(f"{x!r}\t{h!r}\t7" for x, h in zip(xs, hs, strict=True)),
+    )
+    yield "blank_lines", "x [um], h [um]\n" + "\n".join(rows[:150] + ["", " "] + rows[150:])
+    yield "trailing_commas", "x [um], h [um]\n" + ",\n".join(rows) + ",\n\n\n"
+    yield "cr_lines", "x [um], h [um]\r\r\n" + "\r".join(rows) + "\r\r\n"
+    from gecko_agents.data import DEKTAK_PROFILE  # an instrument export: header block, µ as 0xB5
+
+    yield "dektak", Path(DEKTAK_PROFILE).read_bytes().decode("latin-1")
+
+
+@pytest.mark.parametrize("name, text", list(_profile_texts()), ids=lambda v: str(v)[:16])
+def test_the_whole_block_parse_equals_the_line_by_line_read(tmp_path, name, text):
+    from gecko_agents.floor import readers
+
+    fast = readers._whole_block(text, (0, 1))
+    assert fast is not None  # these files take the fast path
+    slow = readers._line_block(tmp_path / name, text, (0, 1))
+    assert fast[0] == slow[0]  # the same header line
+    np.testing.assert_array_equal(fast[1], slow[1])  # the same floats, bit for bit
+    assert fast[1].shape == ((9600, 2) if name == "dektak" else (300, 2))
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["x um, h um\n0, 1\n# paused\n1, 2\n2, 3\n", "x um, h um\n0, 1\npaused\n1, 2\n",
+     "x um, h um\n0, 1\n1, 2 % note\n", "x um, h um\n0, 1\n1\n"],
+    ids=["comment", "junk", "trailing_comment", "short_row"],
+)  # fmt: skip
+def test_blocks_with_comments_or_junk_are_left_to_the_line_by_line_reader(text):
+    from gecko_agents.floor import readers
+
+    assert readers._whole_block(text, (0, 1)) is None
