@@ -143,10 +143,9 @@ def read_columns(
     return data[:, 0], data[:, 1], x_unit, h_unit
 
 
-_ODD_BREAKS = re.compile("[\x0b\x0c\x1c-\x1e\x85\u2028\u2029]")
+_ODD_BREAKS = "\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029"  # str.splitlines breaks lines there too
 _HEAD_LINES = 10_000  # header lines looked through for the first data line
 _CHUNK = 1 << 24  # characters parsed at a time (~16 MB of text, ~0.6 M rows)
-_SEPARATORS = str.maketrans(",;", "  ")
 
 
 def _whole_block(text: str, columns: tuple[int, int]) -> tuple[str, np.ndarray] | None:
@@ -156,7 +155,7 @@ def _whole_block(text: str, columns: tuple[int, int]) -> tuple[str, np.ndarray] 
     comment, junk or ends oddly: :func:`_line_block` then reads it (same result, or an error
     naming the line)."""
     text = text.replace("\r\n", "\n").replace("\r", "\n")  # as str.splitlines reads them
-    if _ODD_BREAKS.search(text):
+    if any(c in text for c in _ODD_BREAKS):
         return None
     pos, header = 0, ""
     for _ in range(_HEAD_LINES):
@@ -183,7 +182,7 @@ def _whole_block(text: str, columns: tuple[int, int]) -> tuple[str, np.ndarray] 
         try:
             parts.append(
                 np.loadtxt(
-                    io.StringIO(chunk.translate(_SEPARATORS)),
+                    io.StringIO(chunk.replace(",", " ").replace(";", " ")),
                     usecols=columns,
                     comments=None,
                     ndmin=2,
@@ -269,9 +268,15 @@ def read_text(
 def printed_resolution(x: np.ndarray, max_decimals: int = 9) -> float:
     """The finest decimal step ``x`` was printed with: 10⁻ᵈ for the fewest decimals d that
     write every value (to 1e-6 of the step), e.g. 0.1 for a column of 0.0, 0.2, 0.3, …"""
+    x = np.asarray(x, float)
+    sample = x[:1000]  # consecutive values: a d that fails on them fails on x, skipped fast
+
+    def whole(v, d):
+        scaled = v * 10.0**d
+        return np.all(np.abs(scaled - np.round(scaled)) <= 1e-6 * np.maximum(1.0, np.abs(scaled)))
+
     for d in range(max_decimals + 1):
-        scaled = np.asarray(x, float) * 10.0**d
-        if np.all(np.abs(scaled - np.round(scaled)) <= 1e-6 * np.maximum(1.0, np.abs(scaled))):
+        if whole(sample, d) and whole(x, d):
             return 10.0**-d
     return 0.0
 
