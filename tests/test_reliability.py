@@ -21,6 +21,7 @@ from gecko_agents.params import PAPER_TABLE1
 
 ROOT = Path(__file__).resolve().parents[1]
 STIFF = PAPER_TABLE1.replace(**{"seta.L": 5.0})  # a short seta: quick runs
+STIFF3 = STIFF.replace(**{"array.count": 3})  # three of them
 
 
 # Defect 2: a run whose tips never touch -------------------------------------------------------
@@ -46,13 +47,13 @@ def test_a_run_that_never_reaches_the_floor_is_legitimate(monkeypatch):
     # Contact-free runs miss conftest's energy balance by ~5 % of their tiny energy scale (the
     # plate's start-up transient; a model issue outside this test): run them unchecked.
     monkeypatch.setattr(Model, "run", Model.run.__globals__.get("_run", Model.run))
-    m = Model(STIFF, n_sim=2, seed=1)
+    m = Model(STIFF3, n_sim=2, seed=1)
     assert m.plate_start - m.z_touch > 0.1  # the move below stays above the floor
     with warnings.catch_warnings():
         warnings.simplefilter("error", ValidityWarning)
         warnings.filterwarnings("ignore", message="a seta deflected")
         free = m.run([protocol.Move(dy=-0.1, speed=0.05)], progress=False)
-        pull = Model(STIFF, n_sim=2, seed=1).run([protocol.PullOff(0.05)], progress=False)
+        pull = Model(STIFF3, n_sim=2, seed=1).run([protocol.PullOff(0.05)], progress=False)
     for h in (free, pull):
         touched = h.meta["validity"]["items"]["touched"]
         assert touched["value"] == 0.0 and touched["ok"] is None
@@ -195,7 +196,7 @@ def test_numpy_seeds_and_generators():
 
 
 def test_an_absurd_run_is_refused_before_it_starts():
-    m = Model(STIFF, n_sim=2, seed=1)
+    m = Model(STIFF3, n_sim=2, seed=1)
     t0 = time.perf_counter()
     with pytest.raises(ValueError, match=r"seta-steps, above the limit 1e\+11; simulate fewer"):
         m.run([protocol.Hold(1e12)], progress=False)
@@ -244,7 +245,7 @@ def test_sweep_module_help_prints_usage():
 
 
 def test_an_injected_nan_force_is_named_not_blamed_on_dt():
-    m = Model(STIFF, n_sim=3, seed=1)
+    m = Model(STIFF3, n_sim=3, seed=1)
     m.external_force[1] = (math.nan, 0.0)
     with pytest.raises(SimulationUnstable) as err:
         m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
@@ -255,7 +256,7 @@ def test_an_injected_nan_force_is_named_not_blamed_on_dt():
 def test_a_diverging_state_names_the_quantity_and_setae():
     from gecko_agents.diagnostics import non_finite_report
 
-    m = Model(STIFF, n_sim=3, seed=1)
+    m = Model(STIFF3, n_sim=3, seed=1)
     m.state.P[2] = math.inf
     msg = non_finite_report(m, {"force_normal_uN": math.inf})
     assert "P (setae [2])" in msg and "force_normal_uN" in msg and "dt" in msg
