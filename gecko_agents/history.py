@@ -16,10 +16,14 @@ Run directory integrity. ``history.csv`` is plain CSV (a header of column names,
 record: ``pandas.read_csv(path)`` reads it). ``metadata.json``, written last, holds the run's
 identifier (:meth:`History.run_id`, a hash of the parameters, seed, protocol, code version and
 series) as ``"run_id"`` and the SHA-256 of each data file as ``"files"``; ``setae.npz`` carries
-the identifier too. :func:`load` refuses files that disagree, a table not the one the identifier
-was made from or not ``n_records`` long, and a file whose SHA-256 is not the recorded one
-(naming it). Directories saved before the checksums (a ``# run_id: <id>`` first line in
-``history.csv``, no ``"files"``) still load, checked by that line.
+the identifier too; every other field of ``metadata.json`` (``dt_us``, ``n_sim``,
+``record_every``, ``scale_to_array``, …) has the SHA-256 of its value in ``"fields_sha256"``.
+:func:`load` refuses files that disagree, a table not the one the identifier was made from or
+not ``n_records`` long, a file whose SHA-256 is not the recorded one (naming it), and a
+metadata field edited, added or removed after the save (naming it;
+``gecko_agents._run_directory`` reads and checks the files). Directories saved before the
+checksums (a ``# run_id: <id>`` first line in ``history.csv``, no ``"files"``) still load,
+checked by that line; those saved before the field digests, without the field check.
 """
 
 from __future__ import annotations
@@ -29,15 +33,22 @@ import hashlib
 import io
 import json
 import math
-import zipfile
-import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from gecko_agents._run_directory import (
+    ID_FIELDS,
+    check_checksums,
+    field_digest,
+    read_arrays,
+    read_metadata,
+    read_series,
+    saved_run_id,
+)
 from gecko_agents.output_paths import atomic_write_bytes
-from gecko_agents.params import SetaArray, check_seed
+from gecko_agents.params import SetaArray
 from gecko_agents.provenance import versions
 
 __all__ = [
@@ -287,7 +298,7 @@ class History:
             raise NotADirectoryError(f"{str(d)!r} exists and is not a directory")
         d.mkdir(parents=True, exist_ok=True)
         run_id = self.run_id()
-        if _saved_run_id(d) != run_id:
+        if saved_run_id(d) != run_id:
             for name in RUN_FILES:  # metadata.json before the data it describes is replaced
                 (d / name).unlink(missing_ok=True)
         buf = io.StringIO()
@@ -309,18 +320,14 @@ class History:
         atomic_write_bytes(d / "setae.npz", files["setae.npz"])
         meta = self.metadata()
         meta["files"] = {name: hashlib.sha256(data).hexdigest() for name, data in files.items()}
+        # Each field the run id does not cover, as it will read back (a tuple as a list).
+        stored = json.loads(json.dumps(meta, default=_json_default))
+        meta["fields_sha256"] = {
+            k: field_digest(v) for k, v in stored.items() if k not in ID_FIELDS
+        }
         text = json.dumps(meta, indent=2, default=_json_default)
         atomic_write_bytes(d / "metadata.json", text.encode())
         return d
-
-
-def _saved_run_id(d: Path) -> str | None:
-    """The run_id in ``d/metadata.json``, or None (no file, unreadable, or none recorded)."""
-    try:
-        meta = json.loads((d / "metadata.json").read_text())
-        return meta.get("run_id") if isinstance(meta, dict) else None
-    except (OSError, ValueError):
-        return None
 
 
 def _json_default(obj):
@@ -348,9 +355,9 @@ def load(directory) -> History:
         if not (d / name).is_file():
             raise FileNotFoundError(f"{name} is missing from run directory {str(d)!r}")
     meta_path, csv_path, npz_path = d / "metadata.json", d / "history.csv", d / "setae.npz"
-    meta, raw_params, params, seed, n_records = _read_metadata(meta_path)
+    meta, raw_params, params, seed, n_records = read_metadata(meta_path)
     saved_id = meta.get("run_id")
-    csv_id, columns, table = _read_series(csv_path)
+    csv_id, columns, table = read_series(csv_path, SCALAR_COLUMNS)
     if n_records is not None and len(table) != n_records:
         what = "a header and no data rows" if len(table) == 0 else f"{len(table)} data rows"
         raise ValueError(
@@ -366,14 +373,14 @@ def load(directory) -> History:
         )
     groups: dict = {"setae": {}, "geometry": {}, "detachments": {}, "backing": {}}
     if npz_path.is_file():
-        npz_id = _read_arrays(npz_path, groups)
+        npz_id = read_arrays(npz_path, groups)
         if npz_id != saved_id:
             raise ValueError(
                 f"{npz_path} belongs to run {npz_id}, but {meta_path.name} to run "
                 f"{saved_id}: the directory mixes files of two runs; re-run to regenerate it"
             )
     if checksums is not None:
-        _check_checksums(d, checksums, saved_id)
+        check_checksums(d, checksums, saved_id)
     meta.pop("columns", None)
     saved_id = meta.pop("run_id", None)
     try:
@@ -395,86 +402,6 @@ def load(directory) -> History:
             "regenerate it"
         )
     return h
-
-
-def _check_checksums(d: Path, checksums: dict, run_id) -> None:
-    """Refuse a file of ``d`` whose SHA-256 is not the one ``metadata.json`` recorded."""
-    for name, expected in checksums.items():
-        path = d / name
-        if not path.is_file():
-            raise FileNotFoundError(f"{name} is missing from run directory {str(d)!r}")
-        if hashlib.sha256(path.read_bytes()).hexdigest() != expected:
-            raise ValueError(
-                f"{path} is not the file run {run_id} saved: its SHA-256 is not the one "
-                "metadata.json recorded (edited, truncated or of another run); re-run it"
-            )
-
-
-def _read_metadata(meta_path: Path) -> tuple[dict, dict, SetaArray, int, int | None]:
-    """metadata.json as (the rest of its dict, its params as recorded, params, seed,
-    n_records or None)."""
-    try:
-        meta = json.loads(meta_path.read_text(encoding="utf-8"))
-        if not isinstance(meta, dict):
-            raise TypeError(f"it holds a {type(meta).__name__}, not an object")
-        raw_params = meta.pop("params")
-        params = SetaArray.from_dict(raw_params)
-        seed = check_seed(meta.pop("seed"), "seed")
-        n_records = meta.pop("n_records", None)
-        if n_records is not None:
-            n_records = check_seed(n_records, "n_records")
-    except (ValueError, KeyError, TypeError, AttributeError) as err:
-        # UnicodeDecodeError and JSONDecodeError are ValueErrors: a binary or garbled file.
-        raise ValueError(f"{meta_path} is not a gecko_agents metadata file: {err}") from err
-    return meta, raw_params, params, seed, n_records
-
-
-def _read_series(csv_path: Path) -> tuple[str | None, tuple[str, ...], np.ndarray]:
-    """history.csv as (the run_id of its ``#`` header line, which files saved before the
-    checksums carry, else None; its columns; the table, one row per record); refuses a table
-    that does not start with SCALAR_COLUMNS."""
-    try:
-        text = csv_path.read_text(encoding="utf-8")
-        lines = text.split("\n")
-        csv_id = None
-        while lines and lines[0].startswith("#"):
-            key, _, value = lines.pop(0)[1:].partition(":")
-            if key.strip() == "run_id":
-                csv_id = value.strip()
-        header = lines[0].split(",") if lines else []
-        body = "\n".join(lines[1:])
-        table = (
-            np.loadtxt(io.StringIO(body), delimiter=",", ndmin=2)
-            if body.strip()
-            else np.zeros((0, len(header)))
-        )
-    except ValueError as err:
-        raise ValueError(f"{csv_path} is corrupt: {err}") from err
-    columns = tuple(header)
-    if columns[: len(SCALAR_COLUMNS)] != SCALAR_COLUMNS or len(set(columns)) < len(columns):
-        raise ValueError(f"{csv_path} has columns {header}, expected {list(SCALAR_COLUMNS)} first")
-    if table.shape[1] != len(columns):
-        raise ValueError(f"{csv_path} has rows of {table.shape[1]} values, expected {len(columns)}")
-    return csv_id, columns, table
-
-
-def _read_arrays(npz_path: Path, groups: dict) -> str | None:
-    """Fill ``groups`` (setae, geometry, detachments) from setae.npz; returns its run_id."""
-    npz_id = None
-    try:
-        with np.load(npz_path) as z:
-            for key in z.files:
-                if key == "run_id":
-                    npz_id = str(z[key])
-                    continue
-                group, _, name = key.partition("__")
-                groups[group][name] = z[key]
-    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error) as err:
-        raise ValueError(
-            f"{npz_path} is corrupt or truncated ({type(err).__name__}: {err}); "
-            "re-run to regenerate it"
-        ) from err
-    return npz_id
 
 
 ENERGY_RTOL = 0.02

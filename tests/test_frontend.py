@@ -224,7 +224,7 @@ _STIFF = PAPER_TABLE1.replace(**{"seta.L": 5.0})
 _FLAT20 = PAPER_ARRAY.replace(**{"floor.sigma": 0.0, "seta.L": 20.0})
 QS_CASES = {  # name: (params, n_sim, press depth [µm])
     "sphere_linear": (_STIFF, 1, 0.3),
-    "sphere_rod": (_STIFF.replace(mechanics="rod"), 2, 0.3),
+    "sphere_rod": (_STIFF.replace(**{"mechanics": "rod", "array.count": 2}), 2, 0.3),
     "array_linear": (_FLAT20, 1, 0.5),
     "array_rod": (_FLAT20.replace(mechanics="rod"), 1, 0.5),
 }

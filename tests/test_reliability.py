@@ -21,6 +21,7 @@ from gecko_agents.params import PAPER_TABLE1
 
 ROOT = Path(__file__).resolve().parents[1]
 STIFF = PAPER_TABLE1.replace(**{"seta.L": 5.0})  # a short seta: quick runs
+STIFF3 = STIFF.replace(**{"array.count": 3})  # three of them
 
 
 # Defect 2: a run whose tips never touch -------------------------------------------------------
@@ -46,13 +47,13 @@ def test_a_run_that_never_reaches_the_floor_is_legitimate(monkeypatch):
     # Contact-free runs miss conftest's energy balance by ~5 % of their tiny energy scale (the
     # plate's start-up transient; a model issue outside this test): run them unchecked.
     monkeypatch.setattr(Model, "run", Model.run.__globals__.get("_run", Model.run))
-    m = Model(STIFF, n_sim=2, seed=1)
+    m = Model(STIFF3, n_sim=2, seed=1)
     assert m.plate_start - m.z_touch > 0.1  # the move below stays above the floor
     with warnings.catch_warnings():
         warnings.simplefilter("error", ValidityWarning)
         warnings.filterwarnings("ignore", message="a seta deflected")
         free = m.run([protocol.Move(dy=-0.1, speed=0.05)], progress=False)
-        pull = Model(STIFF, n_sim=2, seed=1).run([protocol.PullOff(0.05)], progress=False)
+        pull = Model(STIFF3, n_sim=2, seed=1).run([protocol.PullOff(0.05)], progress=False)
     for h in (free, pull):
         touched = h.meta["validity"]["items"]["touched"]
         assert touched["value"] == 0.0 and touched["ok"] is None
@@ -195,7 +196,7 @@ def test_numpy_seeds_and_generators():
 
 
 def test_an_absurd_run_is_refused_before_it_starts():
-    m = Model(STIFF, n_sim=2, seed=1)
+    m = Model(STIFF3, n_sim=2, seed=1)
     t0 = time.perf_counter()
     with pytest.raises(ValueError, match=r"seta-steps, above the limit 1e\+11; simulate fewer"):
         m.run([protocol.Hold(1e12)], progress=False)
@@ -244,7 +245,7 @@ def test_sweep_module_help_prints_usage():
 
 
 def test_an_injected_nan_force_is_named_not_blamed_on_dt():
-    m = Model(STIFF, n_sim=3, seed=1)
+    m = Model(STIFF3, n_sim=3, seed=1)
     m.external_force[1] = (math.nan, 0.0)
     with pytest.raises(SimulationUnstable) as err:
         m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
@@ -255,7 +256,7 @@ def test_an_injected_nan_force_is_named_not_blamed_on_dt():
 def test_a_diverging_state_names_the_quantity_and_setae():
     from gecko_agents.diagnostics import non_finite_report
 
-    m = Model(STIFF, n_sim=3, seed=1)
+    m = Model(STIFF3, n_sim=3, seed=1)
     m.state.P[2] = math.inf
     msg = non_finite_report(m, {"force_normal_uN": math.inf})
     assert "P (setae [2])" in msg and "force_normal_uN" in msg and "dt" in msg
@@ -347,3 +348,49 @@ def test_a_run_file_whose_tips_never_touch_says_so_and_writes_nothing(tmp_path, 
     assert "MeaninglessRunError" in err and "no tip ever touched" in err
     assert "energy balance" not in err
     assert not (tmp_path / "out").exists()
+
+
+# Large profile files are parsed whole by numpy, as the line-by-line reader reads them ----------
+
+
+def _profile_texts():
+    rng = np.random.default_rng(3)
+    xs, hs = (np.arange(300) * 0.25).tolist(), rng.normal(0.0, 0.4, 300).tolist()
+    rows = [f"{x!r}, {h!r}" for x, h in zip(xs, hs, strict=True)]
+    yield "plain", "x [um], h [um]\n" + "\n".join(rows) + "\n"
+    yield "crlf_semicolons", "x_um; h_um\r\n" + "\r\n".join(r.replace(",", ";") for r in rows)
+    yield (
+        "extra_columns",
+        "# scan\nx um  h um  q\n"
+        + "\n".join(f"{x!r}\t{h!r}\t7" for x, h in zip(xs, hs, strict=True)),
+    )
+    yield "blank_lines", "x [um], h [um]\n" + "\n".join(rows[:150] + ["", " "] + rows[150:])
+    yield "trailing_commas", "x [um], h [um]\n" + ",\n".join(rows) + ",\n\n\n"
+    yield "cr_lines", "x [um], h [um]\r\r\n" + "\r".join(rows) + "\r\r\n"
+    from gecko_agents.data import DEKTAK_PROFILE  # an instrument export: header block, µ as 0xB5
+
+    yield "dektak", Path(DEKTAK_PROFILE).read_bytes().decode("latin-1")
+
+
+@pytest.mark.parametrize("name, text", list(_profile_texts()), ids=lambda v: str(v)[:16])
+def test_the_whole_block_parse_equals_the_line_by_line_read(tmp_path, name, text):
+    from gecko_agents.floor import readers
+
+    fast = readers._whole_block(text, (0, 1))
+    assert fast is not None  # these files take the fast path
+    slow = readers._line_block(tmp_path / name, text, (0, 1))
+    assert fast[0] == slow[0]  # the same header line
+    np.testing.assert_array_equal(fast[1], slow[1])  # the same floats, bit for bit
+    assert fast[1].shape == ((9600, 2) if name == "dektak" else (300, 2))
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["x um, h um\n0, 1\n# paused\n1, 2\n2, 3\n", "x um, h um\n0, 1\npaused\n1, 2\n",
+     "x um, h um\n0, 1\n1, 2 % note\n", "x um, h um\n0, 1\n1\n"],
+    ids=["comment", "junk", "trailing_comment", "short_row"],
+)  # fmt: skip
+def test_blocks_with_comments_or_junk_are_left_to_the_line_by_line_reader(text):
+    from gecko_agents.floor import readers
+
+    assert readers._whole_block(text, (0, 1)) is None

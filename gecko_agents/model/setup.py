@@ -54,6 +54,13 @@ def checked_arguments(params, n_sim, contact, record_every, kernel, floor_profil
             "at the top); simulate a patch of a large array with n_sim (the quasi-static "
             "solver does 10⁷)"
         )
+    if n > params.array.count:
+        raise ValueError(
+            f"n_sim = {n} is more than array.count = {params.array.count}: the model would "
+            "simulate setae the array does not have (scale_to_array = array.count / n_sim "
+            "< 1); simulate at most array.count setae, or raise it "
+            f"(params.replace(**{{'array.count': {n}}}))"
+        )
     if contact not in ("batch", "callback"):
         raise ValueError(f"contact = {contact!r} must be 'batch' or 'callback'")
     if record_every is not None and (not isinstance(record_every, int) or record_every < 1):

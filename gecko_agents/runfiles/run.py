@@ -15,8 +15,8 @@ Run file
     mechanics = "rod"
 
     [model]                            # all optional
-    n_sim = 1                          # simulated setae, 1 to model.setup.MAX_N (default:
-                                       # array.count)
+    n_sim = 1                          # simulated setae, 1 to array.count and at most
+                                       # model.setup.MAX_N (default: array.count)
     seed = 1                           # run seed ≥ 0 (default: floor.seed)
     dt_us = 0.01                       # time step [µs] (default: 0.75/ω_max)
     record_setae = true                # per-seta arrays (animations need them)
@@ -130,7 +130,7 @@ _MODEL_KEYS = {
 _MODEL_RANGES = {
     "integrator": f"one of {INTEGRATORS}",
     "seed": "an integer ≥ 0",
-    "n_sim": "an integer ≥ 1 (the model refuses more than gecko_agents.model.setup.MAX_N)",
+    "n_sim": "an integer in [1, array.count] (and at most gecko_agents.model.setup.MAX_N)",
     "dt_us": "a time step > 0 µs (below the stability bound the model states)",
 }
 
@@ -197,12 +197,15 @@ def _run_variant(ctx: Ctx, data: dict, quick: dict | None, path: Path, raw: byte
         model[{"dt_us": "dt"}.get(key, key)] = ctx.type_(where, value, _MODEL_KEYS[key])
         bad = {
             "seed": lambda v: v < 0,
-            "n_sim": lambda v: v < 1,
             "dt_us": lambda v: not 0 < v < float("inf"),
             "integrator": lambda v: v not in INTEGRATORS,
         }.get(key, lambda v: False)
+        allowed = _MODEL_RANGES.get(key, "")
+        if key == "n_sim":  # no more setae simulated than the array has
+            allowed = allowed.replace("array.count", f"array.count = {params.array.count}")
+            bad = lambda v: not 1 <= v <= params.array.count  # noqa: E731
         if bad(value):
-            raise ctx.error(where, f"{value} must be {_MODEL_RANGES[key]}")
+            raise ctx.error(where, f"{value} must be {allowed}")
     if "protocol" not in data:
         raise ctx.error("[protocol]", "missing: give [[protocol]] segments or a [protocol] preset")
     segments = build_protocol(
