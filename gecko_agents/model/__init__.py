@@ -76,7 +76,7 @@ class Model:
     Parameters
     ----------
     params : the array. ``params.array.count`` is the physical array; the model simulates
-        ``n_sim`` setae of it (default: all of them; refused above
+        ``n_sim`` setae of it (default: all of them; refused above ``array.count`` or
         ``gecko_agents.model.setup.MAX_N``) in one row at
         ``params.array.pitch`` and reports ``scale = count / n_sim`` in the metadata.
     seed : seed of the run's single ``numpy.random.Generator`` (default ``params.floor.seed``):
