@@ -194,6 +194,7 @@ def _add_sweep(p: argparse.ArgumentParser) -> None:
         "finished points are kept, the others run",
     )
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
+    add_verbosity_arguments(p)
 
 
 def _cmd_sweep(args, extra) -> int:
@@ -232,17 +233,19 @@ def _cmd_sweep(args, extra) -> int:
     atomic_write_bytes(out / sweepfile.SWEEP_FILE_NAME, spec.text)
     t0 = time.perf_counter()
     try:
-        rows = sweep.run_sweep(
-            spec.point_fn,
-            spec.base,
-            spec.grid,
-            spec.seeds,
-            out,
-            fn_kwargs=spec.point_args,
-            dask=args.dask,
-            n_workers=workers,
-            progress=not args.no_progress,
-        )
+        with WarningLog(verbosity(args)) as log:  # the points' warnings, relayed by the sweep
+            log.family(args.sweepfile.name)
+            rows = sweep.run_sweep(
+                spec.point_fn,
+                spec.base,
+                spec.grid,
+                spec.seeds,
+                out,
+                fn_kwargs=spec.point_args,
+                dask=args.dask,
+                n_workers=workers,
+                progress=not args.no_progress,
+            )
     except KeyboardInterrupt:
         done = len(list(points_dir.glob("*.json"))) if points_dir.is_dir() else 0
         _err(

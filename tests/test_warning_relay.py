@@ -62,3 +62,25 @@ def test_a_study_from_the_command_line_honours_its_verbosity(monkeypatch, capsys
     # called with argv (by reproduce_paper or a test), the caller's handling stands
     with pytest.warns(ValidityWarning):
         command_line(main)(["--quiet"])
+
+
+@pytest.mark.parametrize(("flag", "n_lines"), [("--quiet", 0), (None, 1), ("--verbose", 2)])
+def test_the_sweep_command_reports_its_points_warnings_by_verbosity(
+    tmp_path, monkeypatch, capsys, flag, n_lines
+):
+    from pathlib import Path
+
+    from gecko_agents import cli
+
+    def fake_run_sweep(*args, **kwargs):  # two points warned (as relayed from workers)
+        for _ in range(2):
+            message = "validity: a_over_R = 0.7 violates value ≤ 0.1: x"
+            warnings.warn(message, ValidityWarning, stacklevel=2)
+        return []
+
+    monkeypatch.setattr(sweep, "run_sweep", fake_run_sweep)
+    example = Path(__file__).parents[1] / "examples" / "sweep_roughness_preload.toml"
+    argv = ["sweep", str(example), "--quick", "--out", str(tmp_path / "s"), "--no-progress"]
+    assert cli.main(argv + ([flag] if flag else [])) == 0
+    lines = [ln for ln in capsys.readouterr().err.splitlines() if "a_over_R" in ln]
+    assert len(lines) == n_lines
