@@ -36,8 +36,9 @@ __all__ = [
 ]
 
 WATCHDOG_PERIOD = 1.0
-WARNINGS_KEY = "_warnings"  # a record's relayed warnings, never stored
 """How often [s] a worker checks that the sweep's process is still alive."""
+WARNINGS_KEY = "_warnings"
+"""The key of a record's relayed warnings (see :func:`relay_warnings`); never stored."""
 _PR_SET_PDEATHSIG = 1  # linux/prctl.h
 
 
