@@ -29,6 +29,16 @@ come from the same history, so F·(1 − cos ψ)/b = w_eff is the energy balance
 peel: the ratio tests that the front runs steadily at the angle the force says, with no stored
 energy piling up (inertia, the peeled tail's bending), not the adhesion model.
 
+The adhesion model is tested against Kendall with a w not taken from the run
+(``tests/test_pad_peel.py``): the work to pull one preloaded seta off with its root on a rigid
+plate (JKR contact and spring energies, closed form 12.70 pJ, 12.47 pJ with μ = 0.2 by the
+quasi-static solver), one seta per pitch², w = 0.780 µN/µm. Past the start-up transient (the
+first 20 rows peel at 1.5× (30°) to 3.2× (90°) the steady force, decaying over 20–30 rows),
+F(1 − cos ψ)/b is −0.6 % from it at 30° but +12.5 % at 90°: the steep peel dissipates ~10 %
+more per peeled area than the rigid-plate pull-off of its setae, not by rate (the excess grows
+as the peel slows); the strip's local compliance in series with a releasing seta is the
+likely cause, not derived.
+
 Measured (full run, 240 setae at 0.2 µm/µs, 2026-11-23):
 
     ψ nominal / measured   F/b [µN/µm]   w_eff (dissipated part)   Kendall F/b   ratio
