@@ -92,6 +92,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gecko_agents._stack import user_stacklevel
 from gecko_agents.contact import contact_law
 from gecko_agents.physics import jkr
 
@@ -466,8 +467,7 @@ def _refuse_if_meaningless(history, f: _Run) -> None:
 
 
 def _warn_violations(items: dict, violations: list[str]) -> None:
-    """One ValidityWarning per violated item, attributed to the caller of ``diagnose``'s
-    caller (stacklevel 4 from here)."""
+    """One ValidityWarning per violated item, attributed to the user's line that ran the model."""
     for name in violations:
         it = items[name]
         if name == "linear_deflection" and it["model_warned"]:
@@ -477,7 +477,7 @@ def _warn_violations(items: dict, violations: list[str]) -> None:
                 f"validity: {name} = {_fmt(it['value'])} violates {it['rule']}: "
                 f"{it['meaning']} [{it['source']}]"
             ),
-            stacklevel=4,
+            stacklevel=user_stacklevel(),
         )
 
 

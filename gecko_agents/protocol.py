@@ -17,6 +17,7 @@ import warnings
 from dataclasses import dataclass
 from typing import Protocol
 
+from gecko_agents._stack import user_stacklevel
 from gecko_agents.params.checks import check as _check
 
 __all__ = [
@@ -259,7 +260,7 @@ class PullOff(Segment):
                 warnings.warn(
                     f"PullOff stopped at max_travel = {self.max_travel} µm with "
                     f"{n_attached} setae still attached",
-                    stacklevel=4,
+                    stacklevel=user_stacklevel(),
                 )
             return None
         if not n_attached:

@@ -35,6 +35,7 @@ import warnings
 
 import numpy as np
 
+from gecko_agents._stack import user_stacklevel
 from gecko_agents.backing import backing_class
 from gecko_agents.contact import contact_law
 from gecko_agents.floor import Profile
@@ -509,11 +510,10 @@ class Model:
     def _check_linear(self, max_u2):
         if max_u2 > (0.1 * self.L) ** 2 and not self._warned_linear:
             self._warned_linear = True
-            most = math.sqrt(max_u2) / self.L
             warnings.warn(
-                f"a seta deflected by {most:.2f} L under the linear beam model "
-                "(eq 16–21 assume small deflection); mechanics='rod' stays physical",
-                stacklevel=5,
+                f"a seta deflected by {math.sqrt(max_u2) / self.L:.2f} L under the linear beam "
+                "model (eq 16–21 assume small deflection); mechanics='rod' stays physical",
+                stacklevel=user_stacklevel(),
             )
 
     def step(self, plate_velocity):

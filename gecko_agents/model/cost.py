@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import warnings
 
+from gecko_agents._stack import user_stacklevel
 from gecko_agents.diagnostics import ValidityWarning
 
 __all__ = ["COST_WARN", "COST_REFUSE", "run_cost", "check_cost"]
@@ -43,6 +44,6 @@ def check_cost(n_setae: int, duration_us: float, dt_us: float) -> float:
     if cost > COST_WARN:
         warnings.warn(
             ValidityWarning(f"{what} (above {COST_WARN:.0e}: expect minutes to hours); {fix}"),
-            stacklevel=3,
+            stacklevel=user_stacklevel(),
         )
     return cost
