@@ -38,19 +38,21 @@ def _step_with_end_load(s, dt, P):
 
 
 def test_cantilever_end_deflection_euler_bernoulli():
-    """δ = P·L³/(3EI) (Timoshenko & Gere 1972 §7.3) within 2 % once the strip has settled."""
+    """δ = P·L³/(3EI) (Timoshenko & Gere 1972 §7.3) within 1 % once the strip has settled: the
+    10-link chain's discretisation error, O(1/N²), measured +0.45 %."""
     s, dt = _cantilever(zeta=0.3)
     s.space.damping = 0.9  # settle to the static shape
     P = 0.01
     for _ in range(8000):
         _step_with_end_load(s, dt, P)
     exact = -P * LENGTH**3 / (3 * EI)
-    assert _end_point_y(s) == pytest.approx(exact, rel=0.02)
+    assert _end_point_y(s) == pytest.approx(exact, rel=0.01)
 
 
 def test_cantilever_first_frequency():
-    """f₁ = 1.875²·√(EI/ρA)/(2πL²) (Euler–Bernoulli cantilever) within 5 %: release the
-    statically loaded strip without damping and time its zero crossings."""
+    """f₁ = 1.875²·√(EI/ρA)/(2πL²) (Euler–Bernoulli cantilever) within 1.5 %: release the
+    statically loaded strip without damping and time its zero crossings. The 10 lumped links
+    lower f₁ by O(1/N²) (measured −0.84 %); timing two periods adds at most dt/T (0.04 %)."""
     s, dt = _cantilever(zeta=0.3)
     s.space.damping = 0.9
     for _ in range(8000):
@@ -66,7 +68,7 @@ def test_cantilever_first_frequency():
     up = np.flatnonzero((ys[:-1] < 0) & (ys[1:] >= 0))
     assert up.size >= 2
     period = (up[-1] - up[0]) * dt / (up.size - 1)
-    assert 1.0 / period == pytest.approx(f1, rel=0.05)
+    assert 1.0 / period == pytest.approx(f1, rel=0.015)
 
 
 def test_strip_books_its_energy():
