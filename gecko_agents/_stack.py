@@ -17,10 +17,14 @@ _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 def user_stacklevel() -> int:
     """The ``stacklevel`` for a ``warnings.warn`` in the calling function that attributes the
-    warning to the first frame outside ``gecko_agents`` (1 if the caller itself is outside)."""
+    warning to the first frame outside ``gecko_agents`` (1 if the caller itself is outside).
+    Under ``python -m gecko_agents.…`` the frame past the package is the interpreter's
+    ``runpy``, which says nothing: the package's outermost frame is named instead."""
     frame = sys._getframe(1)
     level = 1
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
         frame = frame.f_back
         level += 1
+    if frame is not None and level > 1 and frame.f_globals.get("__name__") == "runpy":
+        level -= 1
     return level

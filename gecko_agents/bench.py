@@ -509,4 +509,8 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    from gecko_agents.console import WarningLog
+
+    with WarningLog(1) as log:  # one line per validity item, as `gecko-agents bench` prints
+        log.family("bench")
+        main()
