@@ -54,6 +54,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gecko_agents.physics import beam
+
 __all__ = [
     "ProbeTest",
     "effective_work_of_adhesion",
@@ -121,7 +123,8 @@ def parabolic_heights(x, y, probe_radius: float) -> np.ndarray:
 
 
 def fibril_compliance(length: float, radius: float, modulus: float) -> float:
-    """Axial compliance L/(πc²E) of a cylindrical fibril [µm/µN] (a bar in tension).
+    """Axial compliance L/(πc²E) of a cylindrical fibril [µm/µN] (a bar in tension): the
+    inverse of the seta's axial stiffness, :func:`gecko_agents.physics.beam.axial_stiffness`.
 
     Parameters
     ----------
@@ -132,7 +135,7 @@ def fibril_compliance(length: float, radius: float, modulus: float) -> float:
         _positive("radius", radius),
         _positive("modulus", modulus),
     )
-    return L / (np.pi * c * c * E)
+    return 1.0 / float(beam.axial_stiffness(c, L, E))
 
 
 def halfspace_compliance(x, y, radius: float, modulus: float, poisson: float) -> np.ndarray:
