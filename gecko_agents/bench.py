@@ -75,7 +75,7 @@ def pressed_model(
     touch-down and every tip attached, after ``settle`` steps of rest; ``overrides`` are
     dotted parameter overrides (e.g. ``{"contact.crack_speed": 1.0}``)."""
     p = PAPER_ARRAY.replace(**{"array.count": int(n), "floor.sigma": 0.0, **(overrides or {})})
-    m = Model(p, **kw)
+    m = Model(p, **({"integrator": "explicit"} | kw))  # the per-step cost of the explicit step
     place_pressed(m, depth)
     return settle_attached(m, settle)
 
@@ -385,7 +385,7 @@ def wp_measure(case: str, integrator: str, dt_factor: float | None, speed: float
         warnings.simplefilter("ignore")
         dt = None
         if dt_factor is not None:
-            dt = dt_factor * Model(p, n_sim=n).dt
+            dt = dt_factor * Model(p, n_sim=n, integrator="explicit").dt
         m = Model(p, n_sim=n, dt=dt, integrator=integrator, record_every=1)
         t = time.perf_counter()
         h = m.run(proto(speed), progress=False)

@@ -64,10 +64,14 @@ The contact items (``a_over_R``, ``tabor``) apply to sphere tips that touched (n
     peak kinetic/elastic energy ratio is given beside it.
 ``time_step``
     ω·dt with ω = √(k/m) of the stiffest spring a tip met (seta + contact at the largest
-    compression reached, at least the model's design point 5 Fc, + stick spring).
-    Semi-implicit Euler is stable for ω·dt < 2 and books a jump event's energy to a fraction
-    ~ω·dt (docs/physics.md, "Time stepping" and "Energy bookkeeping"; Hairer, Lubich & Wanner,
-    *Geometric Numerical Integration*, §I.1). Limit 1 (the model's default is 0.75).
+    compression reached, at least the model's design point 5 Fc, + stick spring), dt the step
+    taken at events (``meta["event_dt_us"]``). Semi-implicit Euler is stable for ω·dt < 2 and
+    books a jump event's energy to a fraction ~ω·dt (docs/physics.md, "Time stepping" and
+    "Energy bookkeeping"; Hairer, Lubich & Wanner, *Geometric Numerical Integration*, §I.1).
+    Limit 1 (the model's default is 0.75). The implicit step is stable at any step; near an
+    event it takes steps of the explicit length
+    (:meth:`gecko_agents.model.implicit.ImplicitStep.substeps`), and those are judged; where it
+    cannot locate events (the elastic backing) its whole step is.
 ``touched``
     Whether any tip ever attached. 1 if so, 0 if not. A run in which the plate never went past
     the height at which the tip over the highest floor point touches (a pull-off alone, free
@@ -104,7 +108,6 @@ __all__ = [
     "MODEL_FACTS",
     "diagnose",
     "model_facts",
-    "non_finite_report",
     "validity_table",
 ]
 
@@ -201,6 +204,9 @@ def model_facts(model, segments) -> dict:
         "z_touch_um": float(model.z_touch),
         "linear_deflection_warned": bool(model.warned_linear),
         "protocol_speed_um_per_us": max(speeds, default=0.0),
+        # Read with defaults (explicit, dt) so runs saved before they were kept still load.
+        "integrator": model.integrator,
+        "event_dt_us": float(model.dt if model._implicit is None else model._implicit.event_dt),
     }
 
 
@@ -241,6 +247,8 @@ class _Run:
     z_touch: float  # plate height at which a resting tip touches h = 0 [µm]
     settle_time: float  # free seta period T [µs]
     dt: float  # time step [µs]
+    event_dt: float  # the step taken where a tip snaps, slips or lets go [µs]
+    implicit: bool  # the run's integrator is the linearly implicit step
     mass: float  # tip mass [ng]
     k_max: float  # seta + contact at the largest compression (≥ 5 Fc) + stick [µN/µm]
     omega_max: float  # the model's design-point ω_max [1/µs]
@@ -302,6 +310,8 @@ def _facts(history) -> _Run:
         floor_top=floor_top,
         reached=float(np.min(history["plate_y_um"], initial=np.inf)) <= z_touch + floor_top,
         z_touch=z_touch, settle_time=float(m["settle_time_us"]), dt=float(m["dt_us"]),
+        event_dt=float(history.meta.get("event_dt_us", m["dt_us"])),
+        implicit=history.meta.get("integrator") == "implicit",
         mass=float(m["mass_ng"]), k_max=k_max, omega_max=float(m["omega_max_per_us"]),
         warned_linear=bool(m["linear_deflection_warned"]),
     )  # fmt: skip
@@ -405,16 +415,23 @@ def _quasi_static(history, f: _Run) -> dict:
 
 
 def _time_step(f: _Run) -> dict:
-    """ω·dt of the stiffest spring a tip met: seta + contact at the largest compression
-    reached (at least the design point 5 Fc) + stick spring."""
+    """ω·dt of the stiffest spring a tip met (seta + contact at the largest compression
+    reached, at least the design point 5 Fc, + stick spring), at the step taken at events:
+    the explicit step's dt, or the implicit step's located step dt/k."""
     k = f.k_max
     omega = max(math.sqrt(k / f.mass), f.omega_max)
+    if f.implicit:
+        what = (
+            f"dt = {f.event_dt:.3g} µs, the implicit step's step at events (dt = {f.dt:.3g} µs "
+            "between them, stable at any step); energy of jump events booked to ~ω·dt"
+        )
+    else:
+        what = f"dt = {f.dt:.3g} µs); stable below 2, energy of jump events booked to ~ω·dt"
     return _item(
         "time_step",
-        omega * f.dt,
+        omega * f.event_dt,
         f"ω·dt with ω = √(k/m) of the stiffest spring met (k = {k:.3g} µN/µm, m = "
-        f"{f.mass:.3g} ng, dt = {f.dt:.3g} µs); stable below 2, energy of jump "
-        "events booked to ~ω·dt",
+        f"{f.mass:.3g} ng, " + what,
         "docs/physics.md 'Time stepping'; Hairer, Lubich & Wanner, Geometric Numerical "
         "Integration §I.1",
     )
@@ -526,39 +543,6 @@ def diagnose(history, *, warn: bool = True) -> dict:
 
 def _fmt(value) -> str:
     return "?" if value is None else f"{value:.3g}"
-
-
-def non_finite_report(model, row: dict) -> str:
-    """Say what went non-finite in a model's state and where (which quantity, which setae),
-    and whether an input (an external force) or the integration is to blame."""
-    from gecko_agents.model.state import ROWS
-
-    s = model.state
-    t = f"t = {model.time:.4g} µs"
-    ext = np.asarray(s.external_force)
-    bad_ext = np.flatnonzero(~np.isfinite(ext).all(axis=1))
-    if bad_ext.size:
-        return (
-            f"non-finite external force {ext[bad_ext[0]].tolist()} µN on seta(s) "
-            f"{bad_ext[:10].tolist()} at {t}: it was given to the model (Model.external_force), "
-            "not produced by the integration; pass finite forces"
-        )
-    found = []
-    for name in ROWS:
-        if name in ("delta", "jump"):  # NaN by design (no candidate floor, not running away)
-            continue
-        row_vals = s.block[ROWS.index(name)]
-        idx = np.flatnonzero(~np.isfinite(row_vals))
-        if idx.size:
-            found.append(f"{name} (setae {idx[:10].tolist()})")
-    cols = [k for k, v in row.items() if not math.isfinite(v)]
-    where = "; ".join(found) if found else "no per-seta quantity"
-    return (
-        f"non-finite state at {t}: per-seta {where}; recorded columns {cols}. "
-        f"The inputs were finite, so the integration diverged: the time step dt = "
-        f"{model.dt:.3g} µs (ω_max·dt = {model.omega_max * model.dt:.2f}) may be too large for "
-        "the contact stiffness reached; pass a smaller dt or a shallower depth/preload"
-    )
 
 
 def _validity_of(obj) -> dict | None:

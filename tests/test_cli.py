@@ -171,7 +171,10 @@ BAD = {
         "speed_um_per_us",
     ),
     "n_sim": (GOOD.replace("n_sim = 1", "n_sim = 0"), "n_sim"),
-    "unstable dt": (GOOD.replace("seed = 1", "seed = 1\ndt_us = 50.0"), "dt_us"),
+    "unstable dt": (
+        GOOD.replace("seed = 1", 'seed = 1\ndt_us = 50.0\nintegrator = "explicit"'),
+        "dt_us",
+    ),
     "bad quick table": (GOOD + '[quick.params]\n"floor.sigma" = -1.0\n', "floor.sigma"),
     "not TOML": (GOOD + "[model\n", "TOML"),
 }

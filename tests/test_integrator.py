@@ -25,7 +25,7 @@ def _pull(params, speed, **kw):
     """(pull-off force [µN], release displacement [µm], steps, history) of a press-pull."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(params, n_sim=1, **({"record_every": 1} | kw))
+        m = Model(params, n_sim=1, **({"record_every": 1, "integrator": "explicit"} | kw))
         h = m.run(protocol.press_pull(0.1, speed), progress=False)
     assert len(h.detachments["plate_y_um"]) == 1, "the tip should let go once"
     return (*pull_off_and_release(h), h.meta["n_steps"], h)
@@ -40,13 +40,20 @@ def _hash(h) -> str:
     return digest.hexdigest()
 
 
-def test_explicit_is_the_default_bit_for_bit():
+def test_auto_is_the_default_and_picks_the_verified_integrator():
+    """The default ``"auto"`` runs the implicit step bit for bit on the rigid plate, and the
+    explicit one where the implicit step is not verified (callback contact, the elastica, the
+    elastic backing)."""
     p = ROD.replace(**{"array.count": 3})
     runs = []
-    for kw in ({}, {"integrator": "explicit"}):
+    for kw in ({"integrator": "auto"}, {"integrator": "implicit"}):
         h = Model(p, **kw).run(protocol.press_pull(0.05, 0.02), progress=False)
         runs.append((_hash(h), h.meta["integrator"]))
-    assert runs[0] == runs[1] and runs[0][1] == "explicit"
+    assert runs[0] == runs[1] and runs[0][1] == "implicit"
+    auto = {"integrator": "auto"}
+    assert Model(p, contact="callback", **auto).integrator == "explicit"
+    assert Model(p.replace(mechanics="elastica"), n_sim=1, **auto).integrator == "explicit"
+    assert Model(p.replace(**{"backing.kind": "elastic"}), **auto).integrator == "explicit"
 
 
 def test_bad_integrator_and_dt_are_refused():
@@ -57,7 +64,7 @@ def test_bad_integrator_and_dt_are_refused():
     with pytest.raises(ValueError, match="dt = -1"):
         Model(ROD, n_sim=1, integrator="implicit", dt=-1.0)
     # No stability bound: a step 50 times the explicit one is accepted.
-    dt0 = Model(ROD, n_sim=1).dt
+    dt0 = Model(ROD, n_sim=1, integrator="explicit").dt
     assert Model(ROD, n_sim=1, integrator="implicit", dt=50 * dt0).dt == 50 * dt0
 
 
@@ -87,7 +94,7 @@ def test_release_converges_at_first_order_as_dt_falls(explicit_reference):
     falls from 40 to 10 explicit steps, at an observed order ≥ 0.7 (first order: 1)."""
     speed = 0.01
     _, d_ref, _ = explicit_reference[speed]
-    dt0 = Model(ROD, n_sim=1).dt
+    dt0 = Model(ROD, n_sim=1, integrator="explicit").dt
     factors = (40.0, 20.0, 10.0)
     errors = [abs(_pull(ROD, speed, integrator="implicit", dt=f * dt0)[1] - d_ref) for f in factors]
     slopes = [math.log(errors[i] / errors[i + 1]) / math.log(2.0) for i in range(2)]

@@ -161,8 +161,10 @@ def test_invariants_on_every_recorded_step(rough_run):
 def test_energy_balance():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m0 = Model(STUBBY)
-        m = Model(STUBBY, dt=m0.dt / 2)
+        # The explicit step at half its step; the implicit step books its numerical
+        # dissipation per step without a sign (tests/test_integrator.py checks its balance).
+        m0 = Model(STUBBY, integrator="explicit")
+        m = Model(STUBBY, dt=m0.dt / 2, integrator="explicit")
         h = m.run(protocol.press_pull(0.5, speed=SPEED), progress=False)
     W = h["work_plate_pJ"]
     E = h["energy_elastic_pJ"] + h["energy_kinetic_pJ"] + h["energy_dissipated_pJ"]
@@ -187,7 +189,7 @@ def test_same_seed_same_history_and_seed_matters():
 def test_reference_callback_path_gives_the_same_history(kernel):
     p = STUBBY.replace(**{"array.count": 3})
     hs = [
-        Model(p, contact=c, record_every=5, **kw).run(
+        Model(p, contact=c, record_every=5, integrator="explicit", **kw).run(
             protocol.press_pull(0.3, speed=0.05), progress=False
         )
         for c, kw in (("batch", {"kernel": kernel}), ("callback", {}))
@@ -253,7 +255,8 @@ def test_fast_approach_skips_free_travel_and_keeps_the_pull_off():
         slow = Model(p).run(prot, progress=False, fast_approach=False)
         fast = Model(p).run(prot, progress=False)
     assert slow.meta["skipped_travel_um"] == 0.0
-    assert fast.meta["skipped_travel_um"] > 6.0  # of the 8 µm up and back down
+    # Most of the 8 µm up and back down (measured: 6.05 explicit, 5.85 implicit step).
+    assert fast.meta["skipped_travel_um"] > 5.5
     assert fast.meta["n_steps"] < 0.7 * slow.meta["n_steps"]
     assert abs(fast.peak_pull_off / slow.peak_pull_off - 1) < 0.005
     assert_allclose(fast["time_us"][-1], slow["time_us"][-1], rtol=1e-3)
@@ -284,7 +287,7 @@ def test_bad_input_and_instability():
     m = Model(STUBBY)
     bound = 2 / m.omega_max
     with pytest.raises(ValueError, match="dt = .* stable range"):
-        Model(STUBBY, dt=1.01 * bound)
+        Model(STUBBY, dt=1.01 * bound, integrator="explicit")
     with pytest.raises(ValueError, match="n_sim"):
         Model(PAPER_ARRAY)
     with pytest.raises(ValueError, match="contact"):
@@ -297,7 +300,7 @@ def test_bad_input_and_instability():
         protocol.Move(dy=1.0, speed=-1.0)
     # A run whose kinetic energy runs away stops with an actionable message.
     with pytest.raises(SimulationUnstable, match="reduce dt"):
-        Model(STUBBY, dt=0.99 * bound).run(
+        Model(STUBBY, dt=0.99 * bound, integrator="explicit").run(
             protocol.press_pull(0.5, speed=0.5), progress=False, ke_bound=1e-9
         )
 

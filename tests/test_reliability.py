@@ -36,7 +36,9 @@ def test_a_plate_that_outruns_its_setae_is_an_error():
 
 def test_the_error_keeps_the_recorded_history():
     try:
-        Model(STIFF, n_sim=1, seed=1).run(protocol.press_pull(0.5, speed=20.0), progress=False)
+        # The explicit step: at 20 µm/µs the implicit one's touch is marginal (a tip grazes).
+        m = Model(STIFF, n_sim=1, seed=1, integrator="explicit")
+        m.run(protocol.press_pull(0.5, speed=20.0), progress=False)
     except MeaninglessRunError as err:
         assert err.history is not None and err.history["n_attached"].max() == 0
     else:
@@ -254,7 +256,7 @@ def test_an_injected_nan_force_is_named_not_blamed_on_dt():
 
 
 def test_a_diverging_state_names_the_quantity_and_setae():
-    from gecko_agents.diagnostics import non_finite_report
+    from gecko_agents.model.runner import non_finite_report
 
     m = Model(STIFF3, n_sim=3, seed=1)
     m.state.P[2] = math.inf

@@ -40,7 +40,7 @@ from gecko_agents.backing import backing_class
 from gecko_agents.contact import contact_law
 from gecko_agents.floor import Profile
 from gecko_agents.history import History
-from gecko_agents.model.implicit import ImplicitStep, check_integrator, implicit_time_step
+from gecko_agents.model.implicit import ImplicitStep, check_integrator
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping, seta_mass
 from gecko_agents.model.runner import SimulationUnstable, run_protocol
 from gecko_agents.model.setup import (
@@ -50,8 +50,8 @@ from gecko_agents.model.setup import (
     choose_threads,
     detection_mode,
     elastica_kernel,
-    explicit_time_step,
     numba_available,
+    time_step,
 )
 from gecko_agents.model.state import SetaState
 from gecko_agents.model.step_numpy import LoopConstants, NumpyStep
@@ -83,18 +83,20 @@ class Model:
     seed : seed of the run's single ``numpy.random.Generator`` (default ``params.floor.seed``):
         an integer ≥ 0 (Python or numpy; bool, float and str are refused, naming ``seed``), or
         a ``numpy.random.Generator`` from which the seed is drawn (recorded in the history).
-    dt : time step [µs]; default 0.75/ω_max from the stiffest spring and the tip mass (0.375/ω_max
-        with crack kinetics, :class:`gecko_agents.contact.RateJKRSphere`). A dt at or above the
-        stability bound 2/ω_max is refused. Implicit: any dt > 0
-        (:func:`gecko_agents.model.implicit.implicit_time_step`).
-    integrator : ``"explicit"`` (default: pymunk's semi-implicit Euler on the model's forces,
-        stable below 2/ω_max) or ``"implicit"`` (each tip's force linearly implicit in its
-        seta, contact and stick springs and dampers, :mod:`gecko_agents.model.implicit`: a
-        step bounded by accuracy, not by the contact springs; batch contact only).
+    dt : time step [µs]. Explicit: default 0.75/ω_max from the stiffest spring and the tip mass
+        (0.375/ω_max with crack kinetics, :class:`gecko_agents.contact.RateJKRSphere`); a dt
+        at or above the stability bound 2/ω_max is refused. Implicit: any dt > 0, default
+        :func:`gecko_agents.model.implicit.implicit_time_step`.
+    integrator : ``"auto"`` (default: the implicit step where it is verified, else the
+        explicit one, :func:`gecko_agents.model.implicit.check_integrator`), ``"explicit"``
+        (pymunk's semi-implicit Euler on the model's forces, stable below 2/ω_max) or
+        ``"implicit"`` (each tip's force linearly implicit in its seta, contact and stick
+        springs and dampers, :mod:`gecko_agents.model.implicit`: a step bounded by accuracy,
+        not by the contact springs; batch contact only).
     contact : ``"batch"`` (fast, default) or ``"callback"`` (per-contact reference path).
     damping : :class:`Damping` ratios.
     record_every : record every this many steps (default: every 0.02 µm of plate travel at the
-        default speed, about 20 steps).
+        default speed, about 20 steps; the implicit step's vary, so it then records by time).
     record_setae : also record per-seta arrays (needed for animations).
     verbose : print the chosen time step.
     kernel : how a pad-floor step with the batch contact path is computed: ``"numba"`` (one
@@ -153,7 +155,9 @@ class Model:
         **backing_options,
     ):
         n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
-        self.integrator = check_integrator(integrator, contact)
+        self.integrator = check_integrator(
+            integrator, contact, params.mechanics, params.backing.kind
+        )
         backing = backing_class(params.backing.kind)
         kernel = backing.kernel(kernel, contact)
         threads = choose_threads(threads, int(n), contact)
@@ -168,17 +172,14 @@ class Model:
         self.record_setae = record_setae
         self.law = law = contact_law(params)
         self._set_mechanics(params, law, damping)
-        self.dt = (
-            implicit_time_step(dt, self.omega_max)
-            if self.integrator == "implicit"
-            else explicit_time_step(dt, self.omega_max, self.k_max, self.mass, law.rate_dependent)
+        self.dt = time_step(
+            self.integrator, dt, self.omega_max, self.k_max, self.mass, law.rate_dependent
         )
         if verbose:
-            print(
-                f"gecko_agents: dt = {self.dt:.4g} µs (ω_max·dt = {self.omega_max * self.dt:.2f}"
-                f"; stable below {2.0 / self.omega_max:.4g} µs)"
-            )
+            print(f"gecko_agents: {self.integrator} step dt = {self.dt:.4g} µs (ω_max·dt = "
+                  f"{self.omega_max * self.dt:.2f}; explicit stable below 2)")  # fmt: skip
         self.record_every = record_every or max(1, round(0.02 / DEFAULT_SPEED / self.dt))
+        self.record_in_time = record_every is None  # the implicit step's default: every interval
         self.state = SetaState(self.n)
         self.world = World(
             params,
@@ -196,7 +197,7 @@ class Model:
         )
         if contact == "callback":
             self.world.on_pre_solve(self._pre_solve)
-        kernel = self._set_step_parts(params, kernel)
+        kernel = self._set_step_parts(params, kernel, dt)
         self._fast_pads = self.world.pads and contact == "batch"
         self.kernel, self._loop, self.loop_threads = choose_kernel(
             kernel, self._fast_pads, self.n, type(self.law), threads
@@ -212,12 +213,12 @@ class Model:
         self.reset_state_arrays()
         self.backing = backing(self, **backing_options)
 
-    def _set_step_parts(self, params, kernel: str) -> str:
-        """The implicit step and the elastica's chains, where chosen; returns the kernel
-        (the elastica runs on numpy)."""
+    def _set_step_parts(self, params, kernel: str, dt) -> str:
+        """The implicit step (its default step if ``dt`` is None) and the elastica's chains,
+        where chosen; returns the kernel (the elastica runs on numpy)."""
         self._implicit = None
         if self.integrator == "implicit":
-            self._implicit = ImplicitStep(self)
+            self._implicit = ImplicitStep(self, default_step=dt is None)
             if not self.world.pads:  # contact normals of a continuous floor
                 self.physics.normal = self._implicit.normal = np.zeros((2, self.n))
         if params.mechanics == "elastica":
@@ -568,7 +569,6 @@ class Model:
             for the skipped rows; the travel skipped is ``meta["skipped_travel_um"]``.
         """
         h = run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
-        h.meta["integrator"] = self.integrator
         if self._implicit is not None:
             h.meta["implicit_dissipated_pJ"] = self._implicit.numerical_dissipated
         return h

@@ -67,7 +67,7 @@ __all__ = [
     "implicit_time_step",
 ]
 
-INTEGRATORS = ("explicit", "implicit")
+INTEGRATORS = ("explicit", "implicit", "auto")
 
 IMPLICIT_DT_FACTOR = 10.0
 """Default implicit step in units of the explicit one (0.75/ω_max): chosen by the
@@ -78,9 +78,18 @@ IMPLICIT_TRAVEL = 0.01
 """Largest plate travel per default implicit step at the default plate speed [µm]."""
 
 
-def check_integrator(integrator, contact: str) -> str:
-    """``integrator`` if it is one of ``INTEGRATORS`` (the implicit step with
-    ``contact = "batch"`` only: the callback path adds contact forces after the step's)."""
+def check_integrator(
+    integrator, contact: str, mechanics: str = "linear", backing: str = "rigid"
+) -> str:
+    """The integrator a model runs: ``integrator`` if it is one of ``INTEGRATORS`` (the
+    implicit step with ``contact = "batch"`` only: the callback path adds contact forces after
+    the step's). ``"auto"`` is the implicit step where it is verified, the explicit one
+    elsewhere: with ``contact = "callback"``, ``mechanics = "elastica"`` (no Jacobian of the
+    chain) and the elastic backing (its strip steps explicitly at the tips' step: a stiff strip
+    pulled off 14 % above the rigid plate at the implicit step, and a misaligned one diverged)."""
+    if integrator == "auto":
+        verified = contact == "batch" and mechanics != "elastica" and backing == "rigid"
+        return "implicit" if verified else "explicit"
     if integrator not in INTEGRATORS or (integrator == "implicit" and contact != "batch"):
         raise ValueError(
             f"integrator = {integrator!r} must be one of {INTEGRATORS} (the implicit step "
@@ -108,9 +117,11 @@ class ImplicitStep:
     ----------
     model : the :class:`gecko_agents.model.Model` (its law, seta stiffnesses, mass, dampers,
         state and physics are read every step).
+    default_step : the model's dt is the default :func:`implicit_time_step`, which fast
+        segments shorten (:meth:`begin_segment`); a dt the caller chose stands.
     """
 
-    def __init__(self, model):
+    def __init__(self, model, default_step: bool = False):
         self.m = model
         law = model.law
         self.k_cap = float(law.stiffest(5 * model.params.contact.pull_off_force))
@@ -118,6 +129,8 @@ class ImplicitStep:
         self.numerical_dissipated = 0.0  # cumulative work of F' − F [pJ]
         n = model.n
         self.dt_full = model.dt  # the step between events [µs]
+        self.dt_base = model.dt  # the segment's step between events [µs] (begin_segment)
+        self.default_step = default_step  # the step of implicit_time_step(None, …)
         # Near an event: k steps of dt/k, no longer than the explicit step 0.75/ω_max.
         self.k_event = max(1, math.ceil(model.dt * model.omega_max / 0.75 - 1e-9))
         self.n_located = 0  # steps taken at dt/k near events
@@ -248,9 +261,28 @@ class ImplicitStep:
         self.numerical_dissipated += out
         return out
 
+    @property
+    def event_dt(self) -> float:
+        """The step taken near an event [µs]: ``dt_full``/k with event location (the rigid
+        plate), else the whole step."""
+        return self.dt_full / self.k_event if self.m.backing.rigid else self.dt_full
+
+    def begin_segment(self, speed) -> None:
+        """Set the segment's step ``dt_base`` [µs] for its plate ``speed`` [µm/µs] (None or
+        0: ``dt_full``). With the default step (:func:`implicit_time_step` without a dt), a
+        fast segment shortens it so that the plate travels at most :data:`IMPLICIT_TRAVEL`
+        per step, down to the explicit step's length (the step is set for accuracy: plate
+        travel and events per step); a dt the caller chose stands. The segment asks its plate
+        velocity at this step, so it lands on its end point."""
+        dt = self.dt_full
+        if speed and self.default_step:
+            dt = max(min(dt, IMPLICIT_TRAVEL / speed), self.event_dt)
+        self.dt_base = dt
+        self.set_dt(dt)
+
     def substeps(self, vp) -> int:
-        """How many steps of ``dt_full``/k the next step takes [-], with the model's dt set
-        for them: ``k_event`` (the explicit step's length) near an event, else 1.
+        """How many steps the next step of ``dt_base`` takes [-], with the model's dt set for
+        them: k steps of the explicit step's length near an event, else one.
 
         Near an event means an attached tip running away from its branch (faster than twice
         the plate speed ``vp`` [µm/µs], as the release marks of
@@ -261,9 +293,10 @@ class ImplicitStep:
         the explicit step does; between events the long step stands. Not with an elastic
         backing (its strip keeps its own step)."""
         m = self.m
-        k = self.k_event if (self.k_event > 1 and m.backing.rigid) else 1
+        dt = self.dt_base
+        k = math.ceil(dt / self.event_dt - 1e-9) if m.backing.rigid else 1
         if k > 1:
-            s, dt = m.state, self.dt_full
+            s = m.state
             v_ref = max(math.hypot(*vp), 1e-4)
             vx, vy = s.pv[2], s.pv[3]
             att = s.attached
@@ -277,7 +310,7 @@ class ImplicitStep:
                 near |= ~att & (vn < 0.0) & (m.law.attach_overlap - d < reach)
             if not near.any():
                 k = 1
-        self.set_dt(self.dt_full / k)
+        self.set_dt(dt / k)
         self.n_located += k if k > 1 else 0
         return k
 

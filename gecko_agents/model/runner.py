@@ -14,8 +14,10 @@ import math
 import time
 from dataclasses import dataclass
 
+import numpy as np
+
 from gecko_agents.contact import bounds as tip_bounds
-from gecko_agents.diagnostics import diagnose, model_facts, non_finite_report
+from gecko_agents.diagnostics import diagnose, model_facts
 from gecko_agents.history import History
 from gecko_agents.model.cost import check_cost
 from gecko_agents.model.recorder import Recorder
@@ -43,6 +45,7 @@ class _Run:
     dissipated: float = 0.0
     skipped: float = 0.0
     n_steps: int = 0
+    t_record: float = 0.0  # the next record's time with records by time [µs]
 
 
 def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> History:
@@ -150,12 +153,20 @@ def _segment_total(m, seg: Segment) -> int | None:
 
 
 def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
-    """Step through one protocol segment, recording every ``record_every`` steps."""
+    """Step through one protocol segment, recording every ``record_every`` steps, or, with
+    the implicit step's default (``Model.record_in_time``), every ``record_every`` full steps
+    of simulated time: its steps shorten for fast segments and near events, and records
+    every so many of them would sample those densely (the energy books' transients at events
+    included, which the explicit step's records sample as sparsely as the rest)."""
     state = {"start": m.plate_position, "t0": m.time}
     may_skip = run.fast_approach and seg.skips_free_travel
     every, rec = m.record_every, run.recorder
     e_scale = m.n * max(m.Fc, 1e-300) * abs(m.law.detach_overlap)
     implicit = m._implicit
+    interval = None
+    if implicit is not None:
+        implicit.begin_segment(getattr(seg, "speed", None))
+        interval = every * implicit.dt_full if m.record_in_time else None
     while (vp := seg.velocity(m, state)) is not None:
         if may_skip and run.n_steps % every == 0 and not m.state.attached.any():
             run.skipped += m.skip_free_travel(seg, state, vp)
@@ -168,7 +179,13 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
             if m.physics.events:
                 rec.note_detachments(m.time, m.plate_position, m.pop_releases())
             run.n_steps += 1
-            if run.n_steps % every == 0 or run.n_steps == 1:
+            if interval is None:
+                due = run.n_steps % every == 0
+            else:
+                due = m.time >= run.t_record - 1e-9 * interval
+                if due:
+                    run.t_record = (math.floor(m.time / interval + 1e-9) + 1) * interval
+            if due or run.n_steps == 1:
                 row = rec.record(m, run.work, run.dissipated)
                 bound = run.ke_bound
                 if bound is None:
@@ -178,7 +195,9 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
             if run.n_steps >= run.max_steps:
                 raise RuntimeError(f"max_steps = {run.max_steps} reached in segment {seg}")
         if k > 1:
-            implicit.set_dt(implicit.dt_full)
+            implicit.set_dt(implicit.dt_base)
+    if implicit is not None:  # a fast segment's shorter step ends with it
+        implicit.set_dt(implicit.dt_full)
 
 
 def _check_stable(m, row, bound):
@@ -191,3 +210,36 @@ def _check_stable(m, row, bound):
             f"{m.dt:.3g} µs) or the plate moves too fast for the setae to follow "
             "(lower the protocol speed)"
         )
+
+
+def non_finite_report(model, row: dict) -> str:
+    """Say what went non-finite in a model's state and where (which quantity, which setae),
+    and whether an input (an external force) or the integration is to blame."""
+    from gecko_agents.model.state import ROWS
+
+    s = model.state
+    t = f"t = {model.time:.4g} µs"
+    ext = np.asarray(s.external_force)
+    bad_ext = np.flatnonzero(~np.isfinite(ext).all(axis=1))
+    if bad_ext.size:
+        return (
+            f"non-finite external force {ext[bad_ext[0]].tolist()} µN on seta(s) "
+            f"{bad_ext[:10].tolist()} at {t}: it was given to the model (Model.external_force), "
+            "not produced by the integration; pass finite forces"
+        )
+    found = []
+    for name in ROWS:
+        if name in ("delta", "jump"):  # NaN by design (no candidate floor, not running away)
+            continue
+        row_vals = s.block[ROWS.index(name)]
+        idx = np.flatnonzero(~np.isfinite(row_vals))
+        if idx.size:
+            found.append(f"{name} (setae {idx[:10].tolist()})")
+    cols = [k for k, v in row.items() if not math.isfinite(v)]
+    where = "; ".join(found) if found else "no per-seta quantity"
+    return (
+        f"non-finite state at {t}: per-seta {where}; recorded columns {cols}. "
+        f"The inputs were finite, so the integration diverged: the time step dt = "
+        f"{model.dt:.3g} µs (ω_max·dt = {model.omega_max * model.dt:.2f}) may be too large for "
+        "the contact stiffness reached; pass a smaller dt or a shallower depth/preload"
+    )

@@ -14,6 +14,7 @@ import numpy as np
 
 from gecko_agents.floor import Profile
 from gecko_agents.floor import statistics as _floor_stats
+from gecko_agents.model.implicit import implicit_time_step
 from gecko_agents.model.step_loop import PARALLEL_MIN_SETAE, pad_loop
 from gecko_agents.model.step_loop import numba_available as _numba_installed
 from gecko_agents.params import SetaArray
@@ -124,6 +125,14 @@ def idle_cores() -> int:
     except (OSError, IndexError, ValueError):
         busy = os.getloadavg()[0]
     return max(1, round(cores - busy))
+
+
+def time_step(integrator: str, dt, omega_max, k_max, mass, rate_dependent) -> float:
+    """The model's step [µs] for its ``integrator``: :func:`explicit_time_step` or
+    :func:`gecko_agents.model.implicit.implicit_time_step` (same arguments, units there)."""
+    if integrator == "implicit":
+        return implicit_time_step(dt, omega_max)
+    return explicit_time_step(dt, omega_max, k_max, mass, rate_dependent)
 
 
 def explicit_time_step(dt, omega_max: float, k_max: float, mass: float, rate_dependent: bool):
