@@ -14,9 +14,9 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.bench import pull_off_and_release
-from gecko_agents.history import energy_balance_error
+from gecko_agents.history import STATE_FREE, STATE_SLIP, energy_balance_error
 from gecko_agents.model import Model
-from gecko_agents.params import PAPER_TABLE1
+from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 
 ROD = PAPER_TABLE1.replace(mechanics="rod")
 
@@ -190,3 +190,67 @@ def test_a_change_of_step_is_booked_exactly(monkeypatch):
     f, d, n, h = _pull(ROD, 0.01, integrator="implicit")
     assert energy_balance_error(h) <= 0.02
     assert h.meta["dt_us"] == Model(ROD, n_sim=1, integrator="implicit").dt
+
+
+# A stubby rod seta (L = 5 µm) pressed and dragged at 0.1 µm/µs, as tests/test_model.py's
+# explicit slide: under the implicit step it slides past its onset for ~60 steps.
+_STUBBY = ROD.replace(**{"seta.L": 5.0})
+
+
+def _drag(params, kernel, depth=0.3):
+    """History of one stubby seta pressed to ``depth`` [µm] and dragged 8 µm along +x under
+    the implicit step, recorded every step with its seta's columns."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a/R of the pressed tip is beyond the JKR range
+        m = Model(params, kernel=kernel, integrator="implicit", record_every=1,
+                  record_setae=True)  # fmt: skip
+        return m.run(
+            [protocol.PressTo(depth, 0.05), protocol.Move(dx=8.0, speed=0.1)], progress=False
+        )
+
+
+@pytest.mark.parametrize("kernel", ["numpy", "python"])
+def test_a_dragged_tip_slides_at_its_cap_and_books_the_coulomb_work(kernel):
+    """Once it slides steadily the tip's friction is the Coulomb cap μ|P + 2Fc| (the adhesive
+    cap, Thornton 1991) and the energy dissipated is the Coulomb work Σ cap·Δx, nothing more:
+    the scheme's own dissipation (F' − F) is nil in a steady slide. Measured: 2.0e-4 of the
+    Coulomb work on 58 steps (the explicit step's test in test_model.py, at a tenth of this
+    step: 8e-7)."""
+    h = _drag(_STUBBY, kernel)
+    Fc = _STUBBY.contact.pull_off_force
+    slide = np.flatnonzero(h.setae["state"][:, 0] == STATE_SLIP)
+    k = slide[slide > slide[0] + 20]  # past the onset of sliding (20 steps, ~18 µs)
+    assert k.size > 50 and np.all(np.diff(k) == 1), "the tip must slide steadily"
+    x, P = h.setae["tip_x_um"][k, 0], h.setae["force_normal_uN"][k, 0]
+    cap = _STUBBY.friction.mu * np.abs(P + 2 * Fc)
+    # The return mapping sets the sliding friction to the cap: equal to rounding.
+    np.testing.assert_allclose(-h.setae["force_tangential_uN"][k, 0], cap, rtol=1e-12)
+    coulomb = np.sum(0.5 * (cap[1:] + cap[:-1]) * np.diff(x))
+    dissipated = h["energy_dissipated_pJ"][k[-1]] - h["energy_dissipated_pJ"][k[0]]
+    assert coulomb > 0.0
+    # 0.2 % as the explicit test: P still settles by 1e-4 over the window (the trapezoid's
+    # error) and the scheme books its F' − F as dissipated.
+    assert dissipated == pytest.approx(coulomb, rel=2e-3)
+    assert energy_balance_error(h) < 0.02  # the run's books, jump-in and slide onset included
+
+
+def test_a_tip_in_tension_holds_no_shear_under_the_paper_cap():
+    """Under the paper's cap μ·max(P, 0) (eq 27) a tip in tension holds no shear. On the step
+    a tip jumps in (P = −8/9 Fc, its stick offset ξ = 0 under a cap of 0) the kernel's trial
+    force is 0 and it marks the tip sticking, but the implicit step's stick spring and damper
+    at the step's end would hold k_t·dt·v₁ + c_t·Δv: the tip slides instead, its friction 0
+    (``ImplicitStep._stick_past_cap``). 20 stubby linear setae on the rough floor of
+    tests/test_oracles_hand.py, recorded every step: without it, each seta's jump-in record
+    (19 of them) sticks in tension holding up to 5.5e-5 µN."""
+    p = PAPER_ARRAY.replace(
+        **{"array.count": 20, "seta.L": 5.0, "floor.sigma": 0.3, "friction.law": "paper"}
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the linear seta leaves its small-deflection range
+        m = Model(p, integrator="implicit", record_every=1, record_setae=True)
+        h = m.run(protocol.press_pull(0.5, speed=0.02), progress=False)
+    P, state = h.setae["force_normal_uN"], h.setae["state"]
+    tension = (state != STATE_FREE) & (P < 0.0)
+    assert tension.sum() > 1000  # most records of the pull
+    assert np.all(state[tension] == STATE_SLIP)
+    assert np.all(h.setae["force_tangential_uN"][tension] == 0.0)

@@ -31,6 +31,12 @@ v += F'·dt/m, x += v·dt runs unchanged; with J = 0 it is F, today's explicit s
 linear spring the step is exactly backward Euler: stable at any dt, first order, and it damps
 what rings faster than 1/dt.
 
+Friction. The stick spring's implicit force, the spring and damper at the step's end, may
+exceed the Coulomb cap that the kernel's trial force at the step's start obeyed (at the onset
+of a slide, or a tip that holds no shear under the paper's cap in tension): there the tip
+slides within the step, its friction at the cap (``ImplicitStep._stick_past_cap``), so
+a sticking or sliding tip never holds more than the cap.
+
 Energy books. ΔF = F' − F is a force no spring or damper of the model books. The recorder
 books the kinetic energy as ½m·v₀·v₁ and the springs at x₁ (semi-implicit Euler conserves that
 sum exactly for a linear spring); its change between two steps is then, for linear forces,
@@ -56,6 +62,7 @@ import math
 
 import numpy as np
 
+from gecko_agents.physics.friction import friction_cap
 from gecko_agents.protocol import DEFAULT_SPEED
 
 __all__ = [
@@ -188,11 +195,47 @@ class ImplicitStep:
         velocity), the dampers' work on the difference, −dt·Σ F_damp·(F' − F)·dt/(2m)."""
         m = self.m
         s, dt, mass = m.state, m.dt, m.mass
-        rx, ry, rvx, rvy = roots
-        kxx, kxy, kyx, kyy = self.seta_stiffness(rx, ry)
+        K = self.seta_stiffness(roots[0], roots[1])
         kn, kt, cn, ct = self.contact_stiffness()
         vx, vy = s.pv[2], s.pv[3]
-        wx, wy = vx - rvx, vy - rvy  # motion relative to the root
+        switch = self._switch_term(vx, vy, dt)
+        fx, fy = self._solve(K, kn, kt, cn, ct, roots, s.F)
+        capped = self._stick_past_cap(fx, fy, kt, ct)
+        if capped is not None:  # those tips slide this step, their friction at the cap
+            fx, fy = self._solve(K, kn, kt, cn, ct, roots, capped)
+        Fx, Fy = s.F
+        # Work of ΔF = F' − F between the recorder's books at the previous step and this one,
+        # ½dt·v₀·(ΔF_prev + ΔF): they book ½m·v₀·v₁, whose change is ½dt·v₀·(F'_prev + F').
+        dF = self._dF
+        dxp, dyp = dF[0] + fx - Fx, dF[1] + fy - Fy
+        work = 0.5 * dt * float(np.sum(vx * dxp + vy * dyp))
+        np.subtract(fx, Fx, out=dF[0])
+        np.subtract(fy, Fy, out=dF[1])
+        self.numerical_dissipated -= work
+        hm = 0.5 * dt / mass
+        if rebook_damping:
+            fd, fc = s.F_damp_seta, s.F_damp_contact
+            dd = np.sum((fd[0] + fc[0]) * (fx - Fx) + (fd[1] + fc[1]) * (fy - Fy))
+            work += float(dd) * hm * dt
+        Fx[:] = fx
+        Fy[:] = fy
+        J = self._J  # the impulse of the forces the books pair with the next step's dt
+        np.subtract(s.F, s.F_damp_seta, out=J)
+        J -= s.F_damp_contact
+        J *= dt
+        self._dt_prev = dt
+        return switch - work
+
+    def _solve(self, K, kn, kt, cn, ct, roots, F):
+        """F' [µN] (two (N,) arrays) of the linearly implicit step from the explicit forces
+        ``F`` (2, N) [µN], the seta's stiffness ``K`` (:meth:`seta_stiffness`), the contact's
+        stiffnesses and dampers (:meth:`contact_stiffness`) and the ``roots``
+        (rx, ry, rvx, rvy): one 2×2 solve per tip (module docstring)."""
+        m = self.m
+        s, dt, mass = m.state, m.dt, m.mass
+        kxx, kxy, kyx, kyy = K
+        vx, vy = s.pv[2], s.pv[3]
+        wx, wy = vx - roots[2], vy - roots[3]  # motion relative to the root
         # Seta part: K·(v − v_root).
         gx = kxx * wx + kxy * wy
         gy = kyx * wx + kyy * wy
@@ -218,34 +261,64 @@ class ImplicitStep:
             ayy = 1.0 + h * (m.c_seta + cyy) + h2 * (kyy + qyy)
             axy = h * cxy + h2 * (kxy + qxy)
             ayx = h * cxy + h2 * (kyx + qxy)
-        Fx, Fy = s.F
-        switch = self._switch_term(vx, vy, dt)
+        Fx, Fy = F
         bx = Fx - dt * gx
         by = Fy - dt * gy
         det = axx * ayy - axy * ayx
-        fx = (ayy * bx - axy * by) / det
-        fy = (axx * by - ayx * bx) / det
-        # Work of ΔF = F' − F between the recorder's books at the previous step and this one,
-        # ½dt·v₀·(ΔF_prev + ΔF): they book ½m·v₀·v₁, whose change is ½dt·v₀·(F'_prev + F').
-        dF = self._dF
-        dxp, dyp = dF[0] + fx - Fx, dF[1] + fy - Fy
-        work = 0.5 * dt * float(np.sum(vx * dxp + vy * dyp))
-        np.subtract(fx, Fx, out=dF[0])
-        np.subtract(fy, Fy, out=dF[1])
-        self.numerical_dissipated -= work
-        hm = 0.5 * dt / mass
-        if rebook_damping:
-            fd, fc = s.F_damp_seta, s.F_damp_contact
-            dd = np.sum((fd[0] + fc[0]) * (fx - Fx) + (fd[1] + fc[1]) * (fy - Fy))
-            work += float(dd) * hm * dt
-        Fx[:] = fx
-        Fy[:] = fy
-        J = self._J  # the impulse of the forces the books pair with the next step's dt
-        np.subtract(s.F, s.F_damp_seta, out=J)
-        J -= s.F_damp_contact
-        J *= dt
-        self._dt_prev = dt
-        return switch - work
+        return (ayy * bx - axy * by) / det, (axx * by - ayx * bx) / det
+
+    def _stick_past_cap(self, fx, fy, kt, ct):
+        """The explicit forces to solve again [µN] ((2, N), a copy of ``state.F``), or None:
+        sticking tips whose implicit friction would exceed the Coulomb cap slide this step.
+
+        While a tip sticks, its friction in F' is the stick spring and damper at the step's
+        end, f = F_t − dt·k_t·v₁ − c_t·(v₁ − v₀) along the tangent (v₁ = v₀ + F'·dt/m,
+        F' = (``fx``, ``fy``) [µN]), not the kernel's F_t at the step's start: past
+        the onset of a slide f exceeds the cap that F_t still obeyed (by k_t·dt·v₁, 4 % of
+        μ|P + 2Fc| on a dragged rod seta at 10 explicit steps), and a tip that may hold no
+        shear (the paper's cap μ·max(P, 0) in tension) would hold k_t·dt·v₁. Where |f| > cap
+        (:func:`gecko_agents.physics.friction.friction_cap` of the kernel's P), the kernels'
+        return mapping (:mod:`gecko_agents.model.step_numpy`) applies to f instead: the tip
+        slides, its friction is ±cap (the sign of f), without stick spring or damper in the
+        Jacobian (``kt``, ``ct`` [µN/µm, µN·µs/µm] zeroed in place), and it is recorded as
+        sliding at that force. The kernel's anchor is kept: the next step's return mapping
+        slides it and books its Coulomb work; F' − F is booked as every step's. Laws that
+        take the tip's tangential position (the spatula) keep their own friction."""
+        m = self.m
+        s, law = m.state, m.law
+        if law.tangential:
+            return None
+        i = np.flatnonzero(kt > 0.0)
+        if not i.size:
+            return None
+        h = m.dt / m.mass
+        vx, vy = s.pv[2, i], s.pv[3, i]
+        if self.normal is None:  # pad floor: t = (1, 0)
+            tx, ty = 1.0, 0.0
+        else:  # the contact normal n, t = (n_y, −n_x)
+            tx, ty = self.normal[1, i], -self.normal[0, i]
+        v0t = vx * tx + vy * ty
+        v1t = v0t + (fx[i] * tx + fy[i] * ty) * h
+        f = s.Ft[i] - m.dt * kt[i] * v1t - ct[i] * (v1t - v0t)
+        c = m._constants
+        cap = friction_cap(s.P[i], c.Fc, c.mu, c.paper)
+        past = np.abs(f) > cap
+        if not past.any():
+            return None
+        j = i[past]
+        ft = np.copysign(cap[past], f[past])
+        F = s.F.copy()
+        dft = ft - s.Ft[j]
+        if self.normal is None:
+            F[0, j] += dft
+        else:
+            F[0, j] += dft * self.normal[1, j]
+            F[1, j] -= dft * self.normal[0, j]
+        kt[j] = 0.0
+        ct[j] = 0.0
+        s.Ft[j] = ft
+        s.slip[j] = True
+        return F
 
     def _switch_term(self, vx, vy, dt) -> float:
         """Energy to book when the step changes from ``dt_prev`` to ``dt`` [pJ]: the recorder's
