@@ -304,3 +304,27 @@ def test_steep_facet_with_friction_matches_the_explicit_step(slope):
     # Half a percent, the issue's bound for an event against the explicit reference.
     assert abs(f - f_ref) <= 0.005 * f_ref, (f, f_ref)
     assert abs(y - y_ref) <= 0.005 * (y_ref - deepest), (y, y_ref, deepest)
+
+
+def test_drag_over_a_rough_continuous_floor_matches_the_explicit_step():
+    """Ten setae pressed to 3 µN on a self-affine floor (σ = 0.3 µm, cutoffs 2 and 20 µm,
+    μ = 0: the tips slide over its slopes), dragged 10 µm and pulled off, recorded every
+    step: at its default step the implicit step pulls off within 0.5 % of the explicit
+    step's force (+0.12 % measured; +0.67 % while only the tips' speed located the escapes
+    from their folds). The drag is mostly located (6 570 of 7 164 steps: the sliding tips
+    run faster than twice the plate speed), 1.7× fewer steps than the explicit step's
+    12 396."""
+    p = STUBBY.replace(
+        **{"array.count": 10, "friction.mu": 0.0, "floor.kind": "self_affine",
+           "floor.sigma": 0.3, "floor.short_cutoff": 2.0, "floor.long_cutoff": 20.0}
+    )  # fmt: skip
+    pull = []
+    for integrator in ("explicit", "implicit"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            m = Model(p, integrator=integrator, record_every=1)
+            h = m.run(protocol.drag_pull(3.0, 10.0, 90.0, speed=SPEED), progress=False)
+        assert not m.world.pads and len(h.detachments["seta"]) == 10
+        pull.append(h.peak_pull_off)
+    # Half a percent, the issue's bound for an event against the explicit reference.
+    assert abs(pull[1] - pull[0]) <= 0.005 * pull[0], pull
