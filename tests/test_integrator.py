@@ -11,12 +11,16 @@ import warnings
 
 import numpy as np
 import pytest
+from numpy.testing import assert_allclose
+from test_model import SPEED, STUBBY, _curve_error, _dense
 
-from gecko_agents import protocol
+from gecko_agents import floor, protocol
+from gecko_agents import quasistatic as qs
 from gecko_agents.bench import pull_off_and_release
 from gecko_agents.history import STATE_FREE, STATE_SLIP, energy_balance_error
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
+from gecko_agents.physics import beam
 
 ROD = PAPER_TABLE1.replace(mechanics="rod")
 
@@ -89,21 +93,28 @@ def test_pull_off_and_release_within_half_a_percent(explicit_reference, speed):
     assert h.meta["integrator"] == "implicit"
 
 
-def test_release_converges_at_first_order_as_dt_falls(explicit_reference):
-    """The implicit step's release displacement approaches the explicit reference as dt
-    falls from 40 to 10 explicit steps, at an observed order ≥ 0.7 (first order: 1)."""
-    speed = 0.01
-    _, d_ref, _ = explicit_reference[speed]
+def test_release_converges_at_first_order_as_dt_falls():
+    """The implicit step's release displacement approaches a converged reference (the
+    explicit step at dt0/4; at dt0/8 it moves by 0.00025 µm) as dt falls from dt0 to dt0/4,
+    where no step is located (the scheme itself), at an observed order ≥ 0.7 (first order:
+    1; 1.22 and 1.58 measured). Longer steps locate the release at dt0
+    (:meth:`ImplicitStep.substeps`: a tip past its pull-off or reaching it within two
+    steps), so at 10, 20 and 40 dt0 its error is at most the error at dt0 plus one step of
+    dt0's plate travel, the resolution of a located release (0.0035, 0.0015, 0.0015 µm
+    measured against 0.0035 µm; 0.013 µm at 40 dt0 while only the tip's speed located it)."""
+    speed = 0.02
     dt0 = Model(ROD, n_sim=1, integrator="explicit").dt
-    factors = (40.0, 20.0, 10.0)
+    _, d_ref, _, _ = _pull(ROD, speed, dt=dt0 / 4)
+    factors = (1.0, 0.5, 0.25)
     errors = [abs(_pull(ROD, speed, integrator="implicit", dt=f * dt0)[1] - d_ref) for f in factors]
     slopes = [math.log(errors[i] / errors[i + 1]) / math.log(2.0) for i in range(2)]
     overall = math.log(errors[0] / errors[-1]) / math.log(4.0)
-    # The release is located to within a step's plate travel, so the halvings scatter
-    # about the order (0.45 and 1.17 measured); over the factor 4 it is 0.81.
     assert errors[0] > errors[1] > errors[2] and overall >= 0.7, (
         f"release errors {errors} µm at {factors} × dt0: slopes {slopes}, overall {overall}"
     )
+    for f in (10.0, 20.0, 40.0):
+        err = abs(_pull(ROD, speed, integrator="implicit", dt=f * dt0)[1] - d_ref)
+        assert err <= errors[0] + speed * dt0, (f, err, errors[0])  # + one located step
 
 
 def test_stiff_contact_runs_stably_at_the_default_step():
@@ -116,7 +127,7 @@ def test_stiff_contact_runs_stably_at_the_default_step():
     # Recorded at the default interval: recorded every step, the snap-off's books show for
     # one step a swing of 3 % of the run's energy that the next step takes back.
     f, d, n, h = _pull(p, 0.005, integrator="implicit", record_every=None)
-    fc = Model(p, n_sim=1).Fc
+    fc = Model(p, n_sim=1, integrator="explicit").Fc
     assert abs(f - fc) <= 0.01 * fc, (f, fc)
     assert np.all(np.isfinite(h["energy_kinetic_pJ"]))
 
@@ -254,3 +265,137 @@ def test_a_tip_in_tension_holds_no_shear_under_the_paper_cap():
     assert tension.sum() > 1000  # most records of the pull
     assert np.all(state[tension] == STATE_SLIP)
     assert np.all(h.setae["force_tangential_uN"][tension] == 0.0)
+
+
+# A rough continuous floor of planar facets, one under each seta, at Gaussian heights and
+# random slopes; the pitch leaves each tip on its facet while it slides (μ = 0: up to 13 µm
+# along a facet at the pull-off's tension).
+FACETS = STUBBY.replace(**{"array.count": 6, "array.pitch": 40.0, "friction.mu": 0.0})
+FACET_HALF_WIDTH = 16.0  # [µm]
+
+
+def _facet_floor(params, h, s):
+    """A continuous floor whose line under seta i's resting tip abscissa X_i is y = h_i +
+    s_i·(x − X_i) for |x − X_i| ≤ FACET_HALF_WIDTH (heights ``h`` [µm], slopes ``s`` [-]),
+    straight joins between facets, sampled every 0.05 µm (a sampled line is the line)."""
+    n, L = params.array.count, params.seta.L
+    X = (np.arange(n) - (n - 1) / 2) * params.array.pitch
+    X += beam.rest_tip_offset(L, params.seta.theta)[0]
+    margin = 50.0 + 3 * L  # the model's floor margin (gecko_agents.model.world)
+    w = FACET_HALF_WIDTH
+    bx = np.concatenate(
+        [[X[0] - margin], np.ravel(np.column_stack([X - w, X + w])), [X[-1] + margin]]
+    )
+    ends = np.ravel(np.column_stack([h - s * w, h + s * w]))
+    by = np.concatenate([[ends[0]], ends, [ends[-1]]])
+    dx = 0.05
+    x = bx[0] + dx * np.arange(int(np.ceil((bx[-1] - bx[0]) / dx)) + 1)
+    return floor.Profile(x=x, y=np.interp(x, bx, by), spacing=dx, source="facets")
+
+
+def _facet_quasistatic(params, K, heights, slopes, plate_y):
+    """Total quasi-static normal force [µN] of the setae on their facets along ``plate_y``.
+
+    Frictionless (μ = 0), the contact force on seta i is P·n alone, n = (−sin α, cos α) the
+    facet's normal (tan α = s_i), so its tip centre sits at p = p0 + P·K⁻¹n (K the linear
+    seta's 2×2 stiffness, eq 20–21) and its overlap is δ = R − n·(p − q) = δ_g − P·nᵀK⁻¹n,
+    δ_g = R − cos α·(Y + rest_dy − h_i) that of the resting tip at plate height Y. That is the
+    quasi-static seta free to slide on a flat floor (eq 25, ``lateral="free"``: δ = h + R −
+    p0_y − P/K_y) with K_y → k_eff = 1/(nᵀK⁻¹n) (``stiffness_scale``) at the plate height
+    Y' = cos α·(Y + rest_dy − h_i) − rest_dy."""
+    K = np.asarray(K)
+    Kinv = np.linalg.inv(K)
+    Ky = K[1, 1] - K[0, 1] * K[1, 0] / K[0, 0]  # eq 20: the free seta's normal stiffness
+    rest_dy = beam.rest_tip_offset(params.seta.L, params.seta.theta)[1]
+    total = np.zeros_like(plate_y)
+    for h, s in zip(heights, slopes, strict=True):
+        a = math.atan(s)
+        n = np.array([-math.sin(a), math.cos(a)])
+        k_eff = 1.0 / (n @ Kinv @ n)
+        y = math.cos(a) * (plate_y + rest_dy - h) - rest_dy
+        q = qs.solve(params, np.zeros(1), y, lateral="free", stiffness_scale=k_eff / Ky)
+        total += q.force_normal
+    return total
+
+
+@pytest.mark.parametrize("factor", [None, 20.0])
+def test_rough_continuous_floor_matches_quasistatic_curve(factor):
+    """A 6-seta press-pull on a continuous floor of sloped facets (the contact normals of
+    :class:`ImplicitStep`'s continuous branch; 4 setae touch) with the implicit step at its
+    default (10 explicit steps) and at 20 explicit steps follows the quasi-static curve of
+    :func:`_facet_quasistatic`. Measured at the default step: pull-off +1.1 %, retraction
+    0.13 µN (1.1 % of the pull-off), approach 0.22 µN (the explicit step: +1.0 %, 0.12,
+    0.23 µN); the same oracle without the slopes (k_eff = K_y, cos α = 1) is 22 % off."""
+    p = FACETS
+    rng = np.random.default_rng(3)
+    heights = rng.normal(0.0, p.floor.sigma, p.array.count)
+    slopes = rng.uniform(-0.25, 0.25, p.array.count)
+    prof = _facet_floor(p, heights, slopes)
+    dt = None if factor is None else factor * Model(p, floor_profile=prof, integrator="explicit").dt
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = Model(p, floor_profile=prof, integrator="implicit", dt=dt)
+        h = m.run(protocol.press_pull(0.5, speed=SPEED), progress=False)
+    assert not m.world.pads and m._implicit.normal is not None
+    sub = 10
+    y_dense = _dense(h["plate_y_um"], sub)
+    q = _facet_quasistatic(p, m.K, heights, slopes, y_dense)
+    pull_off = -q.min()
+    # Pull-off within 2 %, as on the pad floor (tests/test_model.py): the dampers' force at
+    # the 0.02 µm/µs pull (+1.0 % with the explicit step).
+    assert_allclose(h.peak_pull_off, pull_off, rtol=0.02)
+    err = _curve_error(h, q, y_dense, sub)
+    turn = int(np.argmin(h["plate_y_um"]))
+    # Retraction: within 2 % of the pull-off, the pad-floor test's bound (events may lag by
+    # 0.1 µm of plate travel, _curve_error).
+    assert err[turn:].max() < 0.02 * pull_off
+    # Approach: below one jump-in's pull, (8/9)Fc < Fc, as in the pad-floor test.
+    assert err[:turn].max() < p.contact.pull_off_force
+
+
+@pytest.mark.parametrize("slope", [-0.5, 0.5, 1.0])
+def test_steep_facet_with_friction_matches_the_explicit_step(slope):
+    """One seta on a facet of slope −0.5, 0.5 or 1 (45°) with friction (μ = 0.5: the tip
+    sticks, so the normal and the stick stiffness enter the implicit Jacobian in the facet's
+    frame): at its default step the implicit step pulls off within 0.5 % of the explicit
+    step's force and lets go within 0.5 % of the pull's plate travel of where it does
+    (measured: −0.02 %, −0.02 %, +0.18 %; 0.000 %, 0.11 %, 0.12 % of 14.3, 3.2, 4.5 µm;
+    7.5–8.3× fewer steps)."""
+    p = FACETS.replace(**{"array.count": 1, "friction.mu": 0.5})
+    prof = _facet_floor(p, np.zeros(1), np.full(1, slope))
+    runs = []
+    for integrator in ("explicit", "implicit"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            m = Model(p, floor_profile=prof, integrator=integrator)
+            h = m.run(protocol.press_pull(0.5, speed=SPEED), progress=False)
+        assert len(h.detachments["plate_y_um"]) == 1
+        runs.append((h.peak_pull_off, h.detachments["plate_y_um"][0], h["plate_y_um"].min()))
+    (f_ref, y_ref, deepest), (f, y, _) = runs
+    # Half a percent, the issue's bound for an event against the explicit reference.
+    assert abs(f - f_ref) <= 0.005 * f_ref, (f, f_ref)
+    assert abs(y - y_ref) <= 0.005 * (y_ref - deepest), (y, y_ref, deepest)
+
+
+def test_drag_over_a_rough_continuous_floor_matches_the_explicit_step():
+    """Ten setae pressed to 3 µN on a self-affine floor (σ = 0.3 µm, cutoffs 2 and 20 µm,
+    μ = 0: the tips slide over its slopes), dragged 10 µm and pulled off, recorded every
+    step: at its default step the implicit step pulls off within 0.5 % of the explicit
+    step's force (+0.12 % measured; +0.67 % while only the tips' speed located the escapes
+    from their folds). The drag is mostly located (6 570 of 7 164 steps: the sliding tips
+    run faster than twice the plate speed), 1.7× fewer steps than the explicit step's
+    12 396."""
+    p = STUBBY.replace(
+        **{"array.count": 10, "friction.mu": 0.0, "floor.kind": "self_affine",
+           "floor.sigma": 0.3, "floor.short_cutoff": 2.0, "floor.long_cutoff": 20.0}
+    )  # fmt: skip
+    pull = []
+    for integrator in ("explicit", "implicit"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            m = Model(p, integrator=integrator, record_every=1)
+            h = m.run(protocol.drag_pull(3.0, 10.0, 90.0, speed=SPEED), progress=False)
+        assert not m.world.pads and len(h.detachments["seta"]) == 10
+        pull.append(h.peak_pull_off)
+    # Half a percent, the issue's bound for an event against the explicit reference.
+    assert abs(pull[1] - pull[0]) <= 0.005 * pull[0], pull
