@@ -68,7 +68,7 @@ def test_quasi_static_time_step_and_touch_items(run):
     items = h.meta["validity"]["items"]
     q = STIFF.Ky * 0.05 * m.settle_time / math.pi / STIFF.contact.pull_off_force  # ζ = 1
     assert_allclose(items["quasi_static"]["value"], q, rtol=1e-9)
-    assert items["quasi_static"]["plate_speed_um_per_us"] == 0.05
+    assert items["quasi_static"]["plate_speed_um_per_us"] == pytest.approx(0.05, rel=1e-9)
     assert items["time_step"]["value"] >= m.omega_max * h.meta["event_dt_us"] - 1e-12
     assert items["time_step"]["ok"] is True
     assert items["touched"] == {**items["touched"], "value": 1.0, "ok": True}

@@ -58,6 +58,7 @@ def test_auto_is_the_default_and_picks_the_verified_integrator():
     assert Model(p, contact="callback", **auto).integrator == "explicit"
     assert Model(p.replace(mechanics="elastica"), n_sim=1, **auto).integrator == "explicit"
     assert Model(p.replace(**{"backing.kind": "elastic"}), **auto).integrator == "explicit"
+    assert Model(p.replace(tip="spatula"), **auto).integrator == "explicit"
 
 
 def test_bad_integrator_and_dt_are_refused():

@@ -151,13 +151,11 @@ class Model:
         floor_profile: Profile | None = None,
         detection: str = "auto",
         threads: int | None = None,
-        integrator: str = "explicit",
+        integrator: str = "auto",
         **backing_options,
     ):
         n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
-        self.integrator = check_integrator(
-            integrator, contact, params.mechanics, params.backing.kind
-        )
+        self.integrator = check_integrator(integrator, contact, params)
         backing = backing_class(params.backing.kind)
         kernel = backing.kernel(kernel, contact)
         threads = choose_threads(threads, int(n), contact)
