@@ -144,19 +144,31 @@ def test_ring_weights_make_the_area_of_a_disc():
     assert fibril_probe.ring_weights(r, 1.0, 1.0).sum() == pytest.approx(math.pi * 100**2)
 
 
+_STEEP = pytest.mark.xfail(
+    strict=True,
+    reason="+1.09 % with either integrator, recorded every step (the explicit step's default "
+    "records missed the peak and showed +0.86 %): the outer pillars sit at 23.6° on the "
+    "20 µm probe (friction angle 26.6°): their contact force tilts with the probe's normal "
+    "while the closed form keeps it vertical (docs/physics.md: 1.7 % at 15°)",
+)
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("probe_radius", [20.0, 60.0])
 @pytest.mark.parametrize("preload", [0.05, 0.3, 2.0])
-def test_probe_test_matches_independent_fibrils(probe_radius, preload):
+def test_probe_test_matches_independent_fibrils(probe_radius, preload, request):
     """Where the models coincide — vertical pillars with flat punches (linear in compression
     and tension, a fixed pull-off each) on a rigid backing, the tips stuck by friction — the
-    time-stepped probe test gives the closed form's pull-off within 1 %."""
+    time-stepped probe test gives the closed form's pull-off within 1 % (recorded every step,
+    so the peak is not sampled: measured −0.23 to +0.43 %)."""
+    if probe_radius == 20.0 and preload == 2.0:
+        request.applymarker(_STEEP)
     n = 5
     p = PILLAR.replace(
         **{"array.count": n, "floor.kind": "probe", "floor.probe_radius": probe_radius,
            "friction.mu": 0.5}
     )  # fmt: skip
-    m = Model(p, n_sim=n, seed=0)
+    m = Model(p, n_sim=n, seed=0, record_every=1)
     h = m.run(protocol.preload_pull(preload, speed=0.04), progress=False)
     c = p.contact
     k = 1.0 / (1.0 / p.axial_stiffness + 1.0 / float(punch.punch_stiffness(c.R, c.E_star)))

@@ -362,12 +362,13 @@ class ImplicitStep:
         """Set the segment's step ``dt_base`` [µs] for its plate ``speed`` [µm/µs] (None or
         0: ``dt_full``). With the default step (:func:`implicit_time_step` without a dt), a
         fast segment shortens it so that the plate travels at most :data:`IMPLICIT_TRAVEL`
-        per step, down to the explicit step's length (the step is set for accuracy: plate
-        travel and events per step); a dt the caller chose stands. The segment asks its plate
-        velocity at this step, so it lands on its end point."""
+        per step, to a whole number of the steps taken near events, at least one (the step is
+        set for accuracy: plate travel and events per step); a dt the caller chose stands.
+        The segment asks its plate velocity at this step, so it lands on its end point."""
         dt = self.dt_full
-        if speed and self.default_step:
-            dt = max(min(dt, IMPLICIT_TRAVEL / speed), self.event_dt)
+        if speed and self.default_step and IMPLICIT_TRAVEL / speed < dt:
+            # A whole number of located steps, so those near an event are as long as allowed.
+            dt = self.event_dt * max(1, math.floor(IMPLICIT_TRAVEL / speed / self.event_dt))
         self.dt_base = dt
         self.set_dt(dt)
 

@@ -18,11 +18,11 @@ Run file
     n_sim = 1                          # simulated setae, 1 to array.count and at most
                                        # model.setup.MAX_N (default: array.count)
     seed = 1                           # run seed ≥ 0 (default: floor.seed)
-    dt_us = 0.01                       # time step [µs] (default: 0.75/ω_max)
+    dt_us = 0.01                       # time step [µs] (default: the integrator's)
     record_setae = true                # per-seta arrays (animations need them)
     kernel = "auto"                    # auto | numpy | numba | python
-    integrator = "explicit"            # explicit | implicit (gecko_agents.model.implicit;
-                                       # default: the model's)
+    integrator = "explicit"            # auto | explicit | implicit (default: auto, the
+                                       # implicit step where verified, gecko_agents.model.implicit)
 
     [[protocol]]                       # segments in order ...
     segment = "press_to"
