@@ -18,9 +18,10 @@ damping relative to the plate, and the contact (the normal force of the tip law,
   rounding.
 
 Stick/slip (return mapping): the trial stretch ξ of the stick spring k_t is the tip's
-tangential displacement from its anchor; if k_t|ξ| exceeds the cap, the anchor slides so that
-the spring holds exactly the cap, and the slip |ξ − ξ_new| dissipates the Coulomb work
-cap·|ξ − ξ_new|.
+tangential displacement from its anchor (on a continuous floor: the tip centre's displacement
+along the floor's tangent, ``NumpyStep._trial_stretch``); if k_t|ξ| exceeds the cap, the
+anchor slides so that the spring holds exactly the cap, and the slip |ξ − ξ_new| dissipates
+the Coulomb work cap·|ξ − ξ_new|.
 """
 
 from __future__ import annotations
@@ -90,7 +91,10 @@ class NumpyStep:
         self.max_u2 = 0.0  # largest |u|² of a linear seta this step [µm²]
         self.chain = None  # the elastica of mechanics="elastica" (physics.elastica.Elastica)
         self.holds_tip = law.flat_face  # a bonded flat face keeps the tip's direction
-        self.normal = None  # (2, N): contact normals kept for the implicit step, if it asks
+        # (2, N): each tip's contact normal at its last contact step (NumpyStep.contact's
+        # stick spring carries ξ over from it; the implicit step reads it).
+        self.normal = np.zeros((2, n))
+        self.normal[1] = 1.0
 
     # ------------------------------------------------------------------ seta springs
     def spring_damp(self, pnx, pny, vpx, vpy):
@@ -226,6 +230,28 @@ class NumpyStep:
         inv = 1.0 / np.maximum(dist, 1e-300)
         return qx, qy, dx * inv, dy * inv, R - dist
 
+    def _trial_stretch(self, ti, x, y, n_x, n_y, new):
+        """Trial stretch ξ [µm] of the stick springs of attached tips ``ti`` (centres x, y
+        [µm], contact normals n = (n_x, n_y), t = (n_y, −n_x); ``new``: attached this step).
+
+        A tip is a sphere that does not rotate, so the floor's material point under it moves
+        against it at the centre's velocity: its tangential displacement is the centre's,
+        Δr·t, and ξ grows by that: ξ = ξ_old + (r − r_old)·t. Where the floor is flat this is
+        (r − anchor)·t, the anchor a = r_old − ξ_old·t_old being where the spring would be
+        unstretched; where the tip crosses a facet edge (t_old ≠ t) the nearest floor point
+        may jump, but the tip has not slid: ξ = (r − a)·t + ξ_old·(1 − t_old·t) (t_old·t =
+        n_old·n). A new contact starts at ξ = 0 (a = r). On a pad (n = (0, 1) throughout)
+        this is the pad path's ξ = x − anchor_x to the last bit.
+
+        The increment of the tangential spring by the contact's relative tangential
+        displacement in each step is the distinct element method's (Cundall & Strack 1979,
+        Géotechnique 29:47; only its abstract was read here). Units: µm throughout."""
+        s = self.s
+        xi = (x - s.anchor[0, ti]) * n_y - (y - s.anchor[1, ti]) * n_x
+        turn = 1.0 - (self.normal[0, ti] * n_x + self.normal[1, ti] * n_y)
+        xi += np.where(new, 0.0, s.xi[ti]) * turn
+        return xi
+
     def contact(self, tips, x, y, vx, vy, ps):
         """Contact of ``tips`` (positions x, y, velocities vx, vy, each (k,)) with segments
         ``ps``: the general (and reference) form, any floor, one or many tips.
@@ -250,9 +276,9 @@ class NumpyStep:
         s.delta[tips] = delta
         if np.any(gone):
             self.detach(tips[:0], tips[gone], s.delta)
-        if np.any(new):
-            s.anchor[0, tips[new]] = qx[new]
-            s.anchor[1, tips[new]] = qy[new]
+        if np.any(new):  # the stick spring starts unstretched at the tip's centre
+            s.anchor[0, tips[new]] = x[new]
+            s.anchor[1, tips[new]] = y[new]
         k = tips.size
         fx, fy = np.zeros(k), np.zeros(k)
         i = np.flatnonzero(att)
@@ -269,15 +295,14 @@ class NumpyStep:
                 )
             vn = vx[i] * n_x + vy[i] * n_y
             vt = vx[i] * n_y - vy[i] * n_x
-            ax, ay = s.anchor[0, ti], s.anchor[1, ti]
-            xi = (qx[i] - ax) * n_y - (qy[i] - ay) * n_x
+            xi = self._trial_stretch(ti, x[i], y[i], n_x, n_y, new[i])
             cap = self.friction.cap(Pi, c.Fc)
             trial = -c.k_t * xi
             sl = np.abs(trial) > cap
             xi_new = np.where(sl, np.sign(xi) * cap / c.k_t, xi)
             # Return mapping: slide the anchor so the stick spring holds exactly the cap.
-            s.anchor[0, ti] = qx[i] - xi_new * n_y
-            s.anchor[1, ti] = qy[i] + xi_new * n_x
+            s.anchor[0, ti] = x[i] - xi_new * n_y
+            s.anchor[1, ti] = y[i] + xi_new * n_x
             # Coulomb work of the slip: the anchor slides |ξ − ξ_new| against the cap.
             self.diss += float(np.sum(cap * np.abs(xi - xi_new)))
             dn = -c.c_n * vn
@@ -289,8 +314,7 @@ class NumpyStep:
             s.F_damp_contact[0, ti] += dn * n_x + dt_ * n_y
             s.F_damp_contact[1, ti] += dn * n_y - dt_ * n_x
             s.P[ti], s.Ft[ti], s.slip[ti] = Pi, ft, sl
-            if self.normal is not None:
-                self.normal[0, ti], self.normal[1, ti] = n_x, n_y
+            self.normal[0, ti], self.normal[1, ti] = n_x, n_y
             s.a[ti], s.xi[ti] = a, xi_new
             # Attachment starts the branch at U = 0: book the difference.
             jumped = ti[new[i]]
