@@ -57,7 +57,9 @@ class SetaState:
     * ``xy`` (2, N): where the forces are evaluated, x + v·dt [µm] (semi-implicit Euler);
     * ``F`` (2, N): total force on each tip [µN]; ``F_damp_contact`` (2, N): its contact
       damping part; ``F_damp_seta`` (2, N): the seta's damping relative to the plate;
-    * ``anchor`` (2, N): stick anchor of an attached tip on the floor [µm];
+    * ``anchor`` (2, N): stick anchor of an attached tip [µm]: on the floor in the pad
+      floors' batch kernels; the tip-centre position where its stick spring is unstretched on
+      continuous floors and in the callback path;
     * ``a``: contact radius [µm]; ``xi``: stick-spring stretch [µm] (tangential);
     * ``P``: normal contact force [µN] (> 0 compressive); ``Ft``: tangential contact force [µN];
     * ``delta``: overlap δ [µm] (> 0 pressed; NaN without a candidate floor);
