@@ -1,4 +1,6 @@
 """The linearly implicit step: each tip's force made implicit in its own springs and dampers.
+The default integrator where it is verified (``Model(integrator="auto")``,
+:func:`check_integrator`).
 
 Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`); sign conventions in
 :mod:`gecko_agents.contact`.
@@ -51,11 +53,11 @@ times the explicit one at a k times longer step: a snap-off's share is booked
 Event location. Near an event (:meth:`ImplicitStep.substeps`) the runner takes k steps of
 dt/k, each no longer than the explicit step, so the event and its share of the books are
 resolved as the explicit step resolves them; a change of step is booked exactly
-(``ImplicitStep._switch_term``). The k steps count as one for ``record_every``
-(:mod:`gecko_agents.model.runner`), so records stay evenly spaced in time near events as
-between them. A rod seta's press-pull at 0.005 µm/µs: energy-balance
-error 1.00 % → 0.42 % of its energy scale (recorded every step), 4 854 steps instead of 3 605
-(the explicit step: 36 007).
+(``ImplicitStep._switch_term``). With the default ``record_every`` the runner records by
+simulated time (:mod:`gecko_agents.model.runner`), so records stay evenly spaced near events
+as between them; a ``record_every`` the caller gives counts every step. A rod seta's
+press-pull at 0.005 µm/µs: energy-balance error 1.00 % → 0.42 % of its energy scale
+(recorded every step), 4 854 steps instead of 3 605 (the explicit step: 36 007).
 """
 
 from __future__ import annotations
