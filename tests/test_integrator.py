@@ -64,7 +64,7 @@ def test_auto_is_the_default_and_picks_the_verified_integrator():
 def test_bad_integrator_and_dt_are_refused():
     with pytest.raises(ValueError, match="integrator = 'rk4'"):
         Model(ROD, n_sim=1, integrator="rk4")
-    with pytest.raises(ValueError, match="contact='batch'"):
+    with pytest.raises(ValueError, match="needs contact = 'batch', got 'callback'"):
         Model(ROD, n_sim=1, integrator="implicit", contact="callback")
     with pytest.raises(ValueError, match="dt = -1"):
         Model(ROD, n_sim=1, integrator="implicit", dt=-1.0)

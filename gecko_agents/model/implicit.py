@@ -108,10 +108,12 @@ def check_integrator(integrator, contact: str, params=None) -> str:
                 and params.tip != "spatula")
         )  # fmt: skip
         return "implicit" if verified else "explicit"
-    if integrator not in INTEGRATORS or (integrator == "implicit" and contact != "batch"):
+    if integrator not in INTEGRATORS:
+        raise ValueError(f"integrator = {integrator!r} must be one of {INTEGRATORS}")
+    if integrator == "implicit" and contact != "batch":
         raise ValueError(
-            f"integrator = {integrator!r} must be one of {INTEGRATORS} (the implicit step "
-            f"needs contact='batch', got {contact!r})"
+            f"integrator = 'implicit' needs contact = 'batch', got {contact!r} (the callback "
+            "path adds contact forces after the step's): use 'explicit' or 'auto'"
         )
     return integrator
 
