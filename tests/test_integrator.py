@@ -409,8 +409,8 @@ def test_gripping_dragged_spatula_pulls_off_as_the_explicit_step():
     """The spatula seta (μ = 10) pressed to 0.2 µN, dragged 8 µm and pulled off at 90° at
     0.005 µm/µs, recorded every step: at its default step (ten explicit steps) the implicit
     step pulls off within 0.5 % of the explicit step's force (+0.11 % measured with the
-    film's own Jacobian, ``SpatulaTip.jacobian``; +4.5 % with the bound K/h + 2E*·√(Rδ) in
-    every direction, a damper dt·(K' − K) on the lifted tip)."""
+    film's own Jacobian, ``SpatulaTip.jacobian``; +4.5 % with the bounds K/h + k_t along
+    the floor while the pad held and K/h + 2E*·√(Rδ) across it, a damper dt·(K' − K))."""
     p = SPATULA.replace(**{"friction.mu": 10.0})
     pull = []
     for integrator in ("explicit", "implicit"):

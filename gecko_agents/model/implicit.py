@@ -100,9 +100,9 @@ def check_integrator(integrator, contact: str, params=None) -> str:
       off 14 % above the rigid plate at the implicit step, and a misaligned one diverged);
     - the spatula: its film's peel after a gripping drag pulled off 4.6 % above the explicit
       step at the implicit default step (0.591 against 0.565 µN at 0.005 µm/µs; 0.5 % at the
-      explicit step's length) while its Jacobian was the bound K/h + 2E*·√(Rδ) of
-      :meth:`gecko_agents.contact.SpatulaTip.stiffness` in every direction (a damper
-      dt·(K' − K)); with the film's own (:meth:`gecko_agents.contact.SpatulaTip.jacobian`)
+      explicit step's length) while its Jacobian was a bound (K/h + k_t along the floor,
+      K/h + 2E*·√(Rδ) across it: a damper dt·(K' − K), the tangential one held by the
+      gripping pad's μ = 10); with the film's own (:meth:`gecko_agents.contact.SpatulaTip.jacobian`)
       it is 0.1 % (0.566 µN), but "auto" keeps the spatula explicit until it is verified
       more widely."""
     if integrator == "auto":
