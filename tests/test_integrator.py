@@ -16,6 +16,7 @@ from test_model import SPEED, STUBBY, _curve_error, _dense
 
 from gecko_agents import floor, protocol
 from gecko_agents import quasistatic as qs
+from gecko_agents.analysis.pull import pull_off
 from gecko_agents.bench import pull_off_and_release
 from gecko_agents.history import STATE_FREE, STATE_SLIP, energy_balance_error
 from gecko_agents.model import Model
@@ -23,6 +24,8 @@ from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 from gecko_agents.physics import beam
 
 ROD = PAPER_TABLE1.replace(mechanics="rod")
+SPATULA = PAPER_ARRAY.replace(**{"tip": "spatula", "mechanics": "rod", "floor.sigma": 0.0})
+BONDED_SPATULA = SPATULA.replace(**{"spatula.interface": "bonded"})
 
 
 def _pull(params, speed, **kw):
@@ -400,3 +403,57 @@ def test_drag_over_a_rough_continuous_floor_matches_the_explicit_step():
         pull.append(h.peak_pull_off)
     # Half a percent, the issue's bound for an event against the explicit reference.
     assert abs(pull[1] - pull[0]) <= 0.005 * pull[0], pull
+
+
+def test_gripping_dragged_spatula_pulls_off_as_the_explicit_step():
+    """The spatula seta (μ = 10) pressed to 0.2 µN, dragged 8 µm and pulled off at 90° at
+    0.005 µm/µs, recorded every step: at its default step (ten explicit steps) the implicit
+    step pulls off within 0.5 % of the explicit step's force (+0.11 % measured with the
+    film's own Jacobian, ``SpatulaTip.jacobian``; +4.5 % with the bounds K/h + k_t along
+    the floor while the pad held and K/h + 2E*·√(Rδ) across it, a damper dt·(K' − K))."""
+    p = SPATULA.replace(**{"friction.mu": 10.0})
+    pull = []
+    for integrator in ("explicit", "implicit"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # validity warning of the contact radius
+            m = Model(p, n_sim=1, seed=7, integrator=integrator, record_every=1)
+            h = m.run(protocol.drag_pull(0.2, 8.0, 90.0, speed=0.005), progress=False)
+        pull.append(pull_off(h).adhesion)
+    assert m.dt == 10 * Model(p, n_sim=1, integrator="explicit").dt
+    # Half a percent, the issue's bound for an event against the explicit reference.
+    assert abs(pull[1] - pull[0]) <= 0.005 * pull[0], pull
+
+
+def _film_force_on_tip(law, k, dx, delta, s0, xa):
+    """(T, P) [µN]: the spatula's force on the tip (``step_scalar``), its front held."""
+    P, T, shift = law.step_scalar(dx, law.R - delta, law.ell0, 0.0, s0, xa, k)[:3]
+    assert shift == 0.0  # the front held: neither peel nor slide
+    return np.array([T, P])
+
+
+@pytest.mark.parametrize(
+    ("dx", "delta", "s0", "xa", "mu"),
+    [
+        (-0.5, -0.3, 0.57, 0.0, 10.0),  # lifted, the film taut at φ = 31°
+        (0.4, -0.2, 0.44, 0.0, 10.0),  # lifted over its pad, taut at 153° (φ from the floor)
+        (-1.2, 0.1, 1.0, -1.21, 10.0),  # pressed, the film taut along the floor, body sticks
+        (0.3, 0.1, 1.0, 0.0, 0.0),  # pressed, the film slack, the body slides (no cap)
+    ],
+)
+def test_spatula_jacobian_is_the_derivative_of_its_force(dx, delta, s0, xa, mu):
+    """``SpatulaTip.jacobian`` is −∂(T, P)/∂(x, y) of the law's own force (``step_scalar``)
+    by central differences, at states where the bonded front holds (μ = 10 keeps the pad,
+    and the pressed body, from sliding; the release rate is below w: no peel)."""
+    from gecko_agents.contact import contact_law
+
+    law = contact_law(BONDED_SPATULA.replace(**{"friction.mu": mu}))
+    k = law.constants
+    kxx, kxy, kyy = (float(q[0]) for q in law.jacobian([dx], [delta], [s0], [xa]))
+    e = 1e-6  # µm
+    jx = (_film_force_on_tip(law, k, dx + e, delta, s0, xa)
+          - _film_force_on_tip(law, k, dx - e, delta, s0, xa)) / (2 * e)  # fmt: skip
+    jy = (_film_force_on_tip(law, k, dx, delta - e, s0, xa)
+          - _film_force_on_tip(law, k, dx, delta + e, s0, xa)) / (2 * e)  # fmt: skip
+    # Central differences: truncation ~e²·F''' (≪ 1e-6 µN/µm here) and rounding ~1e-16·F/e
+    # (~1e-10): 1e-6 relative plus 1e-7 µN/µm absolute (for the zero entries).
+    assert_allclose([[kxx, kxy], [kxy, kyy]], -np.column_stack([jx, jy]), rtol=1e-6, atol=1e-7)

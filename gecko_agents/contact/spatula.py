@@ -414,6 +414,50 @@ class SpatulaTip(ContactLaw):
         d = np.maximum(np.asarray(delta, dtype=float), 0.0)
         return 2.0 * self.E_star * np.sqrt(self.R * d) + self.K / self.h
 
+    def jacobian(self, dx, delta, s0, xa):
+        """Stiffness −∂F/∂x of the attached tips' contact force, the front held [µN/µm]:
+        (kxx, kxy, kyy) arrays, the linearly implicit step's Jacobian
+        (:mod:`gecko_agents.model.implicit`); ``dx`` the tips' offset from their front,
+        ``delta`` their overlap R − z, ``s0`` the free film's unstretched length, ``xa`` the
+        tip body's stick anchor relative to the front [µm], as the step left them.
+
+        The derivative of step 3's forces (class docstring) at the tip's position: the free
+        film's tension F = K(s − s0)/s0 along its chord e = (dx, z_f)/s gives
+        (K/s0)·e eᵀ + (F/s)·(I − e eᵀ) while taut, 0 while slack (a bar's material stiffness
+        EA/l along it plus its geometric stiffness F/l across it, as in the Oasys GSA theory
+        manual, "Bar and rod elements"), its y row and column 0 while the tip is pressed
+        (z_f = max(z − R, 0) fixed there); the Hertz compression adds 2E*·√(Rδ) to kyy
+        (Johnson 1985, eq 4.23 differentiated) and the pressed body's stick spring k_t to kxx
+        while it sticks (k_t|ξ| below μ·P_c, ξ = dx − xa). The front's peel and the pad's slide
+        lower the tangent further (a steady peel holds Kendall's force): the front held is an
+        upper bound of the tangent, exact while the front stands. Not the bounds the implicit
+        step took before, :meth:`stiffness` K/h + 2E*·√(Rδ) along n and
+        ``tangential_stiffness`` K/h + k_t along t while the pad does not slide: in the
+        implicit step a Jacobian K' above the tangent K adds a damper dt·(K' − K), and those
+        held a seta pulled off at 0.005 µm/µs after a gripping drag (μ = 10, its pad slid in
+        0.1 % of the pull's steps, at μ = 0.2 in 21 %) 4.5 % above the explicit step at ten
+        explicit steps (0.46 % per explicit step of dt): 4.2 % with the tangential bound
+        alone, 0.7 % with the normal one alone, 0.10 % with this Jacobian."""
+        dx, d, s0, xa = (np.asarray(q, dtype=float) for q in (dx, delta, s0, xa))
+        zf = np.maximum(-d, 0.0)  # z − R, z = R − δ the tip centre's height
+        s = np.sqrt(dx * dx + zf * zf)
+        taut = s > s0
+        safe = np.where(s > 0.0, s, 1.0)
+        ex, ey = dx / safe, zf / safe
+        ka = np.where(taut, self.K / s0, 0.0)  # along the chord
+        kg = np.where(taut, self.K * (s - s0) / (s0 * safe), 0.0)  # across it: F/s
+        lifted = zf > 0.0
+        kxx = ka * ex * ex + kg * ey * ey
+        kxy = np.where(lifted, (ka - kg) * ex * ey, 0.0)
+        kyy = np.where(lifted, ka * ey * ey + kg * ex * ex, 0.0)
+        dp = np.maximum(d, 0.0)
+        kyy = kyy + 2.0 * self.E_star * np.sqrt(self.R * dp)
+        k = self.constants
+        cap = k[K_MU] * k[K_HERTZ_P] * dp * np.sqrt(dp)  # μ·P_c [µN]
+        # A slid body sits at the cap (k_t|ξ| = μ·P_c to rounding): the margin tells it apart.
+        stick = self.tip_stiffness * np.abs(dx - xa) < (1.0 - 1e-9) * cap
+        return kxx + np.where(stick, self.tip_stiffness, 0.0), kxy, kyy
+
     def energy(self, a, delta):
         raise NotImplementedError("SpatulaTip stores its energy in the state (state.uc)")
 

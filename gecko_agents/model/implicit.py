@@ -25,7 +25,9 @@ axial Ka·e eᵀ plus rotary kφ/ℓ²·e⊥e⊥ᵀ plus its tension's Ka(ℓ �
 contact's normal stiffness dP/dδ·n nᵀ (:meth:`gecko_agents.contact.ContactLaw.stiffness`,
 clamped to [0, the contact's stiffness at 5 Fc]: past the load-controlled pull-off it turns
 negative and at the end of the JKR branch infinite, where a linearisation would nearly make
-the 2×2 singular or freeze the tip) and the stick spring k_t·t tᵀ while the tip sticks; −J_v
+the 2×2 singular or freeze the tip) and the stick spring k_t·t tᵀ while the tip sticks (the
+spatula: its film's full 2×2 tangent with the front held, the tip body's Hertz compression and
+stick spring, :meth:`gecko_agents.contact.SpatulaTip.jacobian`); −J_v
 the seta's, the normal and (while sticking) the tangential dampers. The seta's part acts on
 the tip's motion relative to its root (the root moves with the plate), the contact's on its
 motion over the fixed floor. The model hands pymunk the force F' = m·Δv/dt, so pymunk's own
@@ -100,7 +102,11 @@ def check_integrator(integrator, contact: str, params=None) -> str:
       off 14 % above the rigid plate at the implicit step, and a misaligned one diverged);
     - the spatula: its film's peel after a gripping drag pulled off 4.6 % above the explicit
       step at the implicit default step (0.591 against 0.565 µN at 0.005 µm/µs; 0.5 % at the
-      explicit step's length)."""
+      explicit step's length) while its Jacobian was a bound (K/h + k_t along the floor,
+      K/h + 2E*·√(Rδ) across it: a damper dt·(K' − K), the tangential one held by the
+      gripping pad's μ = 10); with the film's own (:meth:`gecko_agents.contact.SpatulaTip.jacobian`)
+      it is 0.1 % (0.566 µN), but "auto" keeps the spatula explicit until it is verified
+      more widely."""
     if integrator == "auto":
         verified = contact == "batch" and (
             params is None
@@ -158,6 +164,9 @@ class ImplicitStep:
         self._dt_prev = model.dt
         self._kn = np.zeros(n)
         self._kt = np.zeros(n)
+        # A film tip's (the spatula's) contact stiffness is a full 2×2: its kxy [µN/µm].
+        self.film = bool(law.film)
+        self._kxy = np.zeros(n)
         self._dF = np.zeros((2, n))  # the last step's F' − F [µN]
         # dP/dδ of attached tips (nan where free, −inf where not finite) [µN/µm] and its
         # rate of change over the last step [µN/(µm·µs)]: event location's pull-off check.
@@ -191,13 +200,21 @@ class ImplicitStep:
         kn, kt = self._kn, self._kt
         kn.fill(0.0)
         kt.fill(0.0)
+        self._kxy.fill(0.0)
         idx = np.flatnonzero(att)
         k_raw = np.full(att.shape, np.nan)
         if idx.size:
             k = law.stiffness(s.a[idx], s.delta[idx])
-            kn[idx] = np.clip(np.where(np.isfinite(k), k, 0.0), 0.0, self.k_cap)
             k_raw[idx] = np.where(np.isfinite(k), k, -np.inf)
-            kt[idx] = np.where(s.slip[idx], 0.0, m.k_t)
+            if self.film:  # the film's own tangent, its front held (SpatulaTip.jacobian)
+                kxx, kxy, kyy = law.jacobian(
+                    s.xy[0, idx] - s.anchor[0, idx], s.delta[idx], s.s0[idx], s.xi[idx]
+                )
+                kn[idx], kt[idx] = kyy, kxx
+                self._kxy[idx] = kxy
+            else:
+                kn[idx] = np.clip(np.where(np.isfinite(k), k, 0.0), 0.0, self.k_cap)
+                kt[idx] = np.where(s.slip[idx], 0.0, m.k_t)
         with np.errstate(invalid="ignore"):
             self._k_rate = (k_raw - self._k_raw) / m.dt
         self._k_raw = k_raw
@@ -268,6 +285,12 @@ class ImplicitStep:
             ayy = 1.0 + (dt / mass) * (m.c_seta + cn) + (dt * dt / mass) * (kyy + kn)
             axy = (dt * dt / mass) * kxy
             ayx = (dt * dt / mass) * kyx
+            if self.film:  # the film's off-diagonal stiffness (symmetric)
+                q = self._kxy
+                gx += q * vy
+                gy += q * vx
+                axy = axy + (dt * dt / mass) * q
+                ayx = ayx + (dt * dt / mass) * q
         else:  # n the contact normal, t = (n_y, −n_x)
             nx, ny = self.normal
             cxx = cn * nx * nx + ct * ny * ny
