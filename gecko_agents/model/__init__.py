@@ -217,8 +217,8 @@ class Model:
         self._implicit = None
         if self.integrator == "implicit":
             self._implicit = ImplicitStep(self, default_step=dt is None)
-            if not self.world.pads:  # contact normals of a continuous floor
-                self.physics.normal = self._implicit.normal = np.zeros((2, self.n))
+            if not self.world.pads:  # the contact normals NumpyStep.contact keeps
+                self._implicit.normal = self.physics.normal
         if params.mechanics == "elastica":
             kernel = elastica_kernel(kernel, self.integrator)
             self.physics.chain = Elastica.of(params, self.n)
