@@ -71,6 +71,7 @@ __all__ = [
     "STRIP_COLUMNS",
     "STRIP_ARRAYS",
     "bending_length",
+    "strip_step",
     "peel",
     "OMEGA_DT",
     "MIN_LINKS",
@@ -91,6 +92,22 @@ n_links + 1): its nodes (link ends, −x end first) in the floor's frame [µm]. 
 abscissae [µm] on the straight strip (the roots' frame, the pad centred on 0; a leader arm's
 nodes lie beyond ``length_um``/2) are ``History.geometry["strip_node_abscissa_um"]``, the
 strip's static figures ``History.meta["backing"]``."""
+
+
+def strip_step(model) -> float:
+    """The strip's own step [µs] in ``model`` (a :class:`gecko_agents.model.Model`): the
+    model's dt with the explicit integrator (the strip steps with the tips); with the implicit
+    one, the explicit step the model would take (0.75/ω_max of the tips' stiffest spring,
+    :func:`gecko_agents.model.setup.explicit_time_step`), or the model's dt if shorter. The
+    links' inertia is scaled for this step (:class:`ElasticBacking`), and the strip sub-cycles
+    the tips' step in steps no longer than it (:meth:`ElasticBacking.advance`)."""
+    if model.integrator != "implicit":
+        return model.dt
+    from gecko_agents.model.setup import explicit_time_step
+
+    h = explicit_time_step(None, model.omega_max, model.k_max, model.mass,
+                           model.law.rate_dependent)  # fmt: skip
+    return min(h, model.dt)
 
 
 class ElasticBacking:
@@ -151,7 +168,8 @@ class ElasticBacking:
             raise ValueError(f"peel_angle_deg = {peel_angle_deg!r} must be in (0, 180)")
         self.leader_arm, self.peel_angle_deg = float(leader_arm), float(peel_angle_deg)
         self.params, self.world, self.state = model.params, model.world, model.state
-        self.physics, self.dt, self.n = model.physics, model.dt, model.n
+        self.physics, self.n, self._model = model.physics, model.n, model
+        self.dt = strip_step(model)
         self._build_strip()
         self.setae_force = (0.0, 0.0)
         self._roots = (np.zeros(self.n), np.zeros(self.n))
@@ -262,7 +280,7 @@ class ElasticBacking:
         offset, since :meth:`~gecko_agents.model.step_numpy.NumpyStep.spring_damp` adds it)."""
         w = self.world
         rx, ry, rvx, rvy, ox, oy = self.strip.points(self.strip.rows, self._r_link, self._r_s,
-                                                     self.dt)  # fmt: skip
+                                                     self._model.dt)  # fmt: skip
         self._roots, self._arms = (rx, ry), (ox, oy)
         return rx - w.root_dx, ry - w.root_dy, rvx, rvy
 
@@ -276,32 +294,62 @@ class ElasticBacking:
         self._fs = (fsx, fsy)
 
     def advance(self, dt, hx, hy, vpx, vpy, on_plate):
-        """One step of the strip under the setae's reactions and the handle spring, the
-        handle at (``hx``, ``hy``) [µm] moving at (``vpx``, ``vpy``) [µm/µs]; called after the
-        setae's bookkeeping. Returns the force on the handle [µN] (``on_plate``, the setae's
-        pull on a rigid plate, is not it).
+        """The strip over the tips' step ``dt`` [µs] under the setae's reactions and the handle
+        spring, the handle reaching (``hx``, ``hy``) [µm] at the step's end, moving at
+        (``vpx``, ``vpy``) [µm/µs]; called after the setae's bookkeeping. Returns the force on
+        the handle [µN] at the last sub-step (``on_plate``, the setae's pull on a rigid plate,
+        is not it).
 
-        Energy: besides the setae's own bookkeeping, the step books the strip's joints
-        (:meth:`Strip.step`), the handle spring's energy ½k_h·|Δ|² at the positions the step
+        Sub-cycling: the strip takes k = ⌈dt/h⌉ sub-steps of dt/k, h its own step
+        (:func:`strip_step`: the explicit step, for which its inertia is scaled), under the
+        seta forces the tips' step held (:meth:`hold`: force held, its torque about the
+        root's point at each sub-step) and the handle spring at the handle's position at each
+        sub-step; with the explicit integrator k = 1 (the strip steps with the tips).
+
+        Energy: besides the setae's own bookkeeping, each sub-step books the strip's joints
+        (:meth:`Strip.step`), the handle spring's energy ½k_h·|Δ|² at the positions it
         reaches, and the dissipation of the dampers that act on the strip (seta damping and
         the handle's damper), each as force × mid-step velocity of the link it acts on
-        (v and ω averaged over the step: the work it does in semi-implicit Euler)."""
-        s, ph, st = self.state, self.physics, self.strip
-        data = st.rows
+        (v and ω averaged over the sub-step: the work it does in semi-implicit Euler)."""
+        s, st = self.state, self.strip
         fsx, fsy = self._fs
-        ox, oy = self._arms
-        # Reactions on the links: −F at the root (force and torque r × F).
+        # Reactions on the links: −F at the root (force; the torque r × F per sub-step).
         nl, link = st.n, self._r_link
-        fx = -np.bincount(link, fsx, nl)
-        fy = -np.bincount(link, fsy, nl)
-        tq = -np.bincount(link, ox * fsy - oy * fsx, nl)
-        # The seta dampers' share of it, for their dissipation below.
+        fx0 = -np.bincount(link, fsx, nl)
+        fy0 = -np.bincount(link, fsy, nl)
+        # The seta dampers' share of it, for their dissipation.
         Fdx, Fdy = s.F_damp_seta
         dfx, dfy = np.bincount(link, Fdx, nl), np.bincount(link, Fdy, nl)
+        self.setae_force = (float(fsx.sum()), float(fsy.sum()))
+        k = max(1, math.ceil(dt / self.dt - 1e-9))
+        h = dt / k
+        for j in range(k):
+            if k == 1:
+                ox, oy = self._arms
+            else:
+                ox, oy = st.points(st.rows, link, self._r_s, h)[4:]
+            back = (k - 1 - j) * h  # the handle's time to the step's end [µs]
+            Fh = self._substep(h, hx - vpx * back if back else hx, hy - vpy * back if back else hy,
+                               vpx, vpy, fx0.copy(), fy0.copy(), (ox, oy), (dfx, dfy))  # fmt: skip
+        self.n_substeps = k
+        return Fh
+
+    def _substep(self, dt, hx, hy, vpx, vpy, fx, fy, arms, damp):
+        """One step ``dt`` [µs] of the strip, the reactions ``fx``, ``fy`` [µN] on its links
+        (added to in place), the roots' lever ``arms`` [µm] and the seta dampers' force on the
+        links ``damp`` [µN]; books the dissipation (:meth:`advance`) and returns the force on
+        the handle [µN]."""
+        ph, st, s = self.physics, self.strip, self.state
+        data = st.rows
+        fsx, fsy = self._fs
+        ox, oy = arms
+        nl, link = st.n, self._r_link
+        tq = -np.bincount(link, ox * fsy - oy * fsx, nl)
+        Fdx, Fdy = s.F_damp_seta
+        dfx, dfy = damp
         dtq = np.bincount(link, ox * Fdy - oy * Fdx, nl)
         hl = self._h_link
-        Fhx, Fhy, Fcx, Fcy, qox, qoy = self._handle_forces(data, hx, hy, vpx, vpy, fx, fy, tq)
-        self.setae_force = (float(fsx.sum()), float(fsy.sum()))
+        Fhx, Fhy, Fcx, Fcy, qox, qoy = self._handle_forces(data, hx, hy, vpx, vpy, fx, fy, tq, dt)
         new = st.step(dt, fx, fy, tq)
         # Mid-step velocities of the links: what a force on a link works against.
         vmx, vmy = 0.5 * (data[:, 3] + new[:, 3]), 0.5 * (data[:, 4] + new[:, 4])
@@ -317,12 +365,13 @@ class ElasticBacking:
         ph.diss += (handle_power - hl_power) * dt + st.dissipated
         return float(Fhx.sum()), float(Fhy.sum())
 
-    def _handle_forces(self, data, hx, hy, vpx, vpy, fx, fy, tq):
+    def _handle_forces(self, data, hx, hy, vpx, vpy, fx, fy, tq, dt):
         """The handle spring k·(handle point − link point) + c·(v_handle − v_point) on the
         links it holds, added to the links' forces ``fx``, ``fy`` and torques ``tq``; books its
-        energy ½k_h·|Δ|². Returns its force, its damper's share and the lever arms."""
+        energy ½k_h·|Δ|² at the end of the step ``dt`` [µs]. Returns its force, its damper's
+        share and the lever arms."""
         hl = self._h_link
-        qx, qy, qvx, qvy, qox, qoy = self.strip.points(data, hl, self._h_s, self.dt)
+        qx, qy, qvx, qvy, qox, qoy = self.strip.points(data, hl, self._h_s, dt)
         ex, ey = hx + self._h_dx - qx, hy + self._h_dy - qy
         self._E_handle = 0.5 * self._k_h * float(ex @ ex + ey @ ey)
         Fcx, Fcy = self._c_h * (vpx - qvx), self._c_h * (vpy - qvy)
