@@ -52,10 +52,11 @@ x₀ + v₀·dt whatever their forces (semi-implicit Euler), so each sub-step's 
 the root points where the sub-step takes them towards the tips' point on that path (the
 dampers' force of the last step held), and the tips' step then takes its roots where the
 strip went. Scaled for the long step instead (ω·dt = 0.5 at dt), the links were 100× heavier
-and a stiff strip pulled off 14 % above the rigid plate; with the strip stepped after the
-tips, under their held forces, the strip and the nearly massless tips, slaved to it a step
-behind, rang at two steps' period whenever the setae under a link had ω·dt > 1 on its mass
-(the misalignment study's 200 setae: ω·dt = 1.3) and diverged.
+and a stiff strip pulled off 14 % above the rigid plate. Stepped after the tips under their
+held forces, the strip rang at two steps' period and diverged in the misalignment study (200
+setae; the setae under a link have ω·dt = 1.2–1.3 on its mass): the nearly massless tips
+follow the strip a step behind, and a velocity change of the strip returns as a force
+against the next one, (ω·dt)² times as large.
 
 Energy: the history's energy columns hold the strip too. Elastic = setae + contacts + the
 strip's joints + the handle spring; kinetic = tips + links; dissipated = the setae's and
@@ -111,9 +112,9 @@ def strip_step(model) -> float:
     """The strip's own step [µs] in ``model`` (a :class:`gecko_agents.model.Model`): the
     model's dt with the explicit integrator (the strip steps with the tips); with the implicit
     one, the explicit step the model would take (0.75/ω_max of the tips' stiffest spring,
-    :func:`gecko_agents.model.setup.explicit_time_step`), or the model's dt if shorter. The
+    ``gecko_agents.model.setup.explicit_time_step``), or the model's dt if shorter. The
     links' inertia is scaled for this step (:class:`ElasticBacking`), and the strip sub-cycles
-    the tips' step in steps no longer than it (:meth:`ElasticBacking.advance`)."""
+    the tips' step in steps no longer than it (:meth:`ElasticBacking.roots`)."""
     if model.integrator != "implicit":
         return model.dt
     from gecko_agents.model.setup import explicit_time_step
@@ -294,7 +295,7 @@ class ElasticBacking:
         offset, since :meth:`~gecko_agents.model.step_numpy.NumpyStep.spring_damp` adds it);
         the handle reaches (``hx``, ``hy``) [µm] at the step's end, moving at (``vpx``,
         ``vpy``) [µm/µs]. Where the tips' step is longer than the strip's own (the implicit
-        step), the strip takes its sub-steps first (:meth:`_subcycle`) and the roots are
+        step), the strip takes its sub-steps first (``_subcycle``) and the roots are
         where they took it; else they are predicted, x + v·dt, where the strip's step after
         the tips' (:meth:`advance`) takes them."""
         w, st = self.world, self.strip
@@ -359,22 +360,19 @@ class ElasticBacking:
         (v and ω averaged over the step: the work it does in semi-implicit Euler)."""
         s, st = self.state, self.strip
         fsx, fsy = self._fs
-        # Reactions on the links: −F at the root (force; the torque r × F per sub-step).
-        nl, link = st.n, self._r_link
-        fx0 = -np.bincount(link, fsx, nl)
-        fy0 = -np.bincount(link, fsy, nl)
-        # The seta dampers' share of it, for their dissipation.
         Fdx, Fdy = s.F_damp_seta
-        dfx, dfy = np.bincount(link, Fdx, nl), np.bincount(link, Fdy, nl)
         self.setae_force = (float(fsx.sum()), float(fsy.sum()))
-        if self._k == 1:
-            return self._substep(dt, (hx, hy), (vpx, vpy), (vpx, vpy), (fx0, fy0),
-                                 self._arms, (dfx, dfy), self._fs)  # fmt: skip
-        # Sub-cycled (roots): the setae's bookkeeping booked this step's seta damping against
-        # the handle's velocity; the sub-steps booked it at the roots'.
-        ph = self.physics
-        ph.diss -= (vpx * float(Fdx.sum()) + vpy * float(Fdy.sum())) * dt
-        return self._handle_force
+        if self._k > 1:
+            # Sub-cycled (roots): the setae's bookkeeping booked this step's seta damping
+            # against the handle's velocity; the sub-steps booked it at the roots'.
+            self.physics.diss -= (vpx * float(Fdx.sum()) + vpy * float(Fdy.sum())) * dt
+            return self._handle_force
+        # Reactions on the links: −F at the root (force; its torque r × F in _substep) and
+        # the seta dampers' share of it, for their dissipation.
+        nl, link = st.n, self._r_link
+        f = (-np.bincount(link, fsx, nl), -np.bincount(link, fsy, nl))
+        damp = np.bincount(link, Fdx, nl), np.bincount(link, Fdy, nl)
+        return self._substep(dt, (hx, hy), (vpx, vpy), (vpx, vpy), f, self._arms, damp, self._fs)
 
     def _substep(self, dt, handle, vp, vd, f, arms, damp, fs):
         """One step ``dt`` [µs] of the strip, the handle at ``handle`` [µm] at its end moving
