@@ -44,6 +44,20 @@ a heavy strip's inertia shares the load it is pulled with (8 setae peeled at 0.0
 1000 µN/µm handle, 0.34 with a 50 µN/µm handle and ×1.4, the same as at a quarter of the
 speed); keep the handle no stiffer than it needs to be (≫ k_f·λ for a peel).
 
+Under the implicit step (:mod:`gecko_agents.model.implicit`, 10 explicit steps) the strip keeps
+its own step h, the explicit step the model would take (:func:`strip_step`), for which its
+inertia is scaled as above, and sub-cycles each tips' step dt in k = ⌈dt/h⌉ steps of dt/k
+before the tips take it (:meth:`ElasticBacking.roots`): in that step the tips move from x₀ to
+x₀ + v₀·dt whatever their forces (semi-implicit Euler), so each sub-step's seta springs pull
+the root points where the sub-step takes them towards the tips' point on that path (the
+dampers' force of the last step held), and the tips' step then takes its roots where the
+strip went. Scaled for the long step instead (ω·dt = 0.5 at dt), the links were 100× heavier
+and a stiff strip pulled off 14 % above the rigid plate. Stepped after the tips under their
+held forces, the strip rang at two steps' period and diverged in the misalignment study (200
+setae; the setae under a link have ω·dt = 1.2–1.3 on its mass): the nearly massless tips
+follow the strip a step behind, and a velocity change of the strip returns as a force
+against the next one, (ω·dt)² times as large.
+
 Energy: the history's energy columns hold the strip too. Elastic = setae + contacts + the
 strip's joints + the handle spring; kinetic = tips + links; dissipated = the setae's and
 contacts' + the joint dampers + the handle's damper, so that the plate (handle) work balances
@@ -71,6 +85,7 @@ __all__ = [
     "STRIP_COLUMNS",
     "STRIP_ARRAYS",
     "bending_length",
+    "strip_step",
     "peel",
     "OMEGA_DT",
     "MIN_LINKS",
@@ -91,6 +106,22 @@ n_links + 1): its nodes (link ends, −x end first) in the floor's frame [µm]. 
 abscissae [µm] on the straight strip (the roots' frame, the pad centred on 0; a leader arm's
 nodes lie beyond ``length_um``/2) are ``History.geometry["strip_node_abscissa_um"]``, the
 strip's static figures ``History.meta["backing"]``."""
+
+
+def strip_step(model) -> float:
+    """The strip's own step [µs] in ``model`` (a :class:`gecko_agents.model.Model`): the
+    model's dt with the explicit integrator (the strip steps with the tips); with the implicit
+    one, the explicit step the model would take (0.75/ω_max of the tips' stiffest spring,
+    ``gecko_agents.model.setup.explicit_time_step``), or the model's dt if shorter. The
+    links' inertia is scaled for this step (:class:`ElasticBacking`), and the strip sub-cycles
+    the tips' step in steps no longer than it (:meth:`ElasticBacking.roots`)."""
+    if model.integrator != "implicit":
+        return model.dt
+    from gecko_agents.model.setup import explicit_time_step
+
+    h = explicit_time_step(None, model.omega_max, model.k_max, model.mass,
+                           model.law.rate_dependent)  # fmt: skip
+    return min(h, model.dt)
 
 
 class ElasticBacking:
@@ -151,10 +182,12 @@ class ElasticBacking:
             raise ValueError(f"peel_angle_deg = {peel_angle_deg!r} must be in (0, 180)")
         self.leader_arm, self.peel_angle_deg = float(leader_arm), float(peel_angle_deg)
         self.params, self.world, self.state = model.params, model.world, model.state
-        self.physics, self.dt, self.n = model.physics, model.dt, model.n
+        self.physics, self.n, self._model = model.physics, model.n, model
+        self.dt = strip_step(model)
         self._build_strip()
         self.setae_force = (0.0, 0.0)
         self._roots = (np.zeros(self.n), np.zeros(self.n))
+        self._k, self._handle_force = 1, (0.0, 0.0)  # sub-steps of the step (roots)
 
     def _build_strip(self):
         p, w, bk = self.params, self.world, self.params.backing
@@ -259,12 +292,49 @@ class ElasticBacking:
     def roots(self, hx, hy, vpx, vpy):
         """Where the roots' material points on the links will be at the end of the step and
         how fast they move, as per-seta "plates" for the seta springs (root minus the root
-        offset, since :meth:`~gecko_agents.model.step_numpy.NumpyStep.spring_damp` adds it)."""
-        w = self.world
-        rx, ry, rvx, rvy, ox, oy = self.strip.points(self.strip.rows, self._r_link, self._r_s,
-                                                     self.dt)  # fmt: skip
+        offset, since :meth:`~gecko_agents.model.step_numpy.NumpyStep.spring_damp` adds it);
+        the handle reaches (``hx``, ``hy``) [µm] at the step's end, moving at (``vpx``,
+        ``vpy``) [µm/µs]. Where the tips' step is longer than the strip's own (the implicit
+        step), the strip takes its sub-steps first (``_subcycle``) and the roots are
+        where they took it; else they are predicted, x + v·dt, where the strip's step after
+        the tips' (:meth:`advance`) takes them."""
+        w, st = self.world, self.strip
+        dt = self._model.dt
+        self._k = max(1, math.ceil(dt / self.dt - 1e-9))
+        if self._k > 1:
+            self._subcycle(dt, self._k, hx, hy, vpx, vpy)
+            dt = 0.0
+        rx, ry, rvx, rvy, ox, oy = st.points(st.rows, self._r_link, self._r_s, dt)
         self._roots, self._arms = (rx, ry), (ox, oy)
         return rx - w.root_dx, ry - w.root_dy, rvx, rvy
+
+    def _subcycle(self, dt, k, hx, hy, vpx, vpy) -> None:
+        """The strip's k sub-steps of ``dt``/k [µs] over the tips' step, before it: the tips
+        move from x₀ to x₁ = x₀ + v₀·dt in it whatever their forces (pymunk's semi-implicit
+        Euler; ``state.pv``, ``state.xy``), so each sub-step's seta springs pull the root
+        points where the sub-step takes them towards the tips' point on that path
+        (:meth:`gecko_agents.model.Model.spring_force`), with the seta dampers' force of the
+        last step; the handle spring as in :meth:`advance`. Books what :meth:`advance` books
+        (the seta dampers' share at the root points' velocities; the handle's share is booked
+        by :meth:`advance` with this step's damper forces); keeps the force on the handle."""
+        s, st = self.state, self.strip
+        nl, link = st.n, self._r_link
+        Fdx, Fdy = s.F_damp_seta
+        damp = np.bincount(link, Fdx, nl), np.bincount(link, Fdy, nl)
+        (x0, y0), (x1, y1) = s.pv[:2], s.xy
+        h = dt / k
+        for j in range(k):
+            a = (j + 1) / k
+            rx, ry, _, _, ox, oy = st.points(st.rows, link, self._r_s, h)
+            tips = np.column_stack((x0 + a * (x1 - x0), y0 + a * (y1 - y0)))
+            F = self._model.spring_force(tips, np.column_stack((rx, ry)))[0]
+            fs = (F[:, 0] + Fdx, F[:, 1] + Fdy)
+            back = (k - 1 - j) * h  # the handle's time to the step's end [µs]
+            self._handle_force = self._substep(
+                h, (hx - vpx * back, hy - vpy * back), (vpx, vpy), (0.0, 0.0),
+                (-np.bincount(link, fs[0], nl), -np.bincount(link, fs[1], nl)),
+                (ox, oy), damp, fs,
+            )  # fmt: skip
 
     def hold(self, state) -> None:
         """Keep the seta spring + damping forces on the tips (``state.F`` before the contacts
@@ -276,32 +346,53 @@ class ElasticBacking:
         self._fs = (fsx, fsy)
 
     def advance(self, dt, hx, hy, vpx, vpy, on_plate):
-        """One step of the strip under the setae's reactions and the handle spring, the
-        handle at (``hx``, ``hy``) [µm] moving at (``vpx``, ``vpy``) [µm/µs]; called after the
-        setae's bookkeeping. Returns the force on the handle [µN] (``on_plate``, the setae's
-        pull on a rigid plate, is not it).
+        """The strip's step after the tips' step ``dt`` [µs], under the setae's reactions and
+        the handle spring, the handle at (``hx``, ``hy``) [µm] at the step's end, moving at
+        (``vpx``, ``vpy``) [µm/µs]; called after the setae's bookkeeping. Returns the force on
+        the handle [µN] (``on_plate``, the setae's pull on a rigid plate, is not it). Where
+        the strip took its sub-steps before the tips' step (:meth:`roots`), it only books the
+        seta dampers' share and returns the handle's force at the last sub-step.
 
         Energy: besides the setae's own bookkeeping, the step books the strip's joints
         (:meth:`Strip.step`), the handle spring's energy ½k_h·|Δ|² at the positions the step
         reaches, and the dissipation of the dampers that act on the strip (seta damping and
         the handle's damper), each as force × mid-step velocity of the link it acts on
         (v and ω averaged over the step: the work it does in semi-implicit Euler)."""
-        s, ph, st = self.state, self.physics, self.strip
-        data = st.rows
+        s, st = self.state, self.strip
         fsx, fsy = self._fs
-        ox, oy = self._arms
-        # Reactions on the links: −F at the root (force and torque r × F).
-        nl, link = st.n, self._r_link
-        fx = -np.bincount(link, fsx, nl)
-        fy = -np.bincount(link, fsy, nl)
-        tq = -np.bincount(link, ox * fsy - oy * fsx, nl)
-        # The seta dampers' share of it, for their dissipation below.
         Fdx, Fdy = s.F_damp_seta
-        dfx, dfy = np.bincount(link, Fdx, nl), np.bincount(link, Fdy, nl)
+        self.setae_force = (float(fsx.sum()), float(fsy.sum()))
+        if self._k > 1:
+            # Sub-cycled (roots): the setae's bookkeeping booked this step's seta damping
+            # against the handle's velocity; the sub-steps booked it at the roots'.
+            self.physics.diss -= (vpx * float(Fdx.sum()) + vpy * float(Fdy.sum())) * dt
+            return self._handle_force
+        # Reactions on the links: −F at the root (force; its torque r × F in _substep) and
+        # the seta dampers' share of it, for their dissipation.
+        nl, link = st.n, self._r_link
+        f = (-np.bincount(link, fsx, nl), -np.bincount(link, fsy, nl))
+        damp = np.bincount(link, Fdx, nl), np.bincount(link, Fdy, nl)
+        return self._substep(dt, (hx, hy), (vpx, vpy), (vpx, vpy), f, self._arms, damp, self._fs)
+
+    def _substep(self, dt, handle, vp, vd, f, arms, damp, fs):
+        """One step ``dt`` [µs] of the strip, the handle at ``handle`` [µm] at its end moving
+        at ``vp`` [µm/µs], the reactions ``f`` (x, y) [µN] on its links (added to in place)
+        of the seta forces ``fs`` [µN] on the tips, the roots' lever ``arms`` [µm] and the
+        seta dampers' force ``damp`` [µN] on the links; books the dissipation
+        (:meth:`advance`; the seta dampers' against the velocity ``vd`` [µm/µs] taken out)
+        and returns the force on the handle [µN]."""
+        ph, st, s = self.physics, self.strip, self.state
+        data = st.rows
+        (hx, hy), (vpx, vpy), (fx, fy) = handle, vp, f
+        fsx, fsy = fs
+        ox, oy = arms
+        nl, link = st.n, self._r_link
+        tq = -np.bincount(link, ox * fsy - oy * fsx, nl)
+        Fdx, Fdy = s.F_damp_seta
+        dfx, dfy = damp
         dtq = np.bincount(link, ox * Fdy - oy * Fdx, nl)
         hl = self._h_link
-        Fhx, Fhy, Fcx, Fcy, qox, qoy = self._handle_forces(data, hx, hy, vpx, vpy, fx, fy, tq)
-        self.setae_force = (float(fsx.sum()), float(fsy.sum()))
+        Fhx, Fhy, Fcx, Fcy, qox, qoy = self._handle_forces(data, hx, hy, vpx, vpy, fx, fy, tq, dt)
         new = st.step(dt, fx, fy, tq)
         # Mid-step velocities of the links: what a force on a link works against.
         vmx, vmy = 0.5 * (data[:, 3] + new[:, 3]), 0.5 * (data[:, 4] + new[:, 4])
@@ -310,19 +401,20 @@ class ElasticBacking:
         # against the handle's velocity, the correction moves it onto the roots' (and keeps
         # the release detection's reference speed, the handle's).
         root_power = float(vmx @ dfx + vmy @ dfy + wm @ dtq)
-        ph.diss += (root_power - vpx * float(Fdx.sum()) - vpy * float(Fdy.sum())) * dt
+        ph.diss += (root_power - vd[0] * float(Fdx.sum()) - vd[1] * float(Fdy.sum())) * dt
         # The handle's damper: plate work at the handle minus the work done on the link.
         hl_power = float(Fcx @ vmx[hl] + Fcy @ vmy[hl] + (qox * Fcy - qoy * Fcx) @ wm[hl])
         handle_power = vpx * float(Fcx.sum()) + vpy * float(Fcy.sum())
         ph.diss += (handle_power - hl_power) * dt + st.dissipated
         return float(Fhx.sum()), float(Fhy.sum())
 
-    def _handle_forces(self, data, hx, hy, vpx, vpy, fx, fy, tq):
+    def _handle_forces(self, data, hx, hy, vpx, vpy, fx, fy, tq, dt):
         """The handle spring k·(handle point − link point) + c·(v_handle − v_point) on the
         links it holds, added to the links' forces ``fx``, ``fy`` and torques ``tq``; books its
-        energy ½k_h·|Δ|². Returns its force, its damper's share and the lever arms."""
+        energy ½k_h·|Δ|² at the end of the step ``dt`` [µs]. Returns its force, its damper's
+        share and the lever arms."""
         hl = self._h_link
-        qx, qy, qvx, qvy, qox, qoy = self.strip.points(data, hl, self._h_s, self.dt)
+        qx, qy, qvx, qvy, qox, qoy = self.strip.points(data, hl, self._h_s, dt)
         ex, ey = hx + self._h_dx - qx, hy + self._h_dy - qy
         self._E_handle = 0.5 * self._k_h * float(ex @ ex + ey @ ey)
         Fcx, Fcy = self._c_h * (vpx - qvx), self._c_h * (vpy - qvy)
