@@ -53,13 +53,29 @@ times the explicit one at a k times longer step: a snap-off's share is booked
 (:meth:`ImplicitStep.book_releases`), a jump-in's is not.
 
 Event location. Near an event (:meth:`ImplicitStep.substeps`) the runner takes k steps of
-dt/k, each no longer than the explicit step, so the event and its share of the books are
-resolved as the explicit step resolves them; a change of step is booked exactly
-(``ImplicitStep._switch_term``). With the default ``record_every`` the runner records by
-simulated time (:mod:`gecko_agents.model.runner`), so records stay evenly spaced near events
-as between them; a ``record_every`` the caller gives counts every step. A rod seta's
-press-pull at 0.005 µm/µs: energy-balance error 1.00 % → 0.42 % of its energy scale
-(recorded every step), 4 854 steps instead of 3 605 (the explicit step: 36 007).
+dt/k, each no longer than :data:`IMPLICIT_EVENT_FACTOR` explicit steps, so the event and its
+share of the books are resolved as the explicit step resolves them; a change of step is
+booked exactly (``ImplicitStep._switch_term``). Every body steps with one dt (pymunk), so one
+tip's event shortens the whole array's step: the 10³-seta rod press-pull on a σ = 0.5 µm pad
+floor located 1 202 of its 3 252 long steps at 10 explicit steps (10⁴ setae: 1 334 of
+3 288), 612 of 1 627 at 20. Which tip made a long step located (10³ setae, 10 explicit
+steps): a tip faster than twice the plate in 1 175 of the 1 202 (an attached one in 894: a
+jump-in's ringing while pressed, an escape while pulled; a free one alone in 235: a
+released tip's ringing, whose long steps book it as kinetic energy ½m·v₀·v₁ 2 % of a single
+seta's energy scale off for two steps, 0.26 % located), near its snap-off overlap in 637, its
+jump-in overlap in 407, past its load-controlled pull-off in 506 (in 7 alone). Narrowing the
+last to the fold (dP/dδ + the seta's normal stiffness within two steps of 0) saves 0.5 % of
+the located steps at 20 explicit steps and lets a 20-seta retraction's tips go up to
+0.0035 µm of plate travel from the explicit step's instead of 0.0017 µm; locating attached
+tips only while they slide or are past their pull-off moved crack kinetics' release 0.50 %
+and its books 7.8 % at 20 explicit steps (its running crack is neither): neither is taken.
+
+With the default ``record_every`` the runner records by simulated time
+(:mod:`gecko_agents.model.runner`), so records stay evenly spaced near events as between
+them; a ``record_every`` the caller gives counts every step. A rod seta's press-pull at
+0.005 µm/µs and 10 explicit steps: energy-balance error 1.00 % → 0.42 % of its energy scale
+(recorded every step), 4 854 steps instead of 3 605 (the explicit step: 36 007); at 20
+explicit steps, located: 0.45 %, 3 151 steps.
 """
 
 from __future__ import annotations
@@ -74,6 +90,7 @@ from gecko_agents.protocol import DEFAULT_SPEED
 __all__ = [
     "INTEGRATORS",
     "IMPLICIT_DT_FACTOR",
+    "IMPLICIT_EVENT_FACTOR",
     "IMPLICIT_TRAVEL",
     "ImplicitStep",
     "check_integrator",
@@ -82,13 +99,59 @@ __all__ = [
 
 INTEGRATORS = ("explicit", "implicit", "auto")
 
-IMPLICIT_DT_FACTOR = 10.0
+IMPLICIT_DT_FACTOR = 20.0
 """Default implicit step in units of the explicit one (0.75/ω_max): chosen by the
-work-precision benchmark (``python -m gecko_agents.bench --work-precision``), not by
-stability."""
+work-precision benchmark (``python -m gecko_agents.bench --work-precision``, one seta at
+0.005 µm/µs against the explicit step at dt/2), not by stability. With event location
+(:meth:`ImplicitStep.substeps`) at 10 and 20 explicit steps, steps explicit/implicit and the
+larger of the pull-off and release errors (2026-11-26):
+
+================  ==============  ==============  =================================
+case              10×             20×             energy books at 20× (ENERGY_RTOL)
+================  ==============  ==============  =================================
+linear sphere     7.9×, 0.012 %   11.9×, 0.012 %  0.26 % (2 %)
+rod sphere        7.4×, 0.009 %   11.4×, 0.009 %  0.45 % (2 %)
+Hertz             9.8×, 0.091 %   16.3×, 0.16 %   0.58 % (2 %)
+crack kinetics    15.1×, 0.25 %   23.7×, 0.40 %   1.37 % (4 %)
+Savkoor-Briggs    9.2×, 0.0006 %  16.8×, 0.002 %  0.43 % (2 %)
+================  ==============  ==============  =================================
+
+Every case within 0.5 % and its books within tolerance (recorded every step) at 20×; at 10×
+every case but crack kinetics took less than a tenth of the explicit steps. At the default
+plate speed the travel cap :data:`IMPLICIT_TRAVEL` (2 µs) is just above 20 explicit steps
+of the paper's rod seta (1.98 µs); the linear and Hertz cases' explicit steps are longer, so
+their default is 18 and 17 of them within the cap (:func:`implicit_time_step`). A rough
+floor's arrays gain less (events are many; each located step takes 20 steps of the explicit
+length instead of 10): the 10³-seta rod press-pull on a σ = 0.5 µm pad floor 14 070 →
+13 255 steps, its pull-off −0.010 % from the explicit step's (+0.032 % at 10×), every tip's
+release within 0.0015 µm of plate travel of the explicit step's at both."""
 
 IMPLICIT_TRAVEL = 0.01
 """Largest plate travel per default implicit step at the default plate speed [µm]."""
+
+IMPLICIT_EVENT_FACTOR = 1.0
+"""The step near an event (:meth:`ImplicitStep.substeps`) in units of the explicit one
+(0.75/ω_max), at most the step between events. Chosen by accuracy: a located tip lets go
+about three event steps of plate travel later than at the explicit step, the scheme's own
+first-order error, so the event step is the resolution of every release. The 10³-seta rod
+press-pull on a σ = 0.5 µm pad floor at the default step (20 explicit steps), against the
+explicit step (2026-11-26; the explicit step against itself at dt/2: 0.0002 µm, −0.011 %):
+
+===========================  ======  ======================  ========
+event step [explicit steps]  steps   release, each tip [µm]  pull-off
+===========================  ======  ======================  ========
+1                            13 255  0.0015                  −0.010 %
+2                            7 108   0.0035                  −0.009 %
+4                            4 055   0.0069                  −0.006 %
+5                            3 449   0.0089                  +0.092 %
+10                           2 242   0.018                   +0.12 %
+none (nothing located)       1 629   0.036                   +0.27 %
+===========================  ======  ======================  ========
+
+(the largest difference over the 974 tips that let go; the explicit step takes 32 491).
+A single seta's release (the work-precision cases) moves as little: at 10 explicit steps
+between events, 5 explicit steps near them leave the rod sphere's release 0.052 % and the
+linear sphere's 0.071 % from the reference (0.009 % and 0.012 % at 1)."""
 
 
 def check_integrator(integrator, contact: str, params=None) -> str:
@@ -127,11 +190,23 @@ def check_integrator(integrator, contact: str, params=None) -> str:
 
 def implicit_time_step(dt, omega_max: float) -> float:
     """The implicit step's dt [µs]: ``dt`` if given (finite, > 0: no stability bound), else
-    the smaller of :data:`IMPLICIT_DT_FACTOR` explicit steps 0.75/ω_max (ω_max [1/µs] of the
-    stiffest spring on the tip) and :data:`IMPLICIT_TRAVEL` of plate travel at the default
-    plate speed (:data:`gecko_agents.protocol.DEFAULT_SPEED`)."""
+    :data:`IMPLICIT_DT_FACTOR` explicit steps 0.75/ω_max (ω_max [1/µs] of the stiffest spring
+    on the tip) or, where that exceeds :data:`IMPLICIT_TRAVEL` of plate travel at the default
+    plate speed (:data:`gecko_agents.protocol.DEFAULT_SPEED`), the most whole steps near an
+    event (:data:`IMPLICIT_EVENT_FACTOR` explicit steps) within it (the travel itself if
+    not one fits), so that the steps near events are as long as allowed, not a fraction
+    shorter: where an event falls within the step moves the books' event error (a stubby
+    Hertz seta's press-pull at 0.2 µm/µs recorded every step: 2.2 % at 0.1070 µs, 4.2 % at
+    0.1053 µs, as the explicit step's 2.5 % and 5.0 %)."""
     if dt is None:
-        return min(IMPLICIT_DT_FACTOR * 0.75 / omega_max, IMPLICIT_TRAVEL / DEFAULT_SPEED)
+        explicit = 0.75 / omega_max
+        dt = IMPLICIT_DT_FACTOR * explicit
+        cap = IMPLICIT_TRAVEL / DEFAULT_SPEED
+        if dt > cap:
+            event = IMPLICIT_EVENT_FACTOR * explicit
+            n = math.floor(cap / event + 1e-9)
+            dt = n * event if n >= 1 else cap
+        return dt
     if not (isinstance(dt, int | float) and math.isfinite(dt) and dt > 0):
         raise ValueError(f"dt = {dt!r} µs must be finite and > 0 (integrator = 'implicit')")
     return float(dt)
@@ -158,8 +233,10 @@ class ImplicitStep:
         self.dt_full = model.dt  # the step between events [µs]
         self.dt_base = model.dt  # the segment's step between events [µs] (begin_segment)
         self.default_step = default_step  # the step of implicit_time_step(None, …)
-        # Near an event: k steps of dt/k, no longer than the explicit step 0.75/ω_max.
-        self.k_event = max(1, math.ceil(model.dt * model.omega_max / 0.75 - 1e-9))
+        # Near an event: k steps of dt/k, no longer than IMPLICIT_EVENT_FACTOR explicit
+        # steps 0.75/ω_max.
+        event = IMPLICIT_EVENT_FACTOR * 0.75 / model.omega_max
+        self.k_event = max(1, math.ceil(model.dt / event - 1e-9))
         self.n_located = 0  # steps taken at dt/k near events
         self._J = np.zeros((2, n))  # the last step's impulse F'·dt [µN·µs]
         self._dt_prev = model.dt
@@ -383,7 +460,7 @@ class ImplicitStep:
     @property
     def event_dt(self) -> float:
         """The step taken near an event [µs]: ``dt_full``/k with event location (the rigid
-        plate), else the whole step."""
+        plate; at most :data:`IMPLICIT_EVENT_FACTOR` explicit steps), else the whole step."""
         return self.dt_full / self.k_event if self.m.backing.rigid else self.dt_full
 
     def begin_segment(self, speed) -> None:
