@@ -459,9 +459,10 @@ class ImplicitStep:
 
     @property
     def event_dt(self) -> float:
-        """The step taken near an event [µs]: ``dt_full``/k with event location (the rigid
-        plate; at most :data:`IMPLICIT_EVENT_FACTOR` explicit steps), else the whole step."""
-        return self.dt_full / self.k_event if self.m.backing.rigid else self.dt_full
+        """The step taken near an event [µs]: ``dt_full``/k, at most
+        :data:`IMPLICIT_EVENT_FACTOR` explicit steps (an elastic strip sub-cycles each of
+        them at its own step, :meth:`gecko_agents.backing.elastic.ElasticBacking.roots`)."""
+        return self.dt_full / self.k_event
 
     def begin_segment(self, speed) -> None:
         """Set the segment's step ``dt_base`` [µs] for its plate ``speed`` [µm/µs] (None or
@@ -494,10 +495,11 @@ class ImplicitStep:
         first releases of a 20-seta retraction at 10 explicit steps: 0.021 µm of plate travel
         behind the explicit step's, 0.011 µm located). A step of the explicit length there
         resolves the event as the explicit step does; between events the long step stands.
-        Not with an elastic backing (its strip keeps its own step)."""
+        With an elastic backing too: without it a quick pad peel at 30° pulled 8.6 % above the
+        explicit step (0.46 µm of plate travel per step), with it 0.7 %."""
         m = self.m
         dt = self.dt_base
-        k = math.ceil(dt / self.event_dt - 1e-9) if m.backing.rigid else 1
+        k = math.ceil(dt / self.event_dt - 1e-9)
         if k > 1:
             s = m.state
             v_ref = max(math.hypot(*vp), 1e-4)
