@@ -221,6 +221,24 @@ def _stretch(dx, zf, ell, p0, s0, K, c):
 
 
 @_njit(cache=True)
+def _stretch_booked(dx, zf, z, ell, p0, s0, k, c):
+    """:func:`_stretch` of the pad pulled away from itself (tip offset dx, film height zf, tip
+    height z [µm], cap c [µN] per µm of pad) with its books: (stretch + slide [µm] towards the
+    tip, ℓ, P0, slid, excess [pJ]), excess the trial's release beyond what the stretch v
+    dissipates, w·b·v (the floor it newly covers), and the slide its Coulomb work at the cap
+    P0 = c·ℓ (:func:`_slide_excess`); 0 for a pad whose cap fell below its locked
+    pre-tension (v < 0: a jump at a fixed tip, whose release is dissipated)."""
+    u_a = _film_energy(dx, z, ell, p0, s0, k)
+    v, hi, ell, p0, slid = _stretch(dx, zf, ell, p0, s0, k[K_FILM], c)
+    excess = 0.0
+    if v >= 0.0:
+        excess = u_a - _film_energy(dx + v, z, ell, p0, s0, k) - k[K_W] * k[K_B] * v
+        if hi > 0.0:
+            excess += _slide_excess(dx + v, hi, zf, s0, k[K_FILM], p0)
+    return v + hi, ell, p0, slid, excess
+
+
+@_njit(cache=True)
 def _slide(dx, zf, z, ell, p0, s0, k):
     """The attached pad under the free film's horizontal pull H: returns (dx, shift, ℓ, P0,
     slid, excess), excess [pJ] the trial's release beyond what a stretch or slide driven by
@@ -283,15 +301,7 @@ def _slide(dx, zf, z, ell, p0, s0, k):
             slid = 1.0
         return dx, shift, ell, p0, slid, excess
     if H > p0:  # pulled away from the pad beyond the locked pre-tension: it stretches
-        u_a = _film_energy(dx, z, ell, p0, s0, k)
-        v, hi, ell, p0, slid = _stretch(dx, zf, ell, p0, s0, K, c)
-        if v >= 0.0:  # not a pad whose cap fell below its locked pre-tension
-            # the stretch's release beyond the floor it covers, w·b·v, and the slide's
-            # beyond its Coulomb work at the cap P0 = c·ℓ
-            excess = u_a - _film_energy(dx + v, z, ell, p0, s0, k) - wb * v
-            if hi > 0.0:
-                excess += _slide_excess(dx + v, hi, zf, s0, K, p0)
-        v += hi
+        v, ell, p0, slid, excess = _stretch_booked(dx, zf, z, ell, p0, s0, k, c)
         dx += v
         shift -= v
     elif H < 0.0 and -H > c * ell:  # pushed over the pad past the cap: it slides
