@@ -209,8 +209,9 @@ class ImplicitStep:
             k_raw[idx] = np.where(np.isfinite(k), k, -np.inf)
             if self.film:  # the film's own tangent, its front held (SpatulaTip.jacobian)
                 kxx, kxy, kyy = law.jacobian(
-                    s.xy[0, idx] - s.anchor[0, idx], s.delta[idx], s.s0[idx], s.xi[idx]
-                )
+                    s.xy[0, idx] - s.anchor[0, idx], s.delta[idx], s.s0[idx], s.xi[idx],
+                    s.a[idx], s.p0[idx],
+                )  # fmt: skip
                 kn[idx], kt[idx] = kyy, kxx
                 self._kxy[idx] = kxy
             else:
