@@ -104,11 +104,13 @@ def check_integrator(integrator, contact: str, params=None) -> str:
     The spatula runs implicitly: with the film's own Jacobian
     (:meth:`gecko_agents.contact.SpatulaTip.jacobian`; with a bound K/h + k_t, K/h + 2E*·√(Rδ)
     it acted as a damper dt·(K' − K)) its gripping-drag pull-off at 0.005 µm/µs is 0.566
-    against the explicit step's 0.565 µN at the default step (+0.1 %; +4.6 % with the bound),
-    and with the law's books a return mapping (:class:`gecko_agents.contact.SpatulaTip`,
-    "Stored energy"; the trial's release of each slide booked before, an error ∝ dt) a
-    drag-pull with the paper's friction law closes its energy books to 0.19 % of its energy
-    scale at the default step (4.75 % before, past the spatula's 4 %; 0.08 % explicit)."""
+    against the explicit step's 0.565 µN at the default step (+0.1 %; +4.6 % with the bound);
+    a sliding pad's tangent along the floor is 0 (held, a seta at μ = 0.2 pushed over its pad
+    pulled off 1.7 % below the explicit step, now +0.08 %); and with the law's books a return
+    mapping (:class:`gecko_agents.contact.SpatulaTip`, "Stored energy"; the trial's release of
+    each slide booked before, an error ∝ dt) a drag-pull with the paper's friction law closes
+    its energy books to 0.19 % of its energy scale at the default step (4.75 % before, past
+    the spatula's 4 %; 0.08 % explicit)."""
     if integrator == "auto":
         verified = contact == "batch" and (
             params is None
