@@ -51,7 +51,7 @@ def _hash(h) -> str:
 def test_auto_is_the_default_and_picks_the_verified_integrator():
     """The default ``"auto"`` runs the implicit step bit for bit on the rigid plate, and the
     explicit one where the implicit step is not verified (callback contact, the elastica, the
-    elastic backing)."""
+    elastic backing); the spatula runs implicitly."""
     p = ROD.replace(**{"array.count": 3})
     runs = []
     for kw in ({"integrator": "auto"}, {"integrator": "implicit"}):
@@ -62,7 +62,7 @@ def test_auto_is_the_default_and_picks_the_verified_integrator():
     assert Model(p, contact="callback", **auto).integrator == "explicit"
     assert Model(p.replace(mechanics="elastica"), n_sim=1, **auto).integrator == "explicit"
     assert Model(p.replace(**{"backing.kind": "elastic"}), **auto).integrator == "explicit"
-    assert Model(p.replace(tip="spatula"), **auto).integrator == "explicit"
+    assert Model(p.replace(tip="spatula"), **auto).integrator == "implicit"
 
 
 def test_bad_integrator_and_dt_are_refused():
@@ -461,3 +461,60 @@ def test_spatula_jacobian_is_the_derivative_of_its_force(dx, delta, s0, xa, mu):
     # Central differences: truncation ~e²·F''' (≪ 1e-6 µN/µm here) and rounding ~1e-16·F/e
     # (~1e-10): 1e-6 relative plus 1e-7 µN/µm absolute (for the zero entries).
     assert_allclose([[kxx, kxy], [kxy, kyy]], -np.column_stack([jx, jy]), rtol=1e-6, atol=1e-7)
+
+
+def test_spatula_books_close_at_the_default_step_with_the_papers_friction_law():
+    """A spatula seta (Table 1, rod) pressed to 1 µN, dragged 0.5 µm and pulled at 90° with the
+    paper's friction law, whose pad slides at no pull (cap μ·max(P, 0) = 0 on the pad): at
+    the default implicit step (ten explicit steps) its energy books close to 0.19 % of the
+    run's energy scale (explicit step 0.08 %). While the law booked each slide's trial release
+    (the overshoot ½k·Δx² of the film's stiffness k = K/s0 over the tip's step Δx, which no
+    force of the step put in, ∝ dt) they closed to 4.75 % (0.57 % explicit), past the
+    spatula's 4 % (ENERGY_RTOL × its energy_tolerance_factor)."""
+    p = PAPER_TABLE1.replace(**{"mechanics": "rod", "tip": "spatula", "friction.law": "paper"})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # validity warning of the contact radius
+        m = Model(p, n_sim=1, record_every=1)
+        h = m.run(protocol.drag_pull(1.0, 0.5, 90.0, protocol.DEFAULT_SPEED), progress=False)
+    assert m.integrator == "implicit" and m.dt == 10 * Model(p, integrator="explicit").dt
+    # A quarter of ENERGY_RTOL: 2.5 times the 0.19 % measured, a tenth of the 4.75 % before.
+    assert energy_balance_error(h) < 0.005
+
+
+def test_sliding_pad_has_no_tangential_stiffness_in_the_jacobian():
+    """A pad that slides (the paper's law: cap 0, so a taut film pulled away from its pad drags
+    it along) holds no force against the tip's motion along the floor: its tangent ∂T/∂x is 0
+    (central differences of ``step_scalar``, the front free), and so is the Jacobian's x row
+    given the pad's length and pre-tension; the front held (no ``ell``), it is the film's."""
+    from gecko_agents.contact import contact_law
+
+    law = contact_law(BONDED_SPATULA.replace(**{"friction.law": "paper", "spatula.interface":
+                                                 "sliding"}))  # fmt: skip
+    k = law.constants
+    dx, delta, s0 = -0.5, -0.3, 0.5  # lifted, the film taut at φ = 31°: it pulls the pad
+    e = 1e-6  # µm
+    T = [law.step_scalar(dx + q, law.R - delta, law.ell0, 0.0, s0, dx, k)[1] for q in (e, -e)]
+    assert T[0] == T[1] == 0.0  # the pad slid until the film pulls no more along the floor
+    kxx, kxy, _ = (float(q[0]) for q in law.jacobian([dx], [delta], [s0], [dx], [law.ell0], [0.0]))
+    assert kxx == 0.0 and kxy == 0.0
+    held = law.jacobian([dx], [delta], [s0], [dx])[0][0]
+    assert held > 0.0  # the front held: the film's own K/s0 along its chord
+
+
+def test_sliding_pad_pulls_off_as_the_explicit_step():
+    """A spatula seta at the paper's μ = 0.2 pushed 8 µm over its pad (it slides) and pulled
+    at 60°: at the default implicit step its pull-off is 0.5938 against the explicit step's
+    0.5933 µN (+0.08 %); with the front held in the Jacobian while the pad slid (a damper
+    dt·K/s0 along the floor) it was 0.5833 µN (−1.7 %)."""
+    from gecko_agents.studies import frictional_adhesion as fa
+
+    p = fa.BASE.replace(**{"tip": "spatula", "friction.mu": 0.2})
+    prot = protocol.drag_pull(fa.PRELOAD, fa.DRAG, 60.0, speed=fa.SPEED)
+    pull = []
+    for integrator in ("explicit", "implicit"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # validity warning of the contact radius
+            h = Model(p, seed=1, integrator=integrator, record_every=1).run(prot, progress=False)
+        pull.append(pull_off(h, fa.DRAG).adhesion)
+    # Half a percent, the issue's bound for an event against the explicit reference.
+    assert abs(pull[1] - pull[0]) <= 0.005 * pull[0], pull
