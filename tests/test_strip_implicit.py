@@ -11,6 +11,7 @@ import pytest
 
 from gecko_agents import history, protocol
 from gecko_agents.backing.bench import elastic_pressed_model
+from gecko_agents.backing.elastic import COUPLING_OMEGA_DT
 from gecko_agents.model import Model
 from gecko_agents.model.implicit import implicit_time_step
 from gecko_agents.params import PAPER_ARRAY
@@ -60,8 +61,11 @@ def test_stiff_strip_pulls_off_at_the_implicit_step_as_at_the_explicit_one():
     m_e, explicit = _stiff("explicit")
     m_i, implicit = _stiff("implicit")
     _, rigid = _stiff("implicit", STUBBY)
-    assert m_i.dt == pytest.approx(implicit_time_step(None, m_i.omega_max), rel=1e-12)
-    assert m_i.dt > 9.9 * m_e.dt
+    # The default step, shortened to the strip's coupling bound (COUPLING_OMEGA_DT; here
+    # 10 explicit steps of the 20 of implicit_time_step).
+    omega_c = m_i.backing.coupling_omega()
+    assert m_i.dt <= COUPLING_OMEGA_DT / omega_c < m_i.dt + m_e.dt
+    assert m_i.dt < implicit_time_step(None, m_i.omega_max) and m_i.dt > 9.9 * m_e.dt
     for key in ("moment_scale", "mass_scale"):
         assert m_i.backing.info[key] == m_e.backing.info[key]
     assert m_i.backing.dt == m_e.dt
@@ -145,3 +149,27 @@ def test_explicit_leader_arm_peel_is_bit_identical_to_before():
         )  # fmt: skip
         h = m.run([protocol.PullOff(0.5, angle_deg=112.5, max_travel=30.0)], progress=False)
     assert _digest(h) == "2f36487764d2bf2e"
+
+
+@pytest.mark.parametrize("factor", [None, 15.0])
+def test_the_default_step_keeps_the_strips_coupling_stable(factor):
+    """The 30° pad peel's preload (40 linear setae, 3 on a link, leader arm): at the default
+    step (shortened to ω_c·dt ≤ COUPLING_OMEGA_DT) every tip settles attached; at 15
+    explicit steps (ω_c·dt = 2.24, a dt the caller chose) the tips and links ring at two
+    steps' period and fly off, none attached (measured stable at 1.49, 10 explicit steps)."""
+    from gecko_agents.studies import pad_peel
+
+    p = pad_peel.BASE.replace(**{"array.count": 40})
+    kw = {"seed": 1, "leader_arm": pad_peel.ARM, "peel_angle_deg": 30.0}
+    dt = None
+    if factor is not None:
+        dt = factor * Model(p, integrator="explicit", **kw).dt
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        if factor is None:
+            m = elastic_pressed_model(40, pad_peel.DEPTH, 60, p, **kw)
+            assert m.dt * m.backing.coupling_omega() <= COUPLING_OMEGA_DT
+            assert m.attached.all()
+        else:
+            with pytest.raises(RuntimeError, match="tips attached after settling"):
+                elastic_pressed_model(40, pad_peel.DEPTH, 60, p, dt=dt, **kw)

@@ -44,19 +44,20 @@ a heavy strip's inertia shares the load it is pulled with (8 setae peeled at 0.0
 1000 µN/µm handle, 0.34 with a 50 µN/µm handle and ×1.4, the same as at a quarter of the
 speed); keep the handle no stiffer than it needs to be (≫ k_f·λ for a peel).
 
-Under the implicit step (:mod:`gecko_agents.model.implicit`, 10 explicit steps) the strip keeps
-its own step h, the explicit step the model would take (:func:`strip_step`), for which its
-inertia is scaled as above, and sub-cycles each tips' step dt in k = ⌈dt/h⌉ steps of dt/k
-before the tips take it (:meth:`ElasticBacking.roots`): in that step the tips move from x₀ to
-x₀ + v₀·dt whatever their forces (semi-implicit Euler), so each sub-step's seta springs pull
-the root points where the sub-step takes them towards the tips' point on that path (the
-dampers' force of the last step held), and the tips' step then takes its roots where the
-strip went. Scaled for the long step instead (ω·dt = 0.5 at dt), the links were 100× heavier
-and a stiff strip pulled off 14 % above the rigid plate. Stepped after the tips under their
-held forces, the strip rang at two steps' period and diverged in the misalignment study (200
-setae; the setae under a link have ω·dt = 1.2–1.3 on its mass): the nearly massless tips
-follow the strip a step behind, and a velocity change of the strip returns as a force
-against the next one, (ω·dt)² times as large.
+Under the implicit step (:mod:`gecko_agents.model.implicit`; its default step shortened to
+ω_c·dt ≤ :data:`COUPLING_OMEGA_DT` of the setae on a link,
+:meth:`ElasticBacking.coupling_omega`) the strip keeps its own step h, the explicit step the
+model would take (:func:`strip_step`), for which its inertia is scaled as above, and sub-cycles
+each tips' step dt in k = ⌈dt/h⌉ steps of dt/k before the tips take it
+(:meth:`ElasticBacking.roots`): in that step the tips move from x₀ to x₀ + v₀·dt whatever their
+forces (semi-implicit Euler), so each sub-step's seta springs pull the root points where the
+sub-step takes them towards the tips' point on that path (the dampers' force of the last step
+held), and the tips' step then takes its roots where the strip went. Scaled for the long step
+instead (ω·dt = 0.5 at dt), the links were 100× heavier and a stiff strip pulled off 14 % above
+the rigid plate. Stepped after the tips under their held forces, the strip rang at two steps'
+period and diverged in the misalignment study (200 setae; the setae under a link have ω·dt =
+1.2–1.3 on its mass): the nearly massless tips follow the strip a step behind, and a velocity
+change of the strip returns as a force against the next one, (ω·dt)² times as large.
 
 Energy: the history's energy columns hold the strip too. Elastic = setae + contacts + the
 strip's joints + the handle spring; kinetic = tips + links; dissipated = the setae's and
@@ -106,6 +107,14 @@ n_links + 1): its nodes (link ends, −x end first) in the floor's frame [µm]. 
 abscissae [µm] on the straight strip (the roots' frame, the pad centred on 0; a leader arm's
 nodes lie beyond ``length_um``/2) are ``History.geometry["strip_node_abscissa_um"]``, the
 strip's static figures ``History.meta["backing"]``."""
+
+
+COUPLING_OMEGA_DT = 1.0
+"""Largest ω_c·dt of the implicit step with the strip (:meth:`ElasticBacking.coupling_omega`):
+the tips take their roots where the strip went and the strip its forces from where the tips
+were, so a link's setae couple explicitly to its mass. Measured (a 30° pad peel's preload, 40
+linear setae, 3 per link): stable at ω_c·dt = 1.49 (10 explicit steps), diverging at 2.24 (15)
+and 2.98 (20); half the explicit bound ω·dt < 2 keeps a margin, as the explicit step's 0.75."""
 
 
 def strip_step(model) -> float:
@@ -185,6 +194,8 @@ class ElasticBacking:
         self.physics, self.n, self._model = model.physics, model.n, model
         self.dt = strip_step(model)
         self._build_strip()
+        if model._implicit is not None:  # the tips follow the links a step behind
+            model._implicit.limit_step(COUPLING_OMEGA_DT / self.coupling_omega())
         self.setae_force = (0.0, 0.0)
         self._roots = (np.zeros(self.n), np.zeros(self.n))
         self._k, self._handle_force = 1, (0.0, 0.0)  # sub-steps of the step (roots)
@@ -289,6 +300,15 @@ class ElasticBacking:
             body.position = (p.x + ddx, p.y + ddy)
 
     # ------------------------------------------------------------------ stepping
+    def coupling_omega(self) -> float:
+        """ω_c [1/µs] of the setae on the link that carries most of them: √(n·k/m), n the
+        setae on it, k the seta's largest stiffness (the linear seta's K, eq 20–21; the rod's
+        Ka) [µN/µm], m the link's mass as scaled [ng]."""
+        m = self._model
+        n = int(np.bincount(self._r_link, minlength=self.strip.n).max())
+        k = float(np.linalg.eigvalsh(m.K).max()) if m.params.mechanics == "linear" else m.Ka
+        return math.sqrt(n * k / self.strip.m)
+
     def roots(self, hx, hy, vpx, vpy):
         """Where the roots' material points on the links will be at the end of the step and
         how fast they move, as per-seta "plates" for the seta springs (root minus the root

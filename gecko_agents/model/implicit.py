@@ -26,8 +26,9 @@ contact's normal stiffness dP/dδ·n nᵀ (:meth:`gecko_agents.contact.ContactLa
 clamped to [0, the contact's stiffness at 5 Fc]: past the load-controlled pull-off it turns
 negative and at the end of the JKR branch infinite, where a linearisation would nearly make
 the 2×2 singular or freeze the tip) and the stick spring k_t·t tᵀ while the tip sticks (the
-spatula: its film's full 2×2 tangent with the front held, the tip body's Hertz compression and
-stick spring, :meth:`gecko_agents.contact.SpatulaTip.jacobian`); −J_v
+spatula: its film's full 2×2 tangent with the front held, its
+row along the floor 0 while the pad slides, the tip body's Hertz compression and stick
+spring, :meth:`gecko_agents.contact.SpatulaTip.jacobian`); −J_v
 the seta's, the normal and (while sticking) the tangential dampers. The seta's part acts on
 the tip's motion relative to its root (the root moves with the plate), the contact's on its
 motion over the fixed floor. The model hands pymunk the force F' = m·Δv/dt, so pymunk's own
@@ -279,7 +280,8 @@ class ImplicitStep:
 
     def contact_stiffness(self):
         """Normal stiffness k_n [µN/µm] and stick stiffness k_t [µN/µm] of every tip (0 where
-        free; k_t 0 where sliding or the Coulomb cap is 0), and the contact dampers c_n, c_t [µN·µs/µm] likewise."""
+        free; k_t 0 where sliding), and the contact dampers c_n, c_t
+        [µN·µs/µm] likewise."""
         m = self.m
         s, law = m.state, m.law
         att = s.attached
@@ -301,13 +303,7 @@ class ImplicitStep:
                 self._kxy[idx] = kxy
             else:
                 kn[idx] = np.clip(np.where(np.isfinite(k), k, 0.0), 0.0, self.k_cap)
-                # No stick spring where the tip slides or can hold no shear (Coulomb cap 0:
-                # μ = 0, or the paper's cap μ·max(P, 0) in tension). A tangential law (sheared
-                # JKR) has no _stick_past_cap to take it out after the solve: with it, a
-                # tip at μ = 0 was held for its jump-in step, 0.23 % of Fc off the JKR sphere.
-                c = m._constants
-                hold = ~s.slip[idx] & (friction_cap(s.P[idx], c.Fc, c.mu, c.paper) > 0.0)
-                kt[idx] = np.where(hold, m.k_t, 0.0)
+                kt[idx] = np.where(s.slip[idx], 0.0, m.k_t)
         with np.errstate(invalid="ignore"):
             self._k_rate = (k_raw - self._k_raw) / m.dt
         self._k_raw = k_raw
@@ -471,6 +467,19 @@ class ImplicitStep:
         out = -0.5 * float(np.sum(vx * (J[0] - Fdt[0]) + vy * (J[1] - Fdt[1])))
         self.numerical_dissipated += out
         return out
+
+    def limit_step(self, dt_max: float) -> None:
+        """Shorten the default step between events to at most ``dt_max`` [µs], a whole number
+        of event steps (at least one); a dt the caller chose stands. For a bound that the
+        model's parts set after the step was chosen (the elastic strip's coupling to its
+        setae, :class:`gecko_agents.backing.elastic.ElasticBacking`)."""
+        if not self.default_step or self.dt_full <= dt_max:
+            return
+        event = self.event_dt
+        dt = event * max(1, math.floor(dt_max / event + 1e-9))
+        self.k_event = max(1, round(dt / event))
+        self.dt_full = self.dt_base = self._dt_prev = dt
+        self.set_dt(dt)
 
     @property
     def event_dt(self) -> float:
