@@ -22,9 +22,10 @@ from gecko_agents.params import PAPER_TABLE1
 
 SPEED = 0.02  # plate speed [µm/µs]
 FACTORS = (20.0, 10.0, 5.0)  # implicit steps in explicit default steps
-# The spatula's own books carry an error ∝ its plate travel per step (explicit: 0.51 % at dt0,
-# 0.25 % at dt0/2; implicit 0.50 % at dt0, 4.3 % at 10 dt0 at this speed, past its 4 %
-# tolerance): its steps are four times shorter.
+# The spatula's own books carried an error ∝ its plate travel per step (explicit: 0.51 % at
+# dt0, 0.25 % at dt0/2; implicit 0.50 % at dt0, 4.3 % at 10 dt0 at this speed, past its 4 %
+# tolerance), so its steps here are four times shorter; with its books a return mapping
+# (SpatulaTip) the press-pull at 10 dt0 books 1.36 % (not re-measured at these factors).
 SPATULA_FACTORS = (5.0, 2.5, 1.25)
 # The sphere's pull-off and release are located at the explicit step's length from 2 explicit
 # steps up (ImplicitStep.substeps: a tip past its load-controlled pull-off), so its error
