@@ -240,25 +240,34 @@ def test_pressed_tip_sticks_then_slides_at_its_coulomb_cap_plus_the_film():
     assert work == pytest.approx(stored - stored0 + dissipated, rel=1e-3)
 
 
-def _push_over_the_pad(params, dx_step):
-    """A tip at the floor (z = R: no compression, the film flat) driven +x over its pad in
-    steps of ``dx_step`` [µm] for 2 µm from where it attached: (work the drive did against T
-    by the trapezoid, stored + dissipated energy, steps the pad slid) [pJ, pJ, -]."""
+def _drive_the_tip(params, dx_step, direction, length=2.0):
+    """A tip at the floor (z = R: no compression, the film flat) driven along x in
+    ``direction`` (+1: over its pad; −1: away from it) in steps of ``dx_step`` [µm] for
+    ``length`` µm from where it attached: (work the drive did against T by the trapezoid,
+    stored + dissipated energy, steps the pad slid, final pre-tension P0, film length)
+    [pJ, pJ, -, µN, µm]."""
     law = contact_law(params)
     k = law.constants
     ell, p0, s0, xa, xf = law.ell0, 0.0, law.s_attach, 0.0, 0.0
     stored0 = law.step_scalar(0.0, law.R, ell, p0, s0, xa, k)[7]
     work = dissipated = T_prev = 0.0
     n_slid = 0
-    for j in range(1, round(2.0 / dx_step) + 1):
+    for j in range(1, round(length / dx_step) + 1):
         P, T, shift, ell, p0, s0, xa, U, de, slid = law.step_scalar(
-            j * dx_step - xf, law.R, ell, p0, s0, xa, k
+            direction * j * dx_step - xf, law.R, ell, p0, s0, xa, k
         )
         xf += shift
-        work -= 0.5 * (T + T_prev) * dx_step  # T < 0: the film holds the tip back
+        # The film holds the tip back: T against the drive's direction.
+        work -= direction * 0.5 * (T + T_prev) * dx_step
         T_prev, dissipated, n_slid = T, dissipated + de, n_slid + int(slid)
-    assert ell == law.ell0  # the pad slid whole, unpeeled (its cap 0.4·w·b < w·b/2)
-    return work, U - stored0 + dissipated, n_slid
+    return work, U - stored0 + dissipated, n_slid, p0, ell
+
+
+def _push_over_the_pad(params, dx_step):
+    """:func:`_drive_the_tip` over the pad for 2 µm: (work, booked, steps slid) [pJ, pJ, -]."""
+    work, booked, n_slid, _, ell = _drive_the_tip(params, dx_step, +1)
+    assert ell == contact_law(params).ell0  # the pad slid whole, unpeeled (cap 0.4·w·b < w·b/2)
+    return work, booked, n_slid
 
 
 @pytest.mark.parametrize("params", [SPATULA, BONDED], ids=["sliding", "bonded"])
@@ -280,24 +289,8 @@ def test_a_pad_sliding_at_its_cap_dissipates_its_coulomb_work(params):
 
 
 def _pull_away_from_the_pad(params, dx_step, length=2.0):
-    """A tip at the floor (z = R: no compression, the film flat) driven −x, away from its pad,
-    in steps of ``dx_step`` [µm] for ``length`` µm from where it attached: (work the drive
-    did against T by the trapezoid, stored + dissipated energy, steps the pad slid, final
-    pre-tension P0) [pJ, pJ, -, µN]."""
-    law = contact_law(params)
-    k = law.constants
-    ell, p0, s0, xa, xf = law.ell0, 0.0, law.s_attach, 0.0, 0.0
-    stored0 = law.step_scalar(0.0, law.R, ell, p0, s0, xa, k)[7]
-    work = dissipated = T_prev = 0.0
-    n_slid = 0
-    for j in range(1, round(length / dx_step) + 1):
-        P, T, shift, ell, p0, s0, xa, U, de, slid = law.step_scalar(
-            -j * dx_step - xf, law.R, ell, p0, s0, xa, k
-        )
-        xf += shift
-        work += 0.5 * (T + T_prev) * dx_step  # T > 0: the film holds the tip back
-        T_prev, dissipated, n_slid = T, dissipated + de, n_slid + int(slid)
-    return work, U - stored0 + dissipated, n_slid, p0
+    """:func:`_drive_the_tip` away from the pad: (work, booked, steps slid, final P0)."""
+    return _drive_the_tip(params, dx_step, -1, length)[:4]
 
 
 @pytest.mark.parametrize(

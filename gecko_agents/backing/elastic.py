@@ -81,6 +81,7 @@ import numpy as np
 from gecko_agents.backing.strip import MIN_LINKS, OMEGA_DT, Strip, bending_length
 
 __all__ = [
+    "COUPLING_OMEGA_DT",
     "Strip",
     "ElasticBacking",
     "STRIP_COLUMNS",
