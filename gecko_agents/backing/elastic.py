@@ -302,13 +302,11 @@ class ElasticBacking:
 
     # ------------------------------------------------------------------ stepping
     def coupling_omega(self) -> float:
-        """ω_c [1/µs] of the setae on the link that carries most of them: √(n·k/m), n the
-        setae on it, k the seta's largest stiffness (the linear seta's K, eq 20–21; the rod's
-        Ka) [µN/µm], m the link's mass as scaled [ng]."""
-        m = self._model
+        """ω_c [1/µs] of the setae on the link that carries most of them: √(n·Ka/m), n the
+        setae on it, Ka the seta's stiffest spring (its axial stiffness, eq 16; the seta's
+        share of the model's ``k_max``) [µN/µm], m the link's mass as scaled [ng]."""
         n = int(np.bincount(self._r_link, minlength=self.strip.n).max())
-        k = float(np.linalg.eigvalsh(m.K).max()) if m.params.mechanics == "linear" else m.Ka
-        return math.sqrt(n * k / self.strip.m)
+        return math.sqrt(n * self._model.Ka / self.strip.m)
 
     def roots(self, hx, hy, vpx, vpy):
         """Where the roots' material points on the links will be at the end of the step and

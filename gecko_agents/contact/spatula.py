@@ -494,9 +494,8 @@ class SpatulaTip(ContactLaw):
         kxy = np.where(lifted, (ka - kg) * ex * ey, 0.0)
         k = self.constants
         if ell is not None:  # a sliding pad: the front follows the tip along the floor
-            c = friction_cap(0.0, k[K_FC], k[K_MU], k[K_PAPER] > 0.0) / k[K_ELL0]
             H = -np.where(taut, self.K * (s - s0) / s0, 0.0) * ex  # pull on the front [µN]
-            cap = c * np.asarray(ell, dtype=float)
+            cap = _friction_cap(0.0, np.asarray(ell, dtype=float), k)
             if k[K_BONDED] == 0.0:  # pulled, it slides at the pre-tension it locked, if above
                 cap = np.where(H > 0.0, np.maximum(cap, p0), cap)
             sliding = taut & (np.abs(H) >= (1.0 - 1e-9) * cap)

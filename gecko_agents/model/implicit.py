@@ -96,6 +96,7 @@ __all__ = [
     "ImplicitStep",
     "check_integrator",
     "implicit_time_step",
+    "whole_event_steps",
 ]
 
 INTEGRATORS = ("explicit", "implicit", "auto")
@@ -182,10 +183,7 @@ def check_integrator(integrator, contact: str, params=None) -> str:
     its energy books to 0.19 % of its energy scale at the default step (4.75 % before, past
     the spatula's 4 %; 0.08 % explicit)."""
     if integrator == "auto":
-        verified = contact == "batch" and (
-            params is None
-            or params.mechanics != "elastica"
-        )  # fmt: skip
+        verified = contact == "batch" and (params is None or params.mechanics != "elastica")
         return "implicit" if verified else "explicit"
     if integrator not in INTEGRATORS:
         raise ValueError(f"integrator = {integrator!r} must be one of {INTEGRATORS}")
@@ -195,6 +193,12 @@ def check_integrator(integrator, contact: str, params=None) -> str:
             "path adds contact forces after the step's): use 'explicit' or 'auto'"
         )
     return integrator
+
+
+def whole_event_steps(bound: float, event: float) -> float:
+    """The longest whole number of steps ``event`` [µs] within ``bound`` [µs], at least one:
+    a step between events that splits into located steps as long as allowed."""
+    return event * max(1, math.floor(bound / event + 1e-9))
 
 
 def implicit_time_step(dt, omega_max: float) -> float:
@@ -213,8 +217,7 @@ def implicit_time_step(dt, omega_max: float) -> float:
         cap = IMPLICIT_TRAVEL / DEFAULT_SPEED
         if dt > cap:
             event = IMPLICIT_EVENT_FACTOR * explicit
-            n = math.floor(cap / event + 1e-9)
-            dt = n * event if n >= 1 else cap
+            dt = whole_event_steps(cap, event) if cap >= event else cap
         return dt
     if not (isinstance(dt, int | float) and math.isfinite(dt) and dt > 0):
         raise ValueError(f"dt = {dt!r} µs must be finite and > 0 (integrator = 'implicit')")
@@ -288,7 +291,8 @@ class ImplicitStep:
         kn, kt = self._kn, self._kt
         kn.fill(0.0)
         kt.fill(0.0)
-        self._kxy.fill(0.0)
+        if self.film:  # the film's off-diagonal stiffness, 0 where free
+            self._kxy.fill(0.0)
         idx = np.flatnonzero(att)
         k_raw = np.full(att.shape, np.nan)
         if idx.size:
@@ -476,8 +480,8 @@ class ImplicitStep:
         if not self.default_step or self.dt_full <= dt_max:
             return
         event = self.event_dt
-        dt = event * max(1, math.floor(dt_max / event + 1e-9))
-        self.k_event = max(1, round(dt / event))
+        dt = whole_event_steps(dt_max, event)
+        self.k_event = round(dt / event)
         self.dt_full = self.dt_base = self._dt_prev = dt
         self.set_dt(dt)
 
@@ -497,8 +501,7 @@ class ImplicitStep:
         The segment asks its plate velocity at this step, so it lands on its end point."""
         dt = self.dt_full
         if speed and self.default_step and IMPLICIT_TRAVEL / speed < dt:
-            # A whole number of located steps, so those near an event are as long as allowed.
-            dt = self.event_dt * max(1, math.floor(IMPLICIT_TRAVEL / speed / self.event_dt))
+            dt = whole_event_steps(IMPLICIT_TRAVEL / speed, self.event_dt)
         self.dt_base = dt
         self.set_dt(dt)
 
