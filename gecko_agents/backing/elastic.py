@@ -303,7 +303,7 @@ class ElasticBacking:
     # ------------------------------------------------------------------ stepping
     def coupling_omega(self) -> float:
         """ω_c [1/µs] of the setae on the link that carries most of them: √(n·Ka/m), n the
-        setae on it, Ka the seta's stiffest spring (its axial stiffness, eq 16; the seta's
+        setae on it, Ka the seta's stiffest spring (its axial stiffness, eq 17; the seta's
         share of the model's ``k_max``) [µN/µm], m the link's mass as scaled [ng]."""
         n = int(np.bincount(self._r_link, minlength=self.strip.n).max())
         return math.sqrt(n * self._model.Ka / self.strip.m)
