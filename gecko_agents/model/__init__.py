@@ -345,8 +345,16 @@ class Model:
         return (*beam.rod_spring_force(d, self.L, self.Ka, self.k_phi, self.theta), None)
 
     def spring_energies(self) -> np.ndarray:
-        """Elastic energy of every seta [pJ] at the last step's evaluation positions."""
-        return self.spring_force(self.state.xy.T, self.backing.root_positions(self._pnext))[1]
+        """Elastic energy of every seta [pJ] at the last step's evaluation positions (as
+        :meth:`spring_force`'s, without its forces)."""
+        root = self.backing.root_positions(self._pnext)
+        if self.physics.chain is not None:  # the elastica's chain
+            return self.spring_force(self.state.xy.T, root)[1]
+        dx, dy = self.state.xy - root.T
+        if self.params.mechanics == "linear":
+            ux, uy = self.L * self.axis
+            return beam.linear_spring_energy(dx - ux, dy - uy, self.K)
+        return beam.rod_spring_energy(dx, dy, self.L, self.Ka, self.k_phi, self.theta)
 
     def backing_energy(self) -> float:
         """Elastic energy of the backing [pJ] (0 for the rigid plate)."""
@@ -355,8 +363,9 @@ class Model:
     def contact_energies(self) -> np.ndarray:
         """Energy stored in each contact at the last step (0 for free tips) [pJ]."""
         U = np.zeros(self.n)
-        idx = np.flatnonzero(self.state.attached)
-        U[idx] = self.physics.contact_energy(idx)
+        idx = self.state.attached.nonzero()[0]
+        if idx.size:
+            U[idx] = self.physics.contact_energy(idx)
         return U
 
     def kinetic_energy(self) -> float:
@@ -364,7 +373,8 @@ class Model:
         ½m·v(n−½)·v(n+½), the form that semi-implicit Euler conserves exactly for a linear
         spring."""
         v = self.state.pv[2:4]
-        tips = 0.5 * self.mass * float(np.sum(v * (v + self.state.F * (self.dt / self.mass))))
+        dv = self.state.F * (self.dt / self.mass)
+        tips = 0.5 * self.mass * float(np.add.reduce(v * (v + dv), None))
         return self.backing.kinetic_energy(tips)
 
     def overlaps(self) -> np.ndarray:
@@ -461,30 +471,11 @@ class Model:
         res = self._res
         ext = s.external_force
         self._loop(
-            data,
-            w.order,
-            w.out,
-            self._constants,
-            self.law.constants,
-            pnx,
-            pny,
-            vpx,
-            vpy,
-            max(math.hypot(vpx, vpy), 1e-4),
-            bool(ext.any()),
-            w.h,
-            s.candidate_step,
-            s.attached,
-            s.slip,
-            s.block,
-            ext,
-            w.pad_centre,
-            ph.rest,
-            ph.root,
-            self._lost_idx,
-            self._gone_idx,
-            res,
-        )
+            data, w.order, w.out, self._constants, self.law.constants, pnx, pny, vpx, vpy,
+            max(math.hypot(vpx, vpy), 1e-4), bool(ext.any()), w.h, s.candidate_step,
+            s.attached, s.slip, s.block, ext, w.pad_centre, ph.rest, ph.root, self._lost_idx,
+            self._gone_idx, res,
+        )  # fmt: skip
         if self._implicit is not None:
             ph.diss += self._implicit.correct((pnx, pny, vpx, vpy), rebook_damping=True)
             w.write_forces(s.F)

@@ -86,6 +86,11 @@ import math
 import numpy as np
 
 from gecko_agents.physics.friction import friction_cap
+
+try:  # np.clip's ufunc, called without np.clip's wrapper (same result)
+    from numpy._core.umath import clip as _clip
+except ImportError:  # numpy < 2
+    from numpy.core.umath import clip as _clip
 from gecko_agents.protocol import DEFAULT_SPEED
 
 __all__ = [
@@ -293,11 +298,12 @@ class ImplicitStep:
         kt.fill(0.0)
         if self.film:  # the film's off-diagonal stiffness, 0 where free
             self._kxy.fill(0.0)
-        idx = np.flatnonzero(att)
+        idx = att.nonzero()[0]
         k_raw = np.full(att.shape, np.nan)
         if idx.size:
             k = law.stiffness(s.a[idx], s.delta[idx])
-            k_raw[idx] = np.where(np.isfinite(k), k, -np.inf)
+            finite = np.isfinite(k)
+            k_raw[idx] = np.where(finite, k, -np.inf)
             if self.film:  # the film's own tangent, its front held (SpatulaTip.jacobian)
                 kxx, kxy, kyy = law.jacobian(
                     s.xy[0, idx] - s.anchor[0, idx], s.delta[idx], s.s0[idx], s.xi[idx],
@@ -306,7 +312,7 @@ class ImplicitStep:
                 kn[idx], kt[idx] = kyy, kxx
                 self._kxy[idx] = kxy
             else:
-                kn[idx] = np.clip(np.where(np.isfinite(k), k, 0.0), 0.0, self.k_cap)
+                kn[idx] = _clip(np.where(finite, k, 0.0), 0.0, self.k_cap)  # np.clip's ufunc
                 kt[idx] = np.where(s.slip[idx], 0.0, m.k_t)
         with np.errstate(invalid="ignore"):
             self._k_rate = (k_raw - self._k_raw) / m.dt
@@ -340,14 +346,14 @@ class ImplicitStep:
         # ½dt·v₀·(ΔF_prev + ΔF): they book ½m·v₀·v₁, whose change is ½dt·v₀·(F'_prev + F').
         dF = self._dF
         dxp, dyp = dF[0] + fx - Fx, dF[1] + fy - Fy
-        work = 0.5 * dt * float(np.sum(vx * dxp + vy * dyp))
+        work = 0.5 * dt * float(np.add.reduce(vx * dxp + vy * dyp))  # np.sum's reduction
         np.subtract(fx, Fx, out=dF[0])
         np.subtract(fy, Fy, out=dF[1])
         self.numerical_dissipated -= work
         hm = 0.5 * dt / mass
         if rebook_damping:
             fd, fc = s.F_damp_seta, s.F_damp_contact
-            dd = np.sum((fd[0] + fc[0]) * (fx - Fx) + (fd[1] + fc[1]) * (fy - Fy))
+            dd = np.add.reduce((fd[0] + fc[0]) * (fx - Fx) + (fd[1] + fc[1]) * (fy - Fy))
             work += float(dd) * hm * dt
         Fx[:] = fx
         Fy[:] = fy
@@ -426,7 +432,7 @@ class ImplicitStep:
         s, law = m.state, m.law
         if law.tangential:
             return None
-        i = np.flatnonzero(kt > 0.0)
+        i = (kt > 0.0).nonzero()[0]
         if not i.size:
             return None
         h = m.dt / m.mass
@@ -468,7 +474,7 @@ class ImplicitStep:
             return 0.0
         J = self._J
         Fdt = J * (dt / self._dt_prev)  # F'(n)·dt
-        out = -0.5 * float(np.sum(vx * (J[0] - Fdt[0]) + vy * (J[1] - Fdt[1])))
+        out = -0.5 * float(np.add.reduce(vx * (J[0] - Fdt[0]) + vy * (J[1] - Fdt[1])))
         self.numerical_dissipated += out
         return out
 

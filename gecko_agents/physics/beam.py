@@ -150,12 +150,22 @@ def linear_spring_force(u, K):
     -------
     F (N, 2) [force], energy (N,) [force·length].
     """
-    # Written out (no BLAS call per record).
-    F = np.column_stack(
-        [-(u[:, 0] * K[0, 0] + u[:, 1] * K[0, 1]), -(u[:, 0] * K[1, 0] + u[:, 1] * K[1, 1])]
-    )
-    energy = -0.5 * (u[:, 0] * F[:, 0] + u[:, 1] * F[:, 1])
-    return F, energy
+    Fx, Fy, energy = _linear_parts(u[:, 0], u[:, 1], K)
+    return np.column_stack([Fx, Fy]), energy
+
+
+def linear_spring_energy(ux, uy, K):
+    """The elastic energy (N,) [force·length] of :func:`linear_spring_force` alone (the same
+    arithmetic), from the tip displacements' components ``ux``, ``uy`` (N,) [length]."""
+    return _linear_parts(ux, uy, K)[2]
+
+
+def _linear_parts(ux, uy, K):
+    """F = −K·u by component and E = ½u·K·u = −½u·F (eq 20–21), written out (no BLAS call
+    per record); ``ux``, ``uy`` [length], ``K`` [force/length]."""
+    Fx = -(ux * K[0, 0] + uy * K[0, 1])
+    Fy = -(ux * K[1, 0] + uy * K[1, 1])
+    return Fx, Fy, -0.5 * (ux * Fx + uy * Fy)
 
 
 def rod_spring_force(d, L, Ka, k_phi, theta):
@@ -176,11 +186,30 @@ def rod_spring_force(d, L, Ka, k_phi, theta):
     -------
     F (N, 2) [force], energy (N,) [force·length].
     """
-    ell = np.hypot(d[:, 0], d[:, 1])
+    ell, dphi = _rod_coordinates(d[:, 0], d[:, 1], theta)
     e = d / ell[:, None]
-    dphi = np.arctan2(d[:, 1], d[:, 0]) + theta
-    dphi = (dphi + math.pi) % (2 * math.pi) - math.pi
     e_perp = np.column_stack([-e[:, 1], e[:, 0]])
     F = (-Ka * (ell - L))[:, None] * e - (k_phi * dphi / ell)[:, None] * e_perp
-    energy = 0.5 * Ka * (ell - L) ** 2 + 0.5 * k_phi * dphi**2
-    return F, energy
+    return F, _rod_energy(ell, dphi, L, Ka, k_phi)
+
+
+def rod_spring_energy(dx, dy, L, Ka, k_phi, theta):
+    """The elastic energy (N,) [force·length] of :func:`rod_spring_force` alone (the same
+    arithmetic), from the root-to-tip vectors' components ``dx``, ``dy`` (N,) [length]; the
+    other parameters as there."""
+    ell, dphi = _rod_coordinates(dx, dy, theta)
+    return _rod_energy(ell, dphi, L, Ka, k_phi)
+
+
+def _rod_coordinates(dx, dy, theta):
+    """The rod's length ℓ = |d| [length] and rotation from rest Δφ ∈ [−π, π) [rad]
+    (:func:`rod_spring_force`)."""
+    ell = np.hypot(dx, dy)
+    dphi = np.arctan2(dy, dx) + theta
+    dphi = (dphi + math.pi) % (2 * math.pi) - math.pi
+    return ell, dphi
+
+
+def _rod_energy(ell, dphi, L, Ka, k_phi):
+    """E = ½Ka(ℓ − L)² + ½kφ·Δφ² [force·length] (:func:`rod_spring_force`)."""
+    return 0.5 * Ka * (ell - L) ** 2 + 0.5 * k_phi * dphi**2

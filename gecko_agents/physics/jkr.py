@@ -20,6 +20,8 @@ Key points used as test oracles (with Fc = 1.5πRw, a0 = (9πwR²/(2E*))^(1/3)):
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 __all__ = [
@@ -280,18 +282,26 @@ def contact_energy(a, R, w, E_star):
     ----------
     a : contact radius [length]. R [length], w [force/length], E_star [force/length²].
     """
+    try:
+        terms = _energy_terms(R, w, E_star)
+    except TypeError:  # unhashable (array) parameters: not cached
+        terms = _energy_terms.__wrapped__(R, w, E_star)
+    c5, d5, c35, cw, U_jump = terms
+    x = np.asarray(a, dtype=float)
+    return c5 * x**5 / d5 - c35 * x**3.5 + cw * x * x - U_jump
+
+
+@functools.lru_cache(maxsize=64)
+def _energy_terms(R, w, E_star):
+    """:func:`contact_energy`'s constants, computed once per (R [length], w [force/length],
+    E* [force/length²]): U(a) = c5·a⁵/d5 − c35·a^(7/2) + cw·a² with c5 = 2A, d5 = 5R,
+    c35 = AC/7 + 4B/(7R), cw = πw, and U(a_j) [energy]."""
     A = 4.0 * E_star / (3.0 * R)
     B = np.sqrt(8.0 * np.pi * w * E_star)
     C = np.sqrt(2.0 * np.pi * w / E_star)
-
-    def U(x):
-        return (
-            2.0 * A * x**5 / (5.0 * R)
-            - (A * C / 7.0 + 4.0 * B / (7.0 * R)) * x**3.5
-            + np.pi * w * x * x
-        )
-
-    return U(np.asarray(a, dtype=float)) - U(np.cbrt((C * R) ** 2))
+    c5, d5, c35, cw = 2.0 * A, 5.0 * R, A * C / 7.0 + 4.0 * B / (7.0 * R), np.pi * w
+    x = np.cbrt((C * R) ** 2)
+    return c5, d5, c35, cw, c5 * x**5 / d5 - c35 * x**3.5 + cw * x * x
 
 
 # --- Hertz (no adhesion), eq 1–3 ---------------------------------------------------------------
