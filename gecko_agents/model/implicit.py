@@ -85,6 +85,7 @@ import math
 
 import numpy as np
 
+from gecko_agents.model.implicit_kernel import pad_solver
 from gecko_agents.physics.friction import friction_cap
 
 try:  # np.clip's ufunc, called without np.clip's wrapper (same result)
@@ -267,6 +268,7 @@ class ImplicitStep:
         # rate of change over the last step [µN/(µm·µs)]: event location's pull-off check.
         self._k_raw = np.full(n, np.nan)
         self._k_rate = np.zeros(n)
+        self._pad = False  # the compiled pad kernels (implicit_kernel.pad_solver; not yet)
 
     def seta_stiffness(self, rx, ry):
         """The seta's stiffness K = −J_x (kxx, kxy, kyx, kyy) [µN/µm], scalars for the
@@ -333,7 +335,10 @@ class ImplicitStep:
         velocity), the dampers' work on the difference, −dt·Σ F_damp·(F' − F)·dt/(2m)."""
         m = self.m
         s, dt, mass = m.state, m.dt, m.mass
-        K = self.seta_stiffness(roots[0], roots[1])
+        if self._pad is False:  # the compiled solve where it applies (its first step)
+            self._pad = pad_solver(m, self)
+        pad = self._pad
+        K = self.seta_stiffness(roots[0], roots[1]) if pad is None else None
         kn, kt, cn, ct = self.contact_stiffness()
         vx, vy = s.pv[2], s.pv[3]
         switch = self._switch_term(vx, vy, dt)
@@ -368,9 +373,16 @@ class ImplicitStep:
         """F' [µN] (two (N,) arrays) of the linearly implicit step from the explicit forces
         ``F`` (2, N) [µN], the seta's stiffness ``K`` (:meth:`seta_stiffness`), the contact's
         stiffnesses and dampers (:meth:`contact_stiffness`) and the ``roots``
-        (rx, ry, rvx, rvy): one 2×2 solve per tip (module docstring)."""
+        (rx, ry, rvx, rvy): one 2×2 solve per tip (module docstring); with ``K`` None, the
+        same arithmetic compiled (:mod:`gecko_agents.model.implicit_kernel`)."""
         m = self.m
         s, dt, mass = m.state, m.dt, m.mass
+        if K is None:
+            w = m.world
+            out = self._pad[0](m.params.mechanics != "linear", m.K, m.L, m.Ka, m.k_phi, s.xy,
+                               w.root_dx, w.root_dy, s.pv, F, kn, kt, cn, ct, m.c_seta, dt,
+                               mass, *roots)  # fmt: skip
+            return out[0], out[1]
         kxx, kxy, kyx, kyy = K
         vx, vy = s.pv[2], s.pv[3]
         wx, wy = vx - roots[2], vy - roots[3]  # motion relative to the root
@@ -432,6 +444,11 @@ class ImplicitStep:
         s, law = m.state, m.law
         if law.tangential:
             return None
+        c = m._constants
+        if self._pad is not None and not self._pad[1](  # the compiled test (most steps: no)
+            s.pv, fx, fy, s.Ft, s.P, kt, ct, m.dt, m.mass, c.Fc, c.mu, c.paper
+        ):
+            return None
         i = (kt > 0.0).nonzero()[0]
         if not i.size:
             return None
@@ -444,7 +461,6 @@ class ImplicitStep:
         v0t = vx * tx + vy * ty
         v1t = v0t + (fx[i] * tx + fy[i] * ty) * h
         f = s.Ft[i] - m.dt * kt[i] * v1t - ct[i] * (v1t - v0t)
-        c = m._constants
         cap = friction_cap(s.P[i], c.Fc, c.mu, c.paper)
         past = np.abs(f) > cap
         if not past.any():

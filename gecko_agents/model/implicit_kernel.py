@@ -1,0 +1,126 @@
+"""The implicit step's 2×2 solves and its friction check on a pad floor compiled by numba:
+one call instead of some sixty numpy operations on arrays of a few setae.
+
+Units and sign conventions as :mod:`gecko_agents.model.implicit`, whose
+:meth:`~gecko_agents.model.implicit.ImplicitStep.seta_stiffness`,
+:meth:`~gecko_agents.model.implicit.ImplicitStep._solve` and
+:meth:`~gecko_agents.model.implicit.ImplicitStep._stick_past_cap` are the reference: these
+loops do their arithmetic, operation for operation in their order (no fast-math, so no
+reassociation or fused multiply-add), and give the same forces and the same answer bit for
+bit (``tests/test_step_overhead.py``).
+Only the pad floor (n = (0, 1), t = (1, 0)) of a tip without a film and a plate whose roots are
+one point (the rigid backing) take it.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+
+from gecko_agents.physics.friction import friction_cap
+
+__all__ = ["pad_past_cap", "pad_solve", "pad_kernels", "pad_solver"]
+
+
+def pad_solve(rod, K, L, Ka, k_phi, xy, root_dx, root_dy, pv, F, kn, kt, cn, ct, c_seta, dt,
+              mass, rx, ry, rvx, rvy):  # fmt: skip
+    """F' [µN] of every tip ((2, N), new): the linearly implicit step's 2×2 solve
+    (:meth:`gecko_agents.model.implicit.ImplicitStep._solve` on a pad floor, with the seta's
+    stiffness of :meth:`~gecko_agents.model.implicit.ImplicitStep.seta_stiffness`).
+
+    Parameters
+    ----------
+    rod : the rod seta (its K from the tip's position) or the linear one (``K``).
+    K : the linear seta's 2×2 stiffness [µN/µm] (unused for the rod).
+    L, Ka, k_phi : the rod's rest length [µm], axial stiffness [µN/µm], rotary stiffness
+        [µN·µm/rad²].
+    xy : (2, N) evaluation points x + v·dt [µm]; root_dx, root_dy : (N,) root offsets from
+        the plate [µm]; pv : (4, N) positions [µm] and velocities [µm/µs]; F : (2, N) the
+        explicit forces [µN].
+    kn, kt, cn, ct : (N,) contact normal and stick stiffnesses [µN/µm] and dampers
+        [µN·µs/µm] (:meth:`~gecko_agents.model.implicit.ImplicitStep.contact_stiffness`).
+    c_seta : the seta's damper [µN·µs/µm]; dt : the step [µs]; mass : the tip's mass [ng].
+    rx, ry, rvx, rvy : the plate (the seta springs' root) [µm] and its velocity [µm/µs].
+    """
+    n = kn.shape[0]
+    out = np.empty((2, n))
+    kxx, kxy, kyx, kyy = K[0, 0], K[0, 1], K[1, 0], K[1, 1]
+    h, h2 = dt / mass, dt * dt / mass
+    for i in range(n):
+        if rod:
+            dx = xy[0, i] - rx - root_dx[i]
+            dy = xy[1, i] - ry - root_dy[i]
+            ell = math.sqrt(dx * dx + dy * dy)
+            ex, ey = dx / ell, dy / ell
+            t = Ka * (ell - L) / ell
+            if not (t >= 0.0 or t != t):  # np.maximum(t, 0.0), NaN kept
+                t = 0.0
+            kp = k_phi / (ell * ell) + t
+            kxy = (Ka - kp) * ex * ey
+            kyx = kxy
+            kxx = Ka * ex * ex + kp * ey * ey
+            kyy = Ka * ey * ey + kp * ex * ex
+        vx, vy = pv[2, i], pv[3, i]
+        wx, wy = vx - rvx, vy - rvy
+        gx = kxx * wx + kxy * wy
+        gy = kyx * wx + kyy * wy
+        gx += kt[i] * vx
+        gy += kn[i] * vy
+        axx = 1.0 + h * (c_seta + ct[i]) + h2 * (kxx + kt[i])
+        ayy = 1.0 + h * (c_seta + cn[i]) + h2 * (kyy + kn[i])
+        axy = h2 * kxy
+        ayx = h2 * kyx
+        bx = F[0, i] - dt * gx
+        by = F[1, i] - dt * gy
+        det = axx * ayy - axy * ayx
+        out[0, i] = (ayy * bx - axy * by) / det
+        out[1, i] = (axx * by - ayx * bx) / det
+    return out
+
+
+def pad_past_cap(pv, fx, fy, Ft, P, kt, ct, dt, mass, Fc, mu, paper):
+    """Whether a sticking tip's implicit friction exceeds its Coulomb cap, the test of
+    :meth:`gecko_agents.model.implicit.ImplicitStep._stick_past_cap` on a pad floor (t = (1, 0)):
+    F' = (``fx``, ``fy``) [µN]; ``pv`` (4, N) positions and velocities [µm, µm/µs]; ``Ft``,
+    ``P`` (N,) the kernel's tangential and normal forces [µN]; ``kt``, ``ct`` (N,) the stick
+    spring [µN/µm] and damper [µN·µs/µm] (0 where sliding); ``dt`` [µs]; ``mass`` [ng];
+    ``Fc`` [µN], ``mu`` [-], ``paper`` as :func:`gecko_agents.physics.friction.friction_cap`."""
+    h = dt / mass
+    for i in range(kt.shape[0]):
+        if kt[i] > 0.0:
+            v0t = pv[2, i] * 1.0 + pv[3, i] * 0.0
+            v1t = v0t + (fx[i] * 1.0 + fy[i] * 0.0) * h
+            f = Ft[i] - dt * kt[i] * v1t - ct[i] * (v1t - v0t)
+            if abs(f) > friction_cap(P[i], Fc, mu, paper):
+                return True
+    return False
+
+
+@functools.cache
+def pad_kernels():
+    """(:func:`pad_solve`, :func:`pad_past_cap`) compiled by numba (cached on disk), or None
+    without numba."""
+    try:
+        import numba
+    except ImportError:
+        return None
+    jit = numba.njit(error_model="numpy", cache=True)
+    return jit(pad_solve), jit(pad_past_cap)
+
+
+def pad_solver(model, step):
+    """The compiled (:func:`pad_solve`, :func:`pad_past_cap`) for ``model``'s implicit ``step``
+    (:class:`gecko_agents.model.implicit.ImplicitStep`) where they apply, else None: the
+    model's pad loop is numba's (``kernel = "numba"``), the floor is the pads (no contact
+    normals), the tip has no film, the roots ride on a rigid plate and the seta is linear or
+    a rod."""
+    applies = (
+        model.kernel == "numba"
+        and step.normal is None
+        and not step.film
+        and model.backing.rigid
+        and model.params.mechanics in ("linear", "rod")
+    )
+    return pad_kernels() if applies else None
