@@ -12,7 +12,7 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.model import Model, implicit, numba_available
-from gecko_agents.model.implicit_kernel import pad_solver
+from gecko_agents.model.implicit_kernel import pad_kernels, pad_solver, step_books
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import beam, jkr
 
@@ -106,6 +106,26 @@ def test_compiled_solve_and_cap_test_match_numpy_on_random_states(mechanics):
         assert past == (capped is not None)
         answers.add(past)
     assert answers == {True, False}
+
+
+@needs_numba
+@pytest.mark.parametrize("rebook", [True, False])
+def test_compiled_books_match_numpy_on_random_states(rebook):
+    """pad_books returns step_books' terms and leaves ΔF, F and J as step_books does, bit for
+    bit, on random forces and velocities of 16 tips."""
+    rng = np.random.default_rng(5)
+    for _ in range(50):
+        vx, vy, fx, fy = rng.normal(0.0, 1.0, (4, 16))
+        F, dF, fd, fc = rng.normal(0.0, 1.0, (4, 2, 16))
+        arrays = [(F.copy(), dF.copy(), np.zeros((2, 16))) for _ in range(2)]
+        out = []
+        for books, (F_, dF_, J_) in zip((step_books, pad_kernels()[2]), arrays, strict=True):
+            out.append(books(vx, vy, fx, fy, F_, dF_, fd, fc, J_, 0.37, rebook))
+        assert np.array_equal(out[0][0], out[1][0])
+        if rebook:
+            assert np.array_equal(out[0][1], out[1][1])
+        for a, b in zip(*arrays, strict=True):
+            assert np.array_equal(a, b)
 
 
 def test_spring_energies_are_the_force_functions_energies():

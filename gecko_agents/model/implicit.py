@@ -85,7 +85,7 @@ import math
 
 import numpy as np
 
-from gecko_agents.model.implicit_kernel import pad_solver
+from gecko_agents.model.implicit_kernel import pad_solver, step_books
 from gecko_agents.physics.friction import friction_cap
 
 try:  # np.clip's ufunc, called without np.clip's wrapper (same result)
@@ -346,26 +346,16 @@ class ImplicitStep:
         capped = self._stick_past_cap(fx, fy, kt, ct)
         if capped is not None:  # those tips slide this step, their friction at the cap
             fx, fy = self._solve(K, kn, kt, cn, ct, roots, capped)
-        Fx, Fy = s.F
         # Work of ΔF = F' − F between the recorder's books at the previous step and this one,
         # ½dt·v₀·(ΔF_prev + ΔF): they book ½m·v₀·v₁, whose change is ½dt·v₀·(F'_prev + F').
-        dF = self._dF
-        dxp, dyp = dF[0] + fx - Fx, dF[1] + fy - Fy
-        work = 0.5 * dt * float(np.add.reduce(vx * dxp + vy * dyp))  # np.sum's reduction
-        np.subtract(fx, Fx, out=dF[0])
-        np.subtract(fy, Fy, out=dF[1])
+        # F := F', and J the impulse of the forces the books pair with the next step's dt.
+        books = step_books if pad is None else pad[2]
+        e, ed = books(vx, vy, fx, fy, s.F, self._dF, s.F_damp_seta, s.F_damp_contact, self._J,
+                      dt, rebook_damping)  # fmt: skip
+        work = 0.5 * dt * float(np.add.reduce(e))  # np.sum's reduction
         self.numerical_dissipated -= work
-        hm = 0.5 * dt / mass
         if rebook_damping:
-            fd, fc = s.F_damp_seta, s.F_damp_contact
-            dd = np.add.reduce((fd[0] + fc[0]) * (fx - Fx) + (fd[1] + fc[1]) * (fy - Fy))
-            work += float(dd) * hm * dt
-        Fx[:] = fx
-        Fy[:] = fy
-        J = self._J  # the impulse of the forces the books pair with the next step's dt
-        np.subtract(s.F, s.F_damp_seta, out=J)
-        J -= s.F_damp_contact
-        J *= dt
+            work += float(np.add.reduce(ed)) * (0.5 * dt / mass) * dt
         self._dt_prev = dt
         return switch - work
 

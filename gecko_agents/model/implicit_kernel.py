@@ -1,5 +1,5 @@
-"""The implicit step's 2×2 solves and its friction check on a pad floor compiled by numba:
-one call instead of some sixty numpy operations on arrays of a few setae.
+"""The implicit step's 2×2 solves, its friction check and its books on a pad floor compiled by
+numba: a few calls instead of some ninety numpy operations on arrays of a few setae.
 
 Units and sign conventions as :mod:`gecko_agents.model.implicit`, whose
 :meth:`~gecko_agents.model.implicit.ImplicitStep.seta_stiffness`,
@@ -7,7 +7,8 @@ Units and sign conventions as :mod:`gecko_agents.model.implicit`, whose
 :meth:`~gecko_agents.model.implicit.ImplicitStep._stick_past_cap` are the reference: these
 loops do their arithmetic, operation for operation in their order (no fast-math, so no
 reassociation or fused multiply-add), and give the same forces and the same answer bit for
-bit (``tests/test_step_overhead.py``).
+bit (``tests/test_step_overhead.py``); the books' reference is :func:`step_books`, their loop
+:func:`pad_books`.
 Only the pad floor (n = (0, 1), t = (1, 0)) of a tip without a film and a plate whose roots are
 one point (the rigid backing) take it.
 """
@@ -21,7 +22,7 @@ import numpy as np
 
 from gecko_agents.physics.friction import friction_cap
 
-__all__ = ["pad_past_cap", "pad_solve", "pad_kernels", "pad_solver"]
+__all__ = ["pad_books", "pad_past_cap", "pad_solve", "pad_kernels", "pad_solver", "step_books"]
 
 
 def pad_solve(rod, K, L, Ka, k_phi, xy, root_dx, root_dy, pv, F, kn, kt, cn, ct, c_seta, dt,
@@ -98,20 +99,57 @@ def pad_past_cap(pv, fx, fy, Ft, P, kt, ct, dt, mass, Fc, mu, paper):
     return False
 
 
+def step_books(vx, vy, fx, fy, F, dF, fd, fc, J, dt, rebook):
+    """The implicit step's books (:meth:`gecko_agents.model.implicit.ImplicitStep.correct`):
+    returns the terms (N,) of Σ v₀·(ΔF_prev + ΔF) [µN·µm/µs] and, with ``rebook``, of
+    Σ F_damp·ΔF [µN²] (else None), ΔF = F' − F; then sets ``dF`` (2, N) := ΔF [µN], ``F``
+    := F' = (``fx``, ``fy``) [µN] and ``J`` (2, N) := (F' − ``fd`` − ``fc``)·``dt`` [µN·µs]
+    (the impulse without the seta's and the contact's damping). ``vx``, ``vy`` (N,) [µm/µs]
+    are the velocities v₀, ``fd``, ``fc`` (2, N) the seta's and the contact's damping [µN]."""
+    Fx, Fy = F
+    e = vx * (dF[0] + fx - Fx) + vy * (dF[1] + fy - Fy)
+    ed = (fd[0] + fc[0]) * (fx - Fx) + (fd[1] + fc[1]) * (fy - Fy) if rebook else None
+    np.subtract(fx, Fx, out=dF[0])
+    np.subtract(fy, Fy, out=dF[1])
+    Fx[:] = fx
+    Fy[:] = fy
+    np.subtract(F, fd, out=J)
+    J -= fc
+    J *= dt
+    return e, ed
+
+
+def pad_books(vx, vy, fx, fy, F, dF, fd, fc, J, dt, rebook):
+    """:func:`step_books` as a loop (its ``ed`` is empty without ``rebook``)."""
+    n = vx.shape[0]
+    e = np.empty(n)
+    ed = np.empty(n if rebook else 0)
+    for i in range(n):
+        dx, dy = fx[i] - F[0, i], fy[i] - F[1, i]
+        e[i] = vx[i] * (dF[0, i] + fx[i] - F[0, i]) + vy[i] * (dF[1, i] + fy[i] - F[1, i])
+        if rebook:
+            ed[i] = (fd[0, i] + fc[0, i]) * dx + (fd[1, i] + fc[1, i]) * dy
+        dF[0, i], dF[1, i] = dx, dy
+        F[0, i], F[1, i] = fx[i], fy[i]
+        J[0, i] = (F[0, i] - fd[0, i] - fc[0, i]) * dt
+        J[1, i] = (F[1, i] - fd[1, i] - fc[1, i]) * dt
+    return e, ed
+
+
 @functools.cache
 def pad_kernels():
-    """(:func:`pad_solve`, :func:`pad_past_cap`) compiled by numba (cached on disk), or None
-    without numba."""
+    """(:func:`pad_solve`, :func:`pad_past_cap`, :func:`pad_books`) compiled by numba (cached
+    on disk), or None without numba."""
     try:
         import numba
     except ImportError:
         return None
     jit = numba.njit(error_model="numpy", cache=True)
-    return jit(pad_solve), jit(pad_past_cap)
+    return jit(pad_solve), jit(pad_past_cap), jit(pad_books)
 
 
 def pad_solver(model, step):
-    """The compiled (:func:`pad_solve`, :func:`pad_past_cap`) for ``model``'s implicit ``step``
+    """The compiled :func:`pad_kernels` for ``model``'s implicit ``step``
     (:class:`gecko_agents.model.implicit.ImplicitStep`) where they apply, else None: the
     model's pad loop is numba's (``kernel = "numba"``), the floor is the pads (no contact
     normals), the tip has no film, the roots ride on a rigid plate and the seta is linear or
