@@ -85,13 +85,8 @@ import math
 
 import numpy as np
 
-from gecko_agents.model.implicit_kernel import pad_solver, step_books
+from gecko_agents.model.implicit_kernel import clip, pad_solver, past_cap, solve, step_books
 from gecko_agents.physics.friction import friction_cap
-
-try:  # np.clip's ufunc, called without np.clip's wrapper (same result)
-    from numpy._core.umath import clip as _clip
-except ImportError:  # numpy < 2
-    from numpy.core.umath import clip as _clip
 from gecko_agents.protocol import DEFAULT_SPEED
 
 __all__ = [
@@ -314,7 +309,7 @@ class ImplicitStep:
                 kn[idx], kt[idx] = kyy, kxx
                 self._kxy[idx] = kxy
             else:
-                kn[idx] = _clip(np.where(finite, k, 0.0), 0.0, self.k_cap)  # np.clip's ufunc
+                kn[idx] = clip(np.where(finite, k, 0.0), 0.0, self.k_cap)
                 kt[idx] = np.where(s.slip[idx], 0.0, m.k_t)
         with np.errstate(invalid="ignore"):
             self._k_rate = (k_raw - self._k_raw) / m.dt
@@ -368,11 +363,7 @@ class ImplicitStep:
         m = self.m
         s, dt, mass = m.state, m.dt, m.mass
         if K is None:
-            w = m.world
-            out = self._pad[0](m.params.mechanics != "linear", m.K, m.L, m.Ka, m.k_phi, s.xy,
-                               w.root_dx, w.root_dy, s.pv, F, kn, kt, cn, ct, m.c_seta, dt,
-                               mass, *roots)  # fmt: skip
-            return out[0], out[1]
+            return solve(self._pad, m, kn, kt, cn, ct, roots, F)
         kxx, kxy, kyx, kyy = K
         vx, vy = s.pv[2], s.pv[3]
         wx, wy = vx - roots[2], vy - roots[3]  # motion relative to the root
@@ -434,11 +425,8 @@ class ImplicitStep:
         s, law = m.state, m.law
         if law.tangential:
             return None
-        c = m._constants
-        if self._pad is not None and not self._pad[1](  # the compiled test (most steps: no)
-            s.pv, fx, fy, s.Ft, s.P, kt, ct, m.dt, m.mass, c.Fc, c.mu, c.paper
-        ):
-            return None
+        if self._pad is not None and not past_cap(self._pad, m, fx, fy, kt, ct):
+            return None  # the compiled test (most steps: no tip past its cap)
         i = (kt > 0.0).nonzero()[0]
         if not i.size:
             return None
@@ -451,6 +439,7 @@ class ImplicitStep:
         v0t = vx * tx + vy * ty
         v1t = v0t + (fx[i] * tx + fy[i] * ty) * h
         f = s.Ft[i] - m.dt * kt[i] * v1t - ct[i] * (v1t - v0t)
+        c = m._constants
         cap = friction_cap(s.P[i], c.Fc, c.mu, c.paper)
         past = np.abs(f) > cap
         if not past.any():

@@ -1,16 +1,14 @@
 """The implicit step's 2×2 solves, its friction check and its books on a pad floor compiled by
 numba: a few calls instead of some ninety numpy operations on arrays of a few setae.
 
-Units and sign conventions as :mod:`gecko_agents.model.implicit`, whose
-:meth:`~gecko_agents.model.implicit.ImplicitStep.seta_stiffness`,
-:meth:`~gecko_agents.model.implicit.ImplicitStep._solve` and
-:meth:`~gecko_agents.model.implicit.ImplicitStep._stick_past_cap` are the reference: these
-loops do their arithmetic, operation for operation in their order (no fast-math, so no
-reassociation or fused multiply-add), and give the same forces and the same answer bit for
-bit (``tests/test_step_overhead.py``); the books' reference is :func:`step_books`, their loop
-:func:`pad_books`.
-Only the pad floor (n = (0, 1), t = (1, 0)) of a tip without a film and a plate whose roots are
-one point (the rigid backing) take it.
+Units, sign conventions, the equations and their sources: :mod:`gecko_agents.model.implicit`,
+whose :meth:`~gecko_agents.model.implicit.ImplicitStep.seta_stiffness`,
+``ImplicitStep._solve`` and ``ImplicitStep._stick_past_cap`` are the reference (the books':
+:func:`step_books` here). The loops do their arithmetic operation for operation in their
+order (no fast-math, so no reassociation or fused multiply-add; only +, −, ×, ÷, √ and |·|,
+which IEEE 754 rounds alike everywhere) and give the same forces and answers bit for bit
+(``tests/test_step_overhead.py``). Only a pad floor (n = (0, 1), t = (1, 0)) with a tip
+without a film, on a plate whose roots are one point (the rigid backing), takes them.
 """
 
 from __future__ import annotations
@@ -22,13 +20,28 @@ import numpy as np
 
 from gecko_agents.physics.friction import friction_cap
 
-__all__ = ["pad_books", "pad_past_cap", "pad_solve", "pad_kernels", "pad_solver", "step_books"]
+try:  # np.clip's ufunc, called without np.clip's wrapper (the same result)
+    from numpy._core.umath import clip
+except ImportError:  # numpy < 2
+    from numpy.core.umath import clip
+
+__all__ = [
+    "clip",
+    "pad_books",
+    "pad_past_cap",
+    "pad_solve",
+    "pad_kernels",
+    "pad_solver",
+    "past_cap",
+    "solve",
+    "step_books",
+]
 
 
 def pad_solve(rod, K, L, Ka, k_phi, xy, root_dx, root_dy, pv, F, kn, kt, cn, ct, c_seta, dt,
               mass, rx, ry, rvx, rvy):  # fmt: skip
     """F' [µN] of every tip ((2, N), new): the linearly implicit step's 2×2 solve
-    (:meth:`gecko_agents.model.implicit.ImplicitStep._solve` on a pad floor, with the seta's
+    (``ImplicitStep._solve`` on a pad floor, with the seta's
     stiffness of :meth:`~gecko_agents.model.implicit.ImplicitStep.seta_stiffness`).
 
     Parameters
@@ -83,7 +96,7 @@ def pad_solve(rod, K, L, Ka, k_phi, xy, root_dx, root_dy, pv, F, kn, kt, cn, ct,
 
 def pad_past_cap(pv, fx, fy, Ft, P, kt, ct, dt, mass, Fc, mu, paper):
     """Whether a sticking tip's implicit friction exceeds its Coulomb cap, the test of
-    :meth:`gecko_agents.model.implicit.ImplicitStep._stick_past_cap` on a pad floor (t = (1, 0)):
+    ``ImplicitStep._stick_past_cap`` on a pad floor (t = (1, 0)):
     F' = (``fx``, ``fy``) [µN]; ``pv`` (4, N) positions and velocities [µm, µm/µs]; ``Ft``,
     ``P`` (N,) the kernel's tangential and normal forces [µN]; ``kt``, ``ct`` (N,) the stick
     spring [µN/µm] and damper [µN·µs/µm] (0 where sliding); ``dt`` [µs]; ``mass`` [ng];
@@ -162,3 +175,22 @@ def pad_solver(model, step):
         and model.params.mechanics in ("linear", "rod")
     )
     return pad_kernels() if applies else None
+
+
+def solve(kernels, m, kn, kt, cn, ct, roots, F):
+    """F' [µN] (two (N,) arrays) by the compiled :func:`pad_solve` of ``kernels``
+    (:func:`pad_solver`) for model ``m``: the stiffnesses and dampers, ``roots`` and ``F`` as
+    ``ImplicitStep._solve``'s."""
+    s, w = m.state, m.world
+    rod = m.params.mechanics != "linear"
+    out = kernels[0](rod, m.K, m.L, m.Ka, m.k_phi, s.xy, w.root_dx, w.root_dy, s.pv, F, kn, kt,
+                     cn, ct, m.c_seta, m.dt, m.mass, *roots)  # fmt: skip
+    return out[0], out[1]
+
+
+def past_cap(kernels, m, fx, fy, kt, ct) -> bool:
+    """The compiled :func:`pad_past_cap` of ``kernels`` (:func:`pad_solver`) for model ``m``,
+    F' = (``fx``, ``fy``) [µN] and the stick spring ``kt`` [µN/µm] and damper ``ct``
+    [µN·µs/µm]."""
+    s, c = m.state, m._constants
+    return kernels[1](s.pv, fx, fy, s.Ft, s.P, kt, ct, m.dt, m.mass, c.Fc, c.mu, c.paper)
