@@ -363,7 +363,7 @@ class ImplicitStep:
         m = self.m
         s, dt, mass = m.state, m.dt, m.mass
         if K is None:
-            return solve(self._pad, m, kn, kt, cn, ct, roots, F)
+            return solve(self._pad, self, kn, kt, cn, ct, roots, F)
         kxx, kxy, kyx, kyy = K
         vx, vy = s.pv[2], s.pv[3]
         wx, wy = vx - roots[2], vy - roots[3]  # motion relative to the root

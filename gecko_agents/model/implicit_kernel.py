@@ -7,8 +7,8 @@ whose :meth:`~gecko_agents.model.implicit.ImplicitStep.seta_stiffness`,
 :func:`step_books` here). The loops do their arithmetic operation for operation in their
 order (no fast-math, so no reassociation or fused multiply-add; only +, −, ×, ÷, √ and |·|,
 which IEEE 754 rounds alike everywhere) and give the same forces and answers bit for bit
-(``tests/test_step_overhead.py``). Only a pad floor (n = (0, 1), t = (1, 0)) with a tip
-without a film, on a plate whose roots are one point (the rigid backing), takes them.
+(``tests/test_step_overhead.py``). Only a pad floor (n = (0, 1), t = (1, 0)) under a plate
+whose roots are one point (the rigid backing) takes them.
 """
 
 from __future__ import annotations
@@ -38,8 +38,8 @@ __all__ = [
 ]
 
 
-def pad_solve(rod, K, L, Ka, k_phi, xy, root_dx, root_dy, pv, F, kn, kt, cn, ct, c_seta, dt,
-              mass, rx, ry, rvx, rvy):  # fmt: skip
+def pad_solve(rod, K, L, Ka, k_phi, xy, root_dx, root_dy, pv, F, kn, kt, cn, ct, film, q,
+              c_seta, dt, mass, rx, ry, rvx, rvy):  # fmt: skip
     """F' [µN] of every tip ((2, N), new): the linearly implicit step's 2×2 solve
     (``ImplicitStep._solve`` on a pad floor, with the seta's
     stiffness of :meth:`~gecko_agents.model.implicit.ImplicitStep.seta_stiffness`).
@@ -55,6 +55,7 @@ def pad_solve(rod, K, L, Ka, k_phi, xy, root_dx, root_dy, pv, F, kn, kt, cn, ct,
         explicit forces [µN].
     kn, kt, cn, ct : (N,) contact normal and stick stiffnesses [µN/µm] and dampers
         [µN·µs/µm] (:meth:`~gecko_agents.model.implicit.ImplicitStep.contact_stiffness`).
+    film, q : a film tip (the spatula) and its film's off-diagonal stiffness (N,) [µN/µm].
     c_seta : the seta's damper [µN·µs/µm]; dt : the step [µs]; mass : the tip's mass [ng].
     rx, ry, rvx, rvy : the plate (the seta springs' root) [µm] and its velocity [µm/µs].
     """
@@ -86,6 +87,11 @@ def pad_solve(rod, K, L, Ka, k_phi, xy, root_dx, root_dy, pv, F, kn, kt, cn, ct,
         ayy = 1.0 + h * (c_seta + cn[i]) + h2 * (kyy + kn[i])
         axy = h2 * kxy
         ayx = h2 * kyx
+        if film:  # the film's off-diagonal stiffness (symmetric)
+            gx += q[i] * vy
+            gy += q[i] * vx
+            axy = axy + h2 * q[i]
+            ayx = ayx + h2 * q[i]
         bx = F[0, i] - dt * gx
         by = F[1, i] - dt * gy
         det = axx * ayy - axy * ayx
@@ -165,26 +171,25 @@ def pad_solver(model, step):
     """The compiled :func:`pad_kernels` for ``model``'s implicit ``step``
     (:class:`gecko_agents.model.implicit.ImplicitStep`) where they apply, else None: the
     model's pad loop is numba's (``kernel = "numba"``), the floor is the pads (no contact
-    normals), the tip has no film, the roots ride on a rigid plate and the seta is linear or
-    a rod."""
+    normals), the roots ride on a rigid plate and the seta is linear or a rod."""
     applies = (
         model.kernel == "numba"
         and step.normal is None
-        and not step.film
         and model.backing.rigid
         and model.params.mechanics in ("linear", "rod")
     )
     return pad_kernels() if applies else None
 
 
-def solve(kernels, m, kn, kt, cn, ct, roots, F):
+def solve(kernels, step, kn, kt, cn, ct, roots, F):
     """F' [µN] (two (N,) arrays) by the compiled :func:`pad_solve` of ``kernels``
-    (:func:`pad_solver`) for model ``m``: the stiffnesses and dampers, ``roots`` and ``F`` as
-    ``ImplicitStep._solve``'s."""
+    (:func:`pad_solver`) for the implicit ``step``: the stiffnesses and dampers, ``roots`` and
+    ``F`` as ``ImplicitStep._solve``'s."""
+    m = step.m
     s, w = m.state, m.world
     rod = m.params.mechanics != "linear"
     out = kernels[0](rod, m.K, m.L, m.Ka, m.k_phi, s.xy, w.root_dx, w.root_dy, s.pv, F, kn, kt,
-                     cn, ct, m.c_seta, m.dt, m.mass, *roots)  # fmt: skip
+                     cn, ct, step.film, step._kxy, m.c_seta, m.dt, m.mass, *roots)  # fmt: skip
     return out[0], out[1]
 
 
