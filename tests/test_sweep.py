@@ -434,3 +434,24 @@ def test_sweep_seeds_outside_the_package_seed_range_are_refused(seed):
     ):
         sweep.expand_grid(PAPER_TABLE1, {}, [0, seed])
     assert len(sweep.expand_grid(PAPER_TABLE1, {}, [0, 2**63 - 1])) == 2
+
+
+def test_map_local_keeps_order_relays_warnings_and_raises():
+    """Two spawned workers give the tasks' results in the tasks' order (as one process does),
+    raise a worker's warning again here, and raise a task's exception here."""
+    import math
+    import warnings
+
+    from gecko_agents.sweep.workers import map_local
+
+    tasks = [(float(i), 2.0) for i in range(7)]
+    calls = []
+    assert map_local(math.pow, tasks, 2, lambda: calls.append(1)) == [i * i for i in range(7)]
+    assert len(calls) == 7
+    assert map_local(math.pow, tasks, 1) == [i * i for i in range(7)]
+    with pytest.warns(UserWarning, match="from a worker"):
+        map_local(warnings.warn, [("from a worker", UserWarning)] * 2, 2)
+    with pytest.raises(ValueError, match="math domain"):
+        map_local(math.sqrt, [(1.0,), (-1.0,)], 2)
+    with pytest.raises(ValueError, match="n_workers = 0"):
+        map_local(math.sqrt, [(1.0,)], 0)

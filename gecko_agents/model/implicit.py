@@ -57,26 +57,10 @@ Event location. Near an event (:meth:`ImplicitStep.substeps`) the runner takes k
 dt/k, each no longer than :data:`IMPLICIT_EVENT_FACTOR` explicit steps, so the event and its
 share of the books are resolved as the explicit step resolves them; a change of step is
 booked exactly (``ImplicitStep._switch_term``). Every body steps with one dt (pymunk), so one
-tip's event shortens the whole array's step: the 10³-seta rod press-pull on a σ = 0.5 µm pad
-floor located 1 202 of its 3 252 long steps at 10 explicit steps (10⁴ setae: 1 334 of
-3 288), 612 of 1 627 at 20. Which tip made a long step located (10³ setae, 10 explicit
-steps): a tip faster than twice the plate in 1 175 of the 1 202 (an attached one in 894: a
-jump-in's ringing while pressed, an escape while pulled; a free one alone in 235: a
-released tip's ringing, whose long steps book it as kinetic energy ½m·v₀·v₁ 2 % of a single
-seta's energy scale off for two steps, 0.26 % located), near its snap-off overlap in 637, its
-jump-in overlap in 407, past its load-controlled pull-off in 506 (in 7 alone). Narrowing the
-last to the fold (dP/dδ + the seta's normal stiffness within two steps of 0) saves 0.5 % of
-the located steps at 20 explicit steps and lets a 20-seta retraction's tips go up to
-0.0035 µm of plate travel from the explicit step's instead of 0.0017 µm; locating attached
-tips only while they slide or are past their pull-off moved crack kinetics' release 0.50 %
-and its books 7.8 % at 20 explicit steps (its running crack is neither): neither is taken.
-
-With the default ``record_every`` the runner records by simulated time
-(:mod:`gecko_agents.model.runner`), so records stay evenly spaced near events as between
-them; a ``record_every`` the caller gives counts every step. A rod seta's press-pull at
-0.005 µm/µs and 10 explicit steps: energy-balance error 1.00 % → 0.42 % of its energy scale
-(recorded every step), 4 854 steps instead of 3 605 (the explicit step: 36 007); at 20
-explicit steps, located: 0.45 %, 3 151 steps.
+tip's event shortens the whole array's step. With the default ``record_every`` the runner
+records by simulated time (:mod:`gecko_agents.model.runner`). What locates a rough array's
+steps, the criteria measured and not taken, and the records' spacing: docs/physics.md, "Event
+location"; the step's accuracy: :data:`IMPLICIT_DT_FACTOR` and :data:`IMPLICIT_EVENT_FACTOR`.
 """
 
 from __future__ import annotations
@@ -85,6 +69,7 @@ import math
 
 import numpy as np
 
+from gecko_agents.history import ENERGY_RTOL
 from gecko_agents.model.implicit_kernel import clip, pad_solver, past_cap, solve, step_books
 from gecko_agents.physics.friction import friction_cap
 from gecko_agents.protocol import DEFAULT_SPEED
@@ -94,6 +79,7 @@ __all__ = [
     "IMPLICIT_DT_FACTOR",
     "IMPLICIT_EVENT_FACTOR",
     "IMPLICIT_TRAVEL",
+    "FREE_RINGING_SHARE",
     "ImplicitStep",
     "check_integrator",
     "implicit_time_step",
@@ -131,6 +117,13 @@ release within 0.0015 µm of plate travel of the explicit step's at both."""
 
 IMPLICIT_TRAVEL = 0.01
 """Largest plate travel per default implicit step at the default plate speed [µm]."""
+
+FREE_RINGING_SHARE = 0.1 * ENERGY_RTOL
+"""Free tips faster than twice the plate count as near an event (:meth:`ImplicitStep.substeps`)
+only while their kinetic energy together exceeds this share of the run's energy scale so far
+[-] (:func:`gecko_agents.history.energy_balance_error`'s scale): a tenth of the balance's
+tolerance, since long steps booked a ringing seta's energy to within about its size (a
+single linear seta: 1.2 times its ringing's peak kinetic energy, 2026-11-26)."""
 
 IMPLICIT_EVENT_FACTOR = 1.0
 """The step near an event (:meth:`ImplicitStep.substeps`) in units of the explicit one
@@ -264,6 +257,8 @@ class ImplicitStep:
         self._k_raw = np.full(n, np.nan)
         self._k_rate = np.zeros(n)
         self._pad = False  # the compiled pad kernels (implicit_kernel.pad_solver; not yet)
+        # The run's energy scale so far [pJ] (note_energies; the runner resets it per run).
+        self.energy_scale = 0.0
 
     def seta_stiffness(self, rx, ry):
         """The seta's stiffness K = −J_x (kxx, kxy, kyx, kyy) [µN/µm], scalars for the
@@ -513,7 +508,9 @@ class ImplicitStep:
         Near an event means an attached tip running away from its branch (faster than twice
         the plate speed ``vp`` [µm/µs], as the release marks of
         :meth:`gecko_agents.model.step_numpy.NumpyStep.bookkeeping`: past a fold, a crack
-        running through, a slip), or a tip whose overlap δ would cross the law's snap-off
+        running through, a slip), free tips as fast while their kinetic energy together
+        exceeds :data:`FREE_RINGING_SHARE` of the run's energy scale so far, or a tip whose
+        overlap δ would cross the law's snap-off
         overlap (attached) or, moving towards the floor, its jump-in overlap (free) within two
         steps at its normal speed, or an attached tip past its load-controlled pull-off
         (dP/dδ < 0, :meth:`gecko_agents.contact.ContactLaw.stiffness`) or reaching it within
@@ -538,7 +535,9 @@ class ImplicitStep:
             reach = 2.0 * dt * np.abs(vn)
             d = s.delta
             with np.errstate(invalid="ignore"):
-                near = vx * vx + vy * vy > 4.0 * v_ref * v_ref
+                fast = vx * vx + vy * vy > 4.0 * v_ref * v_ref
+                near = att & fast
+                near |= self._ringing(fast & ~att, vx, vy)
                 near |= att & (d - m.law.detach_overlap < reach)
                 near |= ~att & (vn < 0.0) & (m.law.attach_overlap - d < reach)
                 # Past the load-controlled pull-off (dP/dδ < 0) or reaching it within two
@@ -549,6 +548,28 @@ class ImplicitStep:
         self.set_dt(dt / k)
         self.n_located += k if k > 1 else 0
         return k
+
+    def _ringing(self, free_fast, vx, vy):
+        """``free_fast`` (the free tips faster than twice the plate) where their kinetic energy
+        together exceeds :data:`FREE_RINGING_SHARE` of the run's energy scale so far
+        (:attr:`energy_scale`), else all False: a released tip's ringing is resolved only while
+        the long step's books of it could move the balance by a share of its tolerance."""
+        if not free_fast.any():
+            return free_fast
+        ke = 0.5 * self.m.mass * float(np.sum(vx[free_fast] ** 2 + vy[free_fast] ** 2))
+        if ke > FREE_RINGING_SHARE * self.energy_scale:
+            return free_fast
+        return np.zeros_like(free_fast)
+
+    def note_energies(self, row: dict) -> None:
+        """Raise :attr:`energy_scale` [pJ] to a recorded ``row``'s plate work, elastic and
+        dissipated energy, as :func:`gecko_agents.history.energy_balance_error` takes it."""
+        self.energy_scale = max(
+            self.energy_scale,
+            abs(row["work_plate_pJ"]),
+            abs(row["energy_elastic_pJ"]),
+            abs(row["energy_dissipated_pJ"]),
+        )
 
     def set_dt(self, dt: float) -> None:
         """Set the model's step to ``dt`` [µs] (its loop constants too). The recorder's

@@ -57,6 +57,8 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         if not isinstance(seg, Segment):
             raise TypeError(f"unknown protocol segment {seg!r}")
     m.reset_state_arrays()
+    if m._implicit is not None:
+        m._implicit.energy_scale = 0.0  # the run's own (History.energy_balance_error)
     run = _Run(Recorder(m.record_setae, film=m.law.film), ke_bound, max_steps, fast_approach)
     for seg in segments:
         seg.check(m)  # a depth this plate cannot reach is refused before any step
@@ -187,6 +189,8 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
                     run.t_record = (math.floor(m.time / interval + 1e-9) + 1) * interval
             if due or run.n_steps == 1:
                 row = rec.record(m, run.work, run.dissipated)
+                if implicit is not None:
+                    implicit.note_energies(row)
                 bound = run.ke_bound
                 if bound is None:
                     bound = 100 * (e_scale + abs(run.work))

@@ -67,6 +67,7 @@ from gecko_agents.studies.common import (
     write_json,
     write_table,
 )
+from gecko_agents.sweep.workers import map_local
 
 NAME = "frictional_adhesion"
 BASE = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.0, "array.count": 1})
@@ -127,19 +128,37 @@ def run_point(
 CONVERGENCE_TIPS = ("spatula", "sphere")  # the tips of the plate-speed check, μ = 10
 
 
-def speed_convergence(speeds=CONVERGENCE_SPEEDS) -> list[dict]:
+def point_row(*args) -> dict:
+    """The row of :func:`run_point` (same arguments) without its history."""
+    return run_point(*args)[0]
+
+
+def _convergence_cases(speeds) -> list[tuple]:
+    undamped = Damping(seta=DEFAULT_DAMPING.seta, normal=0.0, tangential=0.0)
+    cases = [(tip, v, DEFAULT_DAMPING) for tip in CONVERGENCE_TIPS for v in speeds]
+    return cases + [("spatula", speeds[0], undamped)]
+
+
+def convergence_tasks(speeds=CONVERGENCE_SPEEDS) -> list[tuple]:
+    """The runs of :func:`speed_convergence`: (function, arguments) pairs, both drags per case."""
+    return [(point_row, (tip, 10.0, d, 90.0, False, v, damping))
+            for tip, v, damping in _convergence_cases(speeds) for d in (-DRAG, DRAG)]  # fmt: skip
+
+
+def speed_convergence(speeds=CONVERGENCE_SPEEDS, results=None) -> list[dict]:
     """The 90° pull-off of a seta at μ = 10 after both drags, per tip (spatula, JKR sphere) and
     plate speed [µm/µs]: one row per tip and speed with both pull-offs [µN], their ratio, the
     force the press reached [µN] and the peak kinetic/elastic energy ratios; then the spatula
     once more at the fastest speed without contact damping (normal and tangential ratios 0,
     :class:`gecko_agents.model.mass_damping.Damping`). A quasi-static result must not depend on the
-    speed; a dashpot's force ∝ v vanishes as the plate slows."""
+    speed; a dashpot's force ∝ v vanishes as the plate slows. ``results``: the rows of
+    :func:`convergence_tasks`, already run (None: run them here)."""
+    if results is None:
+        results = [fn(*args) for fn, args in convergence_tasks(speeds)]
     rows = []
-    undamped = Damping(seta=DEFAULT_DAMPING.seta, normal=0.0, tangential=0.0)
-    cases = [(tip, v, DEFAULT_DAMPING) for tip in CONVERGENCE_TIPS for v in speeds]
-    for tip, v, damping in cases + [("spatula", speeds[0], undamped)]:
-        grip, rel = (run_point(tip, 10.0, d, 90.0, speed=v, damping=damping)[0]
-                     for d in (-DRAG, DRAG))  # fmt: skip
+    for (tip, v, damping), grip, rel in zip(
+        _convergence_cases(speeds), results[::2], results[1::2], strict=True
+    ):
         rows.append({
             "tip": tip, "speed_um_per_us": v, "contact_damping": damping is DEFAULT_DAMPING,
             "gripping_uN": grip["pull_off_uN"], "releasing_uN": rel["pull_off_uN"],
@@ -218,6 +237,22 @@ def patch_point(tip: str, sigma: float, count: int, sign: int) -> dict:
             "pull_off_per_seta_uN": held.adhesion / count}  # fmt: skip
 
 
+def patch_tasks(pcfg: dict) -> list[tuple]:
+    """The runs of the patch (:func:`patch_point`): (function, arguments) pairs."""
+    return [(patch_point, (tip, sigma, pcfg["count"], sign)) for tip in pcfg["tips"]
+            for sigma in pcfg["sigmas"] for sign in (-1, 1)]  # fmt: skip
+
+
+def sweep_tasks(cfg: dict) -> list[tuple]:
+    """The runs of the pull-angle sweep (:func:`point_row`): (function, arguments) pairs."""
+    points = itertools.product(cfg["tips"], cfg["mus"], cfg["drags"], cfg["angles"])
+    return [(point_row, pt) for pt in points]
+
+
+def _run_task(fn, args):
+    return fn(*args)
+
+
 def map_config(quick: bool) -> dict:
     """The anisotropy map: (tip, μ) cases, seta angles θ [deg] and drags in units of the lean."""
     if quick:
@@ -243,16 +278,22 @@ def map_point(tip: str, mu: float, theta: float, factor: float, sign: int) -> di
             "peel_angle_at_pull_off_deg": force_angle(adhesion, shear)}  # fmt: skip
 
 
-def anisotropy_map(mcfg: dict) -> list[dict]:
-    """Per case, θ and drag/lean: both drags' runs and the gripping/releasing pull-off ratio."""
+def map_tasks(mcfg: dict) -> list[tuple]:
+    """The runs of :func:`anisotropy_map`: (function, arguments), gripping then releasing."""
+    grid = itertools.product(mcfg["cases"], mcfg["thetas"], mcfg["factors"], (-1, 1))
+    return [(map_point, (tip, mu, theta, factor, sign)) for (tip, mu), theta, factor, sign in grid]
+
+
+def anisotropy_map(mcfg: dict, results=None) -> list[dict]:
+    """Per case, θ and drag/lean: both drags' runs and the gripping/releasing pull-off ratio.
+    ``results``: the rows of :func:`map_tasks`, already run (None: run them here)."""
+    if results is None:
+        results = [fn(*args) for fn, args in map_tasks(mcfg)]
     rows = []
-    for tip, mu in mcfg["cases"]:
-        for theta in mcfg["thetas"]:
-            for factor in mcfg["factors"]:
-                grip, rel = (map_point(tip, mu, theta, factor, sign) for sign in (-1, 1))
-                ratio = gripping_over_releasing(grip["pull_off_uN"], rel["pull_off_uN"])
-                rows += [{**grip, "gripping_over_releasing": ratio},
-                         {**rel, "gripping_over_releasing": ratio}]  # fmt: skip
+    for grip, rel in zip(results[::2], results[1::2], strict=True):
+        ratio = gripping_over_releasing(grip["pull_off_uN"], rel["pull_off_uN"])
+        rows += [{**grip, "gripping_over_releasing": ratio},
+                 {**rel, "gripping_over_releasing": ratio}]  # fmt: skip
     return rows
 
 
@@ -282,20 +323,33 @@ def summarise(rows: list[dict], cfg: dict) -> dict:
 BELOW_MAP_THETAS = (30.0, 45.0, 50.0)  # seta angles [deg] below the map's
 
 
-def below_map(quick: bool) -> list[dict]:
-    """Flatter setae than the map's: the spatula at μ = 10 and 0.2, θ = 30°, 45°, 50°, a drag
-    of one lean either way and a 90° pull (:func:`map_point` rows, with the ratio)."""
+def _below_map_cases(quick: bool) -> list[tuple]:
     thetas, mus = ((45.0,), (10.0,)) if quick else (BELOW_MAP_THETAS, (10.0, 0.2))
+    return [(mu, theta) for mu in mus for theta in thetas]
+
+
+def below_map_tasks(quick: bool) -> list[tuple]:
+    """The runs of :func:`below_map`: (function, arguments), gripping then releasing."""
+    return [(map_point, ("spatula", mu, theta, 1.0, sign))
+            for mu, theta in _below_map_cases(quick) for sign in (-1, 1)]  # fmt: skip
+
+
+def below_map(quick: bool, results=None) -> list[dict]:
+    """Flatter setae than the map's: the spatula at μ = 10 and 0.2, θ = 30°, 45°, 50°, a drag
+    of one lean either way and a 90° pull (:func:`map_point` rows, with the ratio).
+    ``results``: the rows of :func:`below_map_tasks`, already run (None: run them here)."""
+    if results is None:
+        results = [fn(*args) for fn, args in below_map_tasks(quick)]
     rows = []
-    for mu in mus:
-        for theta in thetas:
-            grip, rel = (map_point("spatula", mu, theta, 1.0, sign) for sign in (-1, 1))
-            ratio = gripping_over_releasing(grip["pull_off_uN"], rel["pull_off_uN"])
-            rows.append({"mu": mu, "theta_deg": theta, "ratio": ratio,
-                         "lean_gripping_deg": grip["lean_after_drag_deg"],
-                         "lean_releasing_deg": rel["lean_after_drag_deg"],
-                         "gripping_uN": grip["pull_off_uN"],
-                         "releasing_uN": rel["pull_off_uN"]})  # fmt: skip
+    for (mu, theta), grip, rel in zip(
+        _below_map_cases(quick), results[::2], results[1::2], strict=True
+    ):
+        ratio = gripping_over_releasing(grip["pull_off_uN"], rel["pull_off_uN"])
+        rows.append({"mu": mu, "theta_deg": theta, "ratio": ratio,
+                     "lean_gripping_deg": grip["lean_after_drag_deg"],
+                     "lean_releasing_deg": rel["lean_after_drag_deg"],
+                     "gripping_uN": grip["pull_off_uN"],
+                     "releasing_uN": rel["pull_off_uN"]})  # fmt: skip
     return rows
 
 
@@ -306,6 +360,10 @@ def _extra_args(p) -> None:
     p.add_argument(
         "--map", action="store_true", help="with --quick: a small anisotropy map too (full: always)"
     )
+    p.add_argument(
+        "--jobs", type=int, default=2,
+        help="runs at once in separate processes (default 2; 1 runs them in this process)",
+    )  # fmt: skip
     p.add_argument(
         "--convergence",
         action="store_true",
@@ -321,6 +379,8 @@ def main(argv=None) -> dict:
         __doc__, argv,
         extra=_extra_args,
     )  # fmt: skip
+    if args.jobs < 1:
+        raise SystemExit(f"--jobs = {args.jobs} must be ≥ 1")
     out = output_dir(NAME, args)
     with_map = args.map or not args.quick
     with_convergence = args.convergence or not args.quick
@@ -331,31 +391,40 @@ def main(argv=None) -> dict:
         (out / name).unlink(missing_ok=True)  # an earlier run's, which this report won't describe
     cfg = config(args.quick)
     t0 = time.perf_counter()
-    points = list(itertools.product(cfg["tips"], cfg["mus"], cfg["drags"], cfg["angles"]))
-    rows = [
-        run_point(*pt)[0] for pt in tqdm(points, desc="load–drag–pull", disable=args.no_progress)
-    ]
+    mcfg = map_config(args.quick) if with_map else None
+    pcfg = patch_config(args.quick)
+    speeds = CONVERGENCE_SPEEDS if not args.quick else CONVERGENCE_SPEEDS[::3]
+    sections = {
+        # The slowest runs first, so that the workers finish together.
+        "convergence": convergence_tasks(speeds) if with_convergence else [],
+        "map": map_tasks(mcfg) if with_map else [],
+        "patch": patch_tasks(pcfg),
+        "sweep": sweep_tasks(cfg),
+        "below": below_map_tasks(args.quick) if with_map else [],
+    }
+    tasks = [task for part in sections.values() for task in part]
+    with tqdm(total=len(tasks), desc="load–drag–pull", disable=args.no_progress) as bar:
+        done = map_local(_run_task, tasks, args.jobs, bar.update)
+    results = {}
+    for name, part in sections.items():
+        results[name], done = done[: len(part)], done[len(part) :]
+    rows = results["sweep"]
     write_table(out / "sweep.csv", rows)
     report.draw(rows, cfg, out)
     summary = summarise(rows, cfg)
-    t_sweep = time.perf_counter() - t0
-    map_rows, mcfg, below_rows = [], None, []
+    map_rows, below_rows = [], []
     if with_map:
-        mcfg = map_config(args.quick)
-        map_rows = anisotropy_map(mcfg)
+        map_rows = anisotropy_map(mcfg, results["map"])
         write_table(out / "anisotropy_map.csv", map_rows)
         report.draw_map(map_rows, mcfg, out)
-        below_rows = below_map(args.quick)
+        below_rows = below_map(args.quick, results["below"])
         write_table(out / "below_map.csv", below_rows)
     conv_rows, conv = [], None
     if with_convergence:
-        speeds = CONVERGENCE_SPEEDS if not args.quick else CONVERGENCE_SPEEDS[::3]
-        conv_rows = speed_convergence(speeds)
+        conv_rows = speed_convergence(speeds, results["convergence"])
         write_table(out / "speed_convergence.csv", conv_rows)
         conv = convergence_summary(conv_rows)
-    pcfg = patch_config(args.quick)
-    patch_rows = [patch_point(tip, sigma, pcfg["count"], sign) for tip in pcfg["tips"]
-                  for sigma in pcfg["sigmas"] for sign in (-1, 1)]  # fmt: skip
+    patch_rows = results["patch"]
     write_table(out / "patch.csv", patch_rows)
     text = report.report_text(summary, args.quick, map_rows, below_rows, patch_rows,
                               conv_rows, conv)  # fmt: skip
@@ -364,8 +433,8 @@ def main(argv=None) -> dict:
         _, h = run_point("spatula", cfg["mus"][-1], -DRAG, 30.0, record=True)
         h.save(out / "animated_run")
         render.animate(h, out / "spatula_peel.gif")
-    results = {"summary": summary, "runtime_s": time.perf_counter() - t0,
-               "sweep_runtime_s": t_sweep, "speed_convergence": conv, "claims": []}  # fmt: skip
+    results = {"summary": summary, "runtime_s": time.perf_counter() - t0, "jobs": args.jobs,
+               "speed_convergence": conv, "claims": []}  # fmt: skip
     if map_rows:
         ratios = [r["gripping_over_releasing"] for r in map_rows]
         results["map_ratio_range"] = [float(np.nanmin(ratios)), float(np.nanmax(ratios))]

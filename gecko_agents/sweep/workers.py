@@ -33,6 +33,7 @@ __all__ = [
     "failed_record",
     "collect",
     "run_local",
+    "map_local",
 ]
 
 WATCHDOG_PERIOD = 1.0
@@ -227,3 +228,53 @@ def run_local(n_workers: int, todo, fn, fn_name, fn_kwargs, finish) -> None:
         raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
+
+
+# Any function over a list of tasks ---------------------------------------------------------------
+def _call(fn: Callable, args: tuple):
+    """``fn(*args)`` in a worker, with the warnings it raised (relayed as :func:`run_point`'s)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        out = fn(*args)
+    return out, [(w.category, str(w.message)) for w in caught]
+
+
+def map_local(fn: Callable, tasks: list[tuple], n_workers: int, done=None) -> list:
+    """``[fn(*args) for args in tasks]``, on ``n_workers`` spawned processes that die with this
+    one (1: in this process, in order). ``fn`` must be importable by name (a module-level
+    function) and its arguments and results picklable. Results come in the tasks' order;
+    ``done()`` is called as each task completes (a progress bar's update). A worker's warnings
+    are raised again here as its task completes; a task's exception is raised here and the
+    running tasks are abandoned. For the many independent runs of a study; a sweep over
+    parameters and seeds with a store to resume from is :func:`gecko_agents.sweep.run_sweep`."""
+    if n_workers < 1:
+        raise ValueError(f"n_workers = {n_workers} must be ≥ 1")
+    if n_workers == 1 or len(tasks) <= 1:
+        out = []
+        for args in tasks:
+            out.append(fn(*args))
+            if done is not None:
+                done()
+        return out
+    ctx = multiprocessing.get_context("spawn")
+    pool = ProcessPoolExecutor(
+        max_workers=min(n_workers, len(tasks)),
+        mp_context=ctx,
+        initializer=_worker_init,
+        initargs=(os.getpid(),),
+    )
+    results: list = [None] * len(tasks)
+    try:
+        futures = {pool.submit(_call, fn, args): i for i, args in enumerate(tasks)}
+        for fut in futures_as_completed(futures):
+            results[futures[fut]], caught = fut.result()
+            for category, message in caught:
+                warnings.warn(message, category, stacklevel=2)
+            if done is not None:
+                done()
+    except BaseException:
+        _stop_workers(pool)  # do not wait for the running tasks
+        raise
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+    return results
