@@ -1,9 +1,10 @@
 """The per-step shortcuts of a few-seta run give the histories of the code they shortcut, bit
-for bit: the compiled pad solve and friction test (:mod:`gecko_agents.model.implicit_kernel`)
-against the numpy reference (:meth:`gecko_agents.model.implicit.ImplicitStep._solve`,
-``_stick_past_cap``), the recorder's energies without forces against the force functions',
-and the contact energy's constants cached per law without leaking from one model into another.
-No tolerances: every comparison is exact."""
+for bit: the compiled pad solve, friction test and books
+(:mod:`gecko_agents.model.implicit_kernel`) against the numpy references
+(``ImplicitStep._solve``, ``_stick_past_cap``, ``step_books``), the recorder's energies
+without forces against the force functions', and the contact energy's constants cached per law
+without leaking from one model into another. Every comparison is exact but the one closed-form
+check that says what rounding it allows."""
 
 import warnings
 
@@ -160,7 +161,7 @@ def test_contact_energy_constants_per_law_and_for_array_parameters():
     assert np.array_equal(jkr.contact_energy(a, 3.0, 0.08, 500.0), other)
     arr = jkr.contact_energy(a, np.full(7, 4.0), np.full(7, 0.05), np.full(7, 1000.0))
     assert np.array_equal(arr, first)
-    # U(a_j) = 0: nothing stored at jump-in, within rounding of its ~1e-2 pJ terms.
+    # U(a_j) = 0: nothing stored at jump-in; 1e-15 allows ~100 roundings of its terms (~5e-3).
     aj = np.cbrt((np.sqrt(2.0 * np.pi * 0.05 / 1000.0) * 4.0) ** 2)
     assert abs(jkr.contact_energy(aj, 4.0, 0.05, 1000.0)) < 1e-15
 
