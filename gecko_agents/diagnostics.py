@@ -206,7 +206,7 @@ def model_facts(model, segments) -> dict:
         "protocol_speed_um_per_us": max(speeds, default=0.0),
         # Read with defaults (explicit, dt) so runs saved before they were kept still load.
         "integrator": model.integrator,
-        "event_dt_us": float(model.dt if model._implicit is None else model._implicit.event_dt),
+        "event_dt_us": float(model.event_dt),
     }
 
 

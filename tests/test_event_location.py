@@ -54,18 +54,20 @@ def located():
     return _retraction(integrator="implicit")
 
 
-def test_every_release_within_four_explicit_steps_of_plate_travel(explicit, located):
-    """Each tip lets go within 4 explicit steps of plate travel (0.0020 µm) of where it lets
+def test_every_release_within_five_explicit_steps_of_plate_travel(explicit, located):
+    """Each tip lets go within 5 explicit steps of plate travel (0.0025 µm) of where it lets
     go at the explicit step: the implicit step at the explicit step's length lets go 3 of its
     steps late (0.0017 µm at most, the scheme's own first-order error, which location cannot
-    undo); the fourth step is margin. The pull-off (largest adhesion) within 0.2 %
-    (+0.075 % measured)."""
+    undo); located, 3 (0.0015 µm) while free tips' ringing located steps too, 4 (0.0020 µm)
+    since it does only while it matters to the books (FREE_RINGING_SHARE: a tip's fold is
+    then seen up to a long step later, and its release starts one explicit step later); the
+    fifth step is margin. The pull-off (largest adhesion) within 0.2 % (+0.09 % measured)."""
     m_exp, h_exp = explicit
     m, h = located
     assert m.integrator == "implicit" and m.dt > 0.99 * IMPLICIT_DT_FACTOR * m_exp.dt
     y_exp, y = _releases(h_exp), _releases(h)
     assert np.isfinite(y_exp).all() and np.isfinite(y).all()  # every tip let go in both
-    tol = 4 * protocol.DEFAULT_SPEED * m_exp.dt  # 4 explicit steps of plate travel [µm]
+    tol = 5 * protocol.DEFAULT_SPEED * m_exp.dt  # 5 explicit steps of plate travel [µm]
     assert np.max(np.abs(y - y_exp)) <= tol, (np.max(np.abs(y - y_exp)), tol)
     f_exp = -np.min(h_exp["force_normal_uN"])
     f = -np.min(h["force_normal_uN"])
@@ -75,7 +77,7 @@ def test_every_release_within_four_explicit_steps_of_plate_travel(explicit, loca
 def test_location_is_what_keeps_the_releases(explicit, located):
     """Without location (the event step as long as the default step) every tip lets go
     about 3 long steps late, 0.03 µm: more than 10 times the located releases' error. The
-    located run takes at most a quarter of the explicit step's steps (measured 6 108 against
+    located run takes at most a quarter of the explicit step's steps (measured 4 189 against
     26 739), and its located steps are whole multiples of the steps between events."""
     m_exp, h_exp = explicit
     m, h = located
@@ -132,3 +134,35 @@ def test_a_released_tips_ringing_is_located_only_while_the_books_need_it(monkeyp
     # Nothing about the tip's release depends on its ringing afterwards (measured equal to
     # 1e-9); 1e-6 allows for rounding in a run of different steps.
     np.testing.assert_allclose(pull_off_and_release(runs[FREE_RINGING_SHARE][1]), ref, rtol=1e-6)
+
+
+def test_a_longer_event_step_trades_each_release_for_steps(explicit, located):
+    """``event_dt`` of 5 explicit steps: fewer steps than at the default's 1 (measured 1 769
+    against 4 189), every release within 5 × 4 explicit steps of plate travel of the explicit
+    step's, about 5 times the default's error (measured 0.0089 against 0.0020 µm); the
+    pull-off within 0.2 % (measured +0.10 %)."""
+    m_exp, h_exp = explicit
+    _, h = located
+    m5, h5 = _retraction(integrator="implicit", event_dt=5 * m_exp.dt)
+    assert m5.event_dt == pytest.approx(5 * m_exp.dt, rel=0.05)  # a whole share of the step
+    assert h5.meta["n_steps"] < 0.6 * h.meta["n_steps"], (h5.meta["n_steps"], h.meta["n_steps"])
+    y_exp = _releases(h_exp)
+    err5 = np.max(np.abs(_releases(h5) - y_exp))
+    err1 = np.max(np.abs(_releases(h) - y_exp))
+    assert err1 < err5 <= 5 * 4 * protocol.DEFAULT_SPEED * m_exp.dt, (err1, err5)
+    f_exp = -np.min(h_exp["force_normal_uN"])
+    assert abs(-np.min(h5["force_normal_uN"]) - f_exp) <= 0.002 * f_exp
+
+
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        ({"event_dt": 0.0}, "event_dt = 0.0 µs must be finite and > 0"),
+        ({"event_dt": math.inf}, "event_dt = inf µs must be finite and > 0"),
+        ({"event_dt": "1"}, "event_dt = '1' µs must be finite and > 0"),
+        ({"event_dt": 0.5, "integrator": "explicit"}, "runs the explicit step"),
+    ],
+)
+def test_event_dt_is_refused_before_anything_runs(kw, match):
+    with pytest.raises(ValueError, match=match):
+        Model(ROUGH, n_sim=2, seed=1, **kw)

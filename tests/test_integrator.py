@@ -186,6 +186,36 @@ def test_run_file_chooses_the_integrator(tmp_path, capsys):
     assert "integrator" in capsys.readouterr().err and not (tmp_path / "o2").exists()
 
 
+def test_run_file_sets_the_step_near_events(tmp_path, capsys):
+    """``[model] event_dt_us`` reaches the model (its event step at most that, recorded in
+    ``meta["event_dt_us"]``); a negative one is refused when the file loads, and one the
+    explicit step cannot take when the model is built, both naming the key."""
+    import json
+
+    from gecko_agents import cli
+    from gecko_agents.runfiles import run as runfile
+
+    text = _RUN_FILE.format(integrator="implicit") + ""
+    path = tmp_path / "event.toml"
+    path.write_text(text.replace("n_sim = 1\n", "n_sim = 1\nevent_dt_us = 0.2\n"))
+    assert runfile.load_run(path).model["event_dt"] == 0.2
+    out = tmp_path / "out"
+    assert cli.main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
+    assert 0.0 < json.loads((out / "metadata.json").read_text())["event_dt_us"] <= 0.2
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace("n_sim = 1\n", "n_sim = 1\nevent_dt_us = -1.0\n"))
+    with pytest.raises(runfile.RunFileError, match=r"\[model\] event_dt_us.*-1.0.*> 0 µs"):
+        runfile.load_run(bad)
+    explicit = tmp_path / "explicit.toml"
+    explicit.write_text(
+        _RUN_FILE.format(integrator="explicit").replace(
+            "n_sim = 1\n", "n_sim = 1\nevent_dt_us = 0.3\n"
+        )
+    )
+    with pytest.raises(runfile.RunFileError, match=r"\[model\] event_dt_us.*explicit step"):
+        runfile.load_run(explicit).build_model()
+
+
 def test_a_change_of_step_is_booked_exactly(monkeypatch):
     """Steps alternating between dt and dt/5 all run long (event location's switch, here
     forced on every other step), dt the segment's step (``dt_base``: at 0.01 µm/µs the travel

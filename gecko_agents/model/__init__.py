@@ -93,6 +93,9 @@ class Model:
         ``"implicit"`` (each tip's force linearly implicit in its seta, contact and stick
         springs and dampers, :mod:`gecko_agents.model.implicit`: a step bounded by accuracy,
         not by the contact springs; batch contact only).
+    event_dt : the implicit step near an event (snap, fold, slip) [µs] (default one explicit
+        step): longer, fewer steps where events are many (a rough array), each release later by
+        about as many explicit steps of plate travel (README "Speed"); explicit step: refused.
     contact : ``"batch"`` (fast, default) or ``"callback"`` (per-contact reference path).
     damping : :class:`Damping` ratios.
     record_every : record every this many steps (default: every 0.02 µm of plate travel at the
@@ -108,8 +111,7 @@ class Model:
     threads : with more than 1, the numba loop runs its blocks of setae on numba's threads
         (``NUMBA_NUM_THREADS``; the same history bit for bit, ``meta["loop_threads"]``).
         None (default): from ``gecko_agents.model.step_loop.PARALLEL_MIN_SETAE`` setae on, as
-        many as
-        the cores other processes leave idle when the model is built
+        many as the cores other processes leave idle when the model is built
         (:func:`gecko_agents.model.setup.choose_threads`), 1 below. Threads pay on an idle
         machine and cost 2–3× when they wait for a busy core.
     floor_profile : a given floor (:class:`gecko_agents.floor.Profile`, e.g. a measured
@@ -152,6 +154,7 @@ class Model:
         detection: str = "auto",
         threads: int | None = None,
         integrator: str = "auto",
+        event_dt: float | None = None,
         **backing_options,
     ):
         n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
@@ -171,8 +174,9 @@ class Model:
         self.law = law = contact_law(params)
         self._set_mechanics(params, law, damping)
         self.dt = time_step(
-            self.integrator, dt, self.omega_max, self.k_max, self.mass, law.rate_dependent
-        )
+            self.integrator, dt, self.omega_max, self.k_max, self.mass, law.rate_dependent,
+            event_dt,
+        )  # fmt: skip
         if verbose:
             print(f"gecko_agents: {self.integrator} step dt = {self.dt:.4g} µs (ω_max·dt = "
                   f"{self.omega_max * self.dt:.2f}; explicit stable below 2)")  # fmt: skip
@@ -195,7 +199,7 @@ class Model:
         )
         if contact == "callback":
             self.world.on_pre_solve(self._pre_solve)
-        kernel = self._set_step_parts(params, kernel, dt)
+        kernel = self._set_step_parts(params, kernel, dt, event_dt)
         self._fast_pads = self.world.pads and contact == "batch"
         self.kernel, self._loop, self.loop_threads = choose_kernel(
             kernel, self._fast_pads, self.n, type(self.law), threads
@@ -211,12 +215,13 @@ class Model:
         self.reset_state_arrays()
         self.backing = backing(self, **backing_options)
 
-    def _set_step_parts(self, params, kernel: str, dt) -> str:
-        """The implicit step (its default step if ``dt`` is None) and the elastica's chains,
+    def _set_step_parts(self, params, kernel: str, dt, event_dt) -> str:
+        """The implicit step (its default step if ``dt`` is None; ``event_dt`` as
+        :class:`gecko_agents.model.implicit.ImplicitStep`) and the elastica's chains,
         where chosen; returns the kernel (the elastica runs on numpy)."""
         self._implicit = None
         if self.integrator == "implicit":
-            self._implicit = ImplicitStep(self, default_step=dt is None)
+            self._implicit = ImplicitStep(self, default_step=dt is None, event_dt=event_dt)
             if not self.world.pads:  # the contact normals NumpyStep.contact keeps
                 self._implicit.normal = self.physics.normal
         if params.mechanics == "elastica":
@@ -278,6 +283,11 @@ class Model:
     def external_force(self) -> np.ndarray:
         """Extra force on each tip (N, 2) [µN] (probing and tests); the plate does not see it."""
         return self.state.external_force
+
+    @property
+    def event_dt(self) -> float:
+        """The step near events [µs]: the implicit step's located step, or dt."""
+        return self.dt if self._implicit is None else self._implicit.event_dt
 
     @property
     def profile(self) -> Profile:

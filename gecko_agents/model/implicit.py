@@ -158,24 +158,8 @@ def check_integrator(integrator, contact: str, params=None) -> str:
 
     - ``contact = "callback"``; ``mechanics = "elastica"`` (no Jacobian of the chain).
 
-    The elastic backing runs implicitly: its strip sub-cycles each tip step at the explicit
-    step's length, its inertia scaled for that step
-    (:meth:`gecko_agents.backing.elastic.ElasticBacking.roots`), and events are located as
-    on the rigid plate. A stiff strip pulls off within 0.02 % of the explicit step (it was
-    14 % high while the strip stepped, and its inertia was scaled, at the tips' long step,
-    and a misaligned strip diverged); the misalignment study's quick pads meet the explicit
-    step at dt/2 within 0.06–0.55 % (the explicit step itself: 0.4–0.9 %).
-
-    The spatula runs implicitly: with the film's own Jacobian
-    (:meth:`gecko_agents.contact.SpatulaTip.jacobian`; with a bound K/h + k_t, K/h + 2E*·√(Rδ)
-    it acted as a damper dt·(K' − K)) its gripping-drag pull-off at 0.005 µm/µs is 0.566
-    against the explicit step's 0.565 µN at the default step (+0.1 %; +4.6 % with the bound);
-    a sliding pad's tangent along the floor is 0 (held, a seta at μ = 0.2 pushed over its pad
-    pulled off 1.7 % below the explicit step, now +0.08 %); and with the law's books a return
-    mapping (:class:`gecko_agents.contact.SpatulaTip`, "Stored energy"; the trial's release of
-    each slide booked before, an error ∝ dt) a drag-pull with the paper's friction law closes
-    its energy books to 0.19 % of its energy scale at the default step (4.75 % before, past
-    the spatula's 4 %; 0.08 % explicit)."""
+    Why the spatula and the elastic backing run implicitly, with what they were measured to
+    give against the explicit step: docs/physics.md, "Time stepping"."""
     if integrator == "auto":
         verified = contact == "batch" and (params is None or params.mechanics != "elastica")
         return "implicit" if verified else "explicit"
@@ -195,22 +179,22 @@ def whole_event_steps(bound: float, event: float) -> float:
     return event * max(1, math.floor(bound / event + 1e-9))
 
 
-def implicit_time_step(dt, omega_max: float) -> float:
+def implicit_time_step(dt, omega_max: float, event_dt=None) -> float:
     """The implicit step's dt [µs]: ``dt`` if given (finite, > 0: no stability bound), else
     :data:`IMPLICIT_DT_FACTOR` explicit steps 0.75/ω_max (ω_max [1/µs] of the stiffest spring
     on the tip) or, where that exceeds :data:`IMPLICIT_TRAVEL` of plate travel at the default
     plate speed (:data:`gecko_agents.protocol.DEFAULT_SPEED`), the most whole steps near an
-    event (:data:`IMPLICIT_EVENT_FACTOR` explicit steps) within it (the travel itself if
-    not one fits), so that the steps near events are as long as allowed, not a fraction
-    shorter: where an event falls within the step moves the books' event error (a stubby
-    Hertz seta's press-pull at 0.2 µm/µs recorded every step: 2.2 % at 0.1070 µs, 4.2 % at
-    0.1053 µs, as the explicit step's 2.5 % and 5.0 %)."""
+    event (``event_dt`` [µs], default :data:`IMPLICIT_EVENT_FACTOR` explicit steps) within it
+    (the travel itself if not one fits), so that the steps near events are as long as allowed,
+    not a fraction shorter: where an event falls within the step moves the books' event error
+    (a stubby Hertz seta's press-pull at 0.2 µm/µs recorded every step: 2.2 % at 0.1070 µs,
+    4.2 % at 0.1053 µs, as the explicit step's 2.5 % and 5.0 %)."""
     if dt is None:
         explicit = 0.75 / omega_max
         dt = IMPLICIT_DT_FACTOR * explicit
         cap = IMPLICIT_TRAVEL / DEFAULT_SPEED
         if dt > cap:
-            event = IMPLICIT_EVENT_FACTOR * explicit
+            event = IMPLICIT_EVENT_FACTOR * explicit if event_dt is None else event_dt
             dt = whole_event_steps(cap, event) if cap >= event else cap
         return dt
     if not (isinstance(dt, int | float) and math.isfinite(dt) and dt > 0):
@@ -227,9 +211,11 @@ class ImplicitStep:
         state and physics are read every step).
     default_step : the model's dt is the default :func:`implicit_time_step`, which fast
         segments shorten (:meth:`begin_segment`); a dt the caller chose stands.
+    event_dt : the longest step near an event [µs] (default :data:`IMPLICIT_EVENT_FACTOR`
+        explicit steps); at or above the model's dt nothing is located.
     """
 
-    def __init__(self, model, default_step: bool = False):
+    def __init__(self, model, default_step: bool = False, event_dt=None):
         self.m = model
         law = model.law
         self.k_cap = float(law.stiffest(5 * model.params.contact.pull_off_force))
@@ -240,8 +226,8 @@ class ImplicitStep:
         self.dt_base = model.dt  # the segment's step between events [µs] (begin_segment)
         self.default_step = default_step  # the step of implicit_time_step(None, …)
         # Near an event: k steps of dt/k, no longer than IMPLICIT_EVENT_FACTOR explicit
-        # steps 0.75/ω_max.
-        event = IMPLICIT_EVENT_FACTOR * 0.75 / model.omega_max
+        # steps 0.75/ω_max, or the caller's event_dt [µs].
+        event = IMPLICIT_EVENT_FACTOR * 0.75 / model.omega_max if event_dt is None else event_dt
         self.k_event = max(1, math.ceil(model.dt / event - 1e-9))
         self.n_located = 0  # steps taken at dt/k near events
         self._J = np.zeros((2, n))  # the last step's impulse F'·dt [µN·µs]

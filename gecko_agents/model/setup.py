@@ -127,11 +127,22 @@ def idle_cores() -> int:
     return max(1, round(cores - busy))
 
 
-def time_step(integrator: str, dt, omega_max, k_max, mass, rate_dependent) -> float:
+def time_step(integrator: str, dt, omega_max, k_max, mass, rate_dependent, event_dt=None) -> float:
     """The model's step [µs] for its ``integrator``: :func:`explicit_time_step` or
-    :func:`gecko_agents.model.implicit.implicit_time_step` (same arguments, units there)."""
+    :func:`gecko_agents.model.implicit.implicit_time_step` (same arguments, units there).
+    ``event_dt`` [µs], the implicit step's near events, is refused for the explicit step
+    (finite and > 0 otherwise)."""
+    if event_dt is not None:
+        if integrator != "implicit":
+            raise ValueError(
+                f"event_dt = {event_dt!r} µs sets the implicit step near events; this model "
+                f"runs the {integrator} step (integrator = 'implicit' or 'auto' where it is "
+                "verified, gecko_agents.model.implicit.check_integrator)"
+            )
+        if not (isinstance(event_dt, int | float) and math.isfinite(event_dt) and event_dt > 0):
+            raise ValueError(f"event_dt = {event_dt!r} µs must be finite and > 0")
     if integrator == "implicit":
-        return implicit_time_step(dt, omega_max)
+        return implicit_time_step(dt, omega_max, event_dt)
     return explicit_time_step(dt, omega_max, k_max, mass, rate_dependent)
 
 

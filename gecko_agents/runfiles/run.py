@@ -23,6 +23,8 @@ Run file
     kernel = "auto"                    # auto | numpy | numba | python
     integrator = "explicit"            # auto | explicit | implicit (default: auto, the
                                        # implicit step where verified, gecko_agents.model.implicit)
+    event_dt_us = 0.5                  # the implicit step near events [µs] (default: one
+                                       # explicit step; longer: fewer steps, later releases)
 
     [[protocol]]                       # segments in order ...
     segment = "press_to"
@@ -126,12 +128,15 @@ _MODEL_KEYS = {
     "record_setae": bool,
     "kernel": str,
     "integrator": str,
+    "event_dt_us": float,
 }
+_MODEL_ARGS = {"dt_us": "dt", "event_dt_us": "event_dt"}  # run-file key → Model keyword
 _MODEL_RANGES = {
     "integrator": f"one of {INTEGRATORS}",
     "seed": "an integer ≥ 0",
     "n_sim": "an integer in [1, array.count] (and at most gecko_agents.model.setup.MAX_N)",
     "dt_us": "a time step > 0 µs (below the stability bound the model states)",
+    "event_dt_us": "a time step > 0 µs (the implicit step only)",
 }
 
 
@@ -147,8 +152,8 @@ class RunSpec:
     preset : preset name; ``overrides`` the ``[params]`` in effect (dotted name → value).
     params : the validated :class:`SetaArray`.
     model : keyword arguments of :class:`~gecko_agents.model.Model` (``n_sim``, ``seed``,
-        ``dt``, ``record_setae``, ``kernel``, ``integrator``; absent ones take the model's
-        defaults).
+        ``dt``, ``record_setae``, ``kernel``, ``integrator``, ``event_dt``; absent ones take the
+        model's defaults).
     protocol : the protocol segments.
     description : the file's description (may be empty).
     resolved : the tables in effect (after ``--quick``), for metadata.json.
@@ -172,8 +177,8 @@ class RunSpec:
         try:
             return Model(self.params, **self.model)
         except (ValueError, TypeError) as err:
-            m = re.match(r"(n_sim|dt|kernel|seed|integrator)\b", str(err))
-            key = {"dt": "dt_us"}.get(m.group(1), m.group(1)) if m else None
+            m = re.match(r"(n_sim|dt|event_dt|kernel|seed|integrator)\b", str(err))
+            key = {v: k for k, v in _MODEL_ARGS.items()}.get(m.group(1), m.group(1)) if m else None
             where = f"[model] {key}" if key else "[model]"
             raise RunFileError(f"{self.path}: {where}: {err}") from None
 
@@ -194,10 +199,11 @@ def _run_variant(ctx: Ctx, data: dict, quick: dict | None, path: Path, raw: byte
     model: dict = {}
     for key, value in model_t.items():
         where = f"[{'quick.' if key in in_quick else ''}model] {key}"
-        model[{"dt_us": "dt"}.get(key, key)] = ctx.type_(where, value, _MODEL_KEYS[key])
+        model[_MODEL_ARGS.get(key, key)] = ctx.type_(where, value, _MODEL_KEYS[key])
         bad = {
             "seed": lambda v: v < 0,
             "dt_us": lambda v: not 0 < v < float("inf"),
+            "event_dt_us": lambda v: not 0 < v < float("inf"),
             "integrator": lambda v: v not in INTEGRATORS,
         }.get(key, lambda v: False)
         allowed = _MODEL_RANGES.get(key, "")
