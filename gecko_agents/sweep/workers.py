@@ -209,16 +209,20 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
             proc.kill()
 
 
-def run_local(n_workers: int, todo, fn, fn_name, fn_kwargs, finish) -> None:
-    """Run the points ``todo`` (pairs of point and key) on a pool of spawned worker processes
-    that die with this process; ``finish(record)`` is called as each point completes."""
-    ctx = multiprocessing.get_context("spawn")
-    pool = ProcessPoolExecutor(
-        max_workers=min(n_workers, len(todo)),
-        mp_context=ctx,
+def _local_pool(n_workers: int) -> ProcessPoolExecutor:
+    """``n_workers`` spawned worker processes that die with this one (:func:`_worker_init`)."""
+    return ProcessPoolExecutor(
+        max_workers=n_workers,
+        mp_context=multiprocessing.get_context("spawn"),
         initializer=_worker_init,
         initargs=(os.getpid(),),
     )
+
+
+def run_local(n_workers: int, todo, fn, fn_name, fn_kwargs, finish) -> None:
+    """Run the points ``todo`` (pairs of point and key) on a pool of spawned worker processes
+    that die with this process; ``finish(record)`` is called as each point completes."""
+    pool = _local_pool(min(n_workers, len(todo)))
     try:
         futures = {pool.submit(run_point, fn, fn_name, fn_kwargs, p, k): (p, k) for p, k in todo}
         for fut in futures_as_completed(futures):
@@ -256,13 +260,7 @@ def map_local(fn: Callable, tasks: list[tuple], n_workers: int, done=None) -> li
             if done is not None:
                 done()
         return out
-    ctx = multiprocessing.get_context("spawn")
-    pool = ProcessPoolExecutor(
-        max_workers=min(n_workers, len(tasks)),
-        mp_context=ctx,
-        initializer=_worker_init,
-        initargs=(os.getpid(),),
-    )
+    pool = _local_pool(min(n_workers, len(tasks)))
     results: list = [None] * len(tasks)
     try:
         futures = {pool.submit(_call, fn, args): i for i, args in enumerate(tasks)}
