@@ -173,3 +173,20 @@ def test_the_default_step_keeps_the_strips_coupling_stable(factor):
         else:
             with pytest.raises(RuntimeError, match="tips attached after settling"):
                 elastic_pressed_model(40, pad_peel.DEPTH, 60, p, dt=dt, **kw)
+
+
+def test_a_long_event_step_is_held_to_the_strips_coupling_bound():
+    """The same preload with ``event_dt`` of 15 explicit steps: the default step and its event
+    step are both shortened to ω_c·dt ≤ COUPLING_OMEGA_DT, and every tip settles attached
+    (left at 15 explicit steps, the step diverged as the test above shows)."""
+    from gecko_agents.studies import pad_peel
+
+    p = pad_peel.BASE.replace(**{"array.count": 40})
+    kw = {"seed": 1, "leader_arm": pad_peel.ARM, "peel_angle_deg": 30.0}
+    event_dt = 15.0 * Model(p, integrator="explicit", **kw).dt
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = elastic_pressed_model(40, pad_peel.DEPTH, 60, p, event_dt=event_dt, **kw)
+    bound = COUPLING_OMEGA_DT / m.backing.coupling_omega()
+    assert m.dt <= bound * (1 + 1e-12) and m.event_dt <= m.dt
+    assert m.attached.all()

@@ -463,12 +463,13 @@ class ImplicitStep:
 
     def limit_step(self, dt_max: float) -> None:
         """Shorten the default step between events to at most ``dt_max`` [µs], a whole number
-        of event steps (at least one); a dt the caller chose stands. For a bound that the
-        model's parts set after the step was chosen (the elastic strip's coupling to its
-        setae, :class:`gecko_agents.backing.elastic.ElasticBacking`)."""
+        of event steps (at least one; an event step longer than ``dt_max`` is shortened to
+        it); a dt the caller chose stands. For a bound that the model's parts set after the
+        step was chosen (the elastic strip's coupling to its setae,
+        :class:`gecko_agents.backing.elastic.ElasticBacking`)."""
         if not self.default_step or self.dt_full <= dt_max:
             return
-        event = self.event_dt
+        event = min(self.event_dt, dt_max)
         dt = whole_event_steps(dt_max, event)
         self.k_event = round(dt / event)
         self.dt_full = self.dt_base = self._dt_prev = dt
