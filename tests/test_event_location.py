@@ -166,3 +166,22 @@ def test_a_longer_event_step_trades_each_release_for_steps(explicit, located):
 def test_event_dt_is_refused_before_anything_runs(kw, match):
     with pytest.raises(ValueError, match=match):
         Model(ROUGH, n_sim=2, seed=1, **kw)
+
+
+def test_a_fast_segment_keeps_its_travel_cap_with_a_long_event_step():
+    """At 0.5 µm/µs the travel cap (0.01 µm, 0.02 µs) is shorter than one explicit step: the
+    segment's step is one explicit step at the default event step, and stays so with an
+    ``event_dt`` of 10 explicit steps (it took those 10, 0.5 µm of travel a step, before)."""
+    from gecko_agents.model.implicit import IMPLICIT_TRAVEL
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        explicit = Model(ROUGH, n_sim=2, seed=1, integrator="explicit").dt
+        steps = {}
+        for ev in (None, 10 * explicit):
+            m = Model(ROUGH, n_sim=2, seed=1, event_dt=ev)
+            m._implicit.begin_segment(0.5)
+            steps[ev] = m.dt
+    assert steps[None] == pytest.approx(explicit, rel=1e-12)
+    assert steps[10 * explicit] == pytest.approx(explicit, rel=1e-12)
+    assert IMPLICIT_TRAVEL / 0.5 < explicit  # the cap is below one explicit step here

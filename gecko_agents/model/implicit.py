@@ -487,11 +487,18 @@ class ImplicitStep:
         0: ``dt_full``). With the default step (:func:`implicit_time_step` without a dt), a
         fast segment shortens it so that the plate travels at most :data:`IMPLICIT_TRAVEL`
         per step, to a whole number of the steps taken near events, at least one (the step is
-        set for accuracy: plate travel and events per step); a dt the caller chose stands.
-        The segment asks its plate velocity at this step, so it lands on its end point."""
+        set for accuracy: plate travel and events per step); below an event step longer than
+        the default's (``event_dt``), to the travel itself, at least the default's event step.
+        A dt the caller chose stands. The segment asks its plate velocity at this step, so it
+        lands on its end point."""
         dt = self.dt_full
-        if speed and self.default_step and IMPLICIT_TRAVEL / speed < dt:
-            dt = whole_event_steps(IMPLICIT_TRAVEL / speed, self.event_dt)
+        cap = IMPLICIT_TRAVEL / speed if speed else math.inf
+        if self.default_step and cap < dt:
+            event = self.event_dt
+            if cap >= event:
+                dt = whole_event_steps(cap, event)
+            else:  # one event step at most: the default's (an explicit step), or the travel
+                dt = max(cap, min(event, IMPLICIT_EVENT_FACTOR * 0.75 / self.m.omega_max))
         self.dt_base = dt
         self.set_dt(dt)
 
