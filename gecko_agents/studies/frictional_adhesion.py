@@ -22,6 +22,8 @@ from the shear axis, which for a film under tension is its peel angle; for a gri
 is α* read from that one pull) and the seta's lean after the drag (> 90°: flipped over
 its tip). Nothing is tuned: it maps the model.
 
+The runs are independent and go to ``--jobs`` worker processes (default 2, slowest first,
+:func:`gecko_agents.sweep.workers.map_local`); the tables are the same as one process's.
 Every run moves the plate at the package's quasi-static speed (``protocol.DEFAULT_SPEED``,
 5·10⁻³ µm/µs). The full run repeats the 90° pulls of the spatula and the JKR sphere (μ = 10)
 from 0.05 down to 0.0025 µm/µs, and the spatula's once without contact damping, to show the
