@@ -65,6 +65,7 @@ __all__ = [
     "invariant_violations",
     "energy_balance_error",
     "ENERGY_RTOL",
+    "ENERGY_SCALE_COLUMNS",
     "RUN_FILES",
 ]
 
@@ -422,6 +423,11 @@ while a missing or double-counted term fails it (a sliding tip's Coulomb work bo
 """
 
 
+ENERGY_SCALE_COLUMNS = ("work_plate_pJ", "energy_elastic_pJ", "energy_dissipated_pJ")
+"""The columns whose largest magnitude is a run's energy scale [pJ]
+(:func:`energy_balance_error`)."""
+
+
 def energy_balance_error(h: History) -> float:
     """max |W − (E_el + E_kin + D)| / scale over the recorded steps [-].
 
@@ -439,10 +445,7 @@ def energy_balance_error(h: History) -> float:
     # Changes since the first record: a run may start from a loaded state (a second run() of
     # the same model, or a model set up pressed), whose stored energy no plate work paid for.
     err = float(np.max(np.abs((W - W[0]) - (booked - booked[0]))))
-    scale = max(
-        float(np.max(np.abs(h[c]), initial=0.0))
-        for c in ("work_plate_pJ", "energy_elastic_pJ", "energy_dissipated_pJ")
-    )
+    scale = max(float(np.max(np.abs(h[c]), initial=0.0)) for c in ENERGY_SCALE_COLUMNS)
     if scale == 0.0:
         return 0.0 if err == 0.0 else np.inf
     return err / scale

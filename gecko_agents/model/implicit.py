@@ -69,7 +69,7 @@ import math
 
 import numpy as np
 
-from gecko_agents.history import ENERGY_RTOL
+from gecko_agents.history import ENERGY_RTOL, ENERGY_SCALE_COLUMNS
 from gecko_agents.model.implicit_kernel import clip, pad_solver, past_cap, solve, step_books
 from gecko_agents.physics.friction import friction_cap
 from gecko_agents.protocol import DEFAULT_SPEED
@@ -186,6 +186,12 @@ def whole_event_steps(bound: float, event: float) -> float:
     return event * max(1, math.floor(bound / event + 1e-9))
 
 
+def default_event_dt(omega_max: float) -> float:
+    """The step near an event by default [µs]: :data:`IMPLICIT_EVENT_FACTOR` explicit steps
+    0.75/ω_max (ω_max [1/µs] of the stiffest spring on the tip)."""
+    return IMPLICIT_EVENT_FACTOR * 0.75 / omega_max
+
+
 def implicit_time_step(dt, omega_max: float, event_dt=None) -> float:
     """The implicit step's dt [µs]: ``dt`` if given (finite, > 0: no stability bound), else
     :data:`IMPLICIT_DT_FACTOR` explicit steps 0.75/ω_max (ω_max [1/µs] of the stiffest spring
@@ -197,11 +203,10 @@ def implicit_time_step(dt, omega_max: float, event_dt=None) -> float:
     (a stubby Hertz seta's press-pull at 0.2 µm/µs recorded every step: 2.2 % at 0.1070 µs,
     4.2 % at 0.1053 µs, as the explicit step's 2.5 % and 5.0 %)."""
     if dt is None:
-        explicit = 0.75 / omega_max
-        dt = IMPLICIT_DT_FACTOR * explicit
+        dt = IMPLICIT_DT_FACTOR * (0.75 / omega_max)  # the explicit steps
         cap = IMPLICIT_TRAVEL / DEFAULT_SPEED
         if dt > cap:
-            event = IMPLICIT_EVENT_FACTOR * explicit if event_dt is None else event_dt
+            event = default_event_dt(omega_max) if event_dt is None else event_dt
             dt = whole_event_steps(cap, event) if cap >= event else cap
         return dt
     if not (isinstance(dt, int | float) and math.isfinite(dt) and dt > 0):
@@ -234,7 +239,7 @@ class ImplicitStep:
         self.default_step = default_step  # the step of implicit_time_step(None, …)
         # Near an event: k steps of dt/k, no longer than IMPLICIT_EVENT_FACTOR explicit
         # steps 0.75/ω_max, or the caller's event_dt [µs].
-        event = IMPLICIT_EVENT_FACTOR * 0.75 / model.omega_max if event_dt is None else event_dt
+        event = default_event_dt(model.omega_max) if event_dt is None else event_dt
         self.k_event = max(1, math.ceil(model.dt / event - 1e-9))
         self.n_located = 0  # steps taken at dt/k near events
         self._J = np.zeros((2, n))  # the last step's impulse F'·dt [µN·µs]
@@ -498,7 +503,7 @@ class ImplicitStep:
             if cap >= event:
                 dt = whole_event_steps(cap, event)
             else:  # one event step at most: the default's (an explicit step), or the travel
-                dt = max(cap, min(event, IMPLICIT_EVENT_FACTOR * 0.75 / self.m.omega_max))
+                dt = max(cap, min(event, default_event_dt(self.m.omega_max)))
         self.dt_base = dt
         self.set_dt(dt)
 
@@ -565,12 +570,7 @@ class ImplicitStep:
     def note_energies(self, row: dict) -> None:
         """Raise ``energy_scale`` [pJ] to a recorded ``row``'s plate work, elastic and
         dissipated energy, as :func:`gecko_agents.history.energy_balance_error` takes it."""
-        self.energy_scale = max(
-            self.energy_scale,
-            abs(row["work_plate_pJ"]),
-            abs(row["energy_elastic_pJ"]),
-            abs(row["energy_dissipated_pJ"]),
-        )
+        self.energy_scale = max(self.energy_scale, *(abs(row[c]) for c in ENERGY_SCALE_COLUMNS))
 
     def set_dt(self, dt: float) -> None:
         """Set the model's step to ``dt`` [µs] (its loop constants too). The recorder's
