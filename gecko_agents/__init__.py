@@ -1,11 +1,56 @@
 """gecko_agents: a gecko-inspired setae array pressed onto and pulled off a rough floor.
 
 Units everywhere: µm, µN, µs, ng (see :mod:`gecko_agents.params`).
+
+The public API in one import, each name loaded on first use (``import gecko_agents`` imports
+neither pymunk nor numba)::
+
+    import gecko_agents as ga
+
+    params = ga.PAPER_TABLE1.replace(mechanics="rod")
+    history = ga.Model(params, seed=1).run(ga.protocol.press_pull(depth=1.0))
+    history.save("my_run")
+    same = ga.load("my_run")
 """
 
+from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
 
 try:
     __version__ = version("gecko_agents")
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+unknown"
+
+# name -> (module, attribute or None for the module itself)
+_LAZY = {
+    "Model": ("gecko_agents.model", "Model"),
+    "History": ("gecko_agents.history", "History"),
+    "load": ("gecko_agents.history", "load"),
+    "load_run": ("gecko_agents.runfiles.run", "load_run"),
+    "SetaArray": ("gecko_agents.params", "SetaArray"),
+    "PAPER_TABLE1": ("gecko_agents.params", "PAPER_TABLE1"),
+    "PAPER_ARRAY": ("gecko_agents.params", "PAPER_ARRAY"),
+    "PAPER_FIG5_READING": ("gecko_agents.params", "PAPER_FIG5_READING"),
+    "params": ("gecko_agents.params", None),
+    "protocol": ("gecko_agents.protocol", None),
+    "quasistatic": ("gecko_agents.quasistatic", None),
+    "floor": ("gecko_agents.floor", None),
+}
+
+__all__ = ["__version__", *_LAZY]
+
+
+def __getattr__(name: str):
+    try:
+        module, attribute = _LAZY[name]
+    except KeyError:
+        raise AttributeError(f"module 'gecko_agents' has no attribute {name!r}") from None
+    value = import_module(module)
+    if attribute is not None:
+        value = getattr(value, attribute)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

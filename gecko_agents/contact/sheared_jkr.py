@@ -15,6 +15,7 @@ from gecko_agents.contact.base import (
     mindlin_stiffness,
 )
 from gecko_agents.physics import jkr
+from gecko_agents.physics._util import register_jitables
 from gecko_agents.physics.friction import combined_shear_modulus, friction_cap, stick_stiffness
 
 __all__ = ["ShearedJKRSphere"]
@@ -22,6 +23,8 @@ __all__ = ["ShearedJKRSphere"]
 
 try:  # called from the compiled per-seta loop, so compiled too
     from numba import njit as _njit
+
+    register_jitables()
 except ImportError:  # pragma: no cover
 
     def _njit(**kwargs):

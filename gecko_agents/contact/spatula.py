@@ -13,6 +13,7 @@ from gecko_agents.contact.base import (
     mindlin_stiffness,
 )
 from gecko_agents.physics import jkr
+from gecko_agents.physics._util import register_jitables
 from gecko_agents.physics.friction import friction_cap
 
 __all__ = ["SpatulaTip"]
@@ -38,6 +39,8 @@ K_KT = 14  # the tip body's stick stiffness k_t [µN/µm]
 
 try:  # the film's helpers are called from the compiled loop, so they are compiled too
     from numba import njit as _njit
+
+    register_jitables()
 except ImportError:  # pragma: no cover
 
     def _njit(**kwargs):

@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 
+from gecko_agents.physics._util import register_jitables
 from gecko_agents.physics.friction import friction_cap
 
 try:  # np.clip's ufunc, called without np.clip's wrapper (the same result)
@@ -163,6 +164,7 @@ def pad_kernels():
         import numba
     except ImportError:
         return None
+    register_jitables()
     jit = numba.njit(error_model="numpy", cache=True)
     return jit(pad_solve), jit(pad_past_cap), jit(pad_books)
 

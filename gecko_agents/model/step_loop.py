@@ -43,7 +43,7 @@ from gecko_agents.model.state import (
     Y,
 )
 from gecko_agents.model.state import P as PN
-from gecko_agents.physics._util import jitable
+from gecko_agents.physics._util import jitable, register_jitables
 from gecko_agents.physics.friction import friction_cap
 
 __all__ = ["pad_loop", "numba_available"]
@@ -105,6 +105,7 @@ def _jit(compiled: bool, **options):
         import numba
     except ImportError:
         return None
+    register_jitables()
     return numba.njit(error_model="numpy", **options)
 
 

@@ -451,10 +451,21 @@ class SetaArray:
         )
 
     def replace(self, **overrides) -> SetaArray:
-        """A copy with dotted overrides, e.g. ``replace(**{"floor.sigma": 0.5})``."""
+        """A copy with some parameters changed.
+
+        A group's fields as a dict, ``replace(floor={"sigma": 0.5}, mechanics="rod")``, or
+        dotted, ``replace(**{"floor.sigma": 0.5})``; a whole group object replaces the group.
+        Unknown names are refused, naming them.
+        """
         groups: dict[str, dict] = {}
         top: dict = {}
+        flat: dict = {}
         for key, value in overrides.items():
+            if key in _GROUPS and isinstance(value, dict):
+                flat.update({f"{key}.{name}": v for name, v in value.items()})
+            else:
+                flat[key] = value
+        for key, value in flat.items():
             part, _, name = key.partition(".")
             if not name:
                 if part not in {f.name for f in dataclasses.fields(self)}:

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from gecko_agents.physics import jkr
-from gecko_agents.physics._util import jitable
+from gecko_agents.physics._util import jitable, register_jitables
 from gecko_agents.physics.friction import friction_cap, friction_cap_slope
 
 if TYPE_CHECKING:
@@ -205,6 +205,7 @@ def newton_loop():
         return None
     if numba.config.DISABLE_JIT:  # interpreted, the loop would be far slower than numpy's
         return None
+    register_jitables()
 
     @numba.njit(cache=True, error_model="numpy")
     def loop(mode, K, c, x, a, anchor, s, iters, a_min):  # pragma: no cover (compiled)
