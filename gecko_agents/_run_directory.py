@@ -8,6 +8,7 @@ from __future__ import annotations
 import hashlib
 import io
 import json
+import re
 import zipfile
 import zlib
 from pathlib import Path
@@ -19,6 +20,17 @@ from gecko_agents.params import SetaArray, check_seed
 ID_FIELDS = ("params", "seed", "n_records", "columns", "run_id", "files", "fields_sha256")
 """Fields of metadata.json that the run id, the checksums or the table's own checks cover;
 every other field carries its digest in ``"fields_sha256"``."""
+
+
+FIELDS_REQUIRED_FROM = (0, 2)
+"""The package version from which every saved run carries ``fields_sha256``."""
+
+
+def _version(meta: dict) -> tuple[int, int]:
+    """(major, minor) of the gecko_agents version a run recorded; (0, 0) if unreadable."""
+    text = str((meta.get("versions") or {}).get("gecko_agents", ""))
+    m = re.match(r"(\d+)\.(\d+)", text)
+    return (int(m.group(1)), int(m.group(2))) if m else (0, 0)
 
 
 def field_digest(value) -> str:
@@ -33,7 +45,12 @@ def check_fields(meta_path: Path, meta: dict) -> None:
     saved before it: nothing to check)."""
     digests = meta.pop("fields_sha256", None)
     if digests is None:
-        return
+        if _version(meta) < FIELDS_REQUIRED_FROM:
+            return  # saved before the digests existed
+        raise ValueError(
+            f"{meta_path}: the field 'fields_sha256' was removed from it after the run was "
+            "saved (every run of this version carries it); re-run to regenerate the directory"
+        )
     if not isinstance(digests, dict):
         raise ValueError(f"{meta_path}: fields_sha256 = {digests!r} is not an object")
     names = [k for k in meta if k not in ID_FIELDS]

@@ -47,7 +47,7 @@ from gecko_agents._run_directory import (
     read_series,
     saved_run_id,
 )
-from gecko_agents.output_paths import atomic_write_bytes
+from gecko_agents.output_paths import atomic_write_bytes, make_dir
 from gecko_agents.params import SetaArray
 from gecko_agents.provenance import versions
 
@@ -175,8 +175,15 @@ class History:
 
     @property
     def peak_pull_off(self) -> float:
-        """Largest adhesive (tensile) contact force magnitude over the run [µN], ≥ 0."""
-        return float(max(0.0, -np.min(self.scalars["force_normal_uN"])))
+        """Largest adhesive (tensile) contact force magnitude over the run [µN], ≥ 0: over
+        every step where the run kept its stepped force range
+        (``meta["stepped_force_normal_range_uN"]``, which no record cadence can step over),
+        else over the records."""
+        stepped = self.meta.get("stepped_force_normal_range_uN")
+        lowest = np.min(self.scalars["force_normal_uN"], initial=np.inf)
+        if stepped:
+            lowest = min(lowest, stepped[0])
+        return float(max(0.0, -lowest)) if np.isfinite(lowest) else 0.0
 
     @classmethod
     def from_quasistatic(cls, result, params: SetaArray, seed: int = 0) -> History:
@@ -291,15 +298,25 @@ class History:
         half-written file under the final name; ``metadata.json`` carries :meth:`run_id` and
         the SHA-256 of the other two files and is written last, so a save interrupted half-way
         does not load.
-        If ``directory`` holds a different run, its files (:data:`RUN_FILES`, e.g. a
-        ``detachment.gif`` drawn from it) are removed first; other files are left alone.
+        If ``directory`` holds a different saved run, its files (:data:`RUN_FILES`, e.g. a
+        ``detachment.gif`` drawn from it) are removed first; other files are left alone. A
+        folder that holds files of those names but no saved run is refused (FileExistsError
+        naming them): they are not a run's to replace.
         """
         d = Path(directory)
         if d.exists() and not d.is_dir():
             raise NotADirectoryError(f"{str(d)!r} exists and is not a directory")
-        d.mkdir(parents=True, exist_ok=True)
         run_id = self.run_id()
-        if saved_run_id(d) != run_id:
+        saved = saved_run_id(d)
+        taken = [n for n in RUN_FILES if (d / n).exists() or (d / n).is_symlink()]
+        if saved is None and taken:
+            raise FileExistsError(
+                f"{str(d)!r} holds {', '.join(taken)} but no saved run (no metadata.json with "
+                "a run_id): saving would replace files that are not a run's; choose another "
+                "directory"
+            )
+        make_dir(d)
+        if saved != run_id:
             for name in RUN_FILES:  # metadata.json before the data it describes is replaced
                 (d / name).unlink(missing_ok=True)
         buf = io.StringIO()

@@ -90,6 +90,11 @@ class Segment:
         """Fixed end point (x, y) [µm] of the plate, or None."""
         return None
 
+    def time_left(self, plate: Plate, state: dict) -> float | None:
+        """Time to a fixed end [µs], or None (the segment ends at a point or on a condition):
+        the implicit step shortens its last step to it, so the segment lasts its duration."""
+        return None
+
 
 def _towards(plate: Plate, target, speed: float):
     """Velocity to move the plate to ``target`` at ``speed``, landing on it exactly."""
@@ -231,6 +236,9 @@ class Hold(Segment):
     def estimated_duration(self, plate):
         return self.duration
 
+    def time_left(self, plate, state):
+        return self.duration - (plate.time - state["t0"])
+
 
 @dataclass(frozen=True)
 class PullOff(Segment):
@@ -276,6 +284,14 @@ class PullOff(Segment):
 
     def estimated_duration(self, plate):
         return plate.pull_travel / self.speed
+
+    def longest_duration(self, plate):
+        """The travel that lifts the plate a pull-off's travel at ``angle_deg`` and then the
+        clearance, at most ``max_travel``, over the speed [µs]."""
+        travel = plate.pull_travel / math.sin(math.radians(self.angle_deg)) + self.clearance
+        if self.max_travel is not None:
+            travel = min(travel, self.max_travel)
+        return travel / self.speed
 
 
 def press_pull(depth: float, speed: float = DEFAULT_SPEED) -> list:

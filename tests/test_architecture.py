@@ -4,11 +4,15 @@
   level or inside a function, and none touches ``sys.path``: an installed wheel runs its own
   studies and examples.
 * Each ``scenarios/*.py`` is a thin command line over a study of the library.
-* Modules stay of one concept: none over ~600 lines, no function over ~80.
+* Modules stay of one concept: none over 450 lines of code (docstrings, comments and blank
+  lines not counted, so prose is never squeezed to fit), no function over 80 lines, no class
+  over 300 lines of code.
 """
 
 import ast
+import io
 import sys
+import tokenize
 from pathlib import Path
 
 import pytest
@@ -17,8 +21,12 @@ import gecko_agents
 
 PKG = Path(gecko_agents.__file__).resolve().parent
 MODULES = sorted(PKG.rglob("*.py"))
-MAX_MODULE_LINES = 600
+MAX_MODULE_CODE_LINES = 450
+MAX_CLASS_CODE_LINES = 300
 MAX_FUNCTION_LINES = 80
+DATA_MODULES = {"studies/validation_rows.py": 520}
+"""Modules that are mostly literal data, with their cap: the literature rows, until they are
+a data file the study reads."""
 THIRD_PARTY = {
     # pyproject.toml's dependencies and optional extras, by import name
     "pymunk", "numpy", "scipy", "matplotlib", "tqdm",
@@ -97,10 +105,44 @@ def test_every_dynamic_import_of_the_package_resolves():
                 importlib.import_module(name)
 
 
+def _code_lines(src: str) -> set[int]:
+    """Line numbers that hold code: not blank, not only a comment, not a docstring (a string
+    statement: a module's, class's or function's docstring, or an attribute's)."""
+    prose = set()
+    for node in ast.walk(ast.parse(src)):
+        if (isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)
+                and isinstance(node.value.value, str)):  # fmt: skip
+            prose.update(range(node.lineno, node.end_lineno + 1))
+    code = set()
+    skip = {tokenize.COMMENT, tokenize.NL, tokenize.NEWLINE, tokenize.INDENT, tokenize.DEDENT,
+            tokenize.ENDMARKER}  # fmt: skip
+    for tok in tokenize.generate_tokens(io.StringIO(src).readline):
+        if tok.type not in skip:
+            code.update(range(tok.start[0], tok.end[0] + 1))
+    return code - prose
+
+
+def test_code_lines_skip_docstrings_comments_and_blanks():
+    src = (
+        '"""Doc."""\n\nx = 1  # c\n# only a comment\n\n'
+        'def f():\n    """Doc\n    more."""\n    return x\n'
+    )
+    assert sorted(_code_lines(src)) == [3, 6, 9]
+
+
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(PKG)))
 def test_modules_and_functions_stay_short(path):
     src = path.read_text()
-    assert src.count("\n") <= MAX_MODULE_LINES, f"{path}: {src.count(chr(10))} lines"
+    code = _code_lines(src)
+    cap = DATA_MODULES.get(path.relative_to(PKG).as_posix(), MAX_MODULE_CODE_LINES)
+    assert len(code) <= cap, f"{path}: {len(code)} lines of code"
+    big = [
+        (node.name, n)
+        for node in ast.walk(ast.parse(src))
+        if isinstance(node, ast.ClassDef)
+        and (n := len(code & set(range(node.lineno, node.end_lineno + 1)))) > MAX_CLASS_CODE_LINES
+    ]
+    assert not big, f"{path}: classes over {MAX_CLASS_CODE_LINES} lines of code: {big}"
     long = [
         (node.name, node.end_lineno - node.lineno + 1)
         for node in ast.walk(ast.parse(src))

@@ -178,13 +178,20 @@ def test_validity_table(run):
 
 
 def test_run_cost():
-    assert cost.run_cost(10, 100.0, 0.1) == 1e4
+    # steps × max(setae, the step's overhead); a segment takes at least one step; the implicit
+    # step's steps each take up to dt/event_dt located steps
+    assert cost.run_cost(1000, [100.0], 0.1) == 1e6
+    assert cost.run_cost(10, [100.0], 0.1) == 1000 * cost.STEP_OVERHEAD_SETAE
+    assert cost.run_cost(1000, [1e-3, 1e-3], 0.1) == 2000
+    assert cost.run_cost(1000, [100.0], 0.1, 0.01) == 1e7
     with pytest.raises(ValueError, match="seta-steps"):
-        cost.check_cost(20_000, 1e7, 1e-3)
+        cost.check_cost(20_000, [1e7], 1e-3)
     with pytest.raises(ValueError, match="seta-steps"):
-        cost.check_cost(1, math.inf, 0.1)
+        cost.check_cost(1, [math.inf], 0.1)
+    with pytest.raises(ValueError, match="event_dt"):
+        cost.check_cost(1, [10.0], 1e9, 1e-3)
     with pytest.warns(dg.ValidityWarning, match="seta-steps"):
-        cost.check_cost(1000, 1e6, 0.1)
+        cost.check_cost(1000, [1e6], 0.1)
 
 
 # ------------------------------------------------------------------ from a saved run

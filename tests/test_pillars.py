@@ -139,5 +139,5 @@ def test_elastica_is_refused_where_it_is_not_modelled():
         qs.press_pull(p, np.zeros(1), 0.2)
     with pytest.raises(ValueError, match="kernel='python': mechanics='elastica' runs on kernel"):
         Model(p, n_sim=1, seed=0, kernel="python")
-    with pytest.raises(ValueError, match=r"links = 1 is outside the allowed range \[2, 200\]"):
-        p.replace(**{"seta.links": 1})
+    with pytest.raises(ValueError, match=r"links = 2 is outside the allowed range \[14, 200\]"):
+        p.replace(**{"seta.links": 2})

@@ -24,6 +24,7 @@ from gecko_agents import cli, protocol, render, sweep
 from gecko_agents import history as hist
 from gecko_agents.floor import readers
 from gecko_agents.model import Model
+from gecko_agents.model.cost import RunCostError
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 from gecko_agents.protocol import PressLimitError
 
@@ -272,6 +273,222 @@ ROWS = [
         Row(f"render {opt} 0", lambda p, o=opt: _render_bad(p, o), 2, (opt.lstrip("-"),))
         for opt in ("--frames", "--fps", "--window")
     ],
+]  # fmt: skip
+
+
+# The probe round of issue 41 ---------------------------------------------------------------
+P41 = PAPER_TABLE1.replace(mechanics="rod", seta={"L": 5.0})  # the issue's seta: 3.1087 µN
+STEPPED_PULL_OFF = 3.1087  # its pull-off at every step (explicit and implicit, any dt)
+
+
+def _user_folder(probe: Probe, *, run_first: bool):
+    """``gecko-agents run`` into a folder holding a user's files (a note, a data folder, the
+    run file itself); returns (exit code, stderr) or -1 if a user's file went missing."""
+    d = probe.tmp / "p"
+    if run_first:  # a run directory the user then added a note to
+        assert _cli(probe, "run", _write(probe, RUN_FILE), "--out", str(d), "--no-progress")[0] == 0
+    else:
+        d.mkdir()
+        (d / "run.toml").write_text(RUN_FILE)
+        (d / "data").mkdir()
+        (d / "data" / "scan.csv").write_text("x,h\n")
+    (d / "notes.txt").write_text("mine")
+    code, err = _cli(probe, "run", str(d / "run.toml"), "--out", str(d), "--no-progress")
+    kept = (d / "notes.txt").read_text() == "mine" and (run_first or (d / "data/scan.csv").exists())
+    return (code if kept else -1), err
+
+
+def _write(probe: Probe, text: str, name: str = "r.toml") -> str:
+    path = probe.tmp / name
+    path.write_bytes(text.encode() if isinstance(text, str) else text)
+    return str(path)
+
+
+def _save_over_user_file(probe: Probe):
+    d = probe.tmp / "mine"
+    d.mkdir()
+    (d / "history.csv").write_text("my own table")
+    outcome = _raised(lambda: _toy().save(d))
+    assert (d / "history.csv").read_text() == "my own table"
+    return outcome
+
+
+def _dangling_out(probe: Probe):
+    link = probe.tmp / "gone"
+    link.symlink_to(probe.tmp / "nowhere")
+    return _cli(probe, "run", _write(probe, RUN_FILE), "--out", str(link), "--no-progress")
+
+
+def _pull_off(probe: Probe, kw: dict, item: str):
+    """(the run's peak pull-off to 4 digits, whether ``item`` flagged it); the run unchecked
+    (its energy books fail, as such a step's do)."""
+    probe.monkeypatch.setattr(Model, "run", Model.run.__globals__.get("_run", Model.run))
+    h = Model(P41, **kw).run(protocol.press_pull(0.5, speed=0.05), progress=False)
+    ok = h.meta["validity"]["items"][item]["ok"]
+    return (round(h.peak_pull_off, 4), ok), h.meta["validity"]["items"][item]["meaning"]
+
+
+def _probe_pillars(probe_radius: float):
+    """The pillars example on a probe of ``probe_radius``: (most tips attached at once, the
+    pull-off of one flat punch if at most one touched)."""
+    from gecko_agents.runfiles.run import load_run
+
+    spec = load_run(ROOT / "examples" / "pillars_probe.toml")
+    p = spec.params.replace(floor={"probe_radius": probe_radius})
+    h = Model(p, **spec.model).run(spec.protocol, progress=False)
+    return int(np.max(h["n_attached"])), ""
+
+
+def _crowded_pillars(probe: Probe):
+    """Pillars at pitch 3.2 (r = 1.5) pressed to 3 µN under the 30 µm probe buckle into each
+    other: the validity item pillars_meet says so."""
+    from gecko_agents.runfiles.run import load_run
+
+    spec = load_run(ROOT / "examples" / "pillars_probe.toml")
+    m = Model(spec.params.replace(array={"pitch": 3.2}), **spec.model)
+    h = m.run([protocol.Press(3.0, speed=0.01), protocol.PullOff(0.02)], progress=False)
+    it = h.meta["validity"]["items"]["pillars_meet"]
+    return it["ok"], it["meaning"]
+
+
+def _second_run(probe: Probe):
+    m = Model(P41, seed=1)
+    m.run(protocol.press_pull(0.5, speed=0.05), progress=False)
+    return _raised(lambda: m.run(protocol.press_pull(0.5, speed=0.05), progress=False))
+
+
+def _hold_lasts(duration: float):
+    m = Model(P41, seed=1)
+    h = m.run([protocol.PressTo(0.3, speed=0.05), protocol.Hold(duration)], progress=False)
+    held = h["time_us"][-1] - h.meta.get("t_hold_start", 0.0)
+    return round(m.time - _press_end(duration), 9), f"held {held}"
+
+
+def _press_end(duration: float) -> float:
+    m = Model(P41, seed=1)
+    m.run([protocol.PressTo(0.3, speed=0.05)], progress=False)
+    return m.time + duration
+
+
+def _reproduce(probe: Probe, *argv):
+    out = probe.tmp / "rep"
+    code, err = _cli(probe, "reproduce", "--quick", "--out", str(out), *argv)
+    assert not out.exists()  # a refused command leaves no folder
+    return code, err
+
+
+def _study_that_cannot_write(probe: Probe):
+    """probe_test whose figure cannot be written (a full disk): its CSVs and metadata go too."""
+    from gecko_agents.studies import probe_test
+
+    def full(*a, **k):
+        raise OSError(27, "File too large")
+
+    probe.monkeypatch.setattr(render, "save_figure", full)
+    out = probe.tmp / "pt"
+    outcome = _raised(lambda: probe_test.main(["--quick", "--out", str(out), "--no-progress"]))
+    assert not out.exists() or not any(out.rglob("*")), sorted(out.rglob("*"))
+    return outcome
+
+
+def _fields_digest_removed(probe: Probe):
+    h = _toy()
+    h.meta.update(n_sim=3, scale_to_array=1.0, record_every=10, versions={"gecko_agents": "0.2.0"})
+    d = h.save(probe.tmp / "run")
+    _drop(d, "fields_sha256")
+    return _raised(lambda: hist.load(d))
+
+
+def _quiet_description(probe: Probe):
+    text = RUN_FILE.replace("n_sim = 1", "n_sim = 1", 1)
+    text = f'description = "{"x" * 10_000_000}"\n' + text
+    code, err = _cli(probe, "run", _write(probe, text), "--out", str(probe.tmp / "o"))
+    assert len(probe.capsys.readouterr().out) < 10_000  # not echoed
+    return code, err
+
+
+HOLD_1E30 = _with_protocol('[[protocol]]\nsegment = "hold"\nduration_us = 1e30\n')
+MODEL_DT_1E9 = RUN_FILE.replace("n_sim = 1", 'n_sim = 1\nintegrator = "implicit"\ndt_us = 1e9')
+
+ROWS += [
+    # 1. Output folders: a run writes only its own files.
+    Row("run --out a folder of a user's files", lambda p: _user_folder(p, run_first=False), 2,
+        ("not a run directory", "notes.txt")),
+    Row("run --out a run directory keeps a user's file",
+        lambda p: _user_folder(p, run_first=True), 0, ()),
+    Row("History.save over a user's history.csv", _save_over_user_file, FileExistsError,
+        ("history.csv", "no saved run")),
+    Row("run --out a dangling symlink", _dangling_out, 2, ("symbolic link", "gone")),
+    # 2. A probe narrower than the array or the punch face.
+    Row("probe of 3 um under 5 pillars", lambda p: _probe_pillars(3.0), 1, ()),
+    Row("punch face wider than the probe",
+        lambda p: _raised(lambda: PAPER_ARRAY.replace(
+            tip="flat_punch", mechanics="rod", contact={"R": 1.5},
+            floor={"kind": "probe", "probe_radius": 0.5, "sigma": 0.0})),
+        ValueError, ("Contact.R = 1.5", "probe_radius = 0.5")),
+    # 3–4. The records and the step: the pull-off at every step, the records judged.
+    Row("implicit dt 100", lambda p: _pull_off(p, {"integrator": "implicit", "dt": 100.0},
+                                              "records"),
+        (3.0964, False), ("record_every",)),
+    Row("record_every 10**12", lambda p: _pull_off(p, {"integrator": "explicit",
+                                                      "record_every": 10**12}, "records"),
+        (STEPPED_PULL_OFF, False), ("record_every",)),
+    Row("implicit dt 30, nothing located",
+        lambda p: _pull_off(p, {"integrator": "implicit", "dt": 30.0, "event_dt": 30.0},
+                            "release_step"),
+        (2.9248, False), ("dt",)),
+    Row("implicit dt 3, nothing located",
+        lambda p: _pull_off(p, {"integrator": "implicit", "dt": 3.0, "event_dt": 3.0},
+                            "release_step"),
+        (3.1036, True), ("dt",)),
+    # 5. Buckling inside the allowed ranges.
+    Row("imperfection 0",
+        lambda p: _raised(lambda: P41.replace(seta={"imperfection": 0.0})), ValueError,
+        ("imperfection = 0.0", "(0.0, 0.1]")),
+    Row("links 2", lambda p: _raised(lambda: P41.replace(seta={"links": 2})), ValueError,
+        ("links = 2", "[14, 200]")),
+    # 6. Every route to a long run, refused before any step.
+    Row("implicit event_dt 1e-9",
+        lambda p: _raised(lambda: Model(P41, integrator="implicit", event_dt=1e-9).run(
+            protocol.press_pull(0.5), progress=False)), RunCostError, ("event_dt = 1e-09",)),
+    Row("implicit dt 1e9",
+        lambda p: _raised(lambda: Model(P41, integrator="implicit", dt=1e9).run(
+            protocol.press_pull(0.5), progress=False)), RunCostError, ("dt = 1e+09",)),
+    Row("run file dt_us 1e9", lambda p: _run_file(p, MODEL_DT_1E9), 2, ("dt = 1e+09",)),
+    Row("PullOff clearance 1e9",
+        lambda p: _raised(lambda: Model(P41).run(
+            [protocol.PressTo(0.5), protocol.PullOff(clearance=1e9)], progress=False)),
+        RunCostError, ("clearance=1000000000.0",)),
+    Row("PullOff angle 0.001 deg",
+        lambda p: _raised(lambda: Model(P41).run(
+            [protocol.PressTo(0.5), protocol.PullOff(angle_deg=0.001)], progress=False)),
+        RunCostError, ("angle_deg=0.001",)),
+    Row("run file hold 1e30", lambda p: _run_file(p, HOLD_1E30), 2, ("Hold", "seta-steps")),
+    # 7. A model runs once.
+    Row("second Model.run", _second_run, RuntimeError, ("Model.run", "new Model")),
+    # 8. reproduce's --jobs, refused with a message and nothing written.
+    Row("reproduce --jobs 0", lambda p: _reproduce(p, "--jobs", "0"), 2, ("--jobs 0",)),
+    Row("reproduce --jobs abc", lambda p: _reproduce(p, "--jobs", "abc"), 2, ("--jobs 'abc'",)),
+    Row("reproduce --jobs 1000", lambda p: _reproduce(p, "--jobs", "1000"), 2,
+        ("--jobs 1000", "cores")),
+    Row("reproduce --no-such-flag", lambda p: _reproduce(p, "--no-such-flag"), 2,
+        ("--no-such-flag",)),
+    # 9. A study that cannot write leaves nothing half-written.
+    Row("probe_test with a full disk", _study_that_cannot_write, OSError, ("File too large",)),
+    # 10. Pillars that buckle into each other.
+    Row("pillars at pitch 3.2 pressed to 3 uN", _crowded_pillars, False,
+        ("pass through each other",)),
+    # 12. A hold lasts its duration.
+    Row("Hold 2 us", lambda p: _hold_lasts(2.0), 0.0, ()),
+    Row("Hold 0.01 us", lambda p: _hold_lasts(0.01), 0.0, ()),
+    # Smaller.
+    Row("run dir: fields_sha256 removed", _fields_digest_removed, ValueError,
+        ("fields_sha256",)),
+    Row("run file with a UTF-8 BOM", lambda p: _cli(p, "run", _write(
+        p, b"\xef\xbb\xbf" + RUN_FILE.encode()), "--out", str(p.tmp / "o")), 2,
+        ("byte-order mark",)),
+    Row("run file description of 10 MB", _quiet_description, 2,
+        ("description", "10000000 characters", "2000")),
 ]  # fmt: skip
 
 

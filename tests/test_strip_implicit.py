@@ -1,7 +1,7 @@
 """The elastic backing under the implicit step: the strip sub-cycles the tips' long step in steps
 of the explicit length (:func:`gecko_agents.backing.elastic.strip_step`), so its inertia is
 scaled as under the explicit step; its pull-offs meet the explicit step's, its books close, and
-the explicit step's histories are those from before the sub-cycling, bit for bit."""
+the explicit step's histories are those from before the sub-cycling (to 10 significant digits)."""
 
 import hashlib
 import warnings
@@ -104,14 +104,22 @@ def test_tilted_strip_is_stable_and_meets_the_explicit_pull_off():
     assert po_i == pytest.approx(po_e, rel=0.01)
 
 
-def _digest(h) -> str:
-    """sha256 (16 hex digits) of every recorded array of ``h``: scalars, per-seta arrays,
-    detachments and the strip's arrays, each with its name."""
+def _digest(h, digits: int = 10) -> str:
+    """sha256 (16 hex digits) of every recorded array of ``h`` (scalars, per-seta arrays,
+    detachments and the strip's arrays, each with its name), its floats rounded to ``digits``
+    significant digits: the pin tells the stepping apart, not the last bits that numpy's and
+    numba's builds may order differently on another machine."""
     d = hashlib.sha256()
     for group in (h.scalars, h.setae, h.detachments, h.backing):
         for k in sorted(group):
             d.update(k.encode())
-            d.update(np.ascontiguousarray(group[k]).tobytes())
+            a = np.ascontiguousarray(group[k])
+            if a.dtype.kind == "f":
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    mag = np.where(a != 0, np.floor(np.log10(np.abs(a))), 0.0)
+                    scale = np.where(np.isfinite(mag), 10.0 ** (digits - 1 - mag), 1.0)
+                    a = np.where(np.isfinite(a), np.round(a * scale) / scale, a)
+            d.update(np.ascontiguousarray(a).tobytes())
     return d.hexdigest()[:16]
 
 
@@ -122,14 +130,15 @@ ELASTIC = PAPER_ARRAY.replace(
 
 @pytest.mark.parametrize(
     "over, digest",
-    [({"backing.E_b": 1.413, "backing.drive": "peel_end"}, "fcf46e0c7f89a86e"),
+    [({"backing.E_b": 1.413, "backing.drive": "peel_end"}, "89e1a94dbdcc83a8"),
      ({"backing.E_b": 20.0, "backing.misalignment_deg": 0.4, "floor.sigma": 0.3},
-      "1101e5ff374d935c")],
+      "46093c3184b50561")],
 )  # fmt: skip
 def test_explicit_elastic_histories_are_bit_identical_to_before(over, digest):
     """With the explicit integrator the strip steps with the tips, as before the sub-cycling:
-    the same histories bit for bit (pinned on the development machine from commit 550afab, the
-    code before it): a soft strip peeled at its end, a stiff one tilted on a rough floor."""
+    the same histories to 10 significant digits (pinned from commit 550afab's code, the
+    code before it, as 2a38af5 runs it): a soft strip peeled at its end, a stiff one tilted
+    on a rough floor."""
     _, h = _run(ELASTIC.replace(**over), "explicit", protocol.press_pull(0.3, speed=0.05),
                 record_setae=True)  # fmt: skip
     assert _digest(h) == digest
@@ -137,8 +146,8 @@ def test_explicit_elastic_histories_are_bit_identical_to_before(over, digest):
 
 def test_explicit_leader_arm_peel_is_bit_identical_to_before():
     """A pad on a soft strip peeled through a 30 µm leader arm at 45° (the pad-peel study's
-    set-up, pressed and settled) until 8 of its 12 setae have let go, explicit: bit for bit the
-    history of commit 550afab."""
+    set-up, pressed and settled) until 8 of its 12 setae have let go, explicit: the history of
+    commit 550afab to 10 significant digits."""
     p = ELASTIC.replace(**{"backing.E_b": 1.413, "backing.drive": "peel_end",
                            "backing.handle_stiffness": 50.0})  # fmt: skip
     with warnings.catch_warnings():
@@ -148,7 +157,7 @@ def test_explicit_leader_arm_peel_is_bit_identical_to_before():
             integrator="explicit", record_setae=True, record_every=5,
         )  # fmt: skip
         h = m.run([protocol.PullOff(0.5, angle_deg=112.5, max_travel=30.0)], progress=False)
-    assert _digest(h) == "2f36487764d2bf2e"
+    assert _digest(h) == "1836d52041afcf0e"
 
 
 @pytest.mark.parametrize("factor", [None, 15.0])

@@ -376,7 +376,7 @@ def for_array(
         )
     if kind == "probe":
         centre = 0.5 * (x_centres.min() + x_centres.max())
-        return probe_profile(floor_params.probe_radius, x_start, x_end, centre)
+        return probe_profile(floor_params.probe_radius, x_start, x_end, centre, margin)
     if kind != "gaussian":
         raise ValueError(f"Floor.kind = {kind!r} must be 'gaussian', 'self_affine' or 'probe'")
     return make_profile(

@@ -31,11 +31,9 @@ and tips are moved rigidly up to where the first sensor would reach the floor.
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
-from gecko_agents._stack import user_stacklevel
 from gecko_agents.backing import backing_class
 from gecko_agents.contact import contact_law
 from gecko_agents.floor import Profile
@@ -55,6 +53,7 @@ from gecko_agents.model.setup import (
 )
 from gecko_agents.model.state import SetaState
 from gecko_agents.model.step_numpy import LoopConstants, NumpyStep
+from gecko_agents.model.stepping import Stepping
 from gecko_agents.model.world import World
 from gecko_agents.params import SetaArray, check_seed
 from gecko_agents.physics import beam
@@ -71,7 +70,7 @@ __all__ = [
 ]
 
 
-class Model:
+class Model(Stepping):
     """A pymunk world of ``n_sim`` setae on a kinematic plate above a rough floor.
 
     Parameters
@@ -205,6 +204,7 @@ class Model:
             kernel, self._fast_pads, self.n, type(self.law), threads
         )
         self.time = 0.0
+        self._ran = False
         self._warned_linear = False
         self._lost_idx = np.zeros(self.n, dtype=np.int64)
         self._gone_idx = np.zeros(self.n, dtype=np.int64)
@@ -339,207 +339,6 @@ class Model:
     def n_attached(self) -> int:
         return int(self.state.attached.sum())
 
-    def spring_force(self, x, root):
-        """Seta spring force on the tips [µN], elastic energies [pJ] and (linear) deflections.
-
-        Parameters
-        ----------
-        x : tip positions (N, 2) [µm]. root : root positions (N, 2) [µm].
-        """
-        d = x - root
-        if self.params.mechanics == "linear":
-            u = d - self.L * self.axis
-            return (*beam.linear_spring_force(u, self.K), u)
-        if self.physics.chain is not None:
-            return (*self.physics.chain.peek(d), None)
-        return (*beam.rod_spring_force(d, self.L, self.Ka, self.k_phi, self.theta), None)
-
-    def spring_energies(self) -> np.ndarray:
-        """Elastic energy of every seta [pJ] at the last step's evaluation positions (as
-        :meth:`spring_force`'s, without its forces)."""
-        root = self.backing.root_positions(self._pnext)
-        if self.physics.chain is not None:  # the elastica's chain
-            return self.spring_force(self.state.xy.T, root)[1]
-        dx, dy = self.state.xy - root.T
-        if self.params.mechanics == "linear":
-            ux, uy = self.L * self.axis
-            return beam.linear_spring_energy(dx - ux, dy - uy, self.K)
-        return beam.rod_spring_energy(dx, dy, self.L, self.Ka, self.k_phi, self.theta)
-
-    def backing_energy(self) -> float:
-        """Elastic energy of the backing [pJ] (0 for the rigid plate)."""
-        return self.backing.energy()
-
-    def contact_energies(self) -> np.ndarray:
-        """Energy stored in each contact at the last step (0 for free tips) [pJ]."""
-        U = np.zeros(self.n)
-        idx = self.state.attached.nonzero()[0]
-        if idx.size:
-            U[idx] = self.physics.contact_energy(idx)
-        return U
-
-    def kinetic_energy(self) -> float:
-        """Kinetic energy of the tips and the backing at the recorded positions [pJ]:
-        ½m·v(n−½)·v(n+½), the form that semi-implicit Euler conserves exactly for a linear
-        spring."""
-        v = self.state.pv[2:4]
-        dv = self.state.F * (self.dt / self.mass)
-        tips = 0.5 * self.mass * float(np.add.reduce(v * (v + dv), None))
-        return self.backing.kinetic_energy(tips)
-
-    def overlaps(self) -> np.ndarray:
-        """Overlap δ of every tip with a candidate floor at the last step, NaN elsewhere."""
-        if self._fast_pads:
-            return np.where(self.state.candidate_step, self.state.delta, np.nan)
-        return self.state.delta.copy()
-
-    # ------------------------------------------------------------------ stepping
-    def _pre_solve(self, i, body):
-        """Reference path: the contact force of one tip, computed and applied per contact."""
-        pos = body.position
-        s = self.state
-        fx, fy = self.physics.contact(
-            np.array([i]),
-            np.array([pos.x]),
-            np.array([pos.y]),
-            s.pv[2, i : i + 1],
-            s.pv[3, i : i + 1],
-            np.array([i]),
-        )
-        body.force = (body.force.x + float(fx[0]), body.force.y + float(fy[0]))
-
-    @property
-    def work_step(self) -> float:
-        """Work the plate (handle) did on the system during the last step [pJ]."""
-        return self._work_step
-
-    @property
-    def warned_linear(self) -> bool:
-        """Whether a seta deflected beyond 0.1 L under the linear beam model (warned once)."""
-        return self._warned_linear
-
-    def advance(self, vpx: float, vpy: float) -> None:
-        """One time step with the plate (handle) at velocity (``vpx``, ``vpy``) [µm/µs]; leaves
-        the step's reaction, work and dissipation in ``reaction`` [µN],
-        :attr:`work_step` [pJ] and ``physics.diss`` [pJ], the tips that let go in
-        ``physics.events`` (:meth:`pop_releases`). The backing (:attr:`backing`) gives the
-        roots the setae pull on and steps after the tips."""
-        dt, s, ph, w, bk = self.dt, self.state, self.physics, self.world, self.backing
-        w.plate.velocity = (vpx, vpy)
-        pp = w.plate.position
-        pnx, pny = pp.x + vpx * dt, pp.y + vpy * dt
-        self._pnext = (pnx, pny)
-        ph.events = []
-        ph.diss = 0.0
-        if self._loop is not None:
-            opx, opy = self._advance_loop(pnx, pny, vpx, vpy)
-        else:
-            w.read()
-            x, y = s.xy
-            np.multiply(s.pv[2], dt, out=x)
-            x += s.pv[0]  # where pymunk will evaluate forces
-            np.multiply(s.pv[3], dt, out=y)
-            y += s.pv[1]
-            roots = bk.roots(pnx, pny, vpx, vpy)
-            opx, opy = ph.spring_damp(*roots)
-            bk.hold(s)
-            if self.params.mechanics == "linear":
-                self._check_linear(ph.max_u2)
-            if self._fast_pads:
-                ph.contact_pads()
-            elif self.contact_path == "batch":
-                ph.contact_general()
-            else:
-                s.F_damp_contact.fill(0.0)
-                s.delta.fill(np.nan)
-                ph.any_contact_damping = True
-            if self._implicit is not None:
-                ph.diss += self._implicit.correct(roots)
-            w.write_forces(s.F)
-            if self.contact_path == "callback":
-                # Tips that lost their candidate while attached (no pre_solve will come).
-                np.copyto(s.candidate_step, s.candidate)
-                ph.lost(s.candidate_step)
-        if w.pads and (self._loop is None or self._res[6] > w.pad_slack):
-            w.recentre_pads(s.xy[0])
-        w.step(dt)
-        self.time += dt
-        if self._loop is None:
-            ph.bookkeeping(vpx, vpy)
-        if self._implicit is not None and ph.events:
-            ph.diss += self._implicit.book_releases(ph.events)
-        opx, opy = bk.advance(dt, pnx, pny, vpx, vpy, (opx, opy))
-        ppx, ppy = self._on_plate_prev
-        self._work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
-        self._on_plate_prev = (opx, opy)
-        self.reaction = (-opx, -opy)
-
-    def _advance_loop(self, pnx, pny, vpx, vpy):
-        s, w, ph = self.state, self.world, self.physics
-        data = w.read_raw()
-        np.copyto(s.candidate_step, s.candidate)
-        res = self._res
-        ext = s.external_force
-        self._loop(
-            data, w.order, w.out, self._constants, self.law.constants, pnx, pny, vpx, vpy,
-            max(math.hypot(vpx, vpy), 1e-4), bool(ext.any()), w.h, s.candidate_step,
-            s.attached, s.slip, s.block, ext, w.pad_centre, ph.rest, ph.root, self._lost_idx,
-            self._gone_idx, res,
-        )  # fmt: skip
-        if self._implicit is not None:
-            ph.diss += self._implicit.correct((pnx, pny, vpx, vpy), rebook_damping=True)
-            w.write_forces(s.F)
-        else:
-            w.write_forces()
-        ph.diss += float(res[2])
-        n_lost, n_gone = int(res[3]), int(res[4])
-        if n_lost or n_gone:
-            lost, gone = self._lost_idx[:n_lost].copy(), self._gone_idx[:n_gone].copy()
-            d, P = s.delta, s.P
-            ph.events.extend((int(i), -np.inf, float(P[i])) for i in lost)
-            ph.events.extend((int(i), float(d[i]), float(P[i])) for i in gone)
-            idx = np.concatenate([lost, gone])
-            P[idx] = 0.0
-            s.Ft[idx] = 0.0
-            s.slip[idx] = False
-        if not self._constants.rod:
-            self._check_linear(float(res[5]))
-        ph.any_contact_damping = True
-        return float(res[0]), float(res[1])
-
-    def _check_linear(self, max_u2):
-        if max_u2 > (0.1 * self.L) ** 2 and not self._warned_linear:
-            self._warned_linear = True
-            warnings.warn(
-                f"a seta deflected by {math.sqrt(max_u2) / self.L:.2f} L under the linear beam "
-                "model (eq 16–21 assume small deflection); mechanics='rod' stays physical",
-                stacklevel=user_stacklevel(),
-            )
-
-    def step(self, plate_velocity):
-        """Advance one time step with the plate moving at ``plate_velocity`` (vx, vy) [µm/µs].
-
-        Returns the plate's reaction (force of the setae on the plate) [µN], the work the
-        plate did on the system during the step [pJ], the elastic energy of every seta [pJ]
-        and the tip positions (N, 2) at which the forces were evaluated [µm].
-        """
-        vx, vy = (float(v) for v in plate_velocity)
-        self.advance(vx, vy)
-        return (
-            np.array(self.reaction),
-            self._work_step,
-            self.spring_energies(),
-            self.state.xy.T.copy(),
-        )
-
-    def reset_state_arrays(self):
-        """Start the energy and force bookkeeping afresh (as at the start of :meth:`run`)."""
-        self._on_plate_prev = (0.0, 0.0)
-        self.state.P[:] = 0.0
-        # Nothing stored in the contacts counts as dissipated at a first-step snap-off.
-        self.state.a[:] = self.law.jump_radius
-        self.state.xi[:] = 0.0
-
     # ------------------------------------------------------------------ protocol runner
     def run(
         self,
@@ -566,7 +365,18 @@ class Model:
             sensor reaches the floor (:meth:`skip_free_travel`) instead of stepping there. A
             free seta's motion does not depend on where it is, so the history is the same but
             for the skipped rows; the travel skipped is ``meta["skipped_travel_um"]``.
+
+        A model runs once: a second call is refused (RuntimeError), since its world is at the
+        first run's end state, which the parameters, seed and protocol of a history do not
+        reproduce. Build a new :class:`Model` for each run.
         """
+        if self._ran:
+            raise RuntimeError(
+                "Model.run was already called on this model: its world is at that run's end "
+                "state, which the parameters, seed and protocol in a history's metadata do not "
+                "reproduce; build a new Model(params, seed=...) for each run"
+            )
+        self._ran = True
         h = run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
         if self._implicit is not None:
             h.meta["implicit_dissipated_pJ"] = self._implicit.numerical_dissipated

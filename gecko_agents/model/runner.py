@@ -18,6 +18,7 @@ import numpy as np
 
 from gecko_agents.contact import bounds as tip_bounds
 from gecko_agents.diagnostics import diagnose, model_facts
+from gecko_agents.diagnostics.resolution import neighbour_distance
 from gecko_agents.history import History
 from gecko_agents.model.cost import check_cost
 from gecko_agents.model.recorder import Recorder
@@ -46,6 +47,10 @@ class _Run:
     skipped: float = 0.0
     n_steps: int = 0
     t_record: float = 0.0  # the next record's time with records by time [µs]
+    force_lo: float = math.inf  # most tensile total normal force at any step [µN]
+    force_hi: float = -math.inf  # most compressive [µN]
+    release_travel: float = 0.0  # longest plate travel of a step in which a tip let go [µm]
+    neighbours: float = math.inf  # least distance of neighbouring pillars' centre lines [µm]
 
 
 def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> History:
@@ -63,7 +68,10 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
     for seg in segments:
         seg.check(m)  # a depth this plate cannot reach is refused before any step
     # refuse or warn before stepping when absurd, force control at its longest
-    check_cost(m.n, sum(seg.longest_duration(m) for seg in segments), m.dt)
+    check_cost(
+        m.n, [seg.longest_duration(m) for seg in segments], m.dt,
+        None if m._implicit is None else m.event_dt, [repr(seg) for seg in segments],
+    )  # fmt: skip
     t_wall = time.perf_counter()
     for i, seg in enumerate(segments, 1):
         bar = SegmentBar(m, seg, f"{i}/{len(segments)}", progress)
@@ -86,6 +94,9 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         "damping": dataclasses.asdict(m.damping), "mass_ng": m.mass,
         "tangential_stiffness_uN_per_um": m.k_t,
         "wall_time_s": time.perf_counter() - t_wall, "versions": versions(),
+        "stepped_force_normal_range_uN": [run.force_lo, run.force_hi] if run.n_steps else None,
+        "release_step_travel_um": run.release_travel,
+        "min_neighbour_distance_um": run.neighbours if math.isfinite(run.neighbours) else None,
         **model_facts(m, segments),
     }  # fmt: skip
     if m.backing.info is not None:
@@ -172,13 +183,20 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
     while (vp := seg.velocity(m, state)) is not None:
         if may_skip and run.n_steps % every == 0 and not m.state.attached.any():
             run.skipped += m.skip_free_travel(seg, state, vp)
+        if implicit is not None:  # a hold ends on its duration, not a whole step past it
+            left = seg.time_left(m, state)
+            if left is not None and 0 < left < implicit.dt_base:
+                implicit.dt_base = left
         # The implicit step takes k steps of dt/k near an event (ImplicitStep.substeps).
         k = 1 if implicit is None else implicit.substeps(vp)
         for _ in range(k):
             m.advance(vp[0], vp[1])
             run.work += m.work_step
             run.dissipated += m.physics.diss
+            force = float(np.add.reduce(m.state.P))  # what the records may step over
+            run.force_lo, run.force_hi = min(run.force_lo, force), max(run.force_hi, force)
             if m.physics.events:
+                run.release_travel = max(run.release_travel, math.hypot(*vp) * m.dt)
                 rec.note_detachments(m.time, m.plate_position, m.pop_releases())
             run.n_steps += 1
             if interval is None:
@@ -189,6 +207,7 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
                     run.t_record = (math.floor(m.time / interval + 1e-9) + 1) * interval
             if due or run.n_steps == 1:
                 row = rec.record(m, run.work, run.dissipated)
+                _note_neighbours(m, run)
                 if implicit is not None:
                     implicit.note_energies(row)
                 bound = run.ke_bound
@@ -202,6 +221,17 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
             implicit.set_dt(implicit.dt_base)
     if implicit is not None:  # a fast segment's shorter step ends with it
         implicit.set_dt(implicit.dt_full)
+
+
+def _note_neighbours(m, run: _Run) -> None:
+    """The least distance between neighbouring elastica pillars' centre lines so far [µm]
+    (the validity item ``pillars_meet``)."""
+    chain = m.physics.chain
+    if chain is None or m.n < 2:
+        return
+    px, py = m.plate_position
+    roots = np.column_stack([px + m.world.root_dx, py + m.world.root_dy])
+    run.neighbours = min(run.neighbours, neighbour_distance(chain.nodes(roots)))
 
 
 def _check_stable(m, row, bound):

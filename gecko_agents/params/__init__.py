@@ -51,6 +51,8 @@ from gecko_agents.physics.friction import friction_cap
 MECHANICS = ("linear", "rod", "elastica")
 DETACHMENT_RULES = ("fold", "delta_s", "load_control")
 SHEAR_COUPLINGS = ("none", "savkoor_briggs")
+MIN_LINKS = 14
+"""Fewest links of the elastica's bar chain: its three Euler loads within 2 % (``Seta.links``)."""
 TIPS = ("sphere", "hertz", "spatula", "flat_punch")
 """Tip contact laws (``gecko_agents.contact.TIP_LAWS``): the adhesive JKR sphere of the
 paper, a Hertz sphere without adhesion, a thin-film spatula that peels (:class:`Spatula`) or
@@ -191,13 +193,15 @@ class Seta:
         vertical pillar (its bending spring still acts: a slight tilt or a lateral tip force
         bends it; ``mechanics = "elastica"`` buckles at Euler's loads).
     density : material density [ng/µm³]; polyurethane ≈ 1.2e-3 (1200 kg/m³).
-    links : links of the bar chain of ``mechanics = "elastica"`` [-], 2–200; 16 (default)
+    links : links of the bar chain of ``mechanics = "elastica"`` [-], 14–200; 16 (default)
         puts the clamped–free, clamped–pinned and clamped–clamped buckling loads within
-        1.3 % of Euler's (:mod:`gecko_agents.physics.elastica`).
-    imperfection : the elastica's initial crookedness [-], in [0, 0.1]: its stress-free shape
+        1.3 % of Euler's, 14 within 2 % (they converge as 1/n²; fewer links buckle far
+        early: 2 at 0.41–0.59 × Euler, :mod:`gecko_agents.physics.elastica`).
+    imperfection : the elastica's initial crookedness [-], in (0, 0.1]: its stress-free shape
         is an arc whose tip lies imperfection·L to +x of the straight seta; it picks the side a
-        vertical pillar buckles to. Default 1e-4 (the buckled column's force stays within
-        0.3 % of the perfect column's, ``tests/test_pillars.py``).
+        vertical pillar buckles to. A straight chain (0) never leaves its straight branch, past
+        Euler's load too, so it is refused. Default 1e-4 (the buckled column's force stays
+        within 0.3 % of the perfect column's, ``tests/test_pillars.py``).
     """
 
     r: float = 1.5
@@ -212,8 +216,8 @@ class Seta:
         _check(self, "L", *LENGTH_RANGE, lo_open=False, hi_open=False)
         _check(self, "theta_deg", 0.0, 90.0, hi_open=False)
         _check(self, "density", *DENSITY_RANGE, lo_open=False, hi_open=False)
-        _check(self, "links", 2, 200, lo_open=False, hi_open=False, integer=True)
-        _check(self, "imperfection", 0.0, 0.1, lo_open=False, hi_open=False)
+        _check(self, "links", MIN_LINKS, 200, lo_open=False, hi_open=False, integer=True)
+        _check(self, "imperfection", 0.0, 0.1, hi_open=False)
 
     @property
     def theta(self) -> float:
@@ -422,6 +426,12 @@ class SetaArray:
             raise ValueError(f"SetaArray.tip = {self.tip!r} must be one of {TIPS}")
         if self.tip == "flat_punch":
             _check_punch_contact(self.contact)
+            if self.floor.kind == "probe" and self.contact.R >= self.floor.probe_radius:
+                raise ValueError(
+                    f"Contact.R = {self.contact.R!r} µm (the punch face's radius) must be "
+                    f"smaller than Floor.probe_radius = {self.floor.probe_radius!r} µm: a flat "
+                    "face as wide as the probe cannot sit on it"
+                )
 
     # Derived quantities used throughout ---------------------------------------------------
     @property

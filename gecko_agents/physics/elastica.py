@@ -191,6 +191,10 @@ class Elastica:
                 "the column is pressed nearly flat: a buckled pillar carries about its Euler "
                 "load, so a force preload above it crushes it (press to a depth instead)"
                 if reach < 0.5
+                else "a tip pulled far beyond the chain's reach: the contact holds more than "
+                "the chain can carry (a pull-off force far above the pillar's Ka·L, e.g. a "
+                "face radius contact.R far above seta.r), not a time step"
+                if reach > 2.0
                 else "a tip pulled beyond the chain's reach or a time step too long"
             )
             raise RuntimeError(

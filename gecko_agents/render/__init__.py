@@ -28,7 +28,6 @@ from here.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 import time
 from pathlib import Path
@@ -39,6 +38,7 @@ from matplotlib.animation import FFMpegWriter, PillowWriter
 from PIL import Image
 
 from gecko_agents.history import History, load
+from gecko_agents.output_paths import replace_into
 from gecko_agents.render.force_plots import (
     PRESSING_LABEL,
     plot_force_curves,
@@ -175,7 +175,7 @@ def animate(
                     scene.draw(int(k))
                     writer.grab_frame()
             writer.finish()
-        os.replace(tmp, path)
+        replace_into(tmp, path)
     finally:
         tmp.unlink(missing_ok=True)
     return path

@@ -15,6 +15,8 @@ from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from gecko_agents.output_paths import make_dir, replace_into
+
 __all__ = [
     "STYLE_RC",
     "STATE_COLOURS",
@@ -95,7 +97,7 @@ def atomic_target(path: Path, suffix: str) -> Path:
     Only the name is made: the writer creates the file, with the usual permissions (mkstemp
     would leave the final file readable by its owner only).
     """
-    path.parent.mkdir(parents=True, exist_ok=True)
+    make_dir(path.parent)
     return path.with_name(f".{path.stem}.{os.getpid()}-{secrets.token_hex(4)}.tmp{suffix}")
 
 
@@ -112,7 +114,7 @@ def save_figure(fig: Figure, path, dpi: int = PNG_DPI) -> Path:
         # No date in the metadata: the same figure gives the same bytes.
         metadata = {"Software": None} if fmt == "png" else None
         fig.savefig(tmp, format=fmt, dpi=dpi, metadata=metadata)
-        os.replace(tmp, path)
+        replace_into(tmp, path)
     finally:
         tmp.unlink(missing_ok=True)
     return path

@@ -81,8 +81,9 @@ from pathlib import Path
 
 import numpy as np
 
+from gecko_agents._run_directory import saved_run_id
 from gecko_agents.diagnostics import MeaninglessRunError
-from gecko_agents.history import History, invariant_violations
+from gecko_agents.history import RUN_FILES, History, invariant_violations
 from gecko_agents.model.implicit import INTEGRATORS
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import SetaArray
@@ -115,11 +116,15 @@ __all__ = [
     "load_sweep",
     "execute_run",
     "RUN_FILE_NAME",
+    "RUN_DIR_FILES",
     "SWEEP_FILE_NAME",
 ]
 
 RUN_FILE_NAME = "run.toml"
 """Name of the run file's copy inside a run directory."""
+
+MAX_DESCRIPTION = 2000
+"""Longest run-file description [characters]: a line or a paragraph, echoed by ``run``."""
 
 _MODEL_KEYS = {
     "n_sim": int,
@@ -218,6 +223,10 @@ def _run_variant(ctx: Ctx, data: dict, quick: dict | None, path: Path, raw: byte
         ctx, data["protocol"], "[quick.protocol]" if "protocol" in quick_t else "[protocol]"
     )
     description = ctx.type_("description", data.get("description", ""), str)
+    if len(description) > MAX_DESCRIPTION:
+        raise ctx.error(
+            "description", f"has {len(description)} characters; at most {MAX_DESCRIPTION}"
+        )
     resolved = {"preset": name, "params": overrides, "model": model_t, "protocol": data["protocol"]}
     return RunSpec(
         path=path,
@@ -280,14 +289,37 @@ def _alive(pid: int) -> bool:
     return True
 
 
+RUN_DIR_FILES = (*RUN_FILES, RUN_FILE_NAME, "floor.png")
+"""Every file :func:`execute_run` may write into a run directory; it writes and replaces no
+other (files a user added to a run directory stay)."""
+
+
+def _names(names: list[str], most: int = 5) -> str:
+    shown = ", ".join(names[:most])
+    return shown + (f" and {len(names) - most} more" if len(names) > most else "")
+
+
 def _check_run_target(out: Path, animation: str | None) -> None:
-    """Refuse, before anything runs, a target that is not a run directory (it would be
-    replaced) and an animation format that cannot be written."""
-    if out.exists() and not (
-        out.is_dir() and ((out / RUN_FILE_NAME).is_file() or not any(out.iterdir()))
-    ):
+    """Refuse, before anything runs: ``out`` a dangling link or a file; a folder that is not
+    empty and not a run directory (one this function's runs write: a saved run's
+    metadata.json beside run.toml), whose files a run must not touch; a run directory where
+    one of the run's own file names is a folder; an animation format that cannot be written."""
+    if out.is_symlink() and not out.exists():
+        raise RunFileError(f"{out}: is a symbolic link to a missing target; choose another --out")
+    if out.exists() and not out.is_dir():
+        raise RunFileError(f"{out}: exists and is not a folder; choose another --out")
+    entries = sorted(p.name for p in out.iterdir()) if out.exists() else []
+    if entries and (saved_run_id(out) is None or not (out / RUN_FILE_NAME).is_file()):
         raise RunFileError(
-            f"{out}: exists and is not a run directory (no {RUN_FILE_NAME}); choose another --out"
+            f"{out}: is not empty ({_names(entries)}) and is not a run directory (a saved run's "
+            f"metadata.json beside its {RUN_FILE_NAME}); a run writes into a new or empty "
+            "folder or replaces a run directory's own files: choose another --out"
+        )
+    clash = [n for n in RUN_DIR_FILES if (out / n).is_dir() or (out / n).is_symlink()]
+    if clash:
+        raise RunFileError(
+            f"{out}: {_names(clash)} is a folder or link where the run writes a file; "
+            "choose another --out"
         )
     if animation not in (None, "gif", "mp4"):
         raise ValueError(f"animation = {animation!r} must be None, 'gif' or 'mp4'")
@@ -313,13 +345,15 @@ def execute_run(
     ``detachment.gif``/``.mp4`` if
     ``animation`` is ``"gif"``/``"mp4"`` (per-seta recording is then switched on; it does not
     change the dynamics), and the run file copied verbatim as ``run.toml``. Everything is
-    written into a hidden sibling directory that replaces ``out`` only once complete, so an
-    interrupted or failed run leaves ``out`` as it was.
+    written into a hidden sibling directory whose files replace the run's own files in ``out``
+    only once complete, so an interrupted or failed run leaves ``out`` as it was. ``out`` must
+    be new, empty or a run directory; a run directory keeps every file a user added
+    (:data:`RUN_DIR_FILES` are the only names written or removed).
 
     Raises
     ------
-    RunFileError if ``out`` exists and is not a run directory (it would be replaced); whatever
-    the run raises (nothing is written then).
+    RunFileError if ``out`` is a non-empty folder that is not a run directory (nothing is
+    touched); whatever the run raises (nothing is written then).
     """
     out = Path(out)
     _check_run_target(out, animation)
@@ -376,12 +410,17 @@ def _refuse_untouched(history: History) -> None:
 
 
 def _replace_dir(stage: Path, out: Path) -> None:
-    """Put the complete ``stage`` at ``out`` (replacing an older run directory there)."""
-    if out.exists():
-        old = out.parent / f".{out.name}.old-{os.getpid()}"
-        shutil.rmtree(old, ignore_errors=True)
-        os.replace(out, old)
+    """Put the complete run of ``stage`` at ``out``. An existing run directory keeps every file
+    that is not one of :data:`RUN_DIR_FILES`; its metadata.json goes first and comes back last,
+    so a directory caught half-way never loads as a run."""
+    if not out.exists():
         os.replace(stage, out)
-        shutil.rmtree(old, ignore_errors=True)
-    else:
-        os.replace(stage, out)
+        return
+    (out / "metadata.json").unlink(missing_ok=True)
+    produced = {p.name for p in stage.iterdir()}
+    for name in RUN_DIR_FILES:  # a figure or animation of the previous run
+        if name not in produced:
+            (out / name).unlink(missing_ok=True)
+    for name in [*sorted(produced - {"metadata.json"}), "metadata.json"]:
+        os.replace(stage / name, out / name)
+    stage.rmdir()

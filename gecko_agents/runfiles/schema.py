@@ -161,6 +161,11 @@ def read_toml(path) -> tuple[Path, bytes, dict]:
         raise RunFileError(f"{path}: no such file") from None
     except OSError as err:
         raise RunFileError(f"{path}: cannot be read: {err}") from err
+    if raw.startswith(b"\xef\xbb\xbf"):
+        raise RunFileError(
+            f"{path}: starts with a UTF-8 byte-order mark (BOM), which TOML does not allow; "
+            "save it as UTF-8 without a BOM"
+        )
     try:
         data = tomllib.loads(raw.decode("utf-8"))
     except UnicodeDecodeError as err:

@@ -13,13 +13,19 @@ import csv
 import functools
 import io
 import json
+import os
 import sys
 from pathlib import Path
 
 import numpy as np
 
 from gecko_agents.console import WarningLog, add_verbosity_arguments
-from gecko_agents.output_paths import atomic_write_bytes, output_dir_arg
+from gecko_agents.output_paths import (
+    all_or_nothing,
+    atomic_write_bytes,
+    make_dir,
+    output_dir_arg,
+)
 from gecko_agents.physics import jkr
 from gecko_agents.provenance import versions
 
@@ -51,11 +57,24 @@ def off_paper(ours: float, paper: float) -> str:
 def writable_dir(value: str) -> Path:
     """``--out`` as argparse ``type=``: a folder that exists or can be made, and is writable
     (:func:`gecko_agents.output_paths.output_dir_arg`: an empty value, an existing file, a path
-    under a file and an unwritable folder are usage errors, exit 2), created here, as the study
-    would do first anyway."""
-    path = output_dir_arg(value)
-    path.mkdir(parents=True, exist_ok=True)
-    return path
+    under a file and an unwritable folder are usage errors, exit 2). Not created here: a
+    usage error found later in the command line leaves nothing behind."""
+    return output_dir_arg(value)
+
+
+def jobs_arg(value: str) -> int:
+    """``--jobs`` as argparse ``type=``: worker processes, an integer from 1 to this machine's
+    cores (more only queue for the same cores and multiply the memory)."""
+    cores = os.cpu_count() or 1
+    try:
+        jobs = int(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--jobs {value!r} is not an integer") from None
+    if not 1 <= jobs <= cores:
+        raise argparse.ArgumentTypeError(
+            f"--jobs {jobs} must be in [1, {cores}] (this machine's cores)"
+        )
+    return jobs
 
 
 def command_line(main):
@@ -67,13 +86,20 @@ def command_line(main):
 
     @functools.wraps(main)
     def run(argv=None):
-        if argv is not None:
-            return main(argv)
-        argv = sys.argv[1:]
-        level = 0 if "--quiet" in argv else 2 if "--verbose" in argv else 1
-        with WarningLog(level) as log:
-            log.family(main.__module__.rsplit(".", 1)[-1])
-            return main(argv)
+        name = main.__module__.rsplit(".", 1)[-1]
+        with all_or_nothing():  # a study that fails leaves its folder as it found it
+            if argv is not None:
+                return main(argv)
+            argv = sys.argv[1:]
+            level = 0 if "--quiet" in argv else 2 if "--verbose" in argv else 1
+            try:
+                with WarningLog(level) as log:
+                    log.family(name)
+                    return main(argv)
+            except OSError as err:  # a full disk or a file-size limit, from the command line
+                message = f"could not write the results ({err}); nothing was left half-written"
+                print(f"{name}: error: {message}", file=sys.stderr)
+                raise SystemExit(1) from None
 
     return run
 
@@ -100,8 +126,7 @@ def parse_args(doc: str, argv=None, extra=None) -> argparse.Namespace:
 def output_dir(name: str, args: argparse.Namespace) -> Path:
     """The scenario's output folder, created if needed."""
     out = args.out if args.out is not None else RENDERS / name
-    out.mkdir(parents=True, exist_ok=True)
-    return out
+    return make_dir(out)
 
 
 def write_table(path: Path, rows: list[dict]) -> Path:

@@ -47,6 +47,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import os
 import time
 
 import numpy as np
@@ -64,6 +65,7 @@ from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.studies.common import (
     command_line,
+    jobs_arg,
     output_dir,
     parse_args,
     write_json,
@@ -363,7 +365,7 @@ def _extra_args(p) -> None:
         "--map", action="store_true", help="with --quick: a small anisotropy map too (full: always)"
     )
     p.add_argument(
-        "--jobs", type=int, default=2,
+        "--jobs", type=jobs_arg, default=min(2, os.cpu_count() or 1),
         help="runs at once in separate processes (default 2; 1 runs them in this process)",
     )  # fmt: skip
     p.add_argument(

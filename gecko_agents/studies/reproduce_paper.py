@@ -10,6 +10,7 @@ in: every "ours" entry is formatted from a result of this run.
 
 from __future__ import annotations
 
+import os
 import time
 from pathlib import Path
 
@@ -17,10 +18,17 @@ import numpy as np
 
 from gecko_agents import quasistatic as qs
 from gecko_agents.console import WarningLog, summary_line, verbosity
-from gecko_agents.output_paths import atomic_write_bytes
+from gecko_agents.output_paths import all_or_nothing, atomic_write_bytes, make_dir
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.provenance import versions
-from gecko_agents.studies.common import RENDERS, claim, parse_args, run_scenario, write_json
+from gecko_agents.studies.common import (
+    RENDERS,
+    claim,
+    jobs_arg,
+    parse_args,
+    run_scenario,
+    write_json,
+)
 
 SCENARIOS = (
     "fig5_jkr_tip",
@@ -117,7 +125,7 @@ def markdown(rows: list[dict], timings: dict, quick: bool) -> str:
 
 def _add_jobs(parser) -> None:
     parser.add_argument(
-        "--jobs", type=int, default=2,
+        "--jobs", type=jobs_arg, default=min(2, os.cpu_count() or 1),
         help="scenarios run at once in separate processes (default 2; 1 runs them in order "
         "in this process)",
     )  # fmt: skip
@@ -250,9 +258,8 @@ def main(argv=None) -> dict:
     if args.jobs < 1:
         raise SystemExit(f"--jobs = {args.jobs} must be ≥ 1")
     base = args.out if args.out is not None else RENDERS
-    base.mkdir(parents=True, exist_ok=True)
-    with WarningLog(verbosity(args)) as log:
-        out = _main(args, base, log)
+    with WarningLog(verbosity(args)) as log, all_or_nothing():  # finished scenarios stay
+        out = _main(args, make_dir(base), log)
     validities = [h.meta["validity"] for h in out.pop("runs").values()]
     where = f"the report's table in {base / 'paper_comparison.md'}"
     print(summary_line(validities, where), flush=True)

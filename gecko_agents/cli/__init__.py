@@ -27,15 +27,14 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import shlex
+import signal
 import sys
-import time
+import threading
 from collections.abc import Callable
-from pathlib import Path
 
 from gecko_agents import __version__
-from gecko_agents.console import WarningLog, add_verbosity_arguments, summary_line, verbosity
-from gecko_agents.output_paths import check_output_dir, output_dir_arg
+from gecko_agents.console import WarningLog, add_verbosity_arguments, verbosity
+from gecko_agents.output_paths import output_dir_arg
 from gecko_agents.params.table import parameter_table
 
 __all__ = [
@@ -48,227 +47,17 @@ __all__ = [
     "parameter_table",
 ]
 
-EXIT_OK, EXIT_FAILURE, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
-PROG = "gecko-agents"
-HELP_WIDTH = 100  # longest line ``params`` prints
-
-
-class UsageError(Exception):
-    """Bad input found by a handler (exit code 2)."""
-
-
-def _err(message: str) -> None:
-    print(f"{PROG}: error: {message}", file=sys.stderr)
-
-
-def _checked(out: Path) -> Path:
-    """A default output folder, checked as ``--out`` is (a usage error if it cannot be written)."""
-    try:
-        return check_output_dir(out, "the default output folder")
-    except ValueError as err:
-        raise UsageError(f"{err}; give --out") from None
-
-
-# run ---------------------------------------------------------------------------------------------
-def _add_run(p: argparse.ArgumentParser) -> None:
-    p.add_argument("runfile", type=Path, help="run file (TOML; see examples/)")
-    p.add_argument(
-        "--out",
-        type=output_dir_arg,
-        default=None,
-        help="run directory to write (default runs/<run file name>; an older run "
-        "directory there is replaced once the new one is complete)",
-    )
-    p.add_argument(
-        "--quick",
-        action="store_true",
-        help="the file's [quick] variant: a tiny run for a first look and the tests",
-    )
-    kind = p.add_mutually_exclusive_group()
-    kind.add_argument(
-        "--gif",
-        dest="animation",
-        action="store_const",
-        const="gif",
-        help="also write detachment.gif (records every seta)",
-    )
-    kind.add_argument(
-        "--mp4",
-        dest="animation",
-        action="store_const",
-        const="mp4",
-        help="also write detachment.mp4 (needs pip install -e '.[video]')",
-    )
-    p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
-    add_verbosity_arguments(p)
-
-
-def _default_run_dir(runfile: Path) -> Path:
-    from gecko_agents.runfiles.run import RUN_FILE_NAME
-
-    if runfile.name == RUN_FILE_NAME:  # the copy inside a run directory: do not overwrite it
-        return Path("runs") / f"{runfile.resolve().parent.name}-rerun"
-    return Path("runs") / runfile.stem
-
-
-def _cmd_run(args, extra) -> int:
-    from gecko_agents.runfiles import run as runfile
-
-    spec = runfile.load_run(args.runfile, quick=args.quick)
-    out = args.out if args.out is not None else _checked(_default_run_dir(args.runfile))
-    seg = ", ".join(type(s).__name__ for s in spec.protocol)
-    print(
-        f"{spec.path}{' (quick)' if spec.quick else ''}: {spec.preset}"
-        f"{' + ' + str(len(spec.overrides)) + ' overrides' if spec.overrides else ''}, "
-        f"{spec.params.mechanics} setae, protocol {seg}"
-    )
-    if spec.description:
-        print(f"  {spec.description}")
-    argv = [str(args.runfile)] + (["--quick"] if args.quick else [])
-    t0 = time.perf_counter()
-    try:
-        with WarningLog(verbosity(args)) as log:
-            log.family(args.runfile.name)
-            out, history = runfile.execute_run(
-                spec, out, animation=args.animation, progress=not args.no_progress, argv=argv
-            )
-    except runfile.RunFileError:
-        raise
-    except KeyboardInterrupt:
-        _err(
-            f"interrupted: nothing was written to {out} (a run directory already there is "
-            f"untouched); start again with: {PROG} run {' '.join(argv)}"
-        )
-        return EXIT_INTERRUPTED
-    except Exception as err:
-        _err(f"the run failed ({type(err).__name__}): {err}; nothing was written to {out}")
-        return EXIT_FAILURE
-    m = history.meta
-    print(
-        f"wrote {out}/ in {time.perf_counter() - t0:.1f} s: {m.get('n_sim')} setae, "
-        f"{m.get('n_steps')} steps of {m.get('dt_us', float('nan')):.3g} µs "
-        f"({m.get('kernel')} kernel); peak pull-off {history.peak_pull_off:.4g} µN"
-    )
-    bad = m["run_file"]["invariant_violations"]
-    if bad:
-        _err(f"the history breaks its invariants: {'; '.join(bad)}")
-        return EXIT_FAILURE
-    print(
-        f"re-run it with: {PROG} run {shlex.quote(str(out / runfile.RUN_FILE_NAME))}"
-        f"{' --quick' if args.quick else ''}"
-    )
-    print(summary_line([m["validity"]], f"'validity' in {out / 'metadata.json'}"))
-    return EXIT_OK
-
-
-# sweep -------------------------------------------------------------------------------------------
-def _add_sweep(p: argparse.ArgumentParser) -> None:
-    from gecko_agents.sweep import parse_dask_arg
-
-    p.add_argument("sweepfile", type=Path, help="sweep file (TOML; see examples/)")
-    p.add_argument(
-        "--out",
-        type=output_dir_arg,
-        default=None,
-        help="output directory (default: the file's out_dir, else sweeps/<name>)",
-    )
-    p.add_argument("--quick", action="store_true", help="the file's [quick] variant")
-    p.add_argument(
-        "--dask",
-        type=parse_dask_arg,
-        default=None,
-        metavar="ADDR",
-        help="'local' (a Dask cluster on this machine) or tcp://host:port (a running "
-        "scheduler); default: local worker processes",
-    )
-    p.add_argument(
-        "--workers",
-        type=int,
-        default=None,
-        help="local worker processes (default: the file's workers, else all cores)",
-    )
-    p.add_argument(
-        "--resume",
-        action="store_true",
-        help="continue a sweep whose output directory already holds points: "
-        "finished points are kept, the others run",
-    )
-    p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
-    add_verbosity_arguments(p)
-
-
-def _cmd_sweep(args, extra) -> int:
-    from gecko_agents import sweep
-    from gecko_agents.output_paths import atomic_write_bytes
-    from gecko_agents.runfiles import sweep as sweepfile
-    from gecko_agents.sweep.store import read_record
-
-    spec = sweepfile.load_sweep(args.sweepfile, quick=args.quick)
-    out = args.out if args.out is not None else _checked(spec.out_dir)
-    if args.workers is not None and args.workers < 1:
-        raise UsageError(f"--workers {args.workers} must be ≥ 1")
-    workers = args.workers if args.workers is not None else spec.workers
-    if args.dask not in (None, "local"):
-        workers = None  # the scheduler's own workers run the points
-    points_dir = out / "points"
-    before = {p.stem for p in points_dir.glob("*.json")} if points_dir.is_dir() else set()
-    stored_ok = {  # points an earlier run finished: reused, not recomputed
-        k for k in before if (read_record(points_dir / f"{k}.json", k) or {}).get("status") == "ok"
-    }
-    if before and not args.resume:
-        raise UsageError(
-            f"{out} already holds {len(before)} point file(s) of a sweep; add "
-            "--resume to continue it (finished points are kept) or choose another "
-            "--out"
-        )
-    resume = [PROG, "sweep", str(args.sweepfile), "--resume"]
-    resume += ["--out", str(out)] if args.out is not None else []
-    resume += ["--quick"] if args.quick else []
-    resume += ["--dask", args.dask] if args.dask else []
-    print(
-        f"{spec.path}{' (quick)' if spec.quick else ''}: {spec.point} on {spec.preset}, "
-        f"{spec.n_points} points → {out}/"
-    )
-    out.mkdir(parents=True, exist_ok=True)
-    atomic_write_bytes(out / sweepfile.SWEEP_FILE_NAME, spec.text)
-    t0 = time.perf_counter()
-    try:
-        with WarningLog(verbosity(args)) as log:  # the points' warnings, relayed by the sweep
-            log.family(args.sweepfile.name)
-            rows = sweep.run_sweep(
-                spec.point_fn,
-                spec.base,
-                spec.grid,
-                spec.seeds,
-                out,
-                fn_kwargs=spec.point_args,
-                dask=args.dask,
-                n_workers=workers,
-                progress=not args.no_progress,
-            )
-    except KeyboardInterrupt:
-        done = len(list(points_dir.glob("*.json"))) if points_dir.is_dir() else 0
-        _err(
-            f"interrupted: {done} finished point(s) are stored in {points_dir}/; resume with: "
-            + " ".join(resume)
-        )
-        return EXIT_INTERRUPTED
-    except ImportError as err:
-        raise UsageError(str(err)) from None
-    reused = sum(r["key"] in stored_ok and r["status"] == "ok" for r in rows)
-    errors = [r for r in rows if r["status"] != "ok"]
-    print(
-        f"wrote {out / 'sweep.csv'} in {time.perf_counter() - t0:.1f} s: "
-        f"{len(rows) - len(errors)} of {len(rows)} points ok"
-        + (f", {reused} reused from an earlier run" if reused else "")
-    )
-    if errors:
-        _err(
-            f"{len(errors)} point(s) failed, e.g. seed {errors[0]['seed']}: "
-            f"{errors[0]['error']}; after a fix, re-run with: " + " ".join(resume)
-        )
-        return EXIT_FAILURE
-    return EXIT_OK
+from gecko_agents.cli.common import (
+    EXIT_FAILURE,
+    EXIT_INTERRUPTED,
+    EXIT_OK,
+    EXIT_USAGE,
+    HELP_WIDTH,
+    PROG,
+    UsageError,
+)
+from gecko_agents.cli.common import error as _err
+from gecko_agents.cli.runs import add_run, add_sweep, cmd_run, cmd_sweep
 
 
 # reproduce ---------------------------------------------------------------------------------------
@@ -418,15 +207,15 @@ class Command:
 
 COMMANDS: dict[str, Command] = {
     "run": Command(
-        _add_run,
-        _cmd_run,
+        add_run,
+        cmd_run,
         "run a run file and write its run directory",
         "gecko-agents run examples/single_seta_press_pull.toml --quick --gif\n"
         "  gecko-agents run runs/single_seta_press_pull/run.toml   # re-run a copy",
     ),
     "sweep": Command(
-        _add_sweep,
-        _cmd_sweep,
+        add_sweep,
+        cmd_sweep,
         "run a parameter sweep file (resumable; local processes or Dask)",
         "gecko-agents sweep examples/sweep_roughness_preload.toml --quick\n"
         "  gecko-agents sweep examples/sweep_roughness_preload.toml --resume "
@@ -498,8 +287,23 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _terminated(signum, frame):
+    """SIGTERM (a batch system's kill) takes Ctrl-C's path: staged files removed, exit 130."""
+    raise KeyboardInterrupt(f"signal {signum}")
+
+
 def main(argv=None) -> int:
     """Run the command line on ``argv`` (default ``sys.argv[1:]``); returns the exit code."""
+    in_main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, _terminated) if in_main_thread else None
+    try:
+        return _main(argv)
+    finally:
+        if in_main_thread:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _main(argv) -> int:
     from gecko_agents.runfiles.run import RunFileError
 
     parser = build_parser()
@@ -516,11 +320,18 @@ def main(argv=None) -> int:
     except (RunFileError, UsageError) as err:
         _err(str(err))
         return EXIT_USAGE
-    except SystemExit as stop:  # a delegate's own argument parser
-        return stop.code if isinstance(stop.code, int) else EXIT_USAGE
+    except SystemExit as stop:  # a delegate's own argument parser or its refusal
+        if isinstance(stop.code, int):
+            return stop.code
+        if stop.code is not None:
+            _err(str(stop.code))
+        return EXIT_USAGE
     except KeyboardInterrupt:
         _err("interrupted: nothing was left half-written")
         return EXIT_INTERRUPTED
+    except OSError as err:  # a full disk, a file-size limit, a folder gone read-only
+        _err(f"could not write the results ({err}); nothing was left half-written")
+        return EXIT_FAILURE
 
 
 if __name__ == "__main__":

@@ -86,6 +86,25 @@ The contact items (``a_over_R``, ``tabor``) apply to sphere tips that touched (n
     crack must run at ~De·v*, i.e. G/w ≈ 1 + De^n. Viscoelastic enhancement cannot exceed the
     ratio of glassy to rubbery modulus, ~10²–10³ for elastomers (Greenwood & Johnson 1981), so
     the power law is extrapolated beyond its physics when De^n > 100. Limit: De^n ≤ 100.
+``records``
+    The recorded peak force's shortfall against the peak at any step (the runner keeps the
+    total normal force's extremes over every step): a record cadence too sparse for the force
+    history misses the peak in the series and what is read off them (``History.peak_pull_off``
+    reads the stepped extreme, which no cadence misses). Limit 5 %.
+``release_step``
+    Plate travel of the longest step in which a tip let go, over Fc·(1/Ky + 1/k0), the travel
+    over which a tip's force rises from zero to its pull-off (seta and zero-load contact in
+    series): a release is resolved to one step, so the pull-off is off by about this ratio
+    (:mod:`gecko_agents.diagnostics.resolution`). Limit 0.02.
+``pillars_meet``
+    For elastica pillars in a row: the smallest distance between neighbouring centre lines
+    over the records, over the diameter 2r. The model has no pillar–pillar contact, so below
+    1 buckled pillars pass through each other. Limit ≥ 1.
+``probe_curvature``
+    On a spherical probe (``floor.kind = "probe"``), how far the tip laws' flat floor is from
+    the probe under a tip: a sphere's R/R_p (two spheres in contact act with
+    R_eff = R·R_p/(R + R_p), Johnson 1985 §4.2, so a pull-off is off by about the ratio); a flat
+    face's sag a²/(2R_p) over its snap-off overlap. Limit 0.1.
 """
 
 from __future__ import annotations
@@ -98,6 +117,7 @@ import numpy as np
 
 from gecko_agents._stack import user_stacklevel
 from gecko_agents.contact import contact_law
+from gecko_agents.diagnostics import resolution
 from gecko_agents.physics import jkr
 
 __all__ = [
@@ -122,6 +142,10 @@ LIMITS = {
     "time_step": ("≤", 1.0),
     "touched": ("≥", 1.0),
     "crack_deborah": ("≤", 100.0),
+    "records": ("≤", 0.05),
+    "release_step": ("≤", 0.02),
+    "pillars_meet": ("≥", 1.0),
+    "probe_curvature": ("≤", 0.1),
 }
 """Item → (relation, limit); the reasons and sources are in the module docstring."""
 
@@ -533,6 +557,15 @@ def diagnose(history, *, warn: bool = True) -> dict:
         "time_step": _time_step(f),
         "touched": _touched(f),
         "crack_deborah": _crack_deborah(history.params.contact, f),
+        "records": _item("records", *resolution.records(history)),
+        "release_step": _item(
+            "release_step", *resolution.release_step(history, contact_law(history.params))
+        ),
+        "pillars_meet": _item("pillars_meet", *resolution.pillars_meet(history)),
+        "probe_curvature": _item(
+            "probe_curvature",
+            *resolution.probe_curvature(history, contact_law(history.params)),
+        ),
     }
     violations = [name for name, it in items.items() if it["ok"] is False]
     _refuse_if_meaningless(history, f)
@@ -545,39 +578,4 @@ def _fmt(value) -> str:
     return "?" if value is None else f"{value:.3g}"
 
 
-def _validity_of(obj) -> dict | None:
-    meta = getattr(obj, "meta", obj)
-    if not isinstance(meta, dict):
-        return None
-    if "items" in meta:
-        return meta
-    return meta.get("validity")
-
-
-def validity_table(runs, labels=None) -> str:
-    """Markdown table of the validity items of several runs.
-
-    ``runs``: histories, metadata dicts (with ``"validity"``) or validity dicts, or a dict
-    label → one of those. Each cell is the value, with ✗ when it violates its limit and "—"
-    where the item does not apply.
-    """
-    if isinstance(runs, dict) and _validity_of(runs) is None:
-        labels, runs = list(runs), list(runs.values())
-    runs = list(runs)
-    labels = list(labels) if labels is not None else [f"run {i + 1}" for i in range(len(runs))]
-    names = list(LIMITS)
-    head = "| run | " + " | ".join(f"{n} ({LIMITS[n][0]} {LIMITS[n][1]:g})" for n in names)
-    lines = [head + " |", "|" + " --- |" * (len(names) + 1)]
-    for label, run in zip(labels, runs, strict=True):
-        v = _validity_of(run) or {"items": {}}
-        cells = []
-        for n in names:
-            it = v["items"].get(n)
-            if it is None or it["ok"] is None:
-                cells.append("—")
-            elif it["value"] is None:
-                cells.append("ok" if it["ok"] else "✗")
-            else:
-                cells.append(f"{it['value']:.3g}" + ("" if it["ok"] else " ✗"))
-        lines.append(f"| {label} | " + " | ".join(cells) + " |")
-    return "\n".join(lines) + "\n"
+from gecko_agents.diagnostics.table import validity_table  # noqa: E402
