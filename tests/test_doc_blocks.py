@@ -41,3 +41,11 @@ def test_the_readme_and_the_tutorials_have_runnable_code():
 )
 def test_page_code_runs(page):
     assert run_page(page) == []  # nothing skipped: every extra is installed here
+
+
+def test_the_readme_test_command_is_the_one_ci_runs():
+    """.ci/run's install-lint-test line is the README's test command, character for character."""
+    ci = (ROOT / ".ci" / "run").read_text("utf-8").splitlines()
+    command = next(line for line in ci if line.startswith("pip install -e '.["))
+    readme_first_screen = (ROOT / "README.md").read_text("utf-8").splitlines()[:30]
+    assert any(line.startswith(command + "   # tests") for line in readme_first_screen)
