@@ -2,8 +2,8 @@
 One seta pressed and pulled off
 ===============================
 
-The agent model (:class:`gecko_agents.model.Model`) runs one short seta of the paper's
-Table 1 (L = 5 µm instead of 110 µm, so it takes a second): the plate presses 0.3 µm past
+The agent model (``ga.Model``, :class:`gecko_agents.model.Model`) runs one short seta of the
+paper's Table 1 (L = 5 µm instead of 110 µm, so it takes a second): the plate presses 0.3 µm past
 touch-down and pulls straight off (:func:`gecko_agents.protocol.press_pull`). The history's
 force against the pressing displacement is drawn by
 :func:`gecko_agents.render.force_plots.plot_history`; the run's validity items
@@ -14,16 +14,14 @@ import warnings
 
 import matplotlib.pyplot as plt
 
-from gecko_agents import protocol
-from gecko_agents.model import Model
-from gecko_agents.params import PAPER_TABLE1
+import gecko_agents as ga
 from gecko_agents.render.force_plots import plot_history
 
-params = PAPER_TABLE1.replace(**{"seta.L": 5.0})
+params = ga.PAPER_TABLE1.replace(seta={"L": 5.0})
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")  # the items are printed below instead
-    history = Model(params, n_sim=1, seed=1).run(
-        protocol.press_pull(0.3, speed=0.05), progress=False
+    history = ga.Model(params, n_sim=1, seed=1).run(
+        ga.protocol.press_pull(0.3, speed=0.05), progress=False
     )
 
 fig, ax = plt.subplots(figsize=(6.4, 4.4))
