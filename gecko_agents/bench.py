@@ -56,6 +56,7 @@ __all__ = [
     "pressed_model",
     "bare_engine",
     "agent_rate",
+    "elastic_pressed_model",
     "pymunk_rate",
     "press_pull_run",
     "peak_memory_mb",
@@ -102,6 +103,27 @@ def settle_attached(m: Model, settle: int) -> Model:
     if not np.all(m.attached):
         raise RuntimeError(f"only {int(m.attached.sum())} of {m.n} tips attached after settling")
     return m
+
+
+def elastic_pressed_model(
+    n: int, depth: float = 0.3, settle: int = 200, params=None, **model_kw
+) -> Model:
+    """:func:`gecko_agents.bench.pressed_model` on an elastic strip: handle, strip and tips
+    moved ``depth`` [µm] below touch-down, then ``settle`` steps of rest, every tip attached.
+    ``params``: the array (default: the paper's on a flat floor with the default
+    :class:`gecko_agents.params.backing.Backing`, uniform drive), with ``n`` setae; ``model_kw`` go
+    to
+    :class:`gecko_agents.model.Model` (``seed``, ``leader_arm``, ... for
+    :class:`gecko_agents.backing.elastic.ElasticBacking`)."""
+    if params is None:
+        params = PAPER_ARRAY.replace(**{"floor.sigma": 0.0, "backing.kind": "elastic"})
+    m = Model(params.replace(**{"array.count": int(n)}), **model_kw)
+    drop = place_pressed(m, depth)
+    strip = m.backing.strip  # the strip moves down with its handle
+    for link in strip.links:
+        link.position = (link.position.x, link.position.y + drop)
+    strip.rows = strip.read()
+    return settle_attached(m, settle)
 
 
 def bare_engine(n: int) -> Model:

@@ -459,8 +459,8 @@ def energy_balance_error(h: History) -> float:
     booked = h["energy_elastic_pJ"] + h["energy_kinetic_pJ"] + h["energy_dissipated_pJ"]
     if not len(W):
         return 0.0
-    # Changes since the first record: a run may start from a loaded state (a second run() of
-    # the same model, or a model set up pressed), whose stored energy no plate work paid for.
+    # Changes since the first record: a run may start from a loaded state (a model set up
+    # pressed, as the pad peel's), whose stored energy no plate work paid for.
     err = float(np.max(np.abs((W - W[0]) - (booked - booked[0]))))
     scale = max(float(np.max(np.abs(h[c]), initial=0.0)) for c in ENERGY_SCALE_COLUMNS)
     if scale == 0.0:

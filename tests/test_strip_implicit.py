@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from gecko_agents import history, protocol
-from gecko_agents.backing.bench import elastic_pressed_model
 from gecko_agents.backing.elastic import COUPLING_OMEGA_DT
+from gecko_agents.bench import elastic_pressed_model
 from gecko_agents.model import Model
 from gecko_agents.model.implicit import implicit_time_step
 from gecko_agents.params import PAPER_ARRAY

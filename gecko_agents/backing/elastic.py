@@ -88,7 +88,6 @@ __all__ = [
     "STRIP_ARRAYS",
     "bending_length",
     "strip_step",
-    "peel",
     "OMEGA_DT",
     "MIN_LINKS",
 ]
@@ -122,16 +121,12 @@ def strip_step(model) -> float:
     """The strip's own step [µs] in ``model`` (a :class:`gecko_agents.model.Model`): the
     model's dt with the explicit integrator (the strip steps with the tips); with the implicit
     one, the explicit step the model would take (0.75/ω_max of the tips' stiffest spring,
-    ``gecko_agents.model.setup.explicit_time_step``), or the model's dt if shorter. The
+    the model's ``explicit_dt``), or the model's dt if shorter. The
     links' inertia is scaled for this step (:class:`ElasticBacking`), and the strip sub-cycles
     the tips' step in steps no longer than it (:meth:`ElasticBacking.roots`)."""
     if model.integrator != "implicit":
         return model.dt
-    from gecko_agents.model.setup import explicit_time_step
-
-    h = explicit_time_step(None, model.omega_max, model.k_max, model.mass,
-                           model.law.rate_dependent)  # fmt: skip
-    return min(h, model.dt)
+    return min(model.explicit_dt, model.dt)
 
 
 class ElasticBacking:
@@ -477,15 +472,3 @@ class ElasticBacking:
         (:data:`STRIP_COLUMNS`), the nodes' positions (:data:`STRIP_ARRAYS`)."""
         scalars = dict(zip(STRIP_COLUMNS, (self.front_x(), *self.setae_force), strict=True))
         return scalars, dict(zip(STRIP_ARRAYS, self.strip.nodes(), strict=True))
-
-
-def peel(depth: float, psi_deg: float, speed: float = 0.05) -> list:
-    """Press ``depth`` [µm], then pull the handle away at ``psi_deg`` from the floor (+x, the
-    side the setae lean to; 90 = straight up) at ``speed`` [µm/µs]: with
-    ``backing.drive = "peel_end"`` the strip's +x end is peeled at the angle ψ. Kendall's tape
-    (1975, J Phys D 8:1449), inextensible: F/b = w_eff/(1 − cos ψ), so a shallower peel needs
-    more force (measured, 12 setae, E_b = 1.413 MPa: peak handle force 22.8 µN at 30°,
-    20.6 µN at 90°)."""
-    from gecko_agents import protocol
-
-    return [protocol.PressTo(depth, speed), protocol.PullOff(speed, angle_deg=psi_deg)]

@@ -56,7 +56,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import cho_solve_banded, cholesky_banded
 
-from gecko_agents.backing import pivots_loop as backing_pivots_loop
+import gecko_agents.backing.pivots_loop as backing_pivots_loop
 
 __all__ = ["ChainPivots", "BAUMGARTE_BETA", "NEWTON_SOLVES"]
 

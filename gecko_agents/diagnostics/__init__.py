@@ -118,6 +118,8 @@ import numpy as np
 from gecko_agents._stack import user_stacklevel
 from gecko_agents.contact import contact_law
 from gecko_agents.diagnostics import resolution
+from gecko_agents.diagnostics.limits import LIMITS
+from gecko_agents.diagnostics.table import validity_table
 from gecko_agents.physics import jkr
 
 __all__ = [
@@ -134,20 +136,6 @@ __all__ = [
 Z0_UM = 3.0e-4
 """Equilibrium separation z0 of Tabor's parameter [µm] (0.3 nm; module docstring, ``tabor``)."""
 
-LIMITS = {
-    "a_over_R": ("≤", 0.1),
-    "tabor": ("≥", 5.0),
-    "linear_deflection": ("≤", 0.1),
-    "quasi_static": ("≤", 0.05),
-    "time_step": ("≤", 1.0),
-    "touched": ("≥", 1.0),
-    "crack_deborah": ("≤", 100.0),
-    "records": ("≤", 0.05),
-    "release_step": ("≤", 0.02),
-    "pillars_meet": ("≥", 1.0),
-    "probe_curvature": ("≤", 0.1),
-}
-"""Item → (relation, limit); the reasons and sources are in the module docstring."""
 
 MODEL_FACTS = {
     "dt_us": "the time step dt [µs]",
@@ -467,7 +455,7 @@ def _touched(f: _Run) -> dict:
         1.0 if f.touched else 0.0,
         "whether any tip ever attached; a run whose plate never reached the floor (pull-off "
         "only, free travel) need not touch",
-        "gecko_agents issue 18 (a plate that outruns its setae measures nothing)",
+        "a plate that outruns its setae measures nothing (MeaninglessRunError)",
         applies=f.touched or f.reached,
     )
 
@@ -576,6 +564,3 @@ def diagnose(history, *, warn: bool = True) -> dict:
 
 def _fmt(value) -> str:
     return "?" if value is None else f"{value:.3g}"
-
-
-from gecko_agents.diagnostics.table import validity_table  # noqa: E402

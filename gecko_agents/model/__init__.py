@@ -48,6 +48,7 @@ from gecko_agents.model.setup import (
     choose_threads,
     detection_mode,
     elastica_kernel,
+    explicit_time_step,
     numba_available,
     time_step,
 )
@@ -94,7 +95,8 @@ class Model(Stepping):
         not by the contact springs; batch contact only).
     event_dt : the implicit step near an event (snap, fold, slip) [µs] (default one explicit
         step): longer, fewer steps where events are many (a rough array), each release later by
-        about as many explicit steps of plate travel (README "Speed"); explicit step: refused.
+        about as many explicit steps of plate travel (documentation, "Performance");
+        explicit step: refused.
     contact : ``"batch"`` (fast, default) or ``"callback"`` (per-contact reference path).
     damping : :class:`Damping` ratios.
     record_every : record every this many steps (default: every 0.02 µm of plate travel at the
@@ -283,6 +285,14 @@ class Model(Stepping):
     def external_force(self) -> np.ndarray:
         """Extra force on each tip (N, 2) [µN] (probing and tests); the plate does not see it."""
         return self.state.external_force
+
+    @property
+    def explicit_dt(self) -> float:
+        """The explicit step this model would take [µs] (0.75/ω_max; 0.375/ω_max with crack
+        kinetics): the elastic strip's own step under the implicit step."""
+        return explicit_time_step(
+            None, self.omega_max, self.k_max, self.mass, self.law.rate_dependent
+        )
 
     @property
     def event_dt(self) -> float:

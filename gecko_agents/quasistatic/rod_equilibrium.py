@@ -13,16 +13,13 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from gecko_agents.physics import jkr
 from gecko_agents.physics._util import jitable, register_jitables
 from gecko_agents.physics.friction import friction_cap, friction_cap_slope
-
-if TYPE_CHECKING:
-    from gecko_agents.quasistatic.rod import RodSetup
+from gecko_agents.quasistatic.rod_setup import RodSetup
 
 SLIDE, STICK_SPRING, STICK_RIGID = 0, 1, 2
 """Lateral mode of a solve: slide with F_t = s·cap(P); stick on the contact's spring k_t;

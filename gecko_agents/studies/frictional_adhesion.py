@@ -62,7 +62,7 @@ from gecko_agents.analysis.ratio import gripping_over_releasing
 from gecko_agents.model import Model
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping
 from gecko_agents.output_paths import atomic_write_bytes
-from gecko_agents.params import PAPER_ARRAY
+from gecko_agents.studies import frictional_adhesion_report as report
 from gecko_agents.studies.common import (
     command_line,
     jobs_arg,
@@ -71,26 +71,16 @@ from gecko_agents.studies.common import (
     write_json,
     write_table,
 )
+from gecko_agents.studies.frictional_adhesion_setup import (  # re-exported
+    BASE,
+    CONVERGENCE_SPEEDS,
+    DRAG,
+    NAME,
+    PRELOAD,
+    SPEED,
+    TIPS,
+)
 from gecko_agents.sweep.workers import map_local
-
-NAME = "frictional_adhesion"
-BASE = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.0, "array.count": 1})
-PRELOAD = 0.2  # µN: a rod seta with a spatula folds flat under 1 µN at μ = 0.2
-DRAG = 8.0  # µm
-# µm/µs: the package's quasi-static plate speed. The film's pull-off converges as the plate slows
-# (its contact dashpot adds a force ∝ v); at 0.05 µm/µs the releasing 90° pull-off was 8 % above
-# its quasi-static value (the convergence table of the full run, speed_convergence.csv).
-SPEED = protocol.DEFAULT_SPEED
-# Plate speeds [µm/µs] of the convergence check: the 90° pulls of the spatula at μ = 10, both drags.
-CONVERGENCE_SPEEDS = (0.05, 0.02, 0.01, 0.005, 0.0025)
-TIPS = {  # the scenario's tip names: parameters and labels
-    "sphere": ({"tip": "sphere"}, "sphere"),
-    "sphere_sb": (
-        {"tip": "sphere", "contact.shear_coupling": "savkoor_briggs"},
-        "sphere, Savkoor–Briggs",
-    ),
-    "spatula": ({"tip": "spatula"}, "spatula"),
-}
 
 
 def config(quick: bool) -> dict:
@@ -377,8 +367,6 @@ def _extra_args(p) -> None:
 
 @command_line
 def main(argv=None) -> dict:
-    from gecko_agents.studies import frictional_adhesion_report as report
-
     args = parse_args(
         __doc__, argv,
         extra=_extra_args,

@@ -17,7 +17,7 @@ from gecko_agents.analysis.ratio import gripping_over_releasing
 from gecko_agents.contact import contact_law
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING
 from gecko_agents.physics import savkoor_briggs as sheared_jkr
-from gecko_agents.studies.frictional_adhesion import BASE, DRAG, NAME, PRELOAD, SPEED, TIPS
+from gecko_agents.studies.frictional_adhesion_setup import BASE, DRAG, NAME, PRELOAD, SPEED, TIPS
 
 
 def report_text(summary, quick, map_rows, below_rows, patch_rows, conv_rows, conv) -> str:

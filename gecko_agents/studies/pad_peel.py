@@ -39,15 +39,8 @@ more per peeled area than the rigid-plate pull-off of its setae, not by rate (th
 as the peel slows); the strip's local compliance in series with a releasing seta is the
 likely cause, not derived.
 
-Measured (full run, 240 setae at 0.2 µm/µs, 2026-11-23):
-
-    ψ nominal / measured   F/b [µN/µm]   w_eff (dissipated part)   Kendall F/b   ratio
-    15° / 18.0°            12.0          0.631 (0.563)             12.9          0.93
-    30° / 31.5°             5.11         0.752 (0.684)              5.09         1.00
-    45° / 47.0°             2.60         0.810 (0.743)              2.55         1.02
-    60° / 63.2°             1.60         0.847 (0.780)              1.54         1.04
-    75° / 80.5°             1.10         0.863 (0.795)              1.03         1.07
-    90° / 99.6°             0.831        0.876 (0.808)              0.750        1.11
+The full run (240 setae at 0.2 µm/µs) writes F/b, w_eff and Kendall's F/b at each angle to
+``pad_peel.csv`` (its measured table: documentation, explanation, "The elastic strip"):
 
 Kendall's order holds (F/b(30°) = 6.2 × F/b(90°); 6.8 × with each run's own w_eff). w_eff
 grows with ψ (0.63 → 0.88 µN/µm) although the front runs 5× slower at 90° than at 15°, so
@@ -74,7 +67,7 @@ import time
 import numpy as np
 
 from gecko_agents import protocol, render
-from gecko_agents.backing.bench import elastic_pressed_model
+from gecko_agents.bench import elastic_pressed_model
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render.backing import BackingTrack
