@@ -47,7 +47,7 @@ import pymunk.batch as pb
 
 from gecko_agents import protocol
 from gecko_agents import quasistatic as qs
-from gecko_agents.model import Model, numba_available
+from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.model.runner import run_protocol
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.protocol import DEFAULT_SPEED, Move
@@ -77,7 +77,7 @@ def pressed_model(
     touch-down and every tip attached, after ``settle`` steps of rest; ``overrides`` are
     dotted parameter overrides (e.g. ``{"contact.crack_speed": 1.0}``)."""
     p = PAPER_ARRAY.replace(**{"array.count": int(n), "floor.sigma": 0.0, **(overrides or {})})
-    m = Model(p, **({"integrator": "explicit"} | kw))  # the per-step cost of the explicit step
+    m = Model.from_options(p, **({"integrator": "explicit"} | kw))  # the explicit step's cost
     place_pressed(m, depth)
     return settle_attached(m, settle)
 
@@ -117,7 +117,7 @@ def elastic_pressed_model(
     :class:`gecko_agents.backing.elastic.ElasticBacking`)."""
     if params is None:
         params = PAPER_ARRAY.replace(**{"floor.sigma": 0.0, "backing.kind": "elastic"})
-    m = Model(params.replace(**{"array.count": int(n)}), **model_kw)
+    m = Model.from_options(params.replace(**{"array.count": int(n)}), **model_kw)
     drop = place_pressed(m, depth)
     strip = m.backing.strip  # the strip moves down with its handle
     for link in strip.links:
@@ -410,8 +410,8 @@ def wp_measure(case: str, integrator: str, dt_factor: float | None, speed: float
         warnings.simplefilter("ignore")
         dt = None
         if dt_factor is not None:
-            dt = dt_factor * Model(p, n_sim=n, integrator="explicit").dt
-        m = Model(p, n_sim=n, dt=dt, integrator=integrator, record_every=1)
+            dt = dt_factor * Model(p, n_sim=n, numerics=Numerics(integrator="explicit")).dt
+        m = Model(p, n_sim=n, numerics=Numerics(dt=dt, integrator=integrator, record_every=1))
         t = time.perf_counter()
         h = m.run(proto(speed), progress=False)
         wall = time.perf_counter() - t

@@ -216,11 +216,10 @@ class History:
             "energy_elastic_pJ": nan, "energy_kinetic_pJ": nan, "energy_dissipated_pJ": nan,
             "work_plate_pJ": nan,
         }  # fmt: skip
-        setae = {}
+        setae: dict[str, np.ndarray] = {}
         if per:
-            setae = {"force_normal_uN": per.get("force"), "overlap_um": per.get("overlap"),
-                     "state": per.get("state")}  # fmt: skip
-            setae = {k: np.asarray(v) for k, v in setae.items() if v is not None}
+            fields = {"force_normal_uN": "force", "overlap_um": "overlap", "state": "state"}
+            setae = {k: np.asarray(per[v]) for k, v in fields.items() if per.get(v) is not None}
         releases = list(getattr(result, "releases", []) or [])
         det = {
             "record": np.array([r[0] for r in releases], dtype=int),
@@ -333,7 +332,7 @@ class History:
         arrays |= {f"backing__{k}": np.asarray(v) for k, v in self.backing.items()}
         arrays["run_id"] = np.array(run_id)
         npz = io.BytesIO()
-        np.savez_compressed(npz, **arrays)
+        np.savez_compressed(npz, **arrays)  # type: ignore[arg-type]
         files["setae.npz"] = npz.getvalue()
         atomic_write_bytes(d / "setae.npz", files["setae.npz"])
         meta = self.metadata()

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics.elastica import Elastica
 
@@ -138,6 +138,6 @@ def test_elastica_is_refused_where_it_is_not_modelled():
     with pytest.raises(ValueError, match="mechanics = 'elastica' runs in the time-stepped Model"):
         qs.press_pull(p, np.zeros(1), 0.2)
     with pytest.raises(ValueError, match="kernel='python': mechanics='elastica' runs on kernel"):
-        Model(p, n_sim=1, seed=0, kernel="python")
+        Model(p, n_sim=1, seed=0, numerics=Numerics(kernel="python"))
     with pytest.raises(ValueError, match=r"links = 2 is outside the allowed range \[14, 200\]"):
         p.replace(**{"seta.links": 2})

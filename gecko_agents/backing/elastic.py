@@ -140,15 +140,13 @@ class ElasticBacking:
     Parameters
     ----------
     model : the :class:`gecko_agents.model.Model` being built (world, state, physics, dt).
-    leader_arm : [µm] > 0 (with ``backing.drive = "peel_end"``) adds a pre-peeled arm of that
-        length beyond the pad's +x edge: links of the same strip with no setae under them,
-        laid out at ``peel_angle_deg`` from the floor, stress-free in that shape (the kink's
-        joint has that rest angle); the handle holds the arm's end, so pulling the handle
-        along the same angle peels the pad at a steady angle (a handle pulled from the end of
-        a flat strip drags it instead). Not with a misalignment. ``Model(params,
-        leader_arm=…)`` passes it here.
-    peel_angle_deg : [deg] angle of the leader arm from the floor (+x, the pulled side; 90 =
-        straight up), in (0, 180).
+        Its ``params.backing.leader_arm`` [µm] > 0 (with ``drive = "peel_end"``) adds a
+        pre-peeled arm of that length beyond the pad's +x edge: links of the same strip with
+        no setae under them, laid out at ``params.backing.peel_angle_deg`` from the floor (+x,
+        the pulled side; 90 = straight up), stress-free in that shape (the kink's joint has
+        that rest angle); the handle holds the arm's end, so pulling the handle along the same
+        angle peels the pad at a steady angle (a handle pulled from the end of a flat strip
+        drags it instead).
 
     Attributes
     ----------
@@ -174,18 +172,9 @@ class ElasticBacking:
             )
         return "numpy"
 
-    def __init__(self, model, leader_arm: float = 0.0, peel_angle_deg: float = 90.0):
-        bk = model.params.backing
-        if not (math.isfinite(leader_arm) and leader_arm >= 0.0):
-            raise ValueError(f"leader_arm = {leader_arm!r} µm must be ≥ 0")
-        if leader_arm and (bk.drive != "peel_end" or bk.misalignment_deg):
-            raise ValueError(
-                f"leader_arm = {leader_arm!r} µm needs Backing.drive = 'peel_end' (got "
-                f"{bk.drive!r}) and Backing.misalignment_deg = 0 (got {bk.misalignment_deg!r})"
-            )
-        if not 0.0 < peel_angle_deg < 180.0:
-            raise ValueError(f"peel_angle_deg = {peel_angle_deg!r} must be in (0, 180)")
-        self.leader_arm, self.peel_angle_deg = float(leader_arm), float(peel_angle_deg)
+    def __init__(self, model):
+        bk = model.params.backing  # its leader_arm and peel_angle_deg, checked there
+        self.leader_arm, self.peel_angle_deg = float(bk.leader_arm), float(bk.peel_angle_deg)
         self.params, self.world, self.state = model.params, model.world, model.state
         self.physics, self.n, self._model = model.physics, model.n, model
         self.dt = strip_step(model)
@@ -327,7 +316,8 @@ class ElasticBacking:
         move from x₀ to x₁ = x₀ + v₀·dt in it whatever their forces (pymunk's semi-implicit
         Euler; ``state.pv``, ``state.xy``), so each sub-step's seta springs pull the root
         points where the sub-step takes them towards the tips' point on that path
-        (:meth:`gecko_agents.model.Model.spring_force`), with the seta dampers' force of the
+        (:meth:`~gecko_agents.model.stepping.Stepping.spring_force`),
+        with the seta dampers' force of the
         last step; the handle spring as in :meth:`advance`. Books what :meth:`advance` books
         (the seta dampers' share at the root points' velocities; the handle's share is booked
         by :meth:`advance` with this step's damper forces); keeps the force on the handle."""
@@ -464,7 +454,8 @@ class ElasticBacking:
 
     def kinetic_energy(self, tips: float) -> float:
         """Kinetic energy of the tips (``tips`` [pJ]) and of the strip's links [pJ] (both in
-        the form ½m·v(n−½)·v(n+½) of :meth:`gecko_agents.model.Model.kinetic_energy`)."""
+        the form ½m·v(n−½)·v(n+½) of
+        :meth:`~gecko_agents.model.stepping.Stepping.kinetic_energy`)."""
         return tips + self.strip.kinetic
 
     def record(self) -> tuple[dict, dict]:

@@ -94,6 +94,7 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         "damping": dataclasses.asdict(m.damping), "mass_ng": m.mass,
         "tangential_stiffness_uN_per_um": m.k_t,
         "wall_time_s": time.perf_counter() - t_wall, "versions": versions(),
+        "numerics": dataclasses.asdict(m.numerics),
         "stepped_force_normal_range_uN": [run.force_lo, run.force_hi] if run.n_steps else None,
         "release_step_travel_um": run.release_travel,
         "min_neighbour_distance_um": run.neighbours if math.isfinite(run.neighbours) else None,

@@ -42,7 +42,8 @@ def rod_force(x, y, Ka, k_phi, L, theta):
 
     At rest (ℓ = L, Δφ = 0) H is the paper's 2×2 stiffness K of eq 20–21 (Ka along the rod,
     Kp across it), so rod and ``linear`` agree for small deflections. The same formula as
-    :meth:`gecko_agents.model.Model.spring_force`. Scalars or arrays (numba compiles it into
+    :meth:`~gecko_agents.model.stepping.Stepping.spring_force`.
+    Scalars or arrays (numba compiles it into
     :func:`newton_loop`).
 
     Parameters

@@ -180,7 +180,7 @@ class RunSpec:
         from gecko_agents.model import Model
 
         try:
-            return Model(self.params, **self.model)
+            return Model.from_options(self.params, **self.model)
         except (ValueError, TypeError) as err:
             m = re.match(r"(n_sim|dt|event_dt|kernel|seed|integrator)\b", str(err))
             key = {v: k for k, v in _MODEL_ARGS.items()}.get(m.group(1), m.group(1)) if m else None

@@ -59,7 +59,7 @@ from gecko_agents.analysis.drag import drag_span, lean_after_drag, let_go_in_dra
 from gecko_agents.analysis.limit_curve import critical_angle, force_angle
 from gecko_agents.analysis.pull import pull_off, release_point
 from gecko_agents.analysis.ratio import gripping_over_releasing
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.studies import frictional_adhesion_report as report
@@ -107,7 +107,9 @@ def run_point(
     reached (its preload overshoot) and the run's peak kinetic / peak elastic energy."""
     params = BASE.replace(**TIPS[tip][0], **{"friction.mu": mu})
     prot = protocol.drag_pull(PRELOAD, drag, beta, speed=speed)
-    model = Model(params, seed=1, record_setae=record, record_every=1, damping=damping)
+    model = Model(
+        params, seed=1, record_setae=record, damping=damping, numerics=Numerics(record_every=1)
+    )
     h = model.run(prot, progress=False)
     release = release_point(h, drag)
     start, _ = drag_span(h, drag)
@@ -223,7 +225,7 @@ def patch_point(tip: str, sigma: float, count: int, sign: int) -> dict:
     })  # fmt: skip
     drag = sign * DRAG
     prot = protocol.drag_pull(PRELOAD * count, drag, 90.0, speed=SPEED)
-    h = Model(params, seed=1, record_every=1).run(prot, progress=False)
+    h = Model(params, seed=1, numerics=Numerics(record_every=1)).run(prot, progress=False)
     held = pull_off(h, drag)
     return {"tip": tip, "sigma_um": sigma, "count": count,
             "direction": "gripping" if sign < 0 else "releasing", "drag_um": drag,
@@ -260,7 +262,9 @@ def map_point(tip: str, mu: float, theta: float, factor: float, sign: int) -> di
     drag = sign * factor * lean
     params = BASE.replace(**TIPS[tip][0], **{"friction.mu": mu, "seta.theta_deg": theta})
     prot = protocol.drag_pull(PRELOAD, drag, 90.0, speed=SPEED)
-    h = Model(params, seed=1, record_setae=True, record_every=1).run(prot, progress=False)
+    h = Model(params, seed=1, record_setae=True, numerics=Numerics(record_every=1)).run(
+        prot, progress=False
+    )
     held = pull_off(h, drag)
     adhesion, shear = held.adhesion, held.shear
     return {"tip": tip, "mu": mu, "theta_deg": theta, "drag_over_lean": factor,

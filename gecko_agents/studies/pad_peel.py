@@ -5,7 +5,7 @@ A row of N setae (the paper's polyurethane array, stubby L = 5 µm setae, flat f
 the default elastic strip (:class:`gecko_agents.params.backing.Backing`: E_b = 1.413 MPa, t_b = 50
 µm;
 bending length λ = 39 µm ≈ 10 setae), which continues beyond the pad's +x edge as a pre-peeled
-leader arm (``Model(params, leader_arm=…, peel_angle_deg=ψ)``, the elastic backing's options:
+leader arm (``params.backing.leader_arm`` and ``peel_angle_deg = ψ``, the elastic backing's:
 links without setae, laid out
 at ψ from the floor and stress-free in that shape). The pad is preloaded (handle, strip and
 tips put 0.3 µm below touch-down, every tip attached, then left to settle), and the handle

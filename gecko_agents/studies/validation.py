@@ -33,7 +33,7 @@ import numpy as np
 from gecko_agents import protocol, render
 from gecko_agents.analysis.limit_curve import critical_angle
 from gecko_agents.analysis.pull import pull_off, release_point
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.params import literature as lit
 from gecko_agents.physics import beam
@@ -105,7 +105,7 @@ def gripping_pull(params, beta: float, count: int = 1) -> tuple[float, float, fl
     shear) at the release point and the pull-off [µN] (:mod:`gecko_agents.analysis.pull`).
     Cached: the runs are deterministic, and two rows share the spatula's 90° pull."""
     prot = protocol.drag_pull(fa.PRELOAD * count, -fa.DRAG, beta, speed=fa.SPEED)
-    h = Model(params, seed=1, record_every=1).run(prot, progress=False)
+    h = Model(params, seed=1, numerics=Numerics(record_every=1)).run(prot, progress=False)
     rel = release_point(h, -fa.DRAG)
     return rel.adhesion, rel.shear, pull_off(h, -fa.DRAG).adhesion
 
