@@ -45,6 +45,7 @@ from gecko_agents.params.checks import (
     SURFACE_ENERGY_MAX,
     check,
 )
+from gecko_agents.params.tips import check_tip_options
 from gecko_agents.physics import beam, jkr
 from gecko_agents.physics.friction import friction_cap
 
@@ -100,6 +101,11 @@ class Contact:
         contact and lowers the tension it holds, the strongest coupling (real interfaces are tougher
         in shear, Johnson 1997, Proc R Soc A 453:163). Elastic contact (``crack_speed = inf``) with
         the ``"fold"`` detachment and a pad floor only.
+    sigma0 : cohesive strength σ₀ of the interface [MPa], > 0; ``inf`` (default) is an
+        interface without a strength limit, exactly as before. Finite: a flat face
+        (``tip = "flat_punch"`` or ``"mushroom"``) pulls off at no more than its strength over
+        its area (flaw tolerance; Tang, Hui & Glassmaker 2005, J R Soc Interface 2:505;
+        :mod:`gecko_agents.physics.flaw_tolerance`).
     """
 
     R: float = 4.0
@@ -115,8 +121,10 @@ class Contact:
     crack_closing_speed: float = math.inf
     detachment: str = "fold"
     shear_coupling: str = "none"
+    sigma0: float = math.inf
 
     def __post_init__(self):
+        _check(self, "sigma0", 0.0, math.inf, hi_open=False)
         if self.shear_coupling not in SHEAR_COUPLINGS:
             raise ValueError(
                 f"Contact.shear_coupling = {self.shear_coupling!r} must be one of {SHEAR_COUPLINGS}"
@@ -422,6 +430,7 @@ class SetaArray:
             raise ValueError(f"SetaArray.tip = {self.tip!r} must be one of {TIPS}")
         if self.tip == "flat_punch":
             _check_punch_contact(self.contact)
+        check_tip_options(self)
 
     # Derived quantities used throughout ---------------------------------------------------
     @property
