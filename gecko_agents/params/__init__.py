@@ -45,17 +45,18 @@ from gecko_agents.params.checks import (
     SURFACE_ENERGY_MAX,
     check,
 )
-from gecko_agents.params.tips import check_tip_options
+from gecko_agents.params.tips import FLAT_FACE_TIPS, Mushroom, check_tip_options
 from gecko_agents.physics import beam, jkr
 from gecko_agents.physics.friction import friction_cap
 
 MECHANICS = ("linear", "rod", "elastica")
 DETACHMENT_RULES = ("fold", "delta_s", "load_control")
 SHEAR_COUPLINGS = ("none", "savkoor_briggs")
-TIPS = ("sphere", "hertz", "spatula", "flat_punch")
+TIPS = ("sphere", "hertz", "spatula", "flat_punch", "mushroom")
 """Tip contact laws (``gecko_agents.contact.TIP_LAWS``): the adhesive JKR sphere of the
 paper, a Hertz sphere without adhesion, a thin-film spatula that peels (:class:`Spatula`) or
-the flat end of a pillar, a punch of radius ``contact.R`` (Kendall 1971, J Phys D 4:1186)."""
+the flat end of a pillar, a punch of radius ``contact.R`` (Kendall 1971, J Phys D 4:1186), or
+a mushroom tip, a flange of radius ``contact.R`` on its stalk (:class:`Mushroom`)."""
 FRICTION_LAWS = ("adhesive", "paper")
 FLOOR_KINDS = ("gaussian", "self_affine", "probe")
 
@@ -415,6 +416,7 @@ class SetaArray:
     tip: str = "sphere"
     spatula: Spatula = field(default_factory=Spatula)
     backing: Backing = field(default_factory=Backing)
+    mushroom: Mushroom = field(default_factory=Mushroom)
 
     def __post_init__(self):
         for name, cls in _GROUPS.items():
@@ -428,8 +430,8 @@ class SetaArray:
             raise ValueError(f"SetaArray.mechanics = {self.mechanics!r} must be one of {MECHANICS}")
         if self.tip not in TIPS:
             raise ValueError(f"SetaArray.tip = {self.tip!r} must be one of {TIPS}")
-        if self.tip == "flat_punch":
-            _check_punch_contact(self.contact)
+        if self.tip in FLAT_FACE_TIPS:
+            _check_punch_contact(self.contact, self.tip)
         check_tip_options(self)
 
     # Derived quantities used throughout ---------------------------------------------------
@@ -470,7 +472,7 @@ class SetaArray:
                     raise ValueError(f"unknown parameter {key!r}")
                 top[part] = value
                 continue
-            if part not in {"contact", "seta", "array", "floor", "friction", "spatula", "backing"}:
+            if part not in _GROUPS:
                 raise ValueError(f"unknown parameter group {part!r} in {key!r}")
             sub = getattr(self, part)
             if name not in {f.name for f in dataclasses.fields(sub)}:
@@ -497,10 +499,11 @@ class SetaArray:
             tip=d.get("tip", "sphere"),
             spatula=Spatula(**d.get("spatula", {})),
             backing=Backing(**d.get("backing", {})),
+            mushroom=Mushroom(**d.get("mushroom", {})),
         )
 
 
-def _check_punch_contact(c: Contact) -> None:
+def _check_punch_contact(c: Contact, tip: str = "flat_punch") -> None:
     """Refuse, naming the field, contact options a flat punch does not model (they belong to
     the sphere: crack kinetics, the Savkoor–Briggs coupling, the paper's δs rule, eq 8)."""
     for name, ok, allowed in (
@@ -511,7 +514,7 @@ def _check_punch_contact(c: Contact) -> None:
         if not ok:
             raise ValueError(
                 f"Contact.{name} = {getattr(c, name)!r} is a sphere tip's option; with "
-                f"tip = 'flat_punch' it must be {allowed}"
+                f"tip = {tip!r} it must be {allowed}"
             )
 
 
@@ -523,6 +526,7 @@ _GROUPS = {
     "friction": Friction,
     "spatula": Spatula,
     "backing": Backing,
+    "mushroom": Mushroom,
 }
 
 
