@@ -157,3 +157,41 @@ def test_bad_mushrooms_are_refused():
     for over, match in cases:
         with pytest.raises(ValueError, match=match):
             PILLAR.replace(**mush, **over)
+
+
+# --- contact splitting (pillar_designs' pillar_splitting) -----------------------------------
+def test_splitting_stops_paying_below_the_flaw_tolerant_radius():
+    from gecko_agents.studies import pillar_designs as pd
+    from gecko_agents.studies import pillar_splitting as ps
+
+    radii = np.geomspace(0.05, 50.0, 41)
+    rows = ps.splitting_rows(pd.BASE, radii)
+    _, w, E = pd.BASE.contact.jkr_args()
+
+    def series(name):
+        return np.array([r["pull_off_per_area_kPa"] for r in rows if r["design"] == name])
+
+    fraction = math.pi / ps.PITCH_OVER_R**2  # contact area over backing
+    kendall = series("flat punch, σ₀ = inf")
+    assert np.all(np.diff(kendall) < 0)  # always pays, as a^−1/2
+    assert kendall[0] / kendall[-1] == pytest.approx(math.sqrt(1000.0), rel=1e-9)
+    capped = series("flat punch, σ₀ = 1 MPa")
+    a_cr = ft.flaw_tolerant_radius(1.0, E, w)
+    below = radii < a_cr
+    assert np.allclose(capped[below], 1e3 * fraction * 1.0, rtol=1e-12)  # σ₀ over the area
+    assert np.array_equal(capped[~below], kendall[~below])
+    flange = series("mushroom 45°, σ₀ = 1 MPa")  # no edge mode: σ₀ over the flange at any size
+    assert np.allclose(flange, 1e3 * fraction * ps.BETA**2, rtol=1e-12)
+
+
+def test_splitting_model_points_meet_the_closed_form():
+    from gecko_agents.studies import pillar_designs as pd
+    from gecko_agents.studies import pillar_splitting as ps
+
+    names = ["flat punch, σ₀ = 1 MPa", "mushroom 45°, defect a_t/4, σ₀ = 1 MPa"]
+    model = ps.model_rows(pd.BASE, [0.3], pd.SPEED, names)
+    closed = {r["design"]: r for r in ps.splitting_rows(pd.BASE, [0.3])}
+    for r in model:
+        ref = closed[r["design"]]["pull_off_per_area_kPa"]
+        assert r["pull_off_per_area_kPa"] == pytest.approx(ref, rel=2e-3)
+    assert [r["mode"] for r in model] == ["", "centre"]
