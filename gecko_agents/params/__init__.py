@@ -103,7 +103,7 @@ class Contact:
         in shear, Johnson 1997, Proc R Soc A 453:163). Elastic contact (``crack_speed = inf``) with
         the ``"fold"`` detachment and a pad floor only.
     sigma0 : cohesive strength σ₀ of the interface [MPa], > 0; ``inf`` (default) is an
-        interface without a strength limit, exactly as before. Finite: a flat face
+        interface without a strength limit (Kendall's punch). Finite: a flat face
         (``tip = "flat_punch"`` or ``"mushroom"``) pulls off at no more than its strength over
         its area (flaw tolerance; Tang, Hui & Glassmaker 2005, J R Soc Interface 2:505;
         :mod:`gecko_agents.physics.flaw_tolerance`).
