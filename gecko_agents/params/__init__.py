@@ -202,7 +202,8 @@ class Seta:
     density : material density [ng/µm³]; polyurethane ≈ 1.2e-3 (1200 kg/m³).
     links : links of the bar chain of ``mechanics = "elastica"`` [-], 2–200; 16 (default)
         puts the clamped–free, clamped–pinned and clamped–clamped buckling loads within
-        1.3 % of Euler's (:mod:`gecko_agents.physics.elastica`).
+        1.3 % of the continuous column's, shear included (:mod:`gecko_agents.physics.columns`,
+        :mod:`gecko_agents.physics.elastica`).
     imperfection : the elastica's initial crookedness [-], in [0, 0.1]: its stress-free shape
         is an arc whose tip lies imperfection·L to +x of the straight seta; it picks the side a
         vertical pillar buckles to. Default 1e-4 (the buckled column's force stays within
