@@ -136,7 +136,9 @@ class History:
         to the plate, ``root_dy_um`` (N,) root heights relative to the plate, ``floor_x_um``,
         ``floor_y_um`` (floor polyline).
     detachments : dict of arrays, one entry per detachment event: ``seta``, ``time_us``,
-        ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``.
+        ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``, and
+        ``mode`` (where its detachment started, ``"edge"`` or ``"centre"``) for a law that has
+        more than one (the mushroom tip).
     meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…),
         with the live model's facts that :func:`gecko_agents.diagnostics.diagnose` reads
         (:data:`gecko_agents.diagnostics.MODEL_FACTS`), so a loaded run is diagnosed as it ran.

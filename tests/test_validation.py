@@ -221,8 +221,8 @@ def test_buckling_row_is_the_pillar_study_pressed_below_and_past_euler(report):
         )
         held.append(h.peak_pull_off)
         peaks.append(float(h["force_normal_uN"].max()))
-    P_E = pd.euler_load("flat_punch", p.seta.L)
-    assert peaks[0] < P_E < peaks[1]  # below and past buckling, as the row says
+    P_cr = pd.buckling_load("flat_punch", p.seta.L)  # with shear: 22 % below Euler's here
+    assert peaks[0] < P_cr < peaks[1]  # below and past buckling, as the row says
     row = report[1]["yague_isla2015_buckling"]
     assert row["ours_value"] == pytest.approx(held[1] / held[0])
     assert row["verdict"] == "disagrees"  # a loss of a few % where theirs is most of it

@@ -64,7 +64,12 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
     m.reset_state_arrays()
     if m._implicit is not None:
         m._implicit.energy_scale = 0.0  # the run's own (History.energy_balance_error)
-    run = _Run(Recorder(m.record_setae, film=m.law.film), ke_bound, max_steps, fast_approach)
+    run = _Run(
+        Recorder(m.record_setae, film=m.law.film, mode=m.law.release_mode),
+        ke_bound,
+        max_steps,
+        fast_approach,
+    )
     for seg in segments:
         seg.check(m)  # a depth this plate cannot reach is refused before any step
     # refuse or warn before stepping when absurd, force control at its longest
