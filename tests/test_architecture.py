@@ -5,8 +5,8 @@
   studies and examples.
 * Each ``scenarios/*.py`` is a thin command line over a study of the library.
 * Modules stay of one concept: none over 450 lines of code (docstrings, comments and blank
-  lines not counted, so prose is never squeezed to fit), no function over 80 lines, no class
-  over 300 lines of code.
+  lines not counted, so prose is never squeezed to fit), no function over 80 lines of code,
+  no class over 300 lines of code.
 """
 
 import ast
@@ -144,12 +144,12 @@ def test_modules_and_functions_stay_short(path):
     ]
     assert not big, f"{path}: classes over {MAX_CLASS_CODE_LINES} lines of code: {big}"
     long = [
-        (node.name, node.end_lineno - node.lineno + 1)
+        (node.name, n)
         for node in ast.walk(ast.parse(src))
         if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
-        and node.end_lineno - node.lineno + 1 > MAX_FUNCTION_LINES
+        and (n := len(code & set(range(node.lineno, node.end_lineno + 1)))) > MAX_FUNCTION_LINES
     ]
-    assert not long, f"{path}: functions over {MAX_FUNCTION_LINES} lines: {long}"
+    assert not long, f"{path}: functions over {MAX_FUNCTION_LINES} lines of code: {long}"
 
 
 def test_scenario_scripts_are_thin_command_lines():

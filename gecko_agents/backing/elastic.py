@@ -209,8 +209,16 @@ class ElasticBacking:
         if alpha:
             self._lift(0.5 * length * abs(math.sin(alpha)), alpha)
         n_arm = math.ceil(self.leader_arm / ell - 1e-9)  # links of the leader arm
-        strip = Strip(-0.5 * length, ell, n_links + n_arm, w.plate.position.y, EI, rho_A,
-                      bk.damping_ratio, angle=alpha)  # fmt: skip
+        strip = Strip(
+            -0.5 * length,
+            ell,
+            n_links + n_arm,
+            w.plate.position.y,
+            EI,
+            rho_A,
+            bk.damping_ratio,
+            angle=alpha,
+        )
         if n_arm:
             strip.kink_up(n_links, math.radians(self.peel_angle_deg))
         k_each = self._attach_handle(strip, n_links, n_arm, length, alpha)
@@ -237,13 +245,20 @@ class ElasticBacking:
         [µm] (the roots' frame, the pad centred on 0: a leader arm's nodes lie beyond
         ``length_um``/2)."""
         self.info = {
-            "EI_uN_um2": EI, "width_um": pitch, "length_um": length, "n_links": strip.n,
-            "pad_links": n_links, "leader_arm_um": n_arm * ell,
+            "EI_uN_um2": EI,
+            "width_um": pitch,
+            "length_um": length,
+            "n_links": strip.n,
+            "pad_links": n_links,
+            "leader_arm_um": n_arm * ell,
             "peel_angle_deg": self.peel_angle_deg if n_arm else None,
-            "link_um": ell, "bending_length_um": lam, "foundation_uN_per_um2": k_f,
-            "mass_scale": mass, "moment_scale": moment,
+            "link_um": ell,
+            "bending_length_um": lam,
+            "foundation_uN_per_um2": k_f,
+            "mass_scale": mass,
+            "moment_scale": moment,
             "handle_stiffness_each_uN_per_um": k_each,
-        }  # fmt: skip
+        }
 
     def _attach_handle(self, strip, n_links, n_arm, length, alpha) -> float:
         """The handle spring's points on the strip: k_h/n per link centre (uniform) or k_h on
@@ -335,10 +350,15 @@ class ElasticBacking:
             fs = (F[:, 0] + Fdx, F[:, 1] + Fdy)
             back = (k - 1 - j) * h  # the handle's time to the step's end [µs]
             self._handle_force = self._substep(
-                h, (hx - vpx * back, hy - vpy * back), (vpx, vpy), (0.0, 0.0),
+                h,
+                (hx - vpx * back, hy - vpy * back),
+                (vpx, vpy),
+                (0.0, 0.0),
                 (-np.bincount(link, fs[0], nl), -np.bincount(link, fs[1], nl)),
-                (ox, oy), damp, fs,
-            )  # fmt: skip
+                (ox, oy),
+                damp,
+                fs,
+            )
 
     def hold(self, state) -> None:
         """Keep the seta spring + damping forces on the tips (``state.F`` before the contacts

@@ -123,8 +123,10 @@ class Strip:
         if not self.angle:
             return float(x), float(y0)
         c = x0 + 0.5 * self.n * self.ell
-        return (float(c + (x - c) * math.cos(self.angle)),
-                float(y0 + (x - c) * math.sin(self.angle)))  # fmt: skip
+        return (
+            float(c + (x - c) * math.cos(self.angle)),
+            float(y0 + (x - c) * math.sin(self.angle)),
+        )
 
     def clamp_left(self):
         """Clamp the left end to the static body: a pivot and the half-link rotary spring

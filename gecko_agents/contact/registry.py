@@ -35,9 +35,12 @@ def bounds(law: ContactLaw) -> dict:
     tension = math.inf if law.rate_dependent else law.pull_off_force
     if not math.isnan(law.max_tension):  # the law's own bound (a film holds many w·b)
         tension = law.max_tension
-    return {"max_tension_uN": tension, "detach_overlap_um": law.detach_overlap,
-            "rate_dependent": bool(law.rate_dependent),
-            "energy_tolerance_factor": float(law.energy_tolerance_factor)}  # fmt: skip
+    return {
+        "max_tension_uN": tension,
+        "detach_overlap_um": law.detach_overlap,
+        "rate_dependent": bool(law.rate_dependent),
+        "energy_tolerance_factor": float(law.energy_tolerance_factor),
+    }
 
 
 def contact_law(params) -> ContactLaw:

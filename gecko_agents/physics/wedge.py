@@ -86,6 +86,7 @@ def singularity_exponent(angle_deg, nu: float = 0.5, floor: str = "bonded") -> f
     grid = np.linspace(1e-3, 1.0 - 1e-9, 400)
     det = np.array([_determinant(x, alpha, nu, floor) for x in grid])
     for i in np.flatnonzero(np.sign(det[:-1]) * np.sign(det[1:]) < 0):
-        return float(brentq(_determinant, grid[i], grid[i + 1], args=(alpha, nu, floor),
-                            xtol=1e-13))  # fmt: skip
+        return float(
+            brentq(_determinant, grid[i], grid[i + 1], args=(alpha, nu, floor), xtol=1e-13)
+        )
     return NOT_SINGULAR

@@ -190,8 +190,10 @@ def splitting_section(rows, base) -> str:
     _, w, E = base.contact.jkr_args()
     lines = []
     for name, d in DESIGNS.items():
-        line = sorted((r for r in rows if r["design"] == name and r["source"] == "closed form"),
-                      key=lambda r: r["radius_um"])  # fmt: skip
+        line = sorted(
+            (r for r in rows if r["design"] == name and r["source"] == "closed form"),
+            key=lambda r: r["radius_um"],
+        )
         lo, hi = line[0], line[-1]
         text = (
             f"- {name}: {lo['pull_off_per_area_kPa']:.3g} kPa at a = {lo['radius_um']:.2g} "
@@ -203,11 +205,17 @@ def splitting_section(rows, base) -> str:
         lines.append(text)
     model = [r for r in rows if r["source"] == "model"]
     if model:
-        ratios = [r["pull_off_uN"] / _pull_off(DESIGNS[r["design"]], r["radius_um"], base.contact)
-                  for r in model]  # fmt: skip
+        ratios = [
+            r["pull_off_uN"] / _pull_off(DESIGNS[r["design"]], r["radius_um"], base.contact)
+            for r in model
+        ]
         worst = max(abs(x - 1.0) for x in ratios)
-        lines += ["", f"The model's single pillars are within {100 * worst:.2g} % of the "
-                      "closed forms."]  # fmt: skip
-    head = ("Contact splitting with an interface strength (`pillar_designs/pillar_splitting.png`, "
-            "table `pillar_splitting.csv`; pitch = 2.67 a):")  # fmt: skip
+        lines += [
+            "",
+            f"The model's single pillars are within {100 * worst:.2g} % of the closed forms.",
+        ]
+    head = (
+        "Contact splitting with an interface strength (`pillar_designs/pillar_splitting.png`, "
+        "table `pillar_splitting.csv`; pitch = 2.67 a):"
+    )
     return "\n".join([head, "", *lines, ""])
