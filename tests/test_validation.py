@@ -226,3 +226,31 @@ def test_buckling_row_is_the_pillar_study_pressed_below_and_past_euler(report):
     row = report[1]["yague_isla2015_buckling"]
     assert row["ours_value"] == pytest.approx(held[1] / held[0])
     assert row["verdict"] == "disagrees"  # a loss of a few % where theirs is most of it
+
+
+# The rows are data (gecko_agents/data/literature/validation.toml) ------------------------------
+def test_rows_are_read_from_the_shipped_data_file(tmp_path):
+    import tomllib
+
+    from gecko_agents.data import LITERATURE_ROWS
+    from gecko_agents.studies.validation_rows import load_rows
+
+    assert load_rows(LITERATURE_ROWS) == ROWS
+    pyproject = tomllib.loads((LITERATURE_ROWS.parents[3] / "pyproject.toml").read_text())
+    globs = pyproject["tool"]["setuptools"]["package-data"]["gecko_agents.data"]
+    data_dir = LITERATURE_ROWS.parents[1]
+    assert any(LITERATURE_ROWS in data_dir.glob(g) for g in globs)  # it ships in the wheel
+    bad = tmp_path / "rows.toml"
+    bad.write_text('[[rows]]\nid = "x"\nsource = "s"\n')
+    with pytest.raises(ValueError, match="'x' lacks the field"):
+        load_rows(bad)
+    one = ROWS[0]
+    text = "".join(
+        "[[rows]]\n" + "".join(f"{k} = {json.dumps(one[k])}\n" for k in
+                               ("id", "source", "read_at", "quote", "measured", "theirs", "kind",
+                                "cause"))
+        for _ in range(2)
+    )  # fmt: skip
+    bad.write_text(text)
+    with pytest.raises(ValueError, match="appears twice"):
+        load_rows(bad)
