@@ -284,7 +284,7 @@ def verdict(row: dict, ours: dict | None, sens: list[dict]) -> tuple[str, str]:
         return VERDICTS[0], f"ours is within their ±{scatter:g}"
     if row["compare"] == "trend":
         # A row whose source reports a large effect in words sets the size that counts.
-        resolution = row.get("trend_resolution", TREND_RESOLUTION)
+        resolution = row.get("trend_resolution") or TREND_RESOLUTION
         ok = ours["trend"] > resolution
         size = "" if theirs is None else f" (ours is {value / theirs:.3g}× theirs)"
         if ok:
