@@ -1,11 +1,14 @@
 """The published measurements of the literature comparison (:mod:`gecko_agents.studies.
 validation`), read from the data file :data:`gecko_agents.data.LITERATURE_ROWS` (TOML): one
 table per row with the source cited in full, the text we read (``quote``, word for word, with
-the address it came from in ``read_at``), their value as printed, and the parameters our number
-uses, each cited or assumed with the reason and, where a number, its plausible range.
+the address it came from in ``read_at``), their value as printed, how a magnitude agrees
+(their scatter, a stated factor band, or for a direction stated in words the smallest effect
+the words state), and the parameters our number uses, each cited or assumed with the reason
+and, where a number, its plausible range.
 
 Nothing here is computed; the file's header comment describes each field. :func:`load_rows`
-fills the optional fields with ``None`` so that the study reads every row the same way.
+resolves each row's source and shared parameters and fills the optional fields with ``None``,
+so that the study reads every row the same way.
 """
 
 from __future__ import annotations
@@ -15,38 +18,86 @@ from pathlib import Path
 
 from gecko_agents.data import LITERATURE_ROWS
 
-OPTIONAL = ("theirs_value", "scatter", "compare", "expect", "ours", "unscored",
-            "trend_resolution")  # fmt: skip
+KINDS = ("experiment", "model", "self-consistency")
+"""What a row compares with: a measurement, another model (a simulation or a published law),
+or the package's own closed form or run."""
+STATUSES = ("scored", "pending", "out of scope", "not read")
+"""``scored``, or why not: the physics it needs is not in the package yet (``pending``), the
+mechanism is one the package does not model, or the number could not be read."""
+REQUIRED = ("id", "source", "kind", "read_at", "quote", "measured", "theirs", "quantity", "cause")
+OPTIONAL = ("theirs_value", "scatter", "scatter_why", "band", "band_why", "min_effect", "compare",
+            "expect", "ours", "unscored")  # fmt: skip
 """Row fields that may be absent from the file (``None`` in the rows :func:`load_rows` gives)."""
-REQUIRED = ("id", "source", "read_at", "quote", "measured", "theirs", "kind", "cause")
 PARAM_FIELDS = ("name", "value", "unit", "status", "why")
+PARAM_STATUSES = ("cited", "cited range", "assumed")
+
+
+def _param(where: str, p: dict) -> dict:
+    lacking = [k for k in PARAM_FIELDS if k not in p]
+    if lacking:
+        raise ValueError(f"{where}, parameter {p.get('name')!r} lacks {lacking}")
+    if p["status"] not in PARAM_STATUSES:
+        raise ValueError(f"{where}, parameter {p['name']!r}: status {p['status']!r} is not one "
+                         f"of {PARAM_STATUSES}")  # fmt: skip
+    return {**{k: p[k] for k in PARAM_FIELDS}, "range": p.get("range")}
+
+
+def _check(where: str, row: dict) -> None:
+    """Refuse a row whose fields contradict each other (named in the message)."""
+    if row["kind"] not in KINDS:
+        raise ValueError(f"{where}: kind {row['kind']!r} is not one of {KINDS}")
+    if row["status"] not in STATUSES:
+        raise ValueError(f"{where}: status {row['status']!r} is not one of {STATUSES}")
+    if row["status"] != "scored":
+        if not row["unscored"]:
+            raise ValueError(f"{where}: a row with status {row['status']!r} says why (unscored)")
+        return
+    if row["compare"] not in ("value", "trend") or not row["ours"]:
+        raise ValueError(f"{where}: a scored row needs compare ('value' or 'trend') and ours")
+    ways = [k for k in ("scatter", "band", "min_effect") if row[k] is not None]
+    if not ways:
+        raise ValueError(f"{where}: a scored row states how a magnitude agrees (scatter, band or "
+                         "min_effect)")  # fmt: skip
+    if row["min_effect"] is not None and row["theirs_value"] is not None:
+        raise ValueError(f"{where}: min_effect is for a direction in words (no theirs_value)")
+    if row["theirs_value"] is None and row["min_effect"] is None:
+        raise ValueError(f"{where}: without theirs_value the row needs min_effect")
+    if (row["band"] is not None or row["min_effect"] is not None) and not row["band_why"]:
+        raise ValueError(f"{where}: band or min_effect needs its reason (band_why)")
+    if row["band"] is not None and row["band"] <= 1.0:
+        raise ValueError(f"{where}: band = {row['band']!r} must be a factor > 1")
 
 
 def load_rows(path: Path = LITERATURE_ROWS) -> list[dict]:
-    """The rows of the literature data file at ``path``, each a dict with every field of
-    :data:`REQUIRED` and :data:`OPTIONAL` and a ``params`` list (each parameter with a
-    ``range``, ``None`` where the file gives none). A row missing a required field, or with a
-    duplicate id, is refused with its id and the field."""
+    """The rows of the literature data file at ``path``: each a dict with every field of
+    :data:`REQUIRED` and :data:`OPTIONAL`, ``status`` (default ``"scored"``), ``source`` the
+    citation in full, and ``params``: the shared parameters it ``uses``, then its own (each
+    with a ``range``, ``None`` where the file gives none). A row missing a field, with a
+    repeated id, an unknown source or shared parameter, or fields that contradict each other
+    is refused with its id and the field."""
     with open(path, "rb") as f:
-        rows = tomllib.load(f)["rows"]
-    seen = set()
-    out = []
-    for i, raw in enumerate(rows):
-        name = raw.get("id", f"row {i}")
+        data = tomllib.load(f)
+    sources, shared = data.get("sources", {}), data.get("params", {})
+    seen, out = set(), []
+    for i, raw in enumerate(data["rows"]):
+        where = f"{path.name}: row {raw.get('id', i)!r}"
         missing = [k for k in REQUIRED if k not in raw]
         if missing:
-            raise ValueError(f"{path.name}: row {name!r} lacks the field(s) {missing}")
-        if name in seen:
-            raise ValueError(f"{path.name}: row id {name!r} appears twice")
-        seen.add(name)
+            raise ValueError(f"{where} lacks the field(s) {missing}")
+        if raw["id"] in seen:
+            raise ValueError(f"{where} appears twice")
+        seen.add(raw["id"])
+        if raw["source"] not in sources:
+            raise ValueError(f"{where}: source {raw['source']!r} is not in [sources]")
+        unknown = [k for k in raw.get("uses", []) if k not in shared]
+        if unknown:
+            raise ValueError(f"{where}: uses {unknown}, not in [params]")
         row = {k: raw.get(k) for k in REQUIRED + OPTIONAL}
-        row["params"] = []
-        for p in raw.get("params", []):
-            lacking = [k for k in PARAM_FIELDS if k not in p]
-            if lacking:
-                raise ValueError(f"{path.name}: row {name!r}, parameter {p.get('name')!r} "
-                                 f"lacks {lacking}")  # fmt: skip
-            row["params"].append({**{k: p[k] for k in PARAM_FIELDS}, "range": p.get("range")})
+        row["source"] = sources[raw["source"]]
+        row["status"] = raw.get("status", "scored")
+        row["params"] = [_param(where, shared[k]) for k in raw.get("uses", [])]
+        row["params"] += [_param(where, p) for p in raw.get("params", [])]
+        _check(where, row)
         out.append(row)
     return out
 

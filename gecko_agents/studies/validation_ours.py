@@ -1,0 +1,321 @@
+"""*Ours* for the literature comparison (:mod:`gecko_agents.studies.validation`): one function
+per kind of row, each returning ``{"value": …, "text": …}`` (``values``: more than one number
+drawn) computed from the presets of :mod:`gecko_agents.params.literature` or a study's own base
+parameters with the package's closed forms and agent runs. A row names its function in the
+data file (``ours``); the function's keyword arguments are the names of the row's ranged
+parameters, so the study recomputes ours at both ends of each range.
+
+Ratios are what the source compares (theirs over theirs), so a row's verdict reads the value's
+side of 1 as the direction. Units: µm, µN, µs, MPa; stiffness µN/µm = N/m.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+
+from gecko_agents import protocol
+from gecko_agents.analysis.limit_curve import critical_angle
+from gecko_agents.analysis.pull import pull_off, release_point
+from gecko_agents.model import Model
+from gecko_agents.params import literature as lit
+from gecko_agents.physics import beam, punch
+from gecko_agents.studies import frictional_adhesion as fa
+from gecko_agents.studies import misalignment as mis
+from gecko_agents.studies import pad_peel
+
+# --- closed forms on a tokay seta (AUTUMN2006_SETA) ------------------------------------------
+_SETA_KEYS = {"E": "contact.E1", "r": "seta.r", "L": "seta.L", "theta": "seta.theta_deg"}
+
+
+def tokay_seta(**assumed):
+    """:data:`~gecko_agents.params.literature.AUTUMN2006_SETA` with values overridden by
+    row-parameter name (E [MPa], r [µm], L [µm], theta [deg])."""
+    over = {_SETA_KEYS[k]: v for k, v in assumed.items() if k in _SETA_KEYS}
+    return lit.AUTUMN2006_SETA.replace(**over)
+
+
+def directional_stiffness(params, direction) -> float:
+    """Stiffness of a seta [µN/µm = N/m] along the unit vector of ``direction`` (x along the
+    backing towards the lean, y up), the tip free to move across it: 1/(dᵀ K⁻¹ d) with K the
+    rod's 2×2 stiffness (:func:`gecko_agents.physics.beam.stiffness_matrix`, eq 16–21);
+    d = (0, 1) is eq 20's K_y."""
+    d = np.asarray(direction, dtype=float)
+    d = d / np.linalg.norm(d)
+    K = beam.stiffness_matrix(params.axial_stiffness, params.bending_stiffness, params.seta.theta)
+    return float(1.0 / (d @ np.linalg.solve(K, d)))
+
+
+ALONG, AGAINST, VERTICAL = (-1.0, -1.0), (1.0, -1.0), (0.0, 1.0)
+"""Autumn et al.'s three loadings as directions of the backing's motion: +45° (down and towards
+−x, the gripping drag), −45° (down and towards +x) and vertical."""
+
+
+def seta_stiffness(quick: bool = True, **assumed) -> dict:
+    """K_y of eq 20 [N/m] for the tokay seta (Autumn et al. 2006a's vertical loading)."""
+    k = tokay_seta(**assumed).Ky
+    return {"value": k, "text": f"{k:.3g} N/m (eq 20, K_y of a straight rod)"}
+
+
+def seta_anisotropy(quick: bool = True, **assumed) -> dict:
+    """Stiffness loaded against over along the natural drag path (−45° over +45°)."""
+    p = tokay_seta(**assumed)
+    along, against = directional_stiffness(p, ALONG), directional_stiffness(p, AGAINST)
+    return {"value": against / along,
+            "text": f"×{against / along:.3g} ({against:.3g} over {along:.3g} N/m)"}  # fmt: skip
+
+
+def seta_vertical_along(quick: bool = True, **assumed) -> dict:
+    """Stiffness loaded vertically over along the natural drag path (0° over +45°)."""
+    p = tokay_seta(**assumed)
+    vertical, along = directional_stiffness(p, VERTICAL), directional_stiffness(p, ALONG)
+    return {"value": vertical / along,
+            "text": f"×{vertical / along:.3g} ({vertical:.3g} over {along:.3g} N/m)"}  # fmt: skip
+
+
+def array_modulus(quick: bool = True, D: float = lit.TOKAY_SETAL_DENSITY, **assumed) -> dict:
+    """E_eff = K_y·D·L sin θ [kPa]: a bed of springs of density D [1/µm²] and height L sin θ
+    (σ = K_y·D·δ, ε = δ/(L sin θ))."""
+    p = tokay_seta(**assumed)
+    e = p.Ky * D * p.seta.L * math.sin(p.seta.theta) * 1e3  # MPa → kPa
+    return {"value": e, "text": f"{e:.3g} kPa"}
+
+
+CLOSED_FORM = {"seta_stiffness", "seta_anisotropy", "seta_vertical_along", "array_modulus"}
+"""Rows whose ours is a closed form: their sensitivity is computed in ``--quick`` too, at every
+corner of their ranged parameters together."""
+
+
+# --- one seta: load, drag, pull ----------------------------------------------------------------
+@functools.lru_cache(maxsize=64)
+def gripping_pull(params, beta: float, count: int = 1) -> tuple[float, float, float]:
+    """The frictional-adhesion study's load–drag–pull (preload ``count`` × fa.PRELOAD, the
+    gripping drag −fa.DRAG, pull at ``beta`` [deg] at the quasi-static plate speed): (adhesion,
+    shear) at the release point and the pull-off [µN] (:mod:`gecko_agents.analysis.pull`).
+    Cached: the runs are deterministic, and two rows share the spatula's 90° pull."""
+    prot = protocol.drag_pull(fa.PRELOAD * count, -fa.DRAG, beta, speed=fa.SPEED)
+    h = Model(params, seed=1, record_every=1).run(prot, progress=False)
+    rel = release_point(h, -fa.DRAG)
+    return rel.adhesion, rel.shear, pull_off(h, -fa.DRAG).adhesion
+
+
+def frictional_adhesion(quick: bool = True, mu: float | None = None) -> dict:
+    """The slope of adhesion on shear at the spatula seta's gripping releases over pull
+    angles (> 0: adhesion rises with shear), and their critical angle α* [deg]."""
+    p = lit.FRICTIONAL_SPATULA if mu is None else lit.FRICTIONAL_SPATULA.replace(
+        **{"friction.mu": mu})  # fmt: skip
+    betas = (45.0, 90.0) if quick else (15.0, 30.0, 45.0, 60.0, 75.0, 90.0)
+    rel = [gripping_pull(p, b) for b in betas]
+    shear = np.array([r[1] for r in rel])
+    adhesion = np.array([r[0] for r in rel])
+    alpha = critical_angle(shear, adhesion)
+    slope = float(np.polyfit(shear, adhesion, 1)[0]) if len(set(shear)) > 1 else math.nan
+    pts = ", ".join(f"{s:.2f}/{a:.2f}" for s, a in zip(shear, adhesion, strict=True))
+    return {"value": slope,
+            "text": f"slope {slope:.2f}, α* = {alpha:.0f}°; adhesion/shear at release over pulls "
+            f"at {', '.join(f'{b:g}' for b in betas)}°: {pts} µN"}  # fmt: skip
+
+
+def ptfe_friction(quick: bool = True, mu: float | None = None) -> dict:
+    """μ_eff along over against the natural drag path of a seta without adhesion: pressed to
+    fa.PRELOAD, dragged fa.DRAG each way; μ_eff = mean |shear| over mean load on the drag's
+    second half (the tip sliding)."""
+    p = lit.FRICTIONAL_SPHERE.replace(**{"tip": "hertz", "friction.mu": 0.2 if mu is None else mu})
+    mus = []
+    for dx in (-fa.DRAG, fa.DRAG):  # along (the gripping drag, −x), then against
+        prot = [protocol.Press(fa.PRELOAD, fa.SPEED), protocol.Move(dx=dx, speed=fa.SPEED)]
+        h = Model(p, seed=1, record_every=1).run(prot, progress=False)
+        x = h["plate_x_um"]
+        late = np.abs(x - x[0]) >= 0.5 * fa.DRAG
+        mus.append(float(np.abs(h["force_tangential_uN"][late]).mean()
+                         / h["force_normal_uN"][late].mean()))  # fmt: skip
+    along, against = mus
+    return {
+        "value": along / against,
+        "text": f"×{along / against:.3f} (μ_eff {along:.3f} along over {against:.3f})",
+    }
+
+
+def gillies_smooth(quick: bool = True, b: float = 8.0) -> dict:
+    """90° pull-off after the gripping drag: spatula film of width ``b`` [µm] over sphere, one
+    seta, flat floor."""
+    s = gripping_pull(lit.FRICTIONAL_SPATULA.replace(**{"spatula.b": b}), 90.0)[2]
+    j = gripping_pull(lit.FRICTIONAL_SPHERE, 90.0)[2]
+    return {"value": s / j, "text": f"×{s / j:.2f} ({s:.2f} over {j:.2f} µN, b = {b:g} µm)"}
+
+
+def gillies_rough(quick: bool = True, b: float = 8.0) -> dict:
+    """As :func:`gillies_smooth` on a patch of setae, each on its own pad at a Gaussian height
+    of RMS 1 µm (eq 28); pull-off per seta."""
+    count = 4 if quick else 16
+    rough = {"array.count": count, "floor.sigma": 1.0, "floor.correlation_length": 0.0}
+    spatula = lit.FRICTIONAL_SPATULA.replace(**{"spatula.b": b})
+    s, j = (gripping_pull(p.replace(**rough), 90.0, count)[2] / count
+            for p in (spatula, lit.FRICTIONAL_SPHERE))  # fmt: skip
+    return {"value": s / j, "text": f"×{s / j:.2f} ({s:.2f} over {j:.2f} µN per seta, "
+            f"{count} setae, b = {b:g} µm)"}  # fmt: skip
+
+
+# --- pads on a strip --------------------------------------------------------------------------
+def kendall_peel(quick: bool = True) -> dict:
+    """Peel force per width at 30° and 90° on the pad_peel study's pad over Kendall's
+    w_eff/(1 − cos ψ) with the run's own w_eff (:func:`pad_peel.steady_peel`); the value is the
+    ratio farther from 1."""
+    n, speed, frac = (200, 0.5, 0.4) if quick else (240, 0.2, 1.0)
+    rows = [pad_peel.run_point(n, psi, speed, frac)[0] for psi in (30.0, 90.0)]
+    f30, f90 = (r["F_per_width_uN_per_um"] for r in rows)
+    ratios = [r["ratio_to_kendall"] for r in rows]
+    worst = max(ratios, key=lambda x: abs(math.log(x)))
+    return {"value": worst, "values": ratios,
+            "text": f"F/b = {f30:.3g} µN/µm at {rows[0]['psi_measured_deg']:.0f}°, {f90:.3g} at "
+            f"{rows[1]['psi_measured_deg']:.0f}°; over Kendall with the run's w_eff: "
+            f"{ratios[0]:.2f} and {ratios[1]:.2f} ({n} setae)"}  # fmt: skip
+
+
+def pad_pull_off(params, n: int, angle: float, preload: float = mis.PRELOAD) -> float:
+    """Pull-off / (N·Fc) of ``n`` setae on the elastic strip of ``params`` tilted by ``angle``
+    [deg]: pressed to ``preload`` × N·Fc, pulled straight up (the misalignment study's)."""
+    p = params.replace(**{"array.count": n, "backing.misalignment_deg": angle})
+    m = Model(p, seed=1)
+    h = m.run(protocol.preload_pull(preload * n * m.Fc, speed=mis.SPEED), progress=False)
+    return float(max(h["strip_setae_force_y_uN"]) / (n * m.Fc))
+
+
+def _booth_mounts(k_stiff: float | None):
+    stiff, compliant = lit.BOOTH2018_STIFF_MOUNT, lit.BOOTH2018_COMPLIANT_MOUNT
+    if k_stiff is not None:
+        stiff = stiff.replace(**{"backing.handle_stiffness": k_stiff})
+        compliant = stiff.replace(**{"backing.handle_stiffness": k_stiff /
+                                     lit.BOOTH2018_COMPLIANCE_RATIO})  # fmt: skip
+    return stiff, compliant
+
+
+def booth_misalignment(quick: bool = True, k_stiff: float | None = None) -> dict:
+    """Pull-off on the 3.1× compliant mount over the stiff one at 0.4° (quick: 0.8° on half
+    the pad, the same rise)."""
+    n, angle = (200, 0.8) if quick else (400, 0.4)
+    stiff, compliant = _booth_mounts(k_stiff)
+    s, c = pad_pull_off(stiff, n, angle), pad_pull_off(compliant, n, angle)
+    return {"value": c / s, "text": f"×{c / s:.3f} ({c:.3f} over {s:.3f} N·Fc, {n} setae at "
+            f"{angle:g}°)"}  # fmt: skip
+
+
+def booth_aligned(quick: bool = True, k_stiff: float | None = None) -> dict:
+    """Pull-off on the stiff mount over the 3.1× compliant one, aligned."""
+    n = 200 if quick else 400
+    stiff, compliant = _booth_mounts(k_stiff)
+    s, c = pad_pull_off(stiff, n, 0.0), pad_pull_off(compliant, n, 0.0)
+    return {"value": s / c, "text": f"×{s / c:.4f} ({s:.4f} over {c:.4f} N·Fc, {n} setae)"}
+
+
+def kim_sitti_backing(quick: bool = True) -> dict:
+    """Pull-off on the 160 µm strip over the 1120 µm one, aligned, pulled straight up."""
+    n = 40 if quick else 200
+    thin = pad_pull_off(lit.KIM_SITTI2007_THIN, n, 0.0)
+    thick = pad_pull_off(lit.KIM_SITTI2007_THICK, n, 0.0)
+    return {
+        "value": thin / thick,
+        "text": f"×{thin / thick:.4f} ({thin:.3f} over {thick:.3f} N·Fc, {n} setae)",
+    }
+
+
+def kroner_flat_misalignment(quick: bool = True, n: float | None = None) -> dict:
+    """Pull-off of Kroner et al.'s structures (:data:`~gecko_agents.params.literature.
+    KRONER_PILLARS`) on a flat floor tilted 0.2° over aligned."""
+    n = int(n) if n is not None else (100 if quick else 200)
+    tilted = pad_pull_off(lit.KRONER_PILLARS, n, 0.2)
+    aligned = pad_pull_off(lit.KRONER_PILLARS, n, 0.0)
+    return {"value": tilted / aligned, "text": f"×{tilted / aligned:.3f} ({tilted:.3f} over "
+            f"{aligned:.3f} N·Fc, {n} pillars)"}  # fmt: skip
+
+
+def kroner_flat_preload(quick: bool = True) -> dict:
+    """Pull-off of the same structures, aligned, pressed to 0.4 over 0.1 N·Fc."""
+    n = 100
+    high = pad_pull_off(lit.KRONER_PILLARS, n, 0.0, preload=0.4)
+    low = pad_pull_off(lit.KRONER_PILLARS, n, 0.0, preload=0.1)
+    return {
+        "value": high / low,
+        "text": f"×{high / low:.4f} ({high:.4f} over {low:.4f} N·Fc, {n} pillars)",
+    }
+
+
+def kroner_sphere_preload(quick: bool = True) -> dict:
+    """The spherical-probe study's row (5 flat-punch pillars under R_p = 30 µm, rigid backing):
+    pull-off after a 1 µN preload over after 0.1 µN."""
+    from gecko_agents.studies import probe_test
+
+    low, high = (probe_test.run_point("flat punch, rigid backing", 5, 30.0, f)[0]["pull_off_uN"]
+                 for f in (0.1, 1.0))  # fmt: skip
+    return {"value": high / low, "text": f"×{high / low:.3f} ({high:.3f} over {low:.3f} µN)"}
+
+
+# --- pillars: buckling and Kendall's punch ------------------------------------------------------
+BELOW_BUCKLING = 0.5
+"""The force preload below buckling, × the clamped–clamped Euler load."""
+
+
+@functools.lru_cache(maxsize=8)
+def buckled_ratio(aspect: float, past: float) -> tuple[float, list[float], list[float], float]:
+    """Pull-off of one vertical flat-punch pillar of the pillar-design study (L/2r = ``aspect``)
+    pressed under force control to :data:`BELOW_BUCKLING` and to ``past`` × its Euler load P_E:
+    (past over below, pull-offs [µN], largest pressing forces [µN], P_E [µN]). A buckled
+    elastica carries little more than its Euler load: above about 2 P_E (L/2r = 5) or 1.2 P_E
+    (L/2r = 2.4) the model finds no equilibrium (the column is pressed flat)."""
+    from gecko_agents.studies import pillar_designs as pd
+
+    p = pd.params_for("flat_punch", aspect, "flat").replace(**{"array.count": 1})
+    P_E = pd.euler_load("flat_punch", p.seta.L)
+    held, peak = [], []
+    for f in (BELOW_BUCKLING, past):
+        h = Model(p, n_sim=1, seed=pd.SEED).run(
+            protocol.preload_pull(f * P_E, speed=pd.SPEED), progress=False
+        )
+        held.append(h.peak_pull_off)
+        peak.append(float(h["force_normal_uN"].max()))
+    return held[1] / held[0], held, peak, P_E
+
+
+def _buckled(aspect: float, past: float) -> dict:
+    ratio, held, peak, P_E = buckled_ratio(aspect, past)
+    return {"value": ratio, "text": f"×{ratio:.3f} ({held[1]:.2f} µN after a {peak[1]:.2f} µN "
+            f"preload over {held[0]:.2f} µN after {peak[0]:.2f} µN; P_E = {P_E:.3g} µN, "
+            f"L/2r = {aspect:g})"}  # fmt: skip
+
+
+def buckled_preload(quick: bool = True) -> dict:
+    """:func:`buckled_ratio` of the pillar-design study's L/2r = 5 pillar, pressed to 1.5 P_E."""
+    return _buckled(5.0, 1.5)
+
+
+def buckled_short_pillar(quick: bool = True) -> dict:
+    """:func:`buckled_ratio` of a pillar of L/2r = 2.4 (Paretkar et al.'s largest), pressed to
+    1.1 P_E."""
+    return _buckled(2.4, 1.1)
+
+
+def kendall_punch(quick: bool = True) -> dict:
+    """Pull-off of one vertical flat-punch pillar (pillar-design study, L/2r = 5) pressed 5 %
+    of L, over Kendall's √(8πE*wa³) (:func:`gecko_agents.physics.punch.kendall_pull_off`)."""
+    from gecko_agents.studies import pillar_designs as pd
+
+    p = pd.params_for("flat_punch", 5.0, "flat").replace(**{"array.count": 1})
+    h = Model(p, n_sim=1, seed=pd.SEED).run(
+        protocol.press_pull(0.05 * p.seta.L, speed=pd.SPEED), progress=False
+    )
+    a, w, E_star = p.contact.jkr_args()
+    F_K = float(punch.kendall_pull_off(a, w, E_star))
+    return {
+        "value": h.peak_pull_off / F_K,
+        "text": f"×{h.peak_pull_off / F_K:.4f} ({h.peak_pull_off:.3f} over {F_K:.3f} µN)",
+    }
+
+
+OURS = {f.__name__: f for f in (
+    seta_stiffness, seta_anisotropy, seta_vertical_along, array_modulus, frictional_adhesion,
+    ptfe_friction, gillies_smooth, gillies_rough, kendall_peel, booth_misalignment,
+    booth_aligned, kim_sitti_backing, kroner_flat_misalignment, kroner_flat_preload,
+    kroner_sphere_preload, buckled_preload, buckled_short_pillar, kendall_punch)}  # fmt: skip
+"""The functions a row's ``ours`` may name."""
