@@ -18,7 +18,7 @@ import numpy as np
 
 from gecko_agents import protocol
 from gecko_agents.analysis.limit_curve import critical_angle
-from gecko_agents.analysis.pull import pull_off, release_point
+from gecko_agents.analysis.pull import plate_pull_off, pull_off, release_point
 from gecko_agents.model import Model
 from gecko_agents.params import literature as lit
 from gecko_agents.physics import beam, punch
@@ -313,9 +313,73 @@ def kendall_punch(quick: bool = True) -> dict:
     }
 
 
-OURS = {f.__name__: f for f in (
-    seta_stiffness, seta_anisotropy, seta_vertical_along, array_modulus, frictional_adhesion,
-    ptfe_friction, gillies_smooth, gillies_rough, kendall_peel, booth_misalignment,
-    booth_aligned, kim_sitti_backing, kroner_flat_misalignment, kroner_flat_preload,
-    kroner_sphere_preload, buckled_preload, buckled_short_pillar, kendall_punch)}  # fmt: skip
+def pillar_strength(r: float, L: float) -> float:
+    """Pull-off per area of backing [MPa] of one vertical flat-punch pillar of the pillar-design
+    study's polyurethane, radius r [µm] (punch radius r, pitch 8r/3 as the study's 4 µm for
+    1.5 µm) and length L [µm], pressed 5 % of L and pulled straight off."""
+    from gecko_agents.studies import pillar_designs as pd
+
+    pitch = 8.0 * r / 3.0
+    p = pd.BASE.replace(**{"tip": "flat_punch", "seta.r": r, "contact.R": r, "seta.L": L,
+                           "array.count": 1, "array.pitch": pitch})  # fmt: skip
+    h = Model(p, n_sim=1, seed=pd.SEED).run(
+        protocol.press_pull(0.05 * L, speed=pd.SPEED), progress=False
+    )
+    return h.peak_pull_off / pitch**2
+
+
+def greiner_radius(quick: bool = True) -> dict:
+    """Pull-off per area of pillars of radius 2.5 µm over 25 µm, both L/2r = 1."""
+    small, large = pillar_strength(2.5, 5.0), pillar_strength(25.0, 50.0)
+    return {"value": small / large, "text": f"×{small / large:.3f} ({1e3 * small:.1f} over "
+            f"{1e3 * large:.1f} kPa; Kendall's a^(−1/2) gives ×{math.sqrt(10):.3f})"}  # fmt: skip
+
+
+def greiner_aspect(quick: bool = True) -> dict:
+    """Pull-off per area of pillars of radius 2.5 µm, L/2r = 5 over L/2r = 1."""
+    tall, short = pillar_strength(2.5, 25.0), pillar_strength(2.5, 5.0)
+    return {"value": tall / short, "text": f"×{tall / short:.4f} ({1e3 * tall:.2f} over "
+            f"{1e3 * short:.2f} kPa)"}  # fmt: skip
+
+
+def kroner_flat_misaligned_preload(quick: bool = True) -> dict:
+    """Pull-off of Kroner et al.'s structures on a floor tilted 0.2°, pressed to 0.4 over
+    0.1 N·Fc."""
+    n = 100
+    high = pad_pull_off(lit.KRONER_PILLARS, n, 0.2, preload=0.4)
+    low = pad_pull_off(lit.KRONER_PILLARS, n, 0.2, preload=0.1)
+    return {
+        "value": high / low,
+        "text": f"×{high / low:.3f} ({high:.3f} over {low:.3f} N·Fc, {n} pillars, 0.2°)",
+    }
+
+
+def kroner_sphere_over_flat(quick: bool = True) -> dict:
+    """The spherical-probe study's 5 flat-punch pillars pressed to 1 µN: pull-off under the
+    R_p = 30 µm probe over on a flat floor (the plate's vertical force both)."""
+    from gecko_agents.studies import probe_test
+
+    sphere = probe_test.run_point("flat punch, rigid backing", 5, 30.0, 1.0)[0]["pull_off_uN"]
+    p = probe_test.PILLARS.replace(**{"array.count": 5, "floor.kind": "gaussian"})
+    h = Model(p, n_sim=5, seed=probe_test.SEED).run(
+        protocol.preload_pull(1.0, speed=probe_test.SPEED), progress=False
+    )
+    flat = plate_pull_off(h)
+    return {
+        "value": sphere / flat,
+        "text": f"×{sphere / flat:.3f} ({sphere:.2f} over {flat:.2f} µN)",
+    }
+
+
+OURS = {
+    f.__name__: f
+    for f in (
+        seta_stiffness, seta_anisotropy, seta_vertical_along, array_modulus,
+        frictional_adhesion, ptfe_friction, gillies_smooth, gillies_rough, kendall_peel,
+        booth_misalignment, booth_aligned, kim_sitti_backing, kroner_flat_misalignment,
+        kroner_flat_preload, kroner_sphere_preload, kroner_flat_misaligned_preload,
+        kroner_sphere_over_flat, greiner_radius, greiner_aspect, buckled_preload,
+        buckled_short_pillar, kendall_punch,
+    )
+}  # fmt: skip
 """The functions a row's ``ours`` may name."""
