@@ -21,7 +21,7 @@ from gecko_agents.analysis.limit_curve import critical_angle
 from gecko_agents.analysis.pull import plate_pull_off, pull_off, release_point
 from gecko_agents.model import Model
 from gecko_agents.params import literature as lit
-from gecko_agents.physics import beam, punch
+from gecko_agents.physics import beam, curved_rod, punch
 from gecko_agents.studies import frictional_adhesion as fa
 from gecko_agents.studies import misalignment as mis
 from gecko_agents.studies import pad_peel
@@ -32,20 +32,29 @@ _SETA_KEYS = {"E": "contact.E1", "r": "seta.r", "L": "seta.L", "theta": "seta.th
 
 def tokay_seta(**assumed):
     """:data:`~gecko_agents.params.literature.AUTUMN2006_SETA` with values overridden by
-    row-parameter name (E [MPa], r [µm], L [µm], theta [deg])."""
+    row-parameter name (E [MPa], r [µm], L [µm], theta [deg]; ``turn`` is read by
+    :func:`directional_stiffness`)."""
     over = {_SETA_KEYS[k]: v for k, v in assumed.items() if k in _SETA_KEYS}
     return lit.AUTUMN2006_SETA.replace(**over)
 
 
-def directional_stiffness(params, direction) -> float:
+def directional_stiffness(params, direction, turn: float = 0.0) -> float:
     """Stiffness of a seta [µN/µm = N/m] along the unit vector of ``direction`` (x along the
-    backing towards the lean, y up), the tip free to move across it: 1/(dᵀ K⁻¹ d) with K the
-    rod's 2×2 stiffness (:func:`gecko_agents.physics.beam.stiffness_matrix`, eq 16–21);
-    d = (0, 1) is eq 20's K_y."""
+    backing towards the lean, y up), the tip free to move across it: 1/(dᵀ C d) with C the
+    tip compliance: the straight rod's K⁻¹ (:func:`gecko_agents.physics.beam.stiffness_matrix`,
+    eq 16–21; d = (0, 1) is eq 20's K_y) or, where the shaft turns by ``turn`` [deg] from root
+    to tip, the circular arc's (:func:`gecko_agents.physics.curved_rod.curved_rod_compliance`,
+    the same chord angle θ and length L)."""
     d = np.asarray(direction, dtype=float)
     d = d / np.linalg.norm(d)
-    K = beam.stiffness_matrix(params.axial_stiffness, params.bending_stiffness, params.seta.theta)
-    return float(1.0 / (d @ np.linalg.solve(K, d)))
+    if turn == 0.0:
+        K = beam.stiffness_matrix(params.axial_stiffness, params.bending_stiffness,
+                                  params.seta.theta)  # fmt: skip
+        return float(1.0 / (d @ np.linalg.solve(K, d)))
+    r, L, E = params.seta.r, params.seta.L, params.contact.E1
+    C = curved_rod.curved_rod_compliance(L, E * math.pi * r**4 / 4.0, E * math.pi * r**2,
+                                         params.seta.theta, math.radians(turn))  # fmt: skip
+    return float(1.0 / (d @ C @ d))
 
 
 ALONG, AGAINST, VERTICAL = (-1.0, -1.0), (1.0, -1.0), (0.0, 1.0)
@@ -53,33 +62,43 @@ ALONG, AGAINST, VERTICAL = (-1.0, -1.0), (1.0, -1.0), (0.0, 1.0)
 −x, the gripping drag), −45° (down and towards +x) and vertical."""
 
 
-def seta_stiffness(quick: bool = True, **assumed) -> dict:
-    """K_y of eq 20 [N/m] for the tokay seta (Autumn et al. 2006a's vertical loading)."""
-    k = tokay_seta(**assumed).Ky
-    return {"value": k, "text": f"{k:.3g} N/m (eq 20, K_y of a straight rod)"}
+def seta_stiffness(quick: bool = True, turn: float = 0.0, **assumed) -> dict:
+    """K_y [N/m] for the tokay seta (Autumn et al. 2006a's vertical loading): eq 20 for the
+    straight rod, the arc's vertical stiffness where the shaft turns by ``turn`` [deg]."""
+    p = tokay_seta(**assumed)
+    k = p.Ky if turn == 0.0 else directional_stiffness(p, VERTICAL, turn)
+    shape = "eq 20, K_y of a straight rod" if turn == 0.0 else f"an arc turning {turn:g}°"
+    return {"value": k, "text": f"{k:.3g} N/m ({shape})"}
 
 
-def seta_anisotropy(quick: bool = True, **assumed) -> dict:
+def seta_anisotropy(quick: bool = True, turn: float = 0.0, **assumed) -> dict:
     """Stiffness loaded against over along the natural drag path (−45° over +45°)."""
     p = tokay_seta(**assumed)
-    along, against = directional_stiffness(p, ALONG), directional_stiffness(p, AGAINST)
+    along = directional_stiffness(p, ALONG, turn)
+    against = directional_stiffness(p, AGAINST, turn)
     return {"value": against / along,
             "text": f"×{against / along:.3g} ({against:.3g} over {along:.3g} N/m)"}  # fmt: skip
 
 
-def seta_vertical_along(quick: bool = True, **assumed) -> dict:
+def seta_vertical_along(quick: bool = True, turn: float = 0.0, **assumed) -> dict:
     """Stiffness loaded vertically over along the natural drag path (0° over +45°)."""
     p = tokay_seta(**assumed)
-    vertical, along = directional_stiffness(p, VERTICAL), directional_stiffness(p, ALONG)
+    vertical = directional_stiffness(p, VERTICAL, turn)
+    along = directional_stiffness(p, ALONG, turn)
     return {"value": vertical / along,
             "text": f"×{vertical / along:.3g} ({vertical:.3g} over {along:.3g} N/m)"}  # fmt: skip
 
 
-def array_modulus(quick: bool = True, D: float = lit.TOKAY_SETAL_DENSITY, **assumed) -> dict:
-    """E_eff = K_y·D·L sin θ [kPa]: a bed of springs of density D [1/µm²] and height L sin θ
-    (σ = K_y·D·δ, ε = δ/(L sin θ))."""
+def array_modulus(
+    quick: bool = True, D: float = lit.TOKAY_SETAL_DENSITY, turn: float = 0.0, **assumed
+) -> dict:
+    """E_eff = K_y·D·h [kPa]: a bed of springs of density D [1/µm²] and height h, the shaft's
+    vertical reach (L sin θ straight; the arc's chord L·sinc(turn/2) sin θ)
+    (σ = K_y·D·δ, ε = δ/h)."""
     p = tokay_seta(**assumed)
-    e = p.Ky * D * p.seta.L * math.sin(p.seta.theta) * 1e3  # MPa → kPa
+    k = seta_stiffness(quick, turn, **assumed)["value"]
+    chord = p.seta.L * float(np.sinc(math.radians(turn) / (2.0 * math.pi)))
+    e = k * D * chord * math.sin(p.seta.theta) * 1e3  # MPa → kPa
     return {"value": e, "text": f"{e:.3g} kPa"}
 
 
