@@ -263,19 +263,25 @@ def markdown(rows: list[dict], quick: bool, total: float) -> str:
     return "\n".join(lines)
 
 
+def _panel(row: dict) -> str:
+    """The figure's panel of a row: every dimensionless ratio on one, other quantities each on
+    their own."""
+    return "ratio [-]" if row["quantity"].endswith("[-]") else row["quantity"]
+
+
 def draw(rows: list[dict], out) -> None:
-    """Ours against theirs, one panel per quantity (log axes), the sensitivity range as a
-    vertical bar, their stated scatter as a horizontal one, y = x dotted."""
+    """Ours against theirs, one panel per quantity (:func:`_panel`, log axes), the sensitivity
+    range as a vertical bar, their stated scatter as a horizontal one, y = x dotted."""
     import matplotlib as mpl
     from matplotlib.figure import Figure
 
     sel = [r for r in rows if r["ours_value"] is not None and r["theirs_value"] is not None]
-    kinds = list(dict.fromkeys(r["quantity"] for r in sel))
+    kinds = list(dict.fromkeys(_panel(r) for r in sel))
     with mpl.rc_context(render.STYLE_RC):
         fig = Figure(figsize=(4.6 * max(len(kinds), 1), 4.4), layout="constrained")
         axes = np.atleast_1d(fig.subplots(1, max(len(kinds), 1)))
         for ax, kind in zip(axes, kinds, strict=False):
-            pts = [r for r in sel if r["quantity"] == kind]
+            pts = [r for r in sel if _panel(r) == kind]
             for i, r in enumerate(pts):
                 c = f"C{i % 10}"
                 for y in r["ours_values"]:
