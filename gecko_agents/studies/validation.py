@@ -107,9 +107,9 @@ def _outside(row: dict, value: float, sens: list[dict]) -> tuple[str, str]:
     how = f"±{row['scatter']:g}" if row["scatter"] is not None else f"×{row['band']:g}"
     if row["compare"] == "trend" and row["scatter"] is None:
         size = math.log(value) / math.log(theirs)
-        return DISAGREES_MAGNITUDE, (f"the same way, but ours' effect is {size:.2g}× theirs "
+        return DISAGREES_MAGNITUDE, (f"the same way, but ours' effect is {size:.3g}× theirs "
                                      f"(ln ratio), outside {how}")  # fmt: skip
-    return DISAGREES_MAGNITUDE, f"ours is {value / theirs:.3g}× theirs, outside {how}"
+    return DISAGREES_MAGNITUDE, f"ours is {value / theirs:.4g}× theirs, outside {how}"
 
 
 def verdict(row: dict, ours: dict | None, sens: list[dict]) -> tuple[str, str]:
@@ -160,10 +160,11 @@ def sensitivity(row: dict, quick: bool) -> list[dict]:
 
 
 def evaluate(row: dict, quick: bool) -> dict:
-    """One row of the report: the row's data with ours, its sensitivity and the verdict."""
+    """One row of the report: the row's data with ours (where it names a function, scored or
+    not), its sensitivity and the verdict."""
     t0 = time.perf_counter()
-    scored = row["status"] == "scored"
-    ours = OURS[row["ours"]](quick) if scored else None
+    # A pending row may name ours too: shown beside it, not scored.
+    ours = OURS[row["ours"]](quick) if row["ours"] else None
     sens = sensitivity(row, quick) if ours is not None else []
     v, why = verdict(row, ours, sens)
     return {**row, "ours_value": None if ours is None else ours["value"],

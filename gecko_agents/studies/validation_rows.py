@@ -51,7 +51,7 @@ def _check(where: str, row: dict) -> None:
     if row["status"] != "scored":
         if not row["unscored"]:
             raise ValueError(f"{where}: a row with status {row['status']!r} says why (unscored)")
-        return
+        return  # it may name ours: shown, not scored
     if row["compare"] not in ("value", "trend") or not row["ours"]:
         raise ValueError(f"{where}: a scored row needs compare ('value' or 'trend') and ours")
     ways = [k for k in ("scatter", "band", "min_effect") if row[k] is not None]
