@@ -321,3 +321,16 @@ def test_kendall_row(report):
     rows = [pad_peel.run_point(200, psi, 0.5, 0.4)[0]["ratio_to_kendall"] for psi in (30.0, 90.0)]
     worst = max(rows, key=lambda x: abs(math.log(x)))
     assert report[1]["kendall1975_peel"]["ours_value"] == pytest.approx(worst)
+
+
+def test_kendall_angle_law_is_one_for_a_film_that_follows_it(monkeypatch):
+    """Peel forces F/b = w/(1 − cos ψ) at the measured angles give exactly 1 (w drops out)."""
+    w = 0.37
+    rows = tuple(
+        {"psi_measured_deg": psi, "F_per_width_uN_per_um": w / (1 - math.cos(math.radians(psi))),
+         "ratio_to_kendall": 1.0, "n": 10}
+        for psi in (31.0, 97.0)
+    )  # fmt: skip
+    monkeypatch.setattr(vo, "peel_rows", lambda quick: rows)
+    assert vo.kendall_angle_law()["value"] == pytest.approx(1.0, rel=1e-12)
+    assert vo.kendall_peel()["value"] == pytest.approx(1.0)
