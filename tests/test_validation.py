@@ -295,7 +295,7 @@ def test_quick_report_rows_and_files(report):
         if r["verdict"] in val.VERDICTS or r["ours"]:  # a pending row may show ours
             assert math.isfinite(r["ours_value"]), r["id"]
     meta = json.loads((out / "metadata.json").read_text())
-    assert sum(meta["verdicts"]["scored"].values()) >= 18
+    assert sum(meta["verdicts"]["scored"].values()) >= 20
     assert meta["verdicts"]["scored"]["experiment"] >= 12
     assert rows["autumn2006a_k_seta"]["ours_value"] == pytest.approx(lit.AUTUMN2006_SETA.Ky)
 

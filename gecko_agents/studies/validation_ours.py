@@ -269,6 +269,17 @@ def kroner_flat_misalignment(quick: bool = True, n: float | None = None) -> dict
             f"{aligned:.3f} N·Fc, {n} pillars)"}  # fmt: skip
 
 
+def kroner_flat_more_misaligned(quick: bool = True) -> dict:
+    """Pull-off of the same structures on a floor tilted 0.4° over 0.2° (100 pillars)."""
+    n = 100
+    more = pad_pull_off(lit.KRONER_PILLARS, n, 0.4)
+    less = pad_pull_off(lit.KRONER_PILLARS, n, 0.2)
+    return {
+        "value": more / less,
+        "text": f"×{more / less:.3f} ({more:.3f} over {less:.3f} N·Fc, {n} pillars)",
+    }
+
+
 def kroner_flat_preload(quick: bool = True) -> dict:
     """Pull-off of the same structures, aligned, pressed to 0.4 over 0.1 N·Fc."""
     n = 100
@@ -417,6 +428,7 @@ OURS = {
         kendall_angle_law,
         booth_misalignment, booth_aligned, kim_sitti_backing, kroner_flat_misalignment,
         kroner_flat_preload, kroner_sphere_preload, kroner_flat_misaligned_preload,
+        kroner_flat_more_misaligned,
         kroner_sphere_over_flat, greiner_radius, greiner_aspect, buckled_preload,
         buckled_short_pillar, kendall_punch,
     )
