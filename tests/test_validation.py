@@ -334,3 +334,30 @@ def test_kendall_angle_law_is_one_for_a_film_that_follows_it(monkeypatch):
     monkeypatch.setattr(vo, "peel_rows", lambda quick: rows)
     assert vo.kendall_angle_law()["value"] == pytest.approx(1.0, rel=1e-12)
     assert vo.kendall_peel()["value"] == pytest.approx(1.0)
+
+
+def test_two_level_floor_puts_every_other_pillar_a_step_lower():
+    from gecko_agents.model import Model
+    from gecko_agents.studies import pillar_designs as pd
+
+    p = pd.params_for("flat_punch", 5.0, "flat").replace(**{"array.count": 6})
+    prof = vo.two_level_profile(6, p.array.pitch, p.seta.L, 0.5)
+    m = Model(p, n_sim=6, seed=0, floor_profile=prof)
+    under = np.interp(m.world.rest_dx, m.world.profile.x, m.world.profile.y)
+    np.testing.assert_allclose(under, [0.0, -0.5, 0.0, -0.5, 0.0, -0.5], atol=1e-12)
+
+
+@pytest.mark.slow
+def test_two_heights_row_holds_all_pillars_only_after_the_high_preload():
+    """Low preload: the 5 long flat punches hold Kendall's F_K each; high: all 10 (the plate
+    reads a little less than 10 F_K: the short pillars are stretched less when the long ones
+    let go)."""
+    from gecko_agents.physics import punch
+    from gecko_agents.studies import pillar_designs as pd
+
+    c = pd.params_for("flat_punch", 5.0, "flat").contact
+    F_K = float(punch.kendall_pull_off(c.R, c.work_of_adhesion, c.E_star))
+    low, high = vo.two_height_pull_offs()
+    assert low == pytest.approx(5 * F_K, rel=0.03)
+    assert 7.5 * F_K < high <= 10 * F_K
+    assert vo.two_heights()["value"] == pytest.approx(high / low)
