@@ -24,9 +24,8 @@ MODULES = sorted(PKG.rglob("*.py"))
 MAX_MODULE_CODE_LINES = 450
 MAX_CLASS_CODE_LINES = 300
 MAX_FUNCTION_LINES = 80
-DATA_MODULES = {"studies/validation_rows.py": 520}
-"""Modules that are mostly literal data, with their cap: the literature rows, until they are
-a data file the study reads."""
+DATA_MODULES: dict[str, int] = {}
+"""Modules that are mostly literal data, with their own cap (none: data lives in data files)."""
 THIRD_PARTY = {
     # pyproject.toml's dependencies and optional extras, by import name
     "pymunk", "numpy", "scipy", "matplotlib", "tqdm",
