@@ -1,0 +1,82 @@
+"""A design search from end to end: screen with Optuna, confirm the best designs with the
+engine, write the tables, figures, run files and report (:mod:`gecko_agents.design`)."""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from pathlib import Path
+
+from gecko_agents.design import confirm, report, search
+
+__all__ = ["run_design", "screen_flags"]
+
+
+def screen_flags(trials: list) -> dict:
+    """Screen validity items not met: name → (trials that broke it, its meaning)."""
+    out: dict = {}
+    for t in trials:
+        for item in t.user_attrs.get("validity", []):
+            if item["ok"] is False:
+                n, _ = out.get(item["name"], (0, ""))
+                out[item["name"]] = (n + 1, item["meaning"])
+    return out
+
+
+def _confirm(spec, chosen, out: Path, say) -> tuple[dict, list[dict]]:
+    from gecko_agents.output_paths import atomic_write_bytes
+
+    confirmed, rows = {}, []
+    (out / "runs").mkdir(parents=True, exist_ok=True)
+    for j, t in enumerate(chosen, 1):
+        label = f"design_{j}"
+        design = t.user_attrs["design"]
+        eng = confirm.confirm_design(spec, design)
+        confirmed[t.number] = eng
+        screened = t.user_attrs["screen"]
+        ref = screened["pull_off_per_area"]
+        ratio = ref / eng["mean"] if eng["mean"] > 0 else math.inf
+        rows.append({"label": label, "trial": t.number, "design": design, "screen": screened,
+                     "engine": eng, "ratio": ratio})  # fmt: skip
+        text = confirm.run_file_text(spec, design, label)
+        atomic_write_bytes(out / "runs" / f"{label}.toml", text.encode())
+        say(f"{label} (trial {t.number}): screen {ref:.4g} kPa, engine {eng['mean']:.4g} kPa "
+            f"({eng['wall_s']:.1f} s)")  # fmt: skip
+    return confirmed, rows
+
+
+def run_design(spec, out, *, trials: int | None = None, storage: str | None = None,
+               say=print) -> dict:  # fmt: skip
+    """Run a checked design file's search into ``out``: the study (resumed if ``out`` or
+    ``storage`` already holds it), the engine's confirmation of the ``spec.confirm`` best
+    designs (the Pareto front first), and ``trials.csv``, ``best.json``,
+    ``pareto_front.png``, ``objectives_vs_parameters.png``, ``runs/*.toml`` and
+    ``report.md``. Returns the summary written to ``best.json``."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    study = search.run_search(spec, out, trials=trials, storage=storage)
+    done = search.completed(study)
+    t_screen = time.perf_counter() - t0
+    say(f"{len(done)} screening trials in the study ({t_screen:.1f} s)")
+    ranked = search.ranked(spec, done)
+    front = search.pareto_front(spec, ranked) if len(spec.objectives) > 1 else ranked[:1]
+    confirmed, rows = _confirm(spec, ranked[: spec.confirm], out, say)
+    imp = report.importances(study, spec)
+    report.write_csv(out / "trials.csv", report.trial_rows(spec, done, confirmed))
+    report.draw_front(spec, done, front, confirmed, out)
+    report.draw_parameters(spec, done, out)
+    flags = screen_flags(done)
+    text = report.report_text(spec, rows, imp, len(done), flags)
+    from gecko_agents.output_paths import atomic_write_bytes
+
+    atomic_write_bytes(out / "report.md", text.encode())
+    summary = {
+        "design_file": str(spec.path), "sha256": spec.sha256, "quick": spec.quick,
+        "study": search.study_name(spec), "trials": len(done), "screen_s": t_screen,
+        "wall_s": time.perf_counter() - t0, "best": rows, "importances": imp,
+        "pareto_front": [t.number for t in front],
+    }  # fmt: skip
+    atomic_write_bytes(out / "best.json", json.dumps(summary, indent=1, default=str).encode())
+    return summary
