@@ -49,12 +49,12 @@ def trial_rows(spec, trials: list, confirmed: dict) -> list[dict]:
         a = t.user_attrs
         row = {"trial": t.number, **a.get("design", {})}
         row |= {f"screen_{k}": v for k, v in a.get("screen", {}).items()}
-        row |= {k: v for k, v in a.get("metrics", {}).items()}
+        row |= {k: v for k, v in a.get("record", {}).get("metrics", {}).items()}
         row["feasible"] = all(c <= 0 for c in a.get("constraint_values", [0.0]))
         c = confirmed.get(t.number)
         row["engine_pull_off_per_area"] = c["mean"] if c else math.nan
         row["engine_spread"] = c["spread"] if c else math.nan
-        row["code_version"] = a.get("code_version", "")
+        row["code_version"] = a.get("record", {}).get("code_version", "")
         rows.append(row)
     return rows
 

@@ -17,7 +17,7 @@ def screen_flags(trials: list) -> dict:
     """Screen validity items not met: name → (trials that broke it, its meaning)."""
     out: dict = {}
     for t in trials:
-        for item in t.user_attrs.get("validity", []):
+        for item in t.user_attrs.get("record", {}).get("validity", []):
             if item["ok"] is False:
                 n, _ = out.get(item["name"], (0, ""))
                 out[item["name"]] = (n + 1, item["meaning"])
