@@ -106,7 +106,7 @@ def run_file_text(spec, values: dict, label: str) -> str:
         f"seed = {kw['seed']}",
     ]
     if kw["floor_profile"] is not None:
-        lines += ["", "[floor]", f"file = {json.dumps(spec.surface['file'])}",
+        lines += ["", "[floor]", f"file = {json.dumps(_scan_name(spec))}",
                   f"offset_um = {_offset(kw['floor_profile'], spec):.9g}"]  # fmt: skip
     lines += [
         "",
@@ -117,6 +117,14 @@ def run_file_text(spec, values: dict, label: str) -> str:
         "",
     ]
     return "\n".join(lines)
+
+
+def _scan_name(spec) -> str:
+    """The run file's name for the scan: a packaged scan by its name, else the file's path."""
+    from gecko_agents.design.schema import PACKAGED_SCANS
+
+    name = spec.surface.get("name", "")
+    return name if name in PACKAGED_SCANS else spec.surface["file"]
 
 
 def _offset(cropped, spec) -> float:

@@ -1,0 +1,212 @@
+"""The design search (gecko_agents.design): design files refused before any trial, the search
+finding what closed forms know, a killed study resuming, and the quick example end to end."""
+
+import importlib.util
+import math
+
+import pytest
+
+from gecko_agents.design import load_design, search
+from gecko_agents.design.space import KPA
+from gecko_agents.physics import jkr, punch
+from gecko_agents.runfiles.schema import RunFileError
+
+needs_optuna = pytest.mark.skipif(
+    importlib.util.find_spec("optuna") is None, reason="the design extra (optuna)"
+)
+
+E, NU, W = 1.413, 0.3, 0.165
+
+BASE = f"""
+seed = 0
+trials = 40
+confirm = 0
+objectives = "pull_off_per_area"
+
+[material]
+E_MPa = {E}
+nu = {NU}
+w_J_per_m2 = {W}
+
+[surface]
+kind = "flat"
+
+[test]
+preload_kPa = 10.0
+floor_seeds = 1
+pillars = 10
+
+[space]
+tip = "flat_punch"
+radius_um = [1.0, 5.0]
+aspect_ratio = 2.0
+lean_deg = 90.0
+fill_fraction = 0.2
+"""
+
+
+def design(tmp_path, text=BASE, name="d.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def E_star():
+    return float(jkr.effective_modulus(E, NU, 55_000.0, 0.25))
+
+
+@pytest.mark.parametrize(
+    "old,new,names",
+    [
+        ("preload_kPa = 10.0", "preload_kPa = -1.0", ("[test] preload_kPa", "-1.0", "[0.001")),
+        ("pillars = 10", "pillars = 1", ("[test] pillars", "1", "[2, 2000]")),
+        ('tip = "flat_punch"', 'tip = "mushroom"', ("[space] tip", "mushroom", "flat_punch")),
+        ("radius_um = [1.0, 5.0]", "radius_um = [5.0, 1.0]", ("[space] radius_um", "low")),
+        ("lean_deg = 90.0", "lean_deg = 95.0", ("[space] lean_deg", "95", "[10, 90]")),
+        ("fill_fraction = 0.2", "spacing_um = 4.0\nfill_fraction = 0.2", ("spacing_um",)),
+        ('kind = "flat"', 'kind = "measured"\nfile = "nowhere.csv"', ("[surface] file",)),
+        ("w_J_per_m2", "gamma", ("[material]", "unknown key 'gamma'")),
+        ('objectives = "pull_off_per_area"', 'objectives = "grip"', ("objectives", "grip")),
+        ("aspect_ratio = 2.0", "aspect_ratio = 2.0\nbacking_thickness_um = 50.0",
+         ("backing_thickness_um", "elastic")),
+    ],
+)  # fmt: skip
+def test_bad_design_files_are_refused_naming_key_value_and_range(tmp_path, old, new, names):
+    assert old in BASE
+    with pytest.raises(RunFileError) as err:
+        load_design(design(tmp_path, BASE.replace(old, new)))
+    for n in names:
+        assert n in str(err.value)
+
+
+def test_the_quick_variant_and_the_constraints_are_checked_too(tmp_path):
+    quick = BASE + "\n[quick.test]\nfloor_seeds = 0\n"
+    with pytest.raises(RunFileError, match=r"\[quick.test\] floor_seeds.*--quick variant"):
+        load_design(design(tmp_path, quick))
+    none_left = BASE + "\n[constraints]\nmin_radius_um = 6.0\n"
+    with pytest.raises(RunFileError, match=r"min_radius_um.*leaves no design"):
+        load_design(design(tmp_path, none_left))
+    spatula = BASE.replace('"flat_punch"', '"spatula"').replace(
+        'kind = "flat"', 'kind = "measured"\nfile = "dektak"'
+    )
+    with pytest.raises(RunFileError, match=r"\[space\] tip.*'spatula'.*measured"):
+        load_design(design(tmp_path, spatula))
+    small_probe = BASE.replace(
+        "preload_kPa", 'probe = "sphere"\nprobe_radius_um = 3.0\npreload_kPa'
+    )
+    with pytest.raises(RunFileError, match=r"radius_um = 5.*not a valid parameter set.*probe"):
+        load_design(design(tmp_path, small_probe))
+
+
+def best_trial(spec, tmp_path):
+    study = search.run_search(spec, tmp_path / "out")
+    return search.ranked(spec, search.completed(study))[0]
+
+
+@needs_optuna
+def test_without_interface_strength_the_best_punch_is_the_smallest_allowed(tmp_path):
+    """Kendall's pull-off per area at a fixed fill fraction f: n·√(8πE*wa³) over n·s²,
+    s = a·√(π/f), falls as a^(-1/2); the smallest radius the process allows wins."""
+    a_min = 1.5
+    spec = load_design(design(tmp_path, BASE + f"\n[constraints]\nmin_radius_um = {a_min}\n"))
+    best = best_trial(spec, tmp_path)
+    a = best.params["radius_um"]
+    assert a_min <= a < 1.1 * a_min
+    s = a * math.sqrt(math.pi / 0.2)
+    kendall = float(punch.kendall_pull_off(a, W, E_star())) / s**2 / KPA
+    assert best.values[0] == pytest.approx(kendall, rel=1e-9)
+    at_bound = float(punch.kendall_pull_off(a_min, W, E_star())) * 0.2 / (math.pi * a_min**2)
+    assert best.values[0] == pytest.approx(at_bound / KPA, rel=0.05)
+
+
+@needs_optuna
+def test_with_a_buckling_preload_the_best_aspect_ratio_sits_on_the_constraint(tmp_path):
+    """On a rough floor a longer pillar reaches more of it (the row holds more), until the
+    equal share of the bound's pressure, p·s², reaches the clamped-clamped Euler load
+    4π²EI/L²: L_max = √(4π²EI/(p s²)), the best aspect ratio L_max/(2r)."""
+    p_c, r, f = 20.0, 1.5, 0.2
+    text = (
+        BASE.replace('kind = "flat"', 'kind = "gaussian"\nsigma_um = 0.3')
+        .replace("radius_um = [1.0, 5.0]", f"radius_um = {r}")
+        .replace("aspect_ratio = 2.0", "aspect_ratio = [1.0, 20.0]")
+        .replace("pillars = 10", "pillars = 30")
+        .replace("trials = 40", "trials = 50")
+    ) + f"\n[constraints]\nno_buckling_below_kPa = {p_c}\n"
+    spec = load_design(design(tmp_path, text))
+    s = r * math.sqrt(math.pi / f)
+    EI = E * math.pi * r**4 / 4.0
+    ar_max = math.sqrt(4 * math.pi**2 * EI / (p_c * KPA * s * s)) / (2 * r)
+    assert 1.0 < ar_max < 20.0
+    best = best_trial(spec, tmp_path)
+    assert 0.95 * ar_max <= best.params["aspect_ratio"] <= ar_max
+
+
+@needs_optuna
+def test_a_killed_study_resumes_with_every_finished_trial(tmp_path):
+    optuna = pytest.importorskip("optuna")
+    spec = load_design(design(tmp_path))
+    out = tmp_path / "out"
+    first = search.run_search(spec, out, trials=5)
+    kept = [(t.number, t.params, t.values) for t in search.completed(first)]
+    first.ask()  # a trial cut off by a kill: left running in the store
+    study = search.run_search(spec, out, trials=8)
+    done = search.completed(study)
+    assert len(done) == 8
+    assert [(t.number, t.params, t.values) for t in done[:5]] == kept
+    states = [t.state for t in study.get_trials(deepcopy=False)]
+    assert states.count(optuna.trial.TrialState.FAIL) == 1
+    assert optuna.trial.TrialState.RUNNING not in states
+    for t in done:
+        rec = t.user_attrs["record"]
+        assert rec["floor_seeds"] == [0] and rec["study_seed"] == 0
+        assert rec["code_version"] and len(rec["code_fingerprint"]) == 16
+        assert t.user_attrs["design"]["radius_um"] == t.params["radius_um"]
+
+
+@needs_optuna
+def test_a_fixed_seed_gives_the_same_study(tmp_path):
+    spec = load_design(design(tmp_path))
+    runs = [search.completed(search.run_search(spec, tmp_path / d, trials=12)) for d in "ab"]
+    assert [t.params for t in runs[0]] == [t.params for t in runs[1]]
+    assert [t.values for t in runs[0]] == [t.values for t in runs[1]]
+
+
+@pytest.mark.slow
+@needs_optuna
+def test_the_quick_example_runs_in_well_under_a_minute_and_its_run_file_reproduces(tmp_path):
+    import json
+    import time
+    from pathlib import Path
+
+    from gecko_agents.analysis.pull import pull_off
+    from gecko_agents.cli import main
+    from gecko_agents.runfiles.run import load_run
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "design_pillars.toml"
+    out = tmp_path / "design"
+    t0 = time.perf_counter()
+    assert main(["design", str(example), "--quick", "--out", str(out)]) == 0
+    assert time.perf_counter() - t0 < 45.0
+    for name in ("report.md", "trials.csv", "pareto_front.png", "objectives_vs_parameters.png"):
+        assert (out / name).stat().st_size > 0
+    best = json.loads((out / "best.json").read_text())["best"][0]
+    run = load_run(out / "runs" / "design_1.toml")
+    h = run.build_model().run(run.protocol, progress=False)
+    area = run.params.array.count * run.params.array.pitch**2
+    assert pull_off(h).adhesion / area / KPA == pytest.approx(best["engine"]["runs"][0], rel=1e-9)
+
+
+def test_a_run_file_floor_table_is_the_scan_from_its_offset(tmp_path):
+    from gecko_agents.data import DEKTAK_PROFILE
+    from gecko_agents.floor import readers
+    from gecko_agents.runfiles.run import load_run
+
+    text = 'preset = "PAPER_TABLE1"\n[floor]\nfile = "dektak"\noffset_um = 100.0\n'
+    text += '[protocol]\npreset = "press_pull"\ndepth_um = 0.5\n'
+    spec = load_run(design(tmp_path, text, "run.toml"))
+    scan = readers.read_text(DEKTAK_PROFILE)
+    k = int(scan.x.searchsorted(scan.x[0] + 100.0))
+    assert spec.floor_profile.x[0] == 0.0
+    assert list(spec.floor_profile.y) == list(scan.y[k:])
+    with pytest.raises(RunFileError, match=r"\[floor\] offset_um.*outside the scan"):
+        load_run(design(tmp_path, text.replace("100.0", "1e9"), "run.toml"))
