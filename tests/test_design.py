@@ -92,7 +92,7 @@ def test_the_quick_variant_and_the_constraints_are_checked_too(tmp_path):
     with pytest.raises(RunFileError, match=r"\[space\] tip.*'spatula'.*measured"):
         load_design(design(tmp_path, spatula))
     small_probe = BASE.replace(
-        "preload_kPa", 'probe = "sphere"\nprobe_radius_um = 3.0\npreload_kPa'
+        "preload_kPa", 'probe = "sphere"\nprobe_radius_um = 3.0\nengine_pillars = 10\npreload_kPa'
     )
     with pytest.raises(RunFileError, match=r"radius_um = 5.*not a valid parameter set.*probe"):
         load_design(design(tmp_path, small_probe))
@@ -210,3 +210,42 @@ def test_a_run_file_floor_table_is_the_scan_from_its_offset(tmp_path):
     assert list(spec.floor_profile.y) == list(scan.y[k:])
     with pytest.raises(RunFileError, match=r"\[floor\] offset_um.*outside the scan"):
         load_run(design(tmp_path, text.replace("100.0", "1e9"), "run.toml"))
+
+
+@pytest.mark.parametrize(
+    "tips,surface,extra",
+    [
+        ('["flat_punch", "sphere"]', 'kind = "self_affine"\nsigma_um = 0.2', ""),
+        ('["spatula", "hertz"]', 'kind = "gaussian"\nsigma_um = 0.2', ""),
+        ('"flat_punch"', 'kind = "measured"\nfile = "dektak"', ""),
+        ('"flat_punch"', 'kind = "flat"', 'probe = "sphere"\nengine_pillars = 10\n'),
+    ],
+)
+def test_every_tip_kind_and_surface_is_screened(tmp_path, tips, surface, extra):
+    """Each tip kind on each surface kind gives finite objectives; Hertz holds nothing."""
+    from gecko_agents.design.screen import evaluate
+
+    text = BASE.replace('"flat_punch"', tips).replace('kind = "flat"', surface)
+    spec = load_design(design(tmp_path, text.replace("preload_kPa", extra + "preload_kPa")))
+    for tip in spec.choices["tip"]:
+        res = evaluate(spec, {"tip": tip, "backing": "rigid", "radius_um": 2.0})
+        assert all(math.isfinite(v) for v in res["objectives"].values())
+        held = res["objectives"]["pull_off_per_area"]
+        assert held == 0.0 if tip == "hertz" else held > 0.0
+
+
+def test_ranking_keeps_each_feasible_design_once_and_puts_the_front_first(tmp_path):
+    from types import SimpleNamespace as T
+
+    spec = load_design(
+        design(tmp_path, BASE.replace('"pull_off_per_area"', '["pull_off_per_area", "spread"]'))
+    )
+    ok = {"constraint_values": [-1.0]}
+    trials = [
+        T(number=0, params={"r": 1}, values=[10.0, 0.5], user_attrs=ok),
+        T(number=1, params={"r": 2}, values=[8.0, 0.1], user_attrs=ok),
+        T(number=2, params={"r": 3}, values=[7.0, 0.3], user_attrs=ok),  # dominated by 1
+        T(number=3, params={"r": 1}, values=[10.0, 0.5], user_attrs=ok),  # drawn again
+        T(number=4, params={"r": 4}, values=[99.0, 0.0], user_attrs={"constraint_values": [0.2]}),
+    ]
+    assert [t.number for t in search.ranked(spec, trials)] == [0, 1, 2]

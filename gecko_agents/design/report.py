@@ -205,7 +205,7 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
               f"{_fmt(r['engine']['mean'])} kPa (ratio {_fmt(r['ratio'])})"
               for r in disagree] or [f"- none beyond ±{DISAGREE:.0%}"]  # fmt: skip
     lines += ["", "## Validity items not met", ""]
-    lines += [f"- screen, {name}: {n} of {n_trials} trials ({meaning})"
+    lines += [f"- screen, {name}: not met in {n} of {n_trials} trials ({meaning})"
               for name, (n, meaning) in screen_flags.items()] or ["- screen: none"]  # fmt: skip
     for r in rows:
         for name, item in r["engine"]["validity_flags"].items():

@@ -309,6 +309,14 @@ def _variant(ctx: Ctx, data: dict, quick_t: dict, path: Path, raw: bytes, quick:
     if spec.test["probe"] == "sphere" and spec.surface["kind"] != "flat":
         raise ctx.error("[test] probe", "'sphere': the probe is the surface; give [surface] "
                         f"kind = 'flat', not {spec.surface['kind']!r}")  # fmt: skip
+    if spec.test["probe"] == "sphere" and spec.test["pillars"] != spec.test["engine_pillars"]:
+        t = spec.test
+        raise ctx.error(
+            "[test] engine_pillars",
+            f"{t['engine_pillars']} must equal pillars = {t['pillars']} under a spherical "
+            "probe: the pull-off per backing area of a row under a probe depends on the "
+            "row's length, so the screen and the engine must hold the same row",
+        )
     _cross_checks(ctx, spec)
     return spec
 

@@ -187,9 +187,15 @@ def feasible(trial) -> bool:
 
 
 def ranked(spec, trials: list) -> list:
-    """Feasible trials, best first: by the first objective for one objective; the
-    non-dominated ones (the Pareto front) first, each rank by the first objective, for several."""
-    ok = [t for t in trials if feasible(t) and all(math.isfinite(v) for v in t.values)]
+    """Feasible trials, each design once, best first: by the first objective for one
+    objective; the non-dominated ones (the Pareto front) first, each part by the first
+    objective, for several."""
+    ok, seen = [], set()
+    for t in trials:  # a sampler may draw one design again: keep its first trial
+        key = tuple(sorted(t.params.items()))
+        if feasible(t) and all(math.isfinite(v) for v in t.values) and key not in seen:
+            seen.add(key)
+            ok.append(t)
     sign = [1.0 if d == "maximize" else -1.0 for d in spec.directions]
 
     def key(t):
