@@ -5,8 +5,9 @@ Each design is pressed to the test's preload (the pressure on the backing over t
 area, ``engine_pillars``·s²) and pulled straight off at the test's speed, once per engine seed
 (the first ``engine_seeds`` floor seeds of the screen, on the same floors). The confirmed
 pull-off per area is their mean, its spread their relative standard deviation; every validity
-item the engine judged is carried into the report. Backing tilts are not confirmed on a rigid
-backing (the engine's rigid plate is level): the spread there is over floors only.
+item the engine judged is carried into the report. Backing tilts are confirmed on an elastic
+backing only (``Backing.misalignment_deg``); the engine's rigid plate is level, so there the
+spread is over floors only and the release force is the screen's alone.
 """
 
 from __future__ import annotations
@@ -26,43 +27,60 @@ DISAGREE = 0.25
 the report says the two fidelities disagree."""
 
 
-def engine_setup(spec, values: dict, i: int):
-    """(parameters, model keywords, protocol) of engine run ``i`` of a design."""
+def engine_setup(spec, values: dict, i: int, tilt: float = 0.0):
+    """(parameters, model keywords, protocol) of engine run ``i`` of a design, its backing
+    turned by ``tilt`` [°] (an elastic backing only: the rigid plate is level)."""
     from gecko_agents import protocol
 
     n = spec.test["engine_pillars"]
     p = design_params(spec, values, n)
-    p = p.replace(**{"floor.seed": floor_seed(spec, i)})
+    p = p.replace(**{"floor.seed": floor_seed(spec, i), "backing.misalignment_deg": tilt})
     preload = spec.test["preload_kPa"] * KPA * n * p.array.pitch**2
     prot = protocol.preload_pull(preload, speed=spec.test["pull_speed_um_per_us"])
     kw = {"n_sim": n, "seed": floor_seed(spec, i), "floor_profile": engine_floor(spec, p, i)}
     return p, kw, prot
 
 
-def confirm_design(spec, values: dict) -> dict:
-    """The engine's pull-off per area of one design over the engine seeds: ``mean`` and
-    ``spread`` (std/mean), each run's value, its wall time, and the validity items any run
-    found not met (name → the item of the worst run)."""
-    import time
-
+def _engine_run(spec, values, i, tilt, flagged) -> float:
+    """Pull-off per backing area [kPa] of one engine run; its unmet validity items into
+    ``flagged``."""
     from gecko_agents.analysis.pull import pull_off
     from gecko_agents.model import Model
 
+    p, kw, prot = engine_setup(spec, values, i, tilt)
+    h = Model(p, **kw).run(prot, progress=False)
+    for name, item in h.meta["validity"]["items"].items():
+        if item.get("ok") is False:
+            flagged[name] = {"value": item.get("value"), "rule": item.get("rule"),
+                             "meaning": item.get("meaning")}  # fmt: skip
+    return pull_off(h).adhesion / (p.array.count * p.array.pitch**2) / KPA
+
+
+def confirm_design(spec, values: dict) -> dict:
+    """The engine's pull-off per area of one design over the engine seeds (and, on an elastic
+    backing, the screen's tilts): ``mean`` and ``spread`` (std/mean), each run's value,
+    ``release`` (the pull-off with the backing at ``test.release_tilt_deg``; None on a rigid
+    backing, which the engine keeps level), its wall time, and the validity items any run
+    found not met (name → the item of the last run that broke it)."""
+    import time
+
+    from gecko_agents.design.screen import tilts
+
+    values = {**spec.fixed, **values}
+    elastic = values.get("backing", "rigid") == "elastic"
+    angles = tilts(spec) if elastic else (0.0,)
     runs, flagged, t0 = [], {}, time.perf_counter()
     for i in range(spec.test["engine_seeds"]):
-        p, kw, prot = engine_setup(spec, values, i)
-        h = Model(p, **kw).run(prot, progress=False)
-        area = p.array.count * p.array.pitch**2
-        runs.append(pull_off(h).adhesion / area / KPA)
-        for name, item in h.meta["validity"]["items"].items():
-            if item.get("ok") is False:
-                flagged[name] = {"value": item.get("value"), "rule": item.get("rule"),
-                                 "meaning": item.get("meaning")}  # fmt: skip
+        runs += [_engine_run(spec, values, i, a, flagged) for a in angles]
+    release = None
+    if elastic and "release_force" in spec.objectives:
+        release = _engine_run(spec, values, 0, spec.test["release_tilt_deg"], flagged)
     mean = float(np.mean(runs))
     return {
         "mean": mean,
         "spread": float(np.std(runs) / mean) if mean > 0 else 1.0,
         "runs": [float(r) for r in runs],
+        "release": release,
         "validity_flags": flagged,
         "wall_s": time.perf_counter() - t0,
     }

@@ -71,6 +71,10 @@ def write_csv(path: Path, rows: list[dict]) -> None:
     atomic_write_bytes(path, buf.getvalue().encode())
 
 
+def _feasible(t) -> bool:
+    return all(c <= 0 for c in t.user_attrs.get("constraint_values", [0.0]))
+
+
 def _label(name: str) -> str:
     direction, unit, _ = OBJECTIVES[name]
     return f"{name} [{unit}] ({direction})"
@@ -92,7 +96,7 @@ def draw_front(spec, trials: list, best: list, confirmed: dict, out: Path) -> No
             return [t.values[0] for t in ts], [t.values[1] for t in ts]
         return [t.number for t in ts], [t.values[0] for t in ts]
 
-    ok = [t for t in trials if all(c <= 0 for c in t.user_attrs.get("constraint_values", [0]))]
+    ok = [t for t in trials if _feasible(t)]
     bad = [t for t in trials if t not in ok]
     with mpl.rc_context(render.STYLE_RC):
         fig = Figure(figsize=(6.0, 4.5), layout="constrained")
@@ -133,15 +137,20 @@ def draw_parameters(spec, trials: list, out: Path) -> None:
                 ax = axes[i][j]
                 for g, group in enumerate(groups):
                     sel = [t for t in trials if tuple(t.params.get(c) for c in cats) == group]
-                    ax.plot([t.params[key] for t in sel], [t.values[i] for t in sel], ".",
-                            color=f"C{g}", label="/".join(map(str, group)) or None)  # fmt: skip
+                    for ok, face in ((True, f"C{g}"), (False, "none")):
+                        part = [t for t in sel if _feasible(t) is ok]
+                        ax.plot([t.params[key] for t in part], [t.values[i] for t in part], "o",
+                                ms=3.5, color=f"C{g}", mfc=face,
+                                label=("/".join(map(str, group)) or "feasible")
+                                if ok else None)  # fmt: skip
                 if KNOBS[key].log:
                     ax.set_xscale("log")
+                    for axis in (ax.xaxis.set_major_formatter, ax.xaxis.set_minor_formatter):
+                        axis(mpl.ticker.FormatStrFormatter("%g"))
                 ax.set_xlabel(f"{key} [{KNOBS[key].unit}]")
                 if j == 0:
                     ax.set_ylabel(_label(obj))
-        if cats:
-            axes[0][0].legend(fontsize="small")
+        axes[0][0].legend(fontsize="small", title="filled: feasible", title_fontsize="small")
         render.save_figure(fig, out / "objectives_vs_parameters.png")
 
 
@@ -175,12 +184,18 @@ def best_table(spec, rows: list[dict]) -> list[str]:
     knobs = [*[c for c, v in spec.choices.items() if len(v) > 1], *spec.ranges]
     head = ["design", *knobs, *[f"screen {o}" for o in spec.objectives],
             "engine pull-off [kPa]", "engine spread", "screen/engine"]  # fmt: skip
+    release = "release_force" in spec.objectives
+    head += ["engine release [kPa]"] if release else []
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
         e = r["engine"]
         cells = [r["label"], *[_fmt(r["design"].get(k)) for k in knobs],
                  *[_fmt(r["screen"][o]) for o in spec.objectives],
                  _fmt(e["mean"]), _fmt(e["spread"]), _fmt(r["ratio"])]  # fmt: skip
+        if release:
+            cells.append(
+                "screen only (rigid plate)" if e["release"] is None else _fmt(e["release"])
+            )
         lines.append("| " + " | ".join(cells) + " |")
     return lines
 
