@@ -249,3 +249,27 @@ def test_ranking_keeps_each_feasible_design_once_and_puts_the_front_first(tmp_pa
         T(number=4, params={"r": 4}, values=[99.0, 0.0], user_attrs={"constraint_values": [0.2]}),
     ]
     assert [t.number for t in search.ranked(spec, trials)] == [0, 1, 2]
+
+
+@pytest.mark.slow
+@needs_optuna
+def test_two_worker_processes_fill_one_study(tmp_path):
+    from gecko_agents.design import run_design
+
+    spec = load_design(design(tmp_path, BASE))
+    summary = run_design(spec, tmp_path / "out", trials=16, workers=2, say=lambda s: None)
+    assert 16 <= summary["trials"] <= 17  # a worker may finish one trial past the target
+    study = search.open_study(spec, tmp_path / "out")
+    assert len({tuple(t.params.items()) for t in search.completed(study)}) >= 8
+
+
+def test_design_command_refuses_bad_arguments_before_any_trial(tmp_path, capsys):
+    from gecko_agents.cli import main
+
+    path = design(tmp_path)
+    assert main(["design", str(path), "--workers", "0", "--out", str(tmp_path / "o")]) == 2
+    assert "--workers 0" in capsys.readouterr().err
+    bad = design(tmp_path, BASE.replace("pillars = 10", "pillars = 1.5"), "bad.toml")
+    assert main(["design", str(bad), "--out", str(tmp_path / "o")]) == 2
+    assert "[test] pillars" in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()

@@ -15,6 +15,8 @@ __all__ = ["add_design", "cmd_design"]
 
 
 def add_design(p: argparse.ArgumentParser) -> None:
+    from gecko_agents.sweep import parse_dask_arg
+
     p.add_argument("designfile", type=Path, help="design file (TOML; see examples/)")
     p.add_argument(
         "--out",
@@ -32,6 +34,20 @@ def add_design(p: argparse.ArgumentParser) -> None:
         help="Optuna database URL shared by several workers (default: an SQLite file "
         "study.db in the output folder)",
     )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=1,
+        help="worker processes sharing the study and the confirmations (default 1)",
+    )
+    p.add_argument(
+        "--dask",
+        type=parse_dask_arg,
+        default=None,
+        metavar="ADDR",
+        help="'local' (a Dask cluster of --workers processes) or tcp://host:port (a running "
+        "scheduler; its workers need the design extra and a --storage URL they reach)",
+    )
     p.add_argument("--quick", action="store_true", help="the file's [quick] variant")
 
 
@@ -42,6 +58,8 @@ def cmd_design(args, extra) -> int:
     spec = load_design(args.designfile, quick=args.quick)
     if args.trials is not None and args.trials < 1:
         raise UsageError(f"--trials {args.trials} must be ≥ 1")
+    if args.workers < 1:
+        raise UsageError(f"--workers {args.workers} must be ≥ 1")
     try:
         require_optuna()
     except ImportError as err:
@@ -56,7 +74,10 @@ def cmd_design(args, extra) -> int:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", category=UserWarning)  # Optuna's experimental notes
-            summary = run_design(spec, out, trials=args.trials, storage=args.storage)
+            summary = run_design(spec, out, trials=args.trials, storage=args.storage,
+                                 workers=args.workers, dask=args.dask)  # fmt: skip
+    except ImportError as err:  # --dask without the dask extra
+        raise UsageError(str(err)) from None
     except KeyboardInterrupt:
         error("interrupted: every finished trial is stored; resume with: " + " ".join(again))
         return EXIT_INTERRUPTED

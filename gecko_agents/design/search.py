@@ -86,6 +86,11 @@ def _constraints_of(frozen) -> list[float]:
     return list(frozen.user_attrs.get("constraint_values", [0.0]))
 
 
+def local_storage(out: Path) -> str:
+    """The URL of the default store: the SQLite file :data:`STUDY_DB` in ``out``."""
+    return f"sqlite:///{(Path(out) / STUDY_DB).resolve()}"
+
+
 def open_study(spec, out: Path, storage: str | None = None):
     """The study of ``spec`` in ``storage`` (default: ``out/study.db``), created or, if it
     exists there, loaded with its trials."""
@@ -93,7 +98,7 @@ def open_study(spec, out: Path, storage: str | None = None):
     local = storage is None
     if local:
         out.mkdir(parents=True, exist_ok=True)
-        storage = f"sqlite:///{(out / STUDY_DB).resolve()}"
+        storage = local_storage(out)
     study = optuna.create_study(
         study_name=study_name(spec),
         storage=_storage(storage, optuna),

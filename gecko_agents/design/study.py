@@ -8,7 +8,7 @@ import math
 import time
 from pathlib import Path
 
-from gecko_agents.design import confirm, report, search
+from gecko_agents.design import confirm, parallel, report, search
 
 __all__ = ["run_design", "screen_flags"]
 
@@ -24,15 +24,16 @@ def screen_flags(trials: list) -> dict:
     return out
 
 
-def _confirm(spec, chosen, out: Path, say) -> tuple[dict, list[dict]]:
+def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, list[dict]]:
     from gecko_agents.output_paths import atomic_write_bytes
 
+    designs = [t.user_attrs["design"] for t in chosen]
+    engine = parallel.parallel_map(confirm.confirm_design, [(spec, d) for d in designs],
+                                   workers, dask)  # fmt: skip
     confirmed, rows = {}, []
     (out / "runs").mkdir(parents=True, exist_ok=True)
-    for j, t in enumerate(chosen, 1):
+    for j, (t, design, eng) in enumerate(zip(chosen, designs, engine, strict=True), 1):
         label = f"design_{j}"
-        design = t.user_attrs["design"]
-        eng = confirm.confirm_design(spec, design)
         confirmed[t.number] = eng
         screened = t.user_attrs["screen"]
         ref = screened["pull_off_per_area"]
@@ -46,23 +47,36 @@ def _confirm(spec, chosen, out: Path, say) -> tuple[dict, list[dict]]:
     return confirmed, rows
 
 
+def _search(spec, out: Path, trials, storage, workers: int, dask):
+    """The study filled to its trials, by this process or by ``workers`` workers sharing its
+    store (a killed run's cut-off trials in a local file are marked failed once, first)."""
+    if workers <= 1 and dask is None:
+        return search.run_search(spec, out, trials=trials, storage=storage)
+    search.open_study(spec, out, storage)
+    url = storage or search.local_storage(out)
+    parallel.parallel_map(parallel.search_worker, [(spec, str(out), trials, url)] * workers,
+                          workers, dask)  # fmt: skip
+    return search.open_study(spec, out, url)
+
+
 def run_design(spec, out, *, trials: int | None = None, storage: str | None = None,
-               say=print) -> dict:  # fmt: skip
+               workers: int = 1, dask: str | None = None, say=print) -> dict:  # fmt: skip
     """Run a checked design file's search into ``out``: the study (resumed if ``out`` or
-    ``storage`` already holds it), the engine's confirmation of the ``spec.confirm`` best
-    designs (the Pareto front first), and ``trials.csv``, ``best.json``,
-    ``pareto_front.png``, ``objectives_vs_parameters.png``, ``runs/*.toml`` and
-    ``report.md``. Returns the summary written to ``best.json``."""
+    ``storage`` already holds it; ``workers`` local processes, or as many Dask workers at
+    ``dask``, share it and the confirmations), the engine's confirmation of the
+    ``spec.confirm`` best designs (the Pareto front first), and ``trials.csv``,
+    ``best.json``, ``pareto_front.png``, ``objectives_vs_parameters.png``, ``runs/*.toml``
+    and ``report.md``. Returns the summary written to ``best.json``."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    study = search.run_search(spec, out, trials=trials, storage=storage)
+    study = _search(spec, out, trials, storage, workers, dask)
     done = search.completed(study)
     t_screen = time.perf_counter() - t0
     say(f"{len(done)} screening trials in the study ({t_screen:.1f} s)")
     ranked = search.ranked(spec, done)
     front = search.pareto_front(spec, ranked) if len(spec.objectives) > 1 else ranked[:1]
-    confirmed, rows = _confirm(spec, ranked[: spec.confirm], out, say)
+    confirmed, rows = _confirm(spec, ranked[: spec.confirm], out, say, workers, dask)
     imp = report.importances(study, spec)
     report.write_csv(out / "trials.csv", report.trial_rows(spec, done, confirmed))
     report.draw_front(spec, done, front, confirmed, out)
@@ -76,7 +90,7 @@ def run_design(spec, out, *, trials: int | None = None, storage: str | None = No
         "design_file": str(spec.path), "sha256": spec.sha256, "quick": spec.quick,
         "study": search.study_name(spec), "trials": len(done), "screen_s": t_screen,
         "wall_s": time.perf_counter() - t0, "best": rows, "importances": imp,
-        "pareto_front": [t.number for t in front],
+        "pareto_front": [t.number for t in front], "workers": workers, "dask": dask,
     }  # fmt: skip
     atomic_write_bytes(out / "best.json", json.dumps(summary, indent=1, default=str).encode())
     return summary
