@@ -273,3 +273,11 @@ def test_design_command_refuses_bad_arguments_before_any_trial(tmp_path, capsys)
     assert main(["design", str(bad), "--out", str(tmp_path / "o")]) == 2
     assert "[test] pillars" in capsys.readouterr().err
     assert not (tmp_path / "o").exists()
+
+
+def test_a_row_longer_than_the_measured_scan_is_refused(tmp_path):
+    text = BASE.replace('kind = "flat"', 'kind = "measured"\nfile = "dektak"').replace(
+        "pillars = 10", "pillars = 400"
+    )
+    with pytest.raises(RunFileError, match=r"\[test\] pillars.*400 pillars.*scan is 1500 µm"):
+        load_design(design(tmp_path, text))

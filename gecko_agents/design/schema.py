@@ -133,8 +133,8 @@ def _material(ctx: Ctx, t: dict) -> dict:
         if key not in t:
             raise ctx.error("[material]", f"missing key {key!r} (range [{lo:g}, {hi:g}])")
         out[key] = _number(ctx, f"[material] {key}", t[key], lo, hi)
-        if key != "E_MPa" and out[key] in (hi,) and key == "nu":
-            raise ctx.error(f"[material] {key}", f"{t[key]!r} must be below 0.5")
+        if key == "nu" and out[key] >= 0.5:
+            raise ctx.error("[material] nu", f"{t[key]!r} is outside the allowed range [0, 0.5)")
     return out
 
 
@@ -262,27 +262,51 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
                 f"{tip!r} cannot stand on a {floor!r} surface in the engine (it stands on "
                 f"{', '.join(TIP_KINDS[tip].floors)})",
             )
-    c = spec.constraints
-    for key, bound, knob in (("min_radius_um", "hi", "radius_um"),
-                             ("max_aspect_ratio", "lo", "aspect_ratio")):  # fmt: skip
-        if key in c and knob in spec.ranges | {k: (v, v) for k, v in spec.fixed.items()}:
-            lo, hi = spec.ranges.get(knob, (spec.fixed.get(knob),) * 2)
-            if (bound == "hi" and c[key] > hi) or (bound == "lo" and c[key] < lo):
-                raise ctx.error(
-                    f"[constraints] {key}",
-                    f"{c[key]:g} leaves no design: [space] {knob} spans [{lo:g}, {hi:g}]",
-                )
+    span = {**{k: (v, v) for k, v in spec.fixed.items()}, **spec.ranges}
+    for key, knob, above in (("min_radius_um", "radius_um", True),
+                             ("max_aspect_ratio", "aspect_ratio", False)):  # fmt: skip
+        bound = spec.constraints.get(key)
+        lo, hi = span[knob]
+        if bound is not None and (bound > hi if above else bound < lo):
+            raise ctx.error(
+                f"[constraints] {key}",
+                f"{bound:g} leaves no design: [space] {knob} spans [{lo:g}, {hi:g}]",
+            )
     base = base_params(spec)
     corners = [[(k, v) for v in spec.ranges[k]] for k in spec.ranges]
     for tip, backing in itertools.product(spec.choices["tip"], spec.choices["backing"]):
         for corner in itertools.islice(itertools.product(*corners), 256):
             values = {**spec.fixed, **dict(corner), "tip": tip, "backing": backing}
             try:
-                base.replace(**overrides_of(values))
+                p = base.replace(**overrides_of(values))
             except (ValueError, TypeError) as err:
                 shown = ", ".join(f"{k} = {v:g}" for k, v in corner) or "the fixed values"
                 raise ctx.error("[space]", f"the design at {shown} (tip {tip!r}) is not a "
                                 f"valid parameter set: {err}") from None  # fmt: skip
+            _check_scan(ctx, spec, p, corner)
+
+
+def _check_scan(ctx: Ctx, spec: DesignSpec, p: SetaArray, corner) -> None:
+    """A measured scan long enough for the longest row the space holds (the engine's floor
+    reaches 50 µm + 3L beyond the outermost tips)."""
+    if spec.surface["kind"] != "measured":
+        return
+    from gecko_agents.design.screen import measured_profile
+
+    try:
+        prof = measured_profile(spec.surface["file"])
+    except (ValueError, OSError) as err:
+        raise ctx.error("[surface] file", f"cannot be read as a profile: {err}") from None
+    n = max(spec.test["pillars"], spec.test["engine_pillars"])
+    row = (n - 1) * p.array.pitch + 2 * (50.0 + 3 * p.seta.L)
+    length = float(prof.x[-1] - prof.x[0])
+    if row > length:
+        shown = ", ".join(f"{k} = {v:g}" for k, v in corner) or "the fixed values"
+        raise ctx.error(
+            "[test] pillars",
+            f"{n} pillars at {shown} need {row:.4g} µm of floor; the scan is {length:.4g} µm "
+            "long: fewer pillars, a smaller spacing or a longer scan",
+        )
 
 
 def _variant(ctx: Ctx, data: dict, quick_t: dict, path: Path, raw: bytes, quick: bool):

@@ -24,6 +24,10 @@ __all__ = ["require_optuna", "study_name", "open_study", "run_search", "suggest"
 STUDY_DB = "study.db"
 """The default trial store's file name in the output folder."""
 
+CAUGHT = (ValueError, FloatingPointError, ZeroDivisionError)
+"""What a model raises on a design it refuses: the trial fails, the study goes on, and the
+report counts the failures with their first reason."""
+
 
 def require_optuna():
     """The ``optuna`` module, or ImportError saying how to install it."""
@@ -146,7 +150,11 @@ def objective_fn(spec):
 
     def objective(trial):
         values = suggest(spec, trial)
-        res = evaluate(spec, values)
+        try:
+            res = evaluate(spec, values)
+        except CAUGHT as err:  # a design a model refuses: a failed trial, its reason kept
+            trial.set_user_attr("error", f"{type(err).__name__}: {err}")
+            raise
         cons = [res["constraints"][k] for k in sorted(res["constraints"])] or [0.0]
         trial.set_user_attr("constraint_values", [float(c) for c in cons])
         if own:
@@ -167,6 +175,12 @@ def objective_fn(spec):
     return objective
 
 
+def failed(study) -> list:
+    """The study's failed trials (a model refused the design, or a run was cut off)."""
+    optuna = require_optuna()
+    return study.get_trials(deepcopy=False, states=(optuna.trial.TrialState.FAIL,))
+
+
 def completed(study) -> list:
     optuna = require_optuna()
     return study.get_trials(deepcopy=False, states=(optuna.trial.TrialState.COMPLETE,))
@@ -183,7 +197,10 @@ def run_search(spec, out: Path, *, trials: int | None = None, storage: str | Non
     if left > 0:
         stop = optuna.study.MaxTrialsCallback(target, states=(optuna.trial.TrialState.COMPLETE,))
         callbacks = [stop] + ([progress] if progress else [])
-        study.optimize(objective_fn(spec), n_trials=left, callbacks=callbacks, gc_after_trial=False)
+        study.optimize(
+            objective_fn(spec), n_trials=left, callbacks=callbacks, catch=CAUGHT,
+            gc_after_trial=False,
+        )  # fmt: skip
     return study
 
 

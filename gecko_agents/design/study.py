@@ -82,6 +82,9 @@ def run_design(spec, out, *, trials: int | None = None, storage: str | None = No
     report.draw_front(spec, done, front, confirmed, out)
     report.draw_parameters(spec, done, out)
     flags = screen_flags(done)
+    fails = [t.user_attrs.get("error", "cut off") for t in search.failed(study)]
+    if fails:
+        flags["failed_trials"] = (len(fails), f"the first: {fails[0]}")
     text = report.report_text(spec, rows, imp, len(done), flags)
     from gecko_agents.output_paths import atomic_write_bytes
 
