@@ -281,3 +281,23 @@ def test_a_row_longer_than_the_measured_scan_is_refused(tmp_path):
     )
     with pytest.raises(RunFileError, match=r"\[test\] pillars.*400 pillars.*scan is 1500 µm"):
         load_design(design(tmp_path, text))
+
+
+def test_the_largest_preload_bound_is_the_force_that_brings_every_tip_down(tmp_path):
+    """On a floor tilted by α a row of linear fibrils of stiffness k touches everywhere once
+    pressed by Σ k·(h_max − h_i) = k·tan α·s·Σ(n − 1 − i) = k·tan α·s·n(n − 1)/2."""
+    from gecko_agents.design.screen import design_params, evaluate, fibril_stiffness
+
+    text = BASE.replace("pillars = 10", "pillars = 6").replace(
+        "floor_seeds = 1", "floor_seeds = 1\nmisalignment_spread_deg = 0.5"
+    )
+    spec = load_design(design(tmp_path, text + "\n[constraints]\nmax_preload_kPa = 1.0\n"))
+    values = {"tip": "flat_punch", "backing": "rigid", "radius_um": 2.0}
+    res = evaluate(spec, values)
+    p = design_params(spec, values)
+    n, s = 6, p.array.pitch
+    force = fibril_stiffness(p) * math.tan(math.radians(0.5)) * s * n * (n - 1) / 2
+    assert res["metrics"]["full_contact_kPa"] == pytest.approx(force / (n * s * s) / KPA)
+    assert res["constraints"]["max_preload_kPa"] == pytest.approx(
+        res["metrics"]["full_contact_kPa"] / 1.0 - 1.0
+    )

@@ -153,6 +153,7 @@ def evaluate(spec, values: dict) -> dict:
     area = n * s * s
     preload = spec.test["preload_kPa"] * KPA * area
     per_area, peak_pillar, full_touch = [], 0.0, 0.0
+    k = fibril_stiffness(p)  # the force that brings the lowest tip down: Σ k·(h_max − h_i)
     for i in range(spec.test["floor_seeds"]):
         h = row_heights(spec, p, i)
         for alpha in tilts(spec):
@@ -160,7 +161,7 @@ def evaluate(spec, values: dict) -> dict:
             F, top = pull_off(p, ht, preload)
             per_area.append(F / area / KPA)
             peak_pillar = max(peak_pillar, top)
-            full_touch = max(full_touch, float(np.sum(np.max(ht) - ht)) * p.Ky / area / KPA)
+            full_touch = max(full_touch, float(np.sum(np.max(ht) - ht)) * k / area / KPA)
     per_area = np.asarray(per_area)
     mean = float(np.mean(per_area))
     h0 = _tilted(row_heights(spec, p, 0), s, spec.test["release_tilt_deg"])
