@@ -19,12 +19,12 @@ from gecko_agents.design.space import (
     CONSTRAINTS,
     EXCLUSIVE_KNOBS,
     KNOBS,
+    MATERIAL,
     OBJECTIVES,
     TIP_KINDS,
     overrides_of,
 )
 from gecko_agents.params import PAPER_ARRAY, SetaArray
-from gecko_agents.params.checks import MODULUS_RANGE, SURFACE_ENERGY_MAX
 from gecko_agents.runfiles.schema import Ctx, read_toml, sub_table
 
 __all__ = ["DesignSpec", "load_design", "base_params", "PACKAGED_SCANS"]
@@ -35,7 +35,6 @@ PACKAGED_SCANS = {"dektak": DEKTAK_PROFILE}
 _TOP = {"description", "seed", "trials", "confirm", "objectives"}
 _TABLES = ("material", "surface", "test", "space", "constraints")
 _QUICK = {"trials", "confirm", "test"}
-_MATERIAL = {"E_MPa": MODULUS_RANGE, "nu": (0.0, 0.5), "w_J_per_m2": (0.0, 2 * SURFACE_ENERGY_MAX)}
 _SURFACES = ("measured", "gaussian", "self_affine", "flat")
 _SURFACE_NUM = {
     "sigma_um": (0.0, 100.0),
@@ -103,8 +102,8 @@ def base_params(spec: DesignSpec) -> SetaArray:
     """The parameter set every design of ``spec`` starts from: the paper's array with the
     design file's material, elastica pillars and the surface's floor statistics."""
     m, s = spec.material, spec.surface
-    over = {"contact.E1": m["E_MPa"], "contact.nu1": m["nu"], "contact.w": m["w_J_per_m2"],
-            "mechanics": "elastica", "floor.sigma": 0.0}  # fmt: skip
+    over = {param: m[key] for key, (_, param) in MATERIAL.items()}
+    over |= {"mechanics": "elastica", "floor.sigma": 0.0}
     if spec.test["probe"] == "sphere":
         over |= {"floor.kind": "probe", "floor.probe_radius": spec.test["probe_radius_um"]}
     elif s["kind"] == "gaussian":
@@ -127,9 +126,9 @@ def _number(ctx: Ctx, where: str, value, lo: float, hi: float, integer=False):
 
 
 def _material(ctx: Ctx, t: dict) -> dict:
-    ctx.keys("[material]", t, _MATERIAL)
+    ctx.keys("[material]", t, MATERIAL)
     out = {}
-    for key, (lo, hi) in _MATERIAL.items():
+    for key, ((lo, hi), _) in MATERIAL.items():
         if key not in t:
             raise ctx.error("[material]", f"missing key {key!r} (range [{lo:g}, {hi:g}])")
         out[key] = _number(ctx, f"[material] {key}", t[key], lo, hi)

@@ -1,6 +1,7 @@
-"""The design search's tables: the tip kinds it can choose, the knobs of the search space, the
-objectives and the constraints. Adding a tip law or a backing parameter to the search is one
-entry in :data:`TIP_KINDS` or :data:`KNOBS`; nothing else changes.
+"""The design search's tables: the material, the tip kinds it can choose, the knobs of the
+search space, the objectives and the constraints. Adding a tip law, a backing parameter or a
+material property to the search is one entry in :data:`TIP_KINDS`, :data:`KNOBS` or
+:data:`MATERIAL`; nothing else changes.
 
 Units: µm, µN, MPa (= µN/µm²), µN/µm for the work of adhesion; pressures on the backing in kPa
 (1 kPa = 1e-3 µN/µm²), the unit pull-off per area of fibre arrays is published in.
@@ -12,10 +13,12 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from gecko_agents.params.checks import MODULUS_RANGE, SURFACE_ENERGY_MAX
 from gecko_agents.physics import punch
 
 __all__ = [
     "KPA",
+    "MATERIAL",
     "TipKind",
     "TIP_KINDS",
     "Knob",
@@ -30,6 +33,16 @@ __all__ = [
 
 KPA = 1e-3
 """1 kPa in µN/µm² (MPa = µN/µm²)."""
+
+
+MATERIAL: dict[str, tuple[tuple[float, float], str]] = {
+    "E_MPa": (MODULUS_RANGE, "contact.E1"),
+    "nu": ((0.0, 0.5), "contact.nu1"),
+    "w_J_per_m2": ((0.0, 2 * SURFACE_ENERGY_MAX), "contact.w"),
+}
+"""``[material]`` key → (allowed range, the :class:`~gecko_agents.params.SetaArray`
+parameter it sets). A material property a new tip law needs (an interface strength) is one
+entry here."""
 
 
 @dataclass(frozen=True)
