@@ -184,9 +184,9 @@ def test_the_quick_example_runs_in_well_under_a_minute_and_its_run_file_reproduc
 
     example = Path(__file__).resolve().parents[1] / "examples" / "design_pillars.toml"
     out = tmp_path / "design"
-    t0 = time.perf_counter()
+    cpu = time.process_time()  # its own work: the shared machine's load does not count
     assert main(["design", str(example), "--quick", "--out", str(out)]) == 0
-    assert time.perf_counter() - t0 < 45.0
+    assert time.process_time() - cpu < 30.0
     for name in ("report.md", "trials.csv", "pareto_front.png", "objectives_vs_parameters.png"):
         assert (out / name).stat().st_size > 0
     best = json.loads((out / "best.json").read_text())["best"][0]

@@ -14,7 +14,7 @@ import math
 from pathlib import Path
 
 from gecko_agents.design.confirm import DISAGREE
-from gecko_agents.design.space import KNOBS, OBJECTIVES
+from gecko_agents.design.space import KNOBS, OBJECTIVES, TIP_KINDS
 
 __all__ = ["PUBLISHED", "trial_rows", "write_csv", "draw_front", "draw_parameters",
            "importances", "report_text"]  # fmt: skip
@@ -219,6 +219,16 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
     lines += [f"- {r['label']}: screen {_fmt(r['screen']['pull_off_per_area'])} kPa, engine "
               f"{_fmt(r['engine']['mean'])} kPa (ratio {_fmt(r['ratio'])})"
               for r in disagree] or [f"- none beyond ±{DISAGREE:.0%}"]  # fmt: skip
+    lines += ["", "## Models", ""]
+    for tip in spec.choices["tip"]:
+        kind = TIP_KINDS[tip]
+        screen = (
+            "the quasi-static solver on linear pillars (the paper's eq 22–27)"
+            if kind.release_force is None
+            else "linear fibrils over the floor, released at the law's closed-form force"
+        )
+        lines.append(f"- {tip}: screen — {screen} ({kind.source}); engine — "
+                     "gecko_agents.model.Model, elastica pillars, the same floors")  # fmt: skip
     lines += ["", "## Validity items not met", ""]
     lines += [f"- screen, {name}: not met in {n} of {n_trials} trials ({meaning})"
               for name, (n, meaning) in screen_flags.items()] or ["- screen: none"]  # fmt: skip
