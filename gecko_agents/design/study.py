@@ -77,6 +77,9 @@ def run_design(spec, out, *, trials: int | None = None, storage: str | None = No
     ranked = search.ranked(spec, done)
     front = search.pareto_front(spec, ranked) if len(spec.objectives) > 1 else ranked[:1]
     confirmed, rows = _confirm(spec, ranked[: spec.confirm], out, say, workers, dask)
+    on_front = {t.number for t in front}
+    for r in rows:
+        r["front"] = r["trial"] in on_front
     imp = report.importances(study, spec)
     report.write_csv(out / "trials.csv", report.trial_rows(spec, done, confirmed))
     report.draw_front(spec, done, front, confirmed, out)
