@@ -186,6 +186,8 @@ def best_table(spec, rows: list[dict]) -> list[str]:
             "engine pull-off [kPa]", "engine spread", "screen/engine"]  # fmt: skip
     release = "release_force" in spec.objectives
     head += ["engine release [kPa]"] if release else []
+    several = len(spec.objectives) > 1
+    head += ["Pareto front"] if several else []
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
         e = r["engine"]
@@ -196,6 +198,8 @@ def best_table(spec, rows: list[dict]) -> list[str]:
             cells.append(
                 "screen only (rigid plate)" if e["release"] is None else _fmt(e["release"])
             )
+        if several:
+            cells.append("yes" if r.get("front") else "—")
         lines.append("| " + " | ".join(cells) + " |")
     return lines
 
