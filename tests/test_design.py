@@ -301,3 +301,17 @@ def test_the_largest_preload_bound_is_the_force_that_brings_every_tip_down(tmp_p
     assert res["constraints"]["max_preload_kPa"] == pytest.approx(
         res["metrics"]["full_contact_kPa"] / 1.0 - 1.0
     )
+
+
+@pytest.mark.slow
+@needs_optuna
+def test_a_local_dask_cluster_fills_and_confirms_one_study(tmp_path):
+    pytest.importorskip("distributed")
+    from gecko_agents.design import run_design
+
+    spec = load_design(design(tmp_path, BASE.replace("confirm = 0", "confirm = 1")))
+    out = tmp_path / "out"
+    summary = run_design(spec, out, trials=8, workers=2, dask="local", say=lambda s: None)
+    assert 8 <= summary["trials"] <= 9
+    assert summary["best"][0]["engine"]["mean"] > 0
+    assert (out / "runs" / "design_1.toml").is_file()
