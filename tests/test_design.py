@@ -315,3 +315,14 @@ def test_a_local_dask_cluster_fills_and_confirms_one_study(tmp_path):
     assert 8 <= summary["trials"] <= 9
     assert summary["best"][0]["engine"]["mean"] > 0
     assert (out / "runs" / "design_1.toml").is_file()
+
+
+def test_a_search_refuses_a_folder_of_someone_elses_files(tmp_path, capsys):
+    from gecko_agents.cli import main
+
+    mine = tmp_path / "notes"
+    mine.mkdir()
+    (mine / "thesis.tex").write_text("keep")
+    assert main(["design", str(design(tmp_path)), "--out", str(mine)]) == 2
+    assert "thesis.tex" in capsys.readouterr().err
+    assert sorted(p.name for p in mine.iterdir()) == ["thesis.tex"]

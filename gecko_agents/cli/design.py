@@ -65,6 +65,12 @@ def cmd_design(args, extra) -> int:
     except ImportError as err:
         raise UsageError(str(err)) from None
     out = args.out if args.out is not None else checked(Path("designs") / spec.path.stem)
+    from gecko_agents.design.study import check_output
+
+    try:
+        check_output(out)
+    except ValueError as err:
+        raise UsageError(str(err)) from None
     again = [PROG, "design", str(args.designfile)] + (["--quick"] if args.quick else [])
     again += ["--out", str(out)] + (["--storage", args.storage] if args.storage else [])
     print(f"{spec.path}{' (quick)' if spec.quick else ''}: {', '.join(spec.objectives)} over "

@@ -10,7 +10,27 @@ from pathlib import Path
 
 from gecko_agents.design import confirm, parallel, report, search
 
-__all__ = ["run_design", "screen_flags"]
+__all__ = ["run_design", "screen_flags", "check_output", "OUTPUT_FILES"]
+
+OUTPUT_FILES = ("study.db", "trials.csv", "best.json", "report.md", "pareto_front.png",
+                "objectives_vs_parameters.png", "runs")  # fmt: skip
+"""What a design search writes into its output folder (``runs`` a folder of run files)."""
+
+
+def check_output(out: Path) -> None:
+    """Refuse, before any trial, an output folder a search must not write into: a file, or a
+    folder that is neither empty nor a design search's (holding none of :data:`OUTPUT_FILES`),
+    whose files are a user's."""
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"{out}: exists and is not a folder; choose another --out")
+    names = sorted(p.name for p in out.iterdir()) if out.is_dir() else []
+    if names and not set(names) & set(OUTPUT_FILES):
+        shown = ", ".join(names[:5]) + (" …" if len(names) > 5 else "")
+        raise ValueError(
+            f"{out}: is not empty ({shown}) and holds no design search; a search writes "
+            "into a new or empty folder or continues its own: choose another --out"
+        )
 
 
 def screen_flags(trials: list) -> dict:
@@ -68,6 +88,7 @@ def run_design(spec, out, *, trials: int | None = None, storage: str | None = No
     ``best.json``, ``pareto_front.png``, ``objectives_vs_parameters.png``, ``runs/*.toml``
     and ``report.md``. Returns the summary written to ``best.json``."""
     out = Path(out)
+    check_output(out)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     study = _search(spec, out, trials, storage, workers, dask)
