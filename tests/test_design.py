@@ -326,3 +326,28 @@ def test_a_search_refuses_a_folder_of_someone_elses_files(tmp_path, capsys):
     assert main(["design", str(design(tmp_path)), "--out", str(mine)]) == 2
     assert "thesis.tex" in capsys.readouterr().err
     assert sorted(p.name for p in mine.iterdir()) == ["thesis.tex"]
+
+
+@pytest.mark.parametrize(
+    "surface",
+    ['kind = "gaussian"\nsigma_um = 0.2', 'kind = "self_affine"\nsigma_um = 0.2',
+     'kind = "measured"\nfile = "dektak"'],
+)  # fmt: skip
+def test_the_screen_stands_on_the_engines_floor(tmp_path, surface):
+    """A row as long as the engine's meets the heights the engine's tips meet, every seed."""
+    import numpy as np
+
+    from gecko_agents.design.confirm import engine_setup
+    from gecko_agents.design.screen import design_params, row_heights
+    from gecko_agents.model import Model
+
+    text = BASE.replace('kind = "flat"', surface).replace("pillars = 10", "pillars = 5")
+    spec = load_design(design(tmp_path, text))
+    values = {"tip": "flat_punch", "backing": "rigid", "radius_um": 2.0}
+    for i in (0, 1):
+        p, kw, _ = engine_setup(spec, values, i)
+        prof = Model(p, **kw).profile
+        x = (np.arange(5) - 2) * p.array.pitch
+        engine = prof.pad_heights if prof.pad_heights is not None else prof.height_at(x)
+        screen = row_heights(spec, design_params(spec, values, 5), i)
+        np.testing.assert_allclose(screen, engine, rtol=0, atol=1e-12)

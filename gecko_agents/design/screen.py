@@ -1,7 +1,9 @@
 """The screen: a design's objectives and constraints from the package's fast models.
 
 A row of ``test.pillars`` pillars on a rigid backing stands over the surface (the floor drawn
-exactly as the time-stepped engine draws it, :func:`gecko_agents.floor.for_array`), is pressed
+as the time-stepped engine draws it, :func:`gecko_agents.floor.for_array` with the run's seed:
+a row as long as the engine's meets the very heights its tips meet; a longer row draws a longer
+generated floor, whose heights differ), is pressed
 to the test's preload (a pressure on the backing, shared over the row's backing area n·s²) and
 pulled straight off. Per tip kind (:data:`~gecko_agents.design.space.TIP_KINDS`):
 
