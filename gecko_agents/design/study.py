@@ -67,6 +67,15 @@ def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, li
     return confirmed, rows
 
 
+def _versions() -> dict:
+    """The package's and its libraries' versions, Optuna's and the code's fingerprint."""
+    from importlib.metadata import version
+
+    from gecko_agents.provenance import code_fingerprint, versions
+
+    return {**versions(), "optuna": version("optuna"), "code_fingerprint": code_fingerprint()}
+
+
 def _search(spec, out: Path, trials, storage, workers: int, dask):
     """The study filled to its trials, by this process or by ``workers`` workers sharing its
     store (a killed run's cut-off trials in a local file are marked failed once, first)."""
@@ -118,6 +127,7 @@ def run_design(spec, out, *, trials: int | None = None, storage: str | None = No
         "study": search.study_name(spec), "trials": len(done), "screen_s": t_screen,
         "wall_s": time.perf_counter() - t0, "best": rows, "importances": imp,
         "pareto_front": [t.number for t in front], "workers": workers, "dask": dask,
+        "versions": _versions(),
     }  # fmt: skip
     atomic_write_bytes(out / "best.json", json.dumps(summary, indent=1, default=str).encode())
     return summary
