@@ -351,3 +351,45 @@ def test_the_screen_stands_on_the_engines_floor(tmp_path, surface):
         engine = prof.pad_heights if prof.pad_heights is not None else prof.height_at(x)
         screen = row_heights(spec, design_params(spec, values, 5), i)
         np.testing.assert_allclose(screen, engine, rtol=0, atol=1e-12)
+
+
+@pytest.mark.slow
+@needs_optuna
+def test_a_study_killed_mid_trial_resumes_with_no_finished_trial_lost(tmp_path):
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    path = design(tmp_path, BASE.replace("trials = 40", "trials = 100000"))
+    spec = load_design(path)
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "gecko_agents", "design", str(path), "--out", str(out)]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline:
+            time.sleep(0.5)
+            if (out / search.STUDY_DB).exists():
+                try:
+                    if (
+                        len(
+                            search.completed(
+                                search.open_study(spec, out, search.local_storage(out))
+                            )
+                        )
+                        >= 10
+                    ):
+                        break
+                except Exception:  # the store is being created
+                    continue
+        proc.send_signal(signal.SIGKILL)
+    finally:
+        proc.wait(timeout=30)
+    before = search.completed(search.open_study(spec, out, search.local_storage(out)))
+    assert len(before) >= 10
+    kept = {t.number: (t.params, t.values) for t in before}
+    study = search.run_search(spec, out, trials=len(before) + 3)
+    after = {t.number: (t.params, t.values) for t in search.completed(study)}
+    assert len(after) == len(before) + 3
+    assert all(after[n] == v for n, v in kept.items())

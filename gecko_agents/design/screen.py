@@ -5,7 +5,8 @@ as the time-stepped engine draws it, :func:`gecko_agents.floor.for_array` with t
 a row as long as the engine's meets the very heights its tips meet; a longer row draws a longer
 generated floor, whose heights differ), is pressed
 to the test's preload (a pressure on the backing, shared over the row's backing area n·s²) and
-pulled straight off. Per tip kind (:data:`~gecko_agents.design.space.TIP_KINDS`):
+pulled straight off (these laws are elastic and rate-free: the pull speed is the engine's).
+Per tip kind (:data:`~gecko_agents.design.space.TIP_KINDS`):
 
 * a tip with a closed-form release force (flat punch: Kendall's √(8πE*wa³); spatula: the 90°
   peel w·b; Hertz: none) is a linear fibril, the pillar's normal stiffness (eq 20 of the
