@@ -31,6 +31,7 @@ THIRD_PARTY = {
     "pymunk", "numpy", "scipy", "matplotlib", "tqdm",
     "numba", "distributed", "pandas", "SurfaceTopography", "imageio_ffmpeg",
     "PIL",  # Pillow, matplotlib's own dependency: its GIF writer
+    "optuna", "sqlalchemy",  # the design extra (sqlalchemy: Optuna's own dependency)
 }  # fmt: skip
 
 
