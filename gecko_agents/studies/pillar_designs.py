@@ -24,28 +24,36 @@ and 4 % below 2.046π²EI/L² for the others (column ``euler_load_uN`` keeps Eul
 pressed past buckling carries about that load (a little more while the press runs: the
 bending mode grows slowly near the bifurcation).
 
-What the model says (full run, 48 runs, 115 s; the table ``pillar_designs.csv``):
+What the model says (full run, 66 runs, the table ``pillar_designs.csv``):
 
-* The flat punch wins on every floor and at every press: 285–291 kPa of backing, against
-  71–73 kPa for the sphere and 33–35 kPa for the spatula. That is each tip's own pull-off over
-  16 µm²: Kendall's 4.66 µN for a 1.5 µm punch, 1.5πRw = 1.17 µN for the sphere, the film's
-  peel force for the spatula. A punch's whole face bonds; a sphere's contact is a fraction
-  of it (and its a/R = 1.0 here is far outside JKR's a ≪ R: the validity table flags it).
+* The mushroom wins on every floor and at every press: 626–635 kPa of backing, against
+  280–291 kPa for the flat punch, 71–73 kPa for the sphere and 33–35 kPa for the spatula.
+  That is each tip's own pull-off over 16 µm²: σ₀ = 1 MPa over the mushroom's 1.8 µm flange
+  (its rim not singular, it lets go from its centre; an upper bound, see
+  :mod:`gecko_agents.physics.mushroom`), Kendall's 4.66 µN for a 1.5 µm punch, 1.5πRw =
+  1.17 µN for the sphere, the film's peel force for the spatula. A punch's whole face bonds; a
+  sphere's contact is a fraction of it (and its a/R = 1.0 here is far outside JKR's a ≪ R: the
+  validity table flags it).
 * The rough floor (σ = 0.2 µm pads) costs at most 2 %, because each pillar meets its own flat
   pad (eq 28): a punch face is never tilted against its pad, and the pillars are compliant
   enough to reach pads 0.2 µm apart. On the measured scan a 1 % press (0.15 µm) of the
-  shorter pillars leaves some of them off the floor: 116 kPa for the punch, 43 kPa for the
-  sphere. A 5 % press brings them all on.
-* Buckling costs nothing measurable: 0.98–1.00 × the pull-off of the same design pressed below
-  its Euler load. The measured floor's 1.2 × is the partial contact of the 1 % press, not
-  buckling. The punch face stays bonded and flat through the buckle, and the column
-  straightens as it is pulled.
+  shorter pillars leaves some of them off the floor: 116 kPa for the punch, 380 kPa for the
+  mushroom, 43 kPa for the sphere. A 5 % press brings them all on.
+* Buckling costs nothing measurable with the faces held bonded (the default): 0.98–1.00 × the
+  pull-off of the same design pressed below its buckling load. The measured floor's 1.15–1.24 ×
+  is the partial contact of the 1 % press, not buckling. The punch face stays bonded and flat
+  through the buckle, and the column straightens as it is pulled.
 
 Experiments on mushroom pillars report "extremely low pull-off force" once the pillars buckle
 (Yagüe Isla & Kroner 2015, Adv Funct Mater 25:2444, the literature report's row): their
-pillars' ends tilt and peel at the edge when the column buckles. The model's punch face does not
-tilt, so it cannot show that loss; a tilting face is the missing physics, not a parameter to
-tune.
+pillars' ends tilt and peel at the edge when the column buckles. With the faces' edges free to
+open (``contact.edge_opening``, :mod:`gecko_agents.model.face_opening`; the study's
+``pillar_buckling.png``, :mod:`.pillar_buckling`) a round-edged punch loses its whole pull-off
+once its buckled face's edge reaches the toughness, which happens for large pillars first: a
+1.5 µm punch keeps it after a 40 % press, a 15 µm one loses it after 20 %. A mushroom whose
+rim is not singular keeps it at every size, as Paretkar et al.'s (2013) end-flap fibrils do;
+the model does not reproduce a mushroom's loss (a tilted flange's partial contact is not
+modelled).
 
 The tilted face in closed form (``pillar_tilt.png``, table ``pillar_tilt.csv``): a punch face
 bonded at a tilt α, or carrying the moment a lateral load Q puts on it, opens at one edge
@@ -62,16 +70,16 @@ on 400 µm PDMS pillars find the flat tip's pull-off "strongly" tilt dependent a
 mushroom's not, once in full contact (Kroner & Arzt, "Single macropillars as model systems
 for tilt angle dependent adhesion measurements", abstract read; journal details not checked):
 the same trend, not a quantitative comparison (their tilt is of the probe before contact).
-The dynamic law does not use this yet: the elastica holds the bonded face rigidly and its
-moment does not reach the contact law's detachment. What it would change is measured here:
-each flat-punch run logs, by the same criterion, the largest K/K_c its faces' edges reach while
-pressed and the face moment's share 3|M|/a over F_K while pulled (:class:`EdgeLog`, table
-columns ``edge_K_over_Kc_pressed`` and ``moment_share_pulled``). Full run: pressed past
-buckling (20 % of L) the edge reaches K/K_c = 0.28–0.37 on the three floors (G ≤ 0.14 w);
-below Euler's load it stays closed (K ≤ 0; 0.08–0.11 for L/2r = 10 pressed 5 %, just
-past its load). Pulled, the moment adds at most 0.07 % of F_K. So the clamped face's moment
-would not open the edge in these straight press-pulls, and the buckling loss of the
-experiments is not this moment.
+The study's runs hold the bonded face rigidly (``contact.edge_opening`` off), so the moment
+does not reach the detachment; what it would change is measured here: each flat-punch run logs,
+by the same criterion, the largest K/K_c its faces' edges reach while pressed and the face
+moment's share 3|M|/a over F_K while pulled (:class:`EdgeLog`, table columns
+``edge_K_over_Kc_pressed`` and ``moment_share_pulled``). Full run: pressed past buckling (20 %
+of L) the edge reaches K/K_c = 0.34–0.39 on the three floors (G ≤ 0.15 w); below its buckling
+load it stays closed (K ≤ 0; 0.09–0.11 for L/2r = 10 pressed 5 %, just past its load). Pulled,
+the moment adds at most 0.02 % of F_K. So the clamped face's moment does not open the edge of
+these 1.5 µm pillars in straight press-pulls; it opens that of larger ones
+(:mod:`.pillar_buckling`).
 
 The flat-faced tips have an interface strength σ₀ = 1 MPa (an assumption, :data:`SIGMA0`),
 and the full run adds a mushroom tip (flange 1.2 × the stalk, sharp 45° rim, no defect: it lets
@@ -102,6 +110,7 @@ from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import columns, punch
 from gecko_agents.physics.elastica import Elastica
+from gecko_agents.studies import pillar_buckling as pb
 from gecko_agents.studies import pillar_splitting as ps
 from gecko_agents.studies.common import (
     command_line,
@@ -131,10 +140,12 @@ def config(quick: bool) -> dict:
     if quick:
         return {"tips": ["sphere", "flat_punch"], "aspect": [5.0], "floors": ["flat"],
                 "strains": [0.01, 0.2], "split_radii": [0.3, 3.0],
-                "split_designs": ps.QUICK_DESIGNS}  # fmt: skip
+                "split_designs": ps.QUICK_DESIGNS, "buckling_radii": [15.0],
+                "buckling_strains": [0.01, 0.2]}  # fmt: skip
     return {"tips": ["sphere", "flat_punch", "spatula", "mushroom"], "aspect": [5.0, 10.0],
             "floors": list(FLOORS), "strains": [0.01, 0.05, 0.2],
-            "split_radii": [0.2, 0.6, 2.0, 6.0], "split_designs": None}  # fmt: skip
+            "split_radii": [0.2, 0.6, 2.0, 6.0], "split_designs": None,
+            "buckling_radii": [1.5, 5.0, 15.0], "buckling_strains": [0.01, 0.2, 0.4]}  # fmt: skip
 
 
 def euler_load(tip: str, L: float) -> float:
@@ -346,8 +357,8 @@ def section(rows, lines) -> str:
         "(`pillar_designs/pillar_designs.png`, table `pillar_designs.csv`).", "",
         *[f"- {line}" for line in lines], "",
         "Pull-off after a preload that buckled the pillars, over that below it "
-        "(experiments on PDMS pillars lose adhesion there; the model's punch face does not "
-        "tilt, see the study's docstring):", "", *kept, "",
+        "(experiments on PDMS pillars lose adhesion there; these runs hold the faces bonded, "
+        "see `pillar_buckling.png` for faces free to open):", "", *kept, "",
         "The punch faces' edges by the tilted-punch criterion (K/K_c = (3|M|/a − P)/F_K, "
         "M the clamped face's moment; 1 would open the edge):", "", *edges, "", "",
     ])  # fmt: skip
@@ -362,7 +373,8 @@ def tilt_section(tilt) -> str:
              f"lateral load of {r['lateral_uN']:.3g} µN" for r in gone]  # fmt: skip
     return "\n".join([
         "Flat punch with a tilted face or a lateral load (closed form, "
-        "`pillar_designs/pillar_tilt.png`; F = F_K − 3|M|/a, not yet in the dynamic law):",
+        "`pillar_designs/pillar_tilt.png`; F = F_K − 3|M|/a, in the dynamic law with "
+        "contact.edge_opening):",
         "", *lines, "",
     ])  # fmt: skip
 
@@ -424,6 +436,9 @@ def main(argv=None) -> dict:
     split += ps.model_rows(BASE, cfg["split_radii"], SPEED, cfg["split_designs"])
     write_table(out / "pillar_splitting.csv", split)
     ps.draw_splitting(split, BASE, out)
+    buck = pb.buckling_rows(BASE, cfg["buckling_radii"], cfg["buckling_strains"], SPEED)
+    write_table(out / "pillar_buckling.csv", buck)
+    pb.draw_buckling(buck, out)
     lines = winners(rows)
     results = {"winners": lines, "runtime_s": time.perf_counter() - t0}
     write_json(out / "metadata.json", {
@@ -433,7 +448,12 @@ def main(argv=None) -> dict:
         "results": results,
     })  # fmt: skip
     (out / "section.md").write_text(
-        section(rows, lines) + tilt_section(tilt) + "\n" + ps.splitting_section(split, BASE)
+        section(rows, lines)
+        + tilt_section(tilt)
+        + "\n"
+        + ps.splitting_section(split, BASE)
+        + "\n"
+        + pb.buckling_section(buck)
     )
     print("\n".join(f"{NAME}: {line}" for line in lines))
     print(f"{NAME}: {len(rows)} runs, {results['runtime_s']:.0f} s → {out}")
