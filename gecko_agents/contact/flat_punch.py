@@ -65,6 +65,10 @@ class FlatPunch(ContactLaw):
         self.w, self.E_star = w, E
         self.sigma0 = float(contact.sigma0)
         self.set_pull_off(float(flaw_tolerance.punch_pull_off(a, w, E, self.sigma0)))
+        # A face moment moves the detachment (gecko_agents.model.face_opening) where asked:
+        # the edge lets go at 3|M|/a − P = edge_force [µN].
+        self.edge_opening = bool(contact.edge_opening)
+        self.edge_force = self.pull_off_force
         self.attach_overlap = 0.0
         self.jump_radius = a
         self.a0 = a

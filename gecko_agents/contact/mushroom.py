@@ -45,3 +45,4 @@ class MushroomTip(FlatPunch):
         if not math.isfinite(force):  # refused by the parameters; kept as a guard
             raise ValueError(f"{self.label}: no mode lets go ({modes})")
         self.set_pull_off(force)
+        self.edge_force = modes["edge"]  # inf where the rim is not singular: no edge opening

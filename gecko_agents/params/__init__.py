@@ -109,6 +109,12 @@ class Contact:
         (``tip = "flat_punch"`` or ``"mushroom"``) pulls off at no more than its strength over
         its area (flaw tolerance; Tang, Hui & Glassmaker 2005, J R Soc Interface 2:505;
         :mod:`gecko_agents.physics.flaw_tolerance`).
+    edge_opening : ``False`` (default): a bonded flat face lets go by its normal force alone.
+        ``True``: the moment a bonded face of an elastica pillar carries moves its detachment,
+        the edge opening where 3|M|/a − P reaches the edge-mode pull-off, under tension or
+        compression (a buckled pillar), and the face bonds again only after its tip has left
+        the floor (:mod:`gecko_agents.model.face_opening`; Paretkar et al. 2013, J R Soc
+        Interface 10:20130171). Flat-faced tips with ``mechanics = "elastica"`` only.
     """
 
     R: float = 4.0
@@ -125,9 +131,12 @@ class Contact:
     detachment: str = "fold"
     shear_coupling: str = "none"
     sigma0: float = math.inf
+    edge_opening: bool = False
 
     def __post_init__(self):
         _check(self, "sigma0", 0.0, math.inf, hi_open=False)
+        if not isinstance(self.edge_opening, bool):
+            raise ValueError(f"Contact.edge_opening = {self.edge_opening!r} must be True or False")
         if self.shear_coupling not in SHEAR_COUPLINGS:
             raise ValueError(
                 f"Contact.shear_coupling = {self.shear_coupling!r} must be one of {SHEAR_COUPLINGS}"

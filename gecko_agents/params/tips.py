@@ -59,6 +59,12 @@ def check_tip_options(p) -> None:
             f"Contact.sigma0 = {sigma0!r} acts on a flat face (tip in {FLAT_FACE_TIPS}); "
             f"with tip = {p.tip!r} it must be inf"
         )
+    if p.contact.edge_opening and (p.tip not in FLAT_FACE_TIPS or p.mechanics != "elastica"):
+        raise ValueError(
+            f"Contact.edge_opening = True needs a flat face on an elastica pillar (tip in "
+            f"{FLAT_FACE_TIPS}, mechanics = 'elastica'); got tip = {p.tip!r}, "
+            f"mechanics = {p.mechanics!r}"
+        )
     if p.tip == "mushroom":
         _check_mushroom(p.contact, p.seta, p.mushroom)
 

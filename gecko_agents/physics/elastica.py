@@ -195,11 +195,11 @@ class Elastica:
         return phi[:, -1] - (u @ self.G[0].T)[:, -1]
 
     # ------------------------------------------------------------------ Newton
-    def _system(self, phi, s, lam, held):
+    def _system(self, phi, s, lam, held, clamp):
         N, n = phi.shape
         c, sn = np.cos(phi), np.sin(phi)
         ell = (self.ell + s / n)[:, None]
-        u = self._joints(phi, self.clamp)
+        u = self._joints(phi, clamp)
         grad = np.where(held[:, None], u @ (self.D.T @ self.Ks[1]).T,
                         u[:, :n] @ (self.D[:n].T @ self.Ks[0]).T)  # fmt: skip
         Jx, Jy = -ell * sn, ell * c  # ∂r/∂φ_j
@@ -227,13 +227,9 @@ class Elastica:
         held = np.broadcast_to(np.asarray(held, bool), (len(d),)).copy()
         phi, s, lam = self.phi.copy(), self.stretch.copy(), self.lam.copy()
         gone, new = self.held & ~held, held & ~self.held
-        if gone.any():  # what the clamp stored: the held chain's energy over the free one's
-            u = self._joints(phi[gone], self.clamp[gone])
-            self.released = float(np.sum(self._bending(u, True) - self._bending(u, False)))
-        else:
-            self.released = 0.0
+        self.released = self._release(gone, phi, s, lam) if gone.any() else 0.0
         self.clamp[new] = self.section_angle(phi[new]) if new.any() else self.clamp[new]
-        steps, todo = self._newton(phi, s, lam, d, held)
+        steps, todo = self._newton(phi, s, lam, d, held, self.clamp)
         if todo.any():
             self._refuse(d, np.flatnonzero(todo))
         self.iterations = steps
@@ -242,7 +238,25 @@ class Elastica:
         self._last = (d.copy(), F, U)
         return F, U
 
-    def _newton(self, phi, s, lam, d, held):
+    def _release(self, gone, phi, s, lam) -> float:
+        """Energy [pJ] the chains of setae ``gone`` let go as their face's clamp releases:
+        the held chain's energy over that of the free chain relaxed with its end where it
+        stood at the last solve (the links are massless: the chain jumps to its new
+        equilibrium, booked as dissipated); updates ``phi``, ``s``, ``lam`` to that shape."""
+        clamp = self.clamp[gone]
+        ph, st, lm = phi[gone], s[gone], lam[gone]
+        before = self._bending(self._joints(ph, clamp), True) + 0.5 * self.Ka * st * st
+        if self._last is not None:
+            free = np.zeros(len(ph), bool)
+            todo = self._newton(ph, st, lm, self._last[0][gone], free, clamp)[1]
+            if not todo.any():
+                phi[gone], s[gone], lam[gone] = ph, st, lm
+            else:  # not relaxed: the clamp's own energy only
+                ph, st = phi[gone], s[gone]
+        after = self._bending(self._joints(ph, clamp), False) + 0.5 * self.Ka * st * st
+        return float(np.sum(before - after))
+
+    def _newton(self, phi, s, lam, d, held, clamp):
         """Newton's iterations on (φ, s, λ) in place; returns their count and the setae still
         out of tolerance."""
         n = self.n
@@ -250,7 +264,7 @@ class Elastica:
         x_tol = 1e-12 * self.L
         todo = np.ones(len(d), bool)
         for steps in range(_MAX_ITER):  # noqa: B007
-            res, A = self._system(phi, s, lam, held)
+            res, A = self._system(phi, s, lam, held, clamp)
             res[:, n + 1 :] = -(self._end(phi, s)[0] - d)
             err_f = np.abs(res[:, : n + 1]).max(1)
             err_x = np.abs(res[:, n + 1 :]).max(1)
