@@ -45,8 +45,8 @@ def bounds(law: ContactLaw) -> dict:
 
 def contact_law(params) -> ContactLaw:
     """The contact law of a :class:`gecko_agents.params.SetaArray`: ``params.tip``, with crack
-        kinetics (:class:`RateJKRSphere`) for a sphere of finite ``contact.crack_speed`` and the
-        Savkoor–Briggs coupling (:class:`ShearedJKRSphere`) for ``contact.shear_coupling``; the
+    kinetics (:class:`RateJKRSphere`) for a sphere of finite ``contact.crack_speed`` and the
+    Savkoor–Briggs coupling (:class:`ShearedJKRSphere`) for ``contact.shear_coupling``; the
     spatula and the mushroom take their own parameter groups as well."""
     if params.tip == "sphere" and math.isfinite(getattr(params.contact, "crack_speed", math.inf)):
         return RateJKRSphere(params.contact)

@@ -9,7 +9,7 @@ crack's λ = 1/2). The wedge of angle α lies between the floor, θ = 0, and its
 
 Solved here directly, not read from a table: with u = r^λ(f, g), Hooke's law in plane strain
 and the two equilibrium equations, the state y = (f, g, S_θθ, S_rθ) (the traction on a ray
-over r^(λ−1)) obeys a linear ODE y′ = M(λ, ν)·y (:func:`_state_matrix`); the free face asks
+over r^(λ−1)) obeys a linear ODE y′ = M(λ, ν)·y (``_state_matrix``); the free face asks
 the traction at θ = α to vanish for a nonzero start satisfying the floor's condition, a 2 × 2
 determinant whose roots in λ are found by bracketing and Brent's method (scipy). Checks in
 ``tests/test_tips.py``: the bonded incompressible 90° corner has λ = 0.5946 (r^−0.405, the
