@@ -103,7 +103,13 @@ def array_modulus(
     return {"value": e, "text": f"{e:.3g} kPa"}
 
 
-CLOSED_FORM = {"seta_stiffness", "seta_anisotropy", "seta_vertical_along", "array_modulus"}
+CLOSED_FORM = {
+    "seta_stiffness",
+    "seta_anisotropy",
+    "seta_vertical_along",
+    "array_modulus",
+    "tang_pdms_fibril",
+}
 """Rows whose ours is a closed form: their sensitivity is computed in ``--quick`` too, at every
 corner of their ranged parameters together."""
 
@@ -472,6 +478,19 @@ def kroner_sphere_over_flat(quick: bool = True) -> dict:
     }
 
 
+def tang_pdms_fibril(quick: bool = True) -> dict:
+    """Pull-off stress over σ0 of Tang et al.'s (2005) flaw-sensitive PDMS fibril (E = 1 MPa,
+    ν = 0.5, w = 0.05 µN/µm, σ0 = 0.1 MPa, a = 100 µm) by the package's flat-punch law with an
+    interface strength (:func:`gecko_agents.physics.flaw_tolerance.punch_pull_off`, the law the
+    engine's punch lets go by)."""
+    from gecko_agents.physics import flaw_tolerance as ft
+
+    a, w, sigma0, E_star = 100.0, 0.05, 0.1, 1.0 / (1.0 - 0.5**2)
+    ratio = float(ft.punch_pull_off(a, w, E_star, sigma0)) / (math.pi * a * a * sigma0)
+    chi = float(ft.flaw_parameter(a, sigma0, E_star, w))
+    return {"value": ratio, "text": f"{ratio:.3f} (χ = {chi:.2f}; Kendall's force, below σ0·πa²)"}
+
+
 OURS = {
     f.__name__: f
     for f in (
@@ -482,7 +501,7 @@ OURS = {
         kroner_flat_preload, kroner_sphere_preload, kroner_flat_misaligned_preload,
         kroner_flat_more_misaligned,
         kroner_sphere_over_flat, greiner_radius, greiner_aspect, buckled_preload,
-        buckled_short_pillar, kendall_punch, two_heights,
+        buckled_short_pillar, kendall_punch, two_heights, tang_pdms_fibril,
     )
 }  # fmt: skip
 """The functions a row's ``ours`` may name."""
