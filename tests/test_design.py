@@ -8,7 +8,7 @@ import pytest
 
 from gecko_agents.design import load_design, search
 from gecko_agents.design.space import KPA
-from gecko_agents.physics import jkr, punch
+from gecko_agents.physics import flaw_tolerance, jkr, punch
 from gecko_agents.runfiles.schema import RunFileError
 
 needs_optuna = pytest.mark.skipif(
@@ -393,3 +393,24 @@ def test_a_study_killed_mid_trial_resumes_with_no_finished_trial_lost(tmp_path):
     after = {t.number: (t.params, t.values) for t in search.completed(study)}
     assert len(after) == len(before) + 3
     assert all(after[n] == v for n, v in kept.items())
+
+
+@needs_optuna
+def test_with_an_interface_strength_the_best_punch_is_flaw_tolerant(tmp_path):
+    """With σ₀ finite a punch below the flaw-tolerant radius a_cr = 8E*w/(πσ₀²) lets go at
+    σ₀·πa² (Tang, Hui & Glassmaker 2005), so its pull-off per area is σ₀ times the fill
+    fraction at every such radius: the best design sits at or below a_cr and reaches σ₀·f."""
+    sigma0, f = 0.3, 0.2
+    a_cr = float(flaw_tolerance.flaw_tolerant_radius(sigma0, E_star(), W))
+    assert 1.0 < a_cr < 20.0
+    text = BASE.replace("radius_um = [1.0, 5.0]", "radius_um = [1.0, 20.0]").replace(
+        "[material]", f"[material]\nsigma0_MPa = {sigma0}"
+    )
+    best = best_trial(load_design(design(tmp_path, text)), tmp_path)
+    assert best.params["radius_um"] <= a_cr
+    assert best.values[0] == pytest.approx(sigma0 * f / KPA, rel=1e-6)
+
+
+def test_the_interface_strength_defaults_to_none(tmp_path):
+    spec = load_design(design(tmp_path))
+    assert spec.material["sigma0_MPa"] == math.inf

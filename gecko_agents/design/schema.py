@@ -20,6 +20,7 @@ from gecko_agents.design.space import (
     EXCLUSIVE_KNOBS,
     KNOBS,
     MATERIAL,
+    MATERIAL_DEFAULTS,
     OBJECTIVES,
     TIP_KINDS,
     overrides_of,
@@ -102,7 +103,8 @@ def base_params(spec: DesignSpec) -> SetaArray:
     """The parameter set every design of ``spec`` starts from: the paper's array with the
     design file's material, elastica pillars and the surface's floor statistics."""
     m, s = spec.material, spec.surface
-    over = {param: m[key] for key, (_, param) in MATERIAL.items()}
+    # σ₀ acts on a flat face only: set with the design's tip (screen.design_params)
+    over = {param: m[key] for key, (_, param) in MATERIAL.items() if param != "contact.sigma0"}
     over |= {"mechanics": "elastica", "floor.sigma": 0.0}
     if spec.test["probe"] == "sphere":
         over |= {"floor.kind": "probe", "floor.probe_radius": spec.test["probe_radius_um"]}
@@ -129,6 +131,9 @@ def _material(ctx: Ctx, t: dict) -> dict:
     ctx.keys("[material]", t, MATERIAL)
     out = {}
     for key, ((lo, hi), _) in MATERIAL.items():
+        if key not in t and key in MATERIAL_DEFAULTS:
+            out[key] = MATERIAL_DEFAULTS[key]
+            continue
         if key not in t:
             raise ctx.error("[material]", f"missing key {key!r} (range [{lo:g}, {hi:g}])")
         out[key] = _number(ctx, f"[material] {key}", t[key], lo, hi)

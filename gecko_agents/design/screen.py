@@ -32,6 +32,7 @@ import numpy as np
 from gecko_agents import floor
 from gecko_agents.design.space import KPA, TIP_KINDS, measured_profile, overrides_of
 from gecko_agents.params import SetaArray
+from gecko_agents.params.tips import FLAT_FACE_TIPS
 from gecko_agents.physics import beam, fibril_probe
 
 __all__ = ["design_params", "row_heights", "evaluate", "euler_load", "measured_profile"]
@@ -43,7 +44,10 @@ def design_params(spec, values: dict, n: int | None = None) -> SetaArray:
     from gecko_agents.design.schema import base_params
 
     values = {**spec.fixed, **values}
-    p = base_params(spec).replace(**overrides_of(values))
+    over = overrides_of(values)
+    if over["tip"] in FLAT_FACE_TIPS:  # the interface strength acts on a flat face
+        over["contact.sigma0"] = spec.material["sigma0_MPa"]
+    p = base_params(spec).replace(**over)
     return p.replace(**{"array.count": int(n or spec.test["pillars"])})
 
 
@@ -122,7 +126,8 @@ def pull_off(p: SetaArray, heights: np.ndarray, preload: float) -> tuple[float, 
         return float(res.pull_off), float(np.max(res.per_seta["force"]))
     k = fibril_stiffness(p)
     d_max = fibril_probe.depth_for_preload(preload, h, k)
-    F_r = kind.release_force(p.contact.R, p.contact.work_of_adhesion, p.contact.E_star)
+    c = p.contact
+    F_r = kind.release_force(c.R, c.work_of_adhesion, c.E_star, c.sigma0)
     return fibril_probe.probe_pull_off(h, k, F_r, d_max), k * d_max
 
 

@@ -15,11 +15,12 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from gecko_agents.params.checks import MODULUS_RANGE, SURFACE_ENERGY_MAX
-from gecko_agents.physics import punch
+from gecko_agents.physics import flaw_tolerance, punch
 
 __all__ = [
     "KPA",
     "MATERIAL",
+    "MATERIAL_DEFAULTS",
     "TipKind",
     "TIP_KINDS",
     "Knob",
@@ -40,10 +41,14 @@ MATERIAL: dict[str, tuple[tuple[float, float], str]] = {
     "E_MPa": (MODULUS_RANGE, "contact.E1"),
     "nu": ((0.0, 0.5), "contact.nu1"),
     "w_J_per_m2": ((0.0, 2 * SURFACE_ENERGY_MAX), "contact.w"),
+    "sigma0_MPa": ((0.0, math.inf), "contact.sigma0"),
 }
 """``[material]`` key → (allowed range, the :class:`~gecko_agents.params.SetaArray`
-parameter it sets). A material property a new tip law needs (an interface strength) is one
-entry here."""
+parameter it sets). A material property a new tip law needs is one entry here."""
+
+MATERIAL_DEFAULTS = {"sigma0_MPa": math.inf}
+"""``[material]`` keys a design file may leave out, with the value they take: the interface
+strength σ₀ [MPa], unbounded (Kendall's punch) unless given."""
 
 
 @dataclass(frozen=True)
@@ -53,7 +58,8 @@ class TipKind:
     Attributes
     ----------
     tip : ``SetaArray.tip`` of the law (:data:`gecko_agents.params.TIPS`).
-    release_force : (tip radius a [µm], w [µN/µm], E* [MPa]) → the force [µN] at which one tip
+    release_force : (tip radius a [µm], w [µN/µm], E* [MPa], σ₀ [MPa]) → the force [µN] at
+        which one tip
         lets go under a straight pull, from the law's closed form; None where the screen uses
         the quasi-static solver instead (the JKR sphere, whose release depends on the
         pillar's stiffness, :mod:`gecko_agents.quasistatic`).
@@ -79,21 +85,22 @@ ALL_FLOORS = ("measured", "gaussian", "self_affine", "flat", "probe")
 TIP_KINDS: dict[str, TipKind] = {
     "flat_punch": TipKind(
         "flat_punch",
-        lambda a, w, E: float(punch.kendall_pull_off(a, w, E)),
+        lambda a, w, E, s0: float(flaw_tolerance.punch_pull_off(a, w, E, s0)),
         lambda a, E: float(punch.punch_stiffness(a, E)),
         4.0,
         ALL_FLOORS,
-        "Kendall 1971, J Phys D 4:1186 (pull-off); Sneddon 1965, Int J Eng Sci 3:47",
+        "Kendall 1971, J Phys D 4:1186 (pull-off), capped by σ₀ (Tang, Hui & Glassmaker 2005, "
+        "J R Soc Interface 2:505); Sneddon 1965, Int J Eng Sci 3:47",
     ),
     "sphere": TipKind(
         "sphere", None, None, 2.046, ALL_FLOORS, "Johnson, Kendall & Roberts 1971, Proc R Soc A"
     ),
     "hertz": TipKind(
-        "hertz", lambda a, w, E: 0.0, None, 2.046, ALL_FLOORS, "Hertz 1882 (no adhesion)"
+        "hertz", lambda a, w, E, s0: 0.0, None, 2.046, ALL_FLOORS, "Hertz 1882 (no adhesion)"
     ),
     "spatula": TipKind(
         "spatula",
-        lambda a, w, E: 2.0 * a * w,  # Kendall's 90° peel of a film as wide as the pillar
+        lambda a, w, E, s0: 2.0 * a * w,  # Kendall's 90° peel of a film as wide as the pillar
         None,
         2.046,
         ("gaussian", "flat"),
