@@ -96,6 +96,11 @@ class Backing:
         _check(self, "misalignment_deg", -10.0, 10.0, lo_open=False, hi_open=False)
         _check(self, "leader_arm", 0.0, 1e6, lo_open=False, hi_open=False)
         _check(self, "peel_angle_deg", 0.0, 180.0)
+        if self.leader_arm and self.kind != "elastic":
+            raise ValueError(
+                f"Backing.leader_arm = {self.leader_arm!r} µm needs kind = 'elastic' (the rigid "
+                f"plate has no strip to extend), got kind = {self.kind!r}"
+            )
         if self.leader_arm and (self.drive != "peel_end" or self.misalignment_deg):
             raise ValueError(
                 f"Backing.leader_arm = {self.leader_arm!r} µm needs Backing.drive = 'peel_end' "
