@@ -511,7 +511,7 @@ def _runs_implicit(case: str) -> bool:
     from gecko_agents.model.implicit import check_integrator
     from gecko_agents.params import PAPER_TABLE1
 
-    default = Model.__init__.__kwdefaults__["integrator"]
+    default = Numerics().integrator
     params = PAPER_TABLE1.replace(**WP_CASES[case][0])
     return check_integrator(default, "batch", params) == "implicit"
 

@@ -21,6 +21,12 @@ __all__ = [
 ]
 
 
+RUNNER = "the runner's stepped force extremes (gecko_agents.model.runner)"
+TIME_STEPPING = "documentation, explanation, 'Time stepping'"
+NEIGHBOURS = "gecko_agents.diagnostics.resolution.neighbour_distance"
+CURVATURE = "Johnson 1985, Contact Mechanics, §4.2 (two spheres: R_eff = R·R_p/(R + R_p))"
+
+
 def _peak(force_lo: float, force_hi: float) -> float:
     """The run's peak force [µN]: the most tensile if any tension, else the most compressive."""
     return force_lo if force_lo < 0 else force_hi
@@ -37,11 +43,11 @@ def records(history) -> tuple:
     stepped = history.meta.get("stepped_force_normal_range_uN")
     f = np.asarray(history["force_normal_uN"], dtype=float)
     if not stepped or not len(f):
-        return None, "not judged: the run did not keep its stepped force range", "", False
+        return None, "not judged: the run did not keep its stepped force range", RUNNER, False
     if stepped[0] < 0 and not len(history.detachments.get("seta", [])):
         # tension with no tip let go: a jump-in's first step (−8/9 Fc for a JKR sphere), not a
         # pull-off; judged once the run pulls a tip off
-        return None, "not judged: no tip let go (the tension is not a pull-off)", "", False
+        return None, "not judged: no tip let go (the tension is not a pull-off)", RUNNER, False
     peak = _peak(*stepped)
     recorded = float(f.min()) if peak < 0 else float(f.max())
     value = abs(peak - recorded) / abs(peak) if peak else 0.0
@@ -50,7 +56,7 @@ def records(history) -> tuple:
         f"happened (record_every = {history.meta.get('record_every')} steps): numbers read off "
         "the series are off by as much; record more often (record_every)"
     )
-    return value, meaning, "the runner's stepped force extremes (gecko_agents.model.runner)", True
+    return value, meaning, RUNNER, True
 
 
 def release_travel_scale(params, law) -> float:
@@ -76,14 +82,14 @@ def release_step(history, law) -> tuple:
     scale = release_travel_scale(history.params, law)
     applies = bool(travel) and scale > 0 and math.isfinite(scale)
     if not applies:
-        return None, "not judged: no tip let go, or the tip has no pull-off", "", False
+        return None, "not judged: no tip let go, or the tip has no pull-off", TIME_STEPPING, False
     meaning = (
         f"plate travel {travel:.3g} µm of the longest step in which a tip let go, over the "
         f"{scale:.3g} µm over which a tip's force rises from zero to its pull-off Fc·(1/Ky + "
         "1/k0): a release is resolved to one step, so the pull-off is off by about this "
         "ratio; shorten dt (or event_dt) or slow the plate"
     )
-    return travel / scale, meaning, "docs/physics.md 'Time stepping'", True
+    return travel / scale, meaning, TIME_STEPPING, True
 
 
 def _point_segment(p, a, b) -> np.ndarray:
@@ -115,14 +121,14 @@ def pillars_meet(history) -> tuple:
     that could not be there."""
     gap = history.meta.get("min_neighbour_distance_um")
     if gap is None or not math.isfinite(gap):
-        return None, "not judged: one seta, or not an elastica", "", False
+        return None, "not judged: one seta, or not an elastica", NEIGHBOURS, False
     d = 2.0 * history.params.seta.r
     meaning = (
         f"neighbouring centre lines came {gap:.3g} µm apart, against the pillars' diameter "
         f"{d:.3g} µm: below 1 they pass through each other (no pillar–pillar contact in the "
         "model); space them wider (array.pitch) or press less"
     )
-    return gap / d, meaning, "gecko_agents.diagnostics.resolution.neighbour_distance", True
+    return gap / d, meaning, NEIGHBOURS, True
 
 
 def probe_curvature(history, law) -> tuple:
@@ -136,7 +142,7 @@ def probe_curvature(history, law) -> tuple:
     """
     p = history.params
     if p.floor.kind != "probe":
-        return None, "not judged: the floor is not a probe", "", False
+        return None, "not judged: the floor is not a probe", CURVATURE, False
     Rp, R = float(p.floor.probe_radius), float(p.contact.R)
     if law.flat_face:
         sag = R * R / (2.0 * Rp)
@@ -146,10 +152,10 @@ def probe_curvature(history, law) -> tuple:
             f"{R:g} µm, against its snap-off overlap {stroke:.3g} µm: the face law takes the "
             "probe as flat under it; use a larger probe or smaller faces"
         )
-        return sag / stroke, meaning, "gecko_agents.diagnostics.resolution", True
+        return sag / stroke, meaning, CURVATURE, True
     meaning = (
         f"tip radius {R:g} µm over probe radius {Rp:g} µm: the tip law uses R where two "
         "spheres in contact act with R_eff = R·R_p/(R + R_p), so a pull-off is off by about "
         "this ratio"
     )
-    return R / Rp, meaning, "Johnson 1985, Contact Mechanics, §4.2", True
+    return R / Rp, meaning, CURVATURE, True
