@@ -117,7 +117,7 @@ def test_pillar_row_is_the_quasi_static_layer_model(t):
     """Flat-punch pillars on a layer, pressed to 12 µN and pulled at 0.01 µm/µs: the
     engine's pull-off is the event-driven quasi-static model's with the same layer
     compliance (each pillar a spring Ka + punch in series, letting go at Kendall's F_r)
-    within 1 % (measured: 0.1–0.25 %)."""
+    within 0.1 % (measured: 0.003–0.006 %, the largest tensile force over every step)."""
     from gecko_agents.physics import fibril_probe_halfspace as halfspace
     from gecko_agents.physics import punch
     from gecko_agents.studies.probe_test import PILLARS, fibril_stiffness
@@ -133,5 +133,5 @@ def test_pillar_row_is_the_quasi_static_layer_model(t):
     F_r = float(punch.kendall_pull_off(c.R, c.work_of_adhesion, c.E_star))
     C = layer.row_compliance(m.world.root_dx, t, p.backing.E_b, p.backing.nu_b, pitch, pitch)
     quasi = halfspace.probe_test(np.zeros(n), C + np.eye(n) / fibril_stiffness(p), F_r, 12.0)
-    assert -float(np.min(h["plate_force_y_uN"])) == pytest.approx(quasi.pull_off, rel=0.01)
+    assert h.peak_pull_off == pytest.approx(quasi.pull_off, rel=1e-3)
     assert quasi.pull_off < n * F_r  # the layer shares the load unequally
