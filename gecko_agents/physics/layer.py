@@ -23,8 +23,8 @@ For an isotropic layer it depends on the wave vector's length only, so it is als
 **Limits.** Thick (qt → ∞): g → 1, the half-space's 2/(E*q) (Johnson 1985, Contact Mechanics,
 §13.2: ŵ = 2p̂/(E*q) for a wavy pressure). Thin (qt → 0, ν < ½): G → t/M, a bed of
 independent springs of the confined (oedometric) modulus M = E(1 − ν)/((1 + ν)(1 − 2ν))
-(:func:`confined_modulus`; a laterally confined column, Timoshenko & Goodier 1970, Theory of
-Elasticity, §84's uniaxial strain), valid for wavelengths 2π/q ≫ t/√(1 − 2ν): G =
+(:func:`confined_modulus`; λ + 2μ, the stiffness of a laterally confined column in uniaxial
+strain, and the q → 0 limit of the expression above), valid for wavelengths 2π/q ≫ t/√(1 − 2ν): G =
 (t/M)·[1 + O((qt)²/(1 − 2ν))]. Incompressible (ν = ½): M is infinite and the thin layer
 is not a bed of springs but squeezes sideways, G → q²t³/(3μ) (μ = E/3; the limit of the
 expression above, the lubrication form w = −(t³/3μ)∇²p of a thin bonded incompressible
@@ -93,9 +93,9 @@ def contact_modulus(modulus: float, poisson: float) -> float:
 
 
 def confined_modulus(modulus: float, poisson: float) -> float:
-    """Confined (oedometric) modulus M = E(1 − ν)/((1 + ν)(1 − 2ν)) [MPa]: the stress per
-    strain of a column that cannot expand sideways (Timoshenko & Goodier 1970, Theory of
-    Elasticity, §84, uniaxial strain); ``inf`` at ν = ½ (incompressible).
+    """Confined (oedometric) modulus M = λ + 2μ = E(1 − ν)/((1 + ν)(1 − 2ν)) [MPa]: the
+    stress per strain of a column that cannot expand sideways (uniaxial strain of Hooke's law
+    in Lamé's constants); ``inf`` at ν = ½ (incompressible).
 
     Parameters
     ----------

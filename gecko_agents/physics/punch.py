@@ -152,9 +152,12 @@ def tilted_punch_pressure(r, theta, P, M, a):
 def plane_punch_pressure(x, a, P):
     """Pressure under a rigid flat punch of half-width a pressed into a half-space in plane
     strain by a force P per length [force/length²], compressive positive:
-    p(x) = P/(π√(a² − x²)) for |x| < a (Sadowsky 1928; Johnson 1985, Contact Mechanics,
-    §2.8, eq 2.64): the edge singularity of :func:`tilted_punch_pressure` on a strip. The
-    oracle of load sharing through a thick backing layer (``tests/test_layer.py``).
+    p(x) = P/(π√(a² − x²)) for |x| < a, the classical plane punch problem (Johnson 1985,
+    Contact Mechanics, ch. 2, line loading of a half-space; derived from the singular
+    integral equation of the symmetric load in Wikiversity's "Introduction to
+    Elasticity/Flat punch indentation"): the edge singularity of
+    :func:`tilted_punch_pressure` on a strip. The oracle of load sharing through a thick
+    backing layer (``tests/test_layer.py``).
 
     Parameters
     ----------
