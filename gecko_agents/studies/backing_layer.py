@@ -42,7 +42,9 @@ against the rigid plate's (numpy kernel), measured in one run (``results["step_c
 
 Output: ``backing_layer_field.csv`` (field: probe, E_b, t, pull-off), ``backing_layer_row.csv``
 (engine row), ``backing_layer.png`` (pull-off against t; the release depth over the field,
-thinnest and thickest layer: the detachment front), ``metadata.json`` (with the comparisons).
+thinnest and thickest layer: the detachment front), ``detachment.gif`` (the front running
+over the field as the probe is pulled, thinnest and thickest layer) and ``metadata.json``
+(with the comparisons).
 ``--quick``: a 10×10 field, three thicknesses, one modulus; 8 setae in the row.
 """
 
@@ -91,7 +93,8 @@ def config(quick: bool) -> dict:
 
 
 def field_point(n: int, t: float, E: float, probe: str):
-    """One press and pull of the field; returns (table row, release depths (n, n) [µm])."""
+    """One press and pull of the field; returns (table row, its
+    :class:`~gecko_agents.physics.layer_field.FieldTest`)."""
     f = layer_field.LayerField.from_params(PILLARS, n, thickness=t, modulus=E)
     radius, tilt = PROBES[probe]
     h = layer_field.probe_heights(f, radius, tilt)
@@ -102,7 +105,7 @@ def field_point(n: int, t: float, E: float, probe: str):
     return {"probe": probe, "n": n, "t_um": t, "E_MPa": E, "preload_uN": preload,
             "pull_off_uN": r.pull_off, "pull_off_over_NFr": r.pull_off / N_Fr,
             "attached_max": r.attached_max, "events": len(r.depth),
-            "runtime_s": time.perf_counter() - t0}, r.released_at  # fmt: skip
+            "runtime_s": time.perf_counter() - t0}, r  # fmt: skip
 
 
 def row_point(n: int, t: float | None) -> dict:
@@ -223,8 +226,8 @@ def draw(field, row, maps, cfg, out, comp=()) -> None:
         ax[0, 2].axhline(rigid["pull_off_over_NFc"], color="#1f77b4", ls="--", label="rigid")
         ax[0, 2].legend(fontsize="small")
         ax[0, 2].set_title(f"engine: row of {cfg['row_n']} setae")
-        for a, (t, released) in zip(ax[1, :2], maps.items(), strict=True):
-            im = a.imshow(released.T, origin="lower", cmap="viridis")
+        for a, (t, test) in zip(ax[1, :2], maps.items(), strict=True):
+            im = a.imshow(test.released_at.T, origin="lower", cmap="viridis")
             a.set_title(f"release depth [µm], t = {t:g} µm (flat, aligned)")
             a.set_xlabel("fibre i")
             a.set_ylabel("fibre j")
@@ -232,6 +235,47 @@ def draw(field, row, maps, cfg, out, comp=()) -> None:
         ax[1, 2].axis("off")
         ax[1, 2].text(0.0, 1.0, _comparison_text(comp), va="top", fontsize="small", wrap=True)
         render.save_figure(fig, out / f"{NAME}.png")
+
+
+def animate_front(maps, out, frames: int = 48) -> None:
+    """``detachment.gif``: the fibres still attached (dark) over the field while the probe is
+    pulled, for the thinnest and the thickest layer side by side, each from its preload
+    depth to its last release (flat probe, aligned)."""
+    import matplotlib as mpl
+    from matplotlib.animation import PillowWriter
+    from matplotlib.figure import Figure
+
+    from gecko_agents.output_paths import replace_into
+    from gecko_agents.render.style import atomic_target
+
+    tests = list(maps.items())
+    with mpl.rc_context(render.STYLE_RC):
+        fig = Figure(figsize=(4.0 * len(tests), 4.0), layout="constrained")
+        axes = np.atleast_1d(fig.subplots(1, len(tests)))
+        images = []
+        for a, (t, test) in zip(axes, tests, strict=True):
+            images.append(a.imshow(np.ones_like(test.released_at).T, origin="lower",
+                                   cmap="Greys", vmin=0, vmax=1))  # fmt: skip
+            a.set_title(f"t = {t:g} µm")
+            a.set_xticks([])
+            a.set_yticks([])
+        writer = PillowWriter(fps=12)
+        tmp = atomic_target(out / "detachment.gif", ".gif")
+        try:
+            writer.setup(fig, str(tmp), dpi=80)
+            for k in range(frames):
+                for im, (_, test) in zip(images, tests, strict=True):
+                    last = float(np.nanmin(test.released_at))
+                    d = test.depth_max + (last - test.depth_max) * k / (frames - 1)
+                    im.set_data((test.released_at < d - 1e-12).T.astype(float))
+                fig.suptitle(
+                    f"pulled {100 * k / (frames - 1):.0f} % of the way to the last release"
+                )
+                writer.grab_frame()
+            writer.finish()
+            replace_into(tmp, out / "detachment.gif")
+        finally:
+            tmp.unlink(missing_ok=True)
 
 
 @command_line
@@ -244,10 +288,10 @@ def main(argv=None) -> dict:
     for E in cfg["E_MPa"]:
         for t in cfg["t_um"]:
             for probe in PROBES:
-                r, released = field_point(cfg["n"], t, E, probe)
+                r, test = field_point(cfg["n"], t, E, probe)
                 field.append(r)
                 if probe == "flat" and E == 1.413 and t in (min(cfg["t_um"]), max(cfg["t_um"])):
-                    maps[t] = released
+                    maps[t] = test
     large = []
     if cfg["n_large"]:
         large = [field_point(cfg["n_large"], t, 1.413, "flat")[0]
@@ -257,6 +301,7 @@ def main(argv=None) -> dict:
     write_table(out / f"{NAME}_row.csv", row)
     comp = comparisons(field, large, row, cfg)
     draw(field, row, maps, cfg, out, comp)
+    animate_front(maps, out)
     cost = step_cost(cfg["cost_n"], cfg["cost_steps"])
     results = {"comparisons": comp, "step_cost": cost, "runtime_s": time.perf_counter() - t0}
     write_json(out / "metadata.json", {
