@@ -164,6 +164,8 @@ class FieldTest:
     front : for each pulled event, the mean distance [µm] from the field's centre of the
         fibres that let go there (NaN where none did): where the detachment runs.
     released_at : depth [µm] (n, n) at which each fibre let go (NaN if never attached).
+    release_event : index (n, n) into the path of the event at which each fibre let go (−1
+        if never attached): the order of a cascade at one depth.
     solves : conjugate-gradient solves; matvecs : FFT products C·f.
     """
 
@@ -175,6 +177,7 @@ class FieldTest:
     attached: np.ndarray
     front: np.ndarray
     released_at: np.ndarray
+    release_event: np.ndarray
     solves: int
     matvecs: int
 
@@ -234,8 +237,10 @@ def _press(solver, op, h, att, preload, resolution, path):
         att.ravel()[idx] = True
 
 
-def _pull(solver, h, att, d, F_r, resolution, radius, released_at, path):
-    """Pull until every fibre has let go; returns the largest tension [µN]."""
+def _pull(solver, h, att, d, F_r, resolution, radius, released, path):
+    """Pull until every fibre has let go, noting in ``released`` (depth, event) where each
+    let go; returns the largest tension [µN]."""
+    released_at, event = released
     best, ftol = 0.0, 1e-9 * F_r
     while att.any():
         a, b = solver.solve(att)
@@ -243,7 +248,7 @@ def _pull(solver, h, att, d, F_r, resolution, radius, released_at, path):
         over = att & (f < -F_r - ftol)
         if over.any():  # unstable after a release: these follow at the same depth
             path.append((d, float(f[att].sum()), int(att.sum()), float(radius[over].mean())))
-            released_at[over] = d
+            released_at[over], event[over] = d, len(path) - 1
             att[over] = False
             continue
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -253,7 +258,7 @@ def _pull(solver, h, att, d, F_r, resolution, radius, released_at, path):
         best = max(best, -force)
         going = att & (d_rel >= d - resolution)
         path.append((d, force, int(att.sum()), float(radius[going].mean())))
-        released_at[going] = d
+        released_at[going], event[going] = d, len(path) - 1
         att[going] = False
     path.append((d, 0.0, 0, math.nan))
     return best
@@ -284,10 +289,10 @@ def press_pull(
     path: list = []
     d_max = _press(solver, op, h, att, preload, resolution, path)
     n_max = int(att.sum())
-    released = np.full(h.shape, np.nan)
+    released = np.full(h.shape, np.nan), np.full(h.shape, -1)
     x, y = field.positions()
     best = _pull(solver, h, att, d_max, field.release_force, resolution, np.hypot(x, y),
                  released, path)  # fmt: skip
     d, F, n, front = (np.array(v) for v in zip(*path, strict=True))
-    return FieldTest(best, d_max, n_max, d, F, n.astype(int), front, released,
+    return FieldTest(best, d_max, n_max, d, F, n.astype(int), front, *released,
                      solver.solves, op.calls)  # fmt: skip

@@ -239,8 +239,8 @@ def draw(field, row, maps, cfg, out, comp=()) -> None:
 
 def animate_front(maps, out, frames: int = 48) -> None:
     """``detachment.gif``: the fibres still attached (dark) over the field while the probe is
-    pulled, for the thinnest and the thickest layer side by side, each from its preload
-    depth to its last release (flat probe, aligned)."""
+    pulled, for the thinnest and the thickest layer side by side, stepped through each one's
+    release events in order, a cascade's steps too (flat probe, aligned)."""
     import matplotlib as mpl
     from matplotlib.animation import PillowWriter
     from matplotlib.figure import Figure
@@ -265,12 +265,12 @@ def animate_front(maps, out, frames: int = 48) -> None:
             writer.setup(fig, str(tmp), dpi=80)
             for k in range(frames):
                 for im, (_, test) in zip(images, tests, strict=True):
-                    last = float(np.nanmin(test.released_at))
-                    d = test.depth_max + (last - test.depth_max) * k / (frames - 1)
-                    im.set_data((test.released_at < d - 1e-12).T.astype(float))
-                fig.suptitle(
-                    f"pulled {100 * k / (frames - 1):.0f} % of the way to the last release"
-                )
+                    # Frames through the releases in their order (a cascade at one depth too).
+                    ev = test.release_event
+                    first, last = ev[ev >= 0].min(), ev.max()
+                    now = first + (last + 1 - first) * k / (frames - 1)
+                    im.set_data((ev >= now).T.astype(float))
+                fig.suptitle(f"detachment: {100 * k / (frames - 1):.0f} % of the release events")
                 writer.grab_frame()
             writer.finish()
             replace_into(tmp, out / "detachment.gif")
