@@ -114,10 +114,11 @@ def test_rod_setae_on_a_layer():
 
 @pytest.mark.parametrize("t", [10.0, 1000.0])
 def test_pillar_row_is_the_quasi_static_layer_model(t):
-    """Flat-punch pillars on a layer, pressed to 12 µN and pulled at 0.01 µm/µs: the
+    """Flat-punch pillars on a layer, pressed to 12 µN and pulled at 0.04 µm/µs: the
     engine's pull-off is the event-driven quasi-static model's with the same layer
     compliance (each pillar a spring Ka + punch in series, letting go at Kendall's F_r)
-    within 0.1 % (measured: 0.003–0.006 %, the largest tensile force over every step)."""
+    within 0.1 % (measured: 0.015–0.016 %, the largest tensile force over every step;
+    0.005–0.009 % at 0.02 µm/µs)."""
     from gecko_agents.physics import fibril_probe_halfspace as halfspace
     from gecko_agents.physics import punch
     from gecko_agents.studies.probe_test import PILLARS, fibril_stiffness
@@ -128,7 +129,7 @@ def test_pillar_row_is_the_quasi_static_layer_model(t):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         m = Model(p, seed=0)
-        h = m.run(protocol.preload_pull(12.0, speed=0.01), progress=False)
+        h = m.run(protocol.preload_pull(12.0, speed=0.04), progress=False)
     c, pitch = p.contact, p.array.pitch
     F_r = float(punch.kendall_pull_off(c.R, c.work_of_adhesion, c.E_star))
     C = layer.row_compliance(m.world.root_dx, t, p.backing.E_b, p.backing.nu_b, pitch, pitch)
