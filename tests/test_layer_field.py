@@ -84,3 +84,18 @@ def test_bad_test_refused():
         lf.press_pull(field, np.zeros((4, 5)), 1.0)
     with pytest.raises(ValueError, match="tilt_deg"):
         lf.probe_heights(field, 50.0, 1.0)
+
+
+def test_incompressible_layer_is_taken_as_it_is():
+    """ν = ½ (no confined modulus: G → q²t³/(3μ)) is the dense event-driven test's too; on
+    a thin layer the confined centre is the stiffest place and lets go first, the edges,
+    free to contract, last."""
+    field = lf.LayerField(n=9, pitch=4.0, radius=1.5, stiffness=K, release_force=F_R,
+                          thickness=4.0, modulus=0.3, poisson=0.5)  # fmt: skip
+    x, y = field.positions()
+    C = layer.field_compliance(x.ravel(), y.ravel(), 4.0, 0.3, 0.5, 1.5) + np.eye(x.size) / K
+    exact = halfspace.probe_test(np.zeros(x.size), C, F_R, 10.0)
+    got = lf.press_pull(field, np.zeros((9, 9)), 10.0, resolution=1e-9)
+    assert got.pull_off == pytest.approx(exact.pull_off, rel=1e-8)
+    ev = got.release_event
+    assert ev[4, 4] == ev.min() and ev[0, 4] > ev[4, 4] and ev[0, 0] > ev[4, 4]
