@@ -76,8 +76,6 @@ html_title = f"gecko_agents {version}"
 
 # Objects of other packages: without network access at build time there is no intersphinx
 # inventory to resolve them against, so only references into gecko_agents are checked.
-# A name a docstring of gecko_agents refers to that the API reference does not document.
-nitpick_ignore = [("py:func", "register_jitables")]
 nitpick_ignore_regex = [
     (
         r"py:.*",

@@ -24,6 +24,7 @@ except PackageNotFoundError:  # running from a source tree that is not installed
 # name -> (module, attribute or None for the module itself)
 _LAZY = {
     "Model": ("gecko_agents.model", "Model"),
+    "Numerics": ("gecko_agents.numerics", "Numerics"),
     "History": ("gecko_agents.history", "History"),
     "load": ("gecko_agents.history", "load"),
     "load_run": ("gecko_agents.runfiles.run", "load_run"),

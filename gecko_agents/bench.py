@@ -47,7 +47,7 @@ import pymunk.batch as pb
 
 from gecko_agents import protocol
 from gecko_agents import quasistatic as qs
-from gecko_agents.model import Model, numba_available
+from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.model.runner import run_protocol
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.protocol import DEFAULT_SPEED, Move
@@ -56,6 +56,7 @@ __all__ = [
     "pressed_model",
     "bare_engine",
     "agent_rate",
+    "elastic_pressed_model",
     "pymunk_rate",
     "press_pull_run",
     "peak_memory_mb",
@@ -76,7 +77,7 @@ def pressed_model(
     touch-down and every tip attached, after ``settle`` steps of rest; ``overrides`` are
     dotted parameter overrides (e.g. ``{"contact.crack_speed": 1.0}``)."""
     p = PAPER_ARRAY.replace(**{"array.count": int(n), "floor.sigma": 0.0, **(overrides or {})})
-    m = Model(p, **({"integrator": "explicit"} | kw))  # the per-step cost of the explicit step
+    m = Model.from_options(p, **({"integrator": "explicit"} | kw))  # the explicit step's cost
     place_pressed(m, depth)
     return settle_attached(m, settle)
 
@@ -102,6 +103,27 @@ def settle_attached(m: Model, settle: int) -> Model:
     if not np.all(m.attached):
         raise RuntimeError(f"only {int(m.attached.sum())} of {m.n} tips attached after settling")
     return m
+
+
+def elastic_pressed_model(
+    n: int, depth: float = 0.3, settle: int = 200, params=None, **model_kw
+) -> Model:
+    """:func:`gecko_agents.bench.pressed_model` on an elastic strip: handle, strip and tips
+    moved ``depth`` [µm] below touch-down, then ``settle`` steps of rest, every tip attached.
+    ``params``: the array (default: the paper's on a flat floor with the default
+    :class:`gecko_agents.params.backing.Backing`, uniform drive), with ``n`` setae; ``model_kw`` go
+    to
+    :class:`gecko_agents.model.Model` (``seed``, ``leader_arm``, ... for
+    :class:`gecko_agents.backing.elastic.ElasticBacking`)."""
+    if params is None:
+        params = PAPER_ARRAY.replace(**{"floor.sigma": 0.0, "backing.kind": "elastic"})
+    m = Model.from_options(params.replace(**{"array.count": int(n)}), **model_kw)
+    drop = place_pressed(m, depth)
+    strip = m.backing.strip  # the strip moves down with its handle
+    for link in strip.links:
+        link.position = (link.position.x, link.position.y + drop)
+    strip.rows = strip.read()
+    return settle_attached(m, settle)
 
 
 def bare_engine(n: int) -> Model:
@@ -205,8 +227,14 @@ def _scaling(sizes, run_max, steps, repeats) -> list[dict]:
             how = "run"
         else:
             wall, how = run_steps * ms * 1e-3, "extrapolated"
-        row = {"n": n, "ms_per_step": ms, "press_pull_s": wall, "steps": run_steps,
-               "how": how, "peak_rss_mb": peak_memory_mb()}  # fmt: skip
+        row = {
+            "n": n,
+            "ms_per_step": ms,
+            "press_pull_s": wall,
+            "steps": run_steps,
+            "how": how,
+            "peak_rss_mb": peak_memory_mb(),
+        }
         rows.append(row)
         print(
             f"{n:>8}   {ms:17.3g}   {wall:12.4g} ({how:>12})   {run_steps:>5}   "
@@ -226,18 +254,24 @@ def _arguments(argv):
         "--qs-setae", type=int, default=10**7, help="setae of the quasi-static curve (0: skip it)"
     )
     ap.add_argument(
-        "--scaling", type=int, nargs="*", default=[1_000, 10_000, 100_000],
+        "--scaling",
+        type=int,
+        nargs="*",
+        default=[1_000, 10_000, 100_000],
         help="sizes N of the scaling table (none: skip it)",
-    )  # fmt: skip
+    )
     ap.add_argument(
-        "--run-max", type=int, default=10_000,
+        "--run-max",
+        type=int,
+        default=10_000,
         help="largest N whose press-pull is run in the scaling table (larger: extrapolated)",
-    )  # fmt: skip
+    )
     ap.add_argument("--quick", action="store_true", help="tiny sizes: a smoke run")
     ap.add_argument(
-        "--work-precision", action="store_true",
+        "--work-precision",
+        action="store_true",
         help="steps and wall time against pull-off and release error, explicit and implicit",
-    )  # fmt: skip
+    )
     ap.add_argument(
         "--no-dask", action="store_true", help="skip the 1- vs 2-worker Dask sweep throughput"
     )
@@ -303,8 +337,10 @@ def _crack_kinetics_section(n: int, args, out: dict) -> None:
         re = max(re, agent_rate(elastic, args.steps))
         rr = max(rr, agent_rate(rate, args.steps))
     out["rate_dependent_cost"] = re / rr
-    print(f"N={n:>6}: crack-kinetics tip {rr:10.4g} seta-steps/s, elastic {re:10.4g}: "
-          f"cost per seta-step ×{re / rr:.2f}")  # fmt: skip
+    print(
+        f"N={n:>6}: crack-kinetics tip {rr:10.4g} seta-steps/s, elastic {re:10.4g}: "
+        f"cost per seta-step ×{re / rr:.2f}"
+    )
 
 
 def _dask_section(out: dict) -> None:
@@ -388,14 +424,19 @@ def wp_measure(case: str, integrator: str, dt_factor: float | None, speed: float
         warnings.simplefilter("ignore")
         dt = None
         if dt_factor is not None:
-            dt = dt_factor * Model(p, n_sim=n, integrator="explicit").dt
-        m = Model(p, n_sim=n, dt=dt, integrator=integrator, record_every=1)
+            dt = dt_factor * Model(p, n_sim=n, numerics=Numerics(integrator="explicit")).dt
+        m = Model(p, n_sim=n, numerics=Numerics(dt=dt, integrator=integrator, record_every=1))
         t = time.perf_counter()
         h = m.run(proto(speed), progress=False)
         wall = time.perf_counter() - t
         po, release = pull_off_and_release(h)
-    return {"steps": int(h.meta["n_steps"]), "wall_s": wall, "pull_off": po,
-            "release": release, "dt": m.dt}  # fmt: skip
+    return {
+        "steps": int(h.meta["n_steps"]),
+        "wall_s": wall,
+        "pull_off": po,
+        "release": release,
+        "dt": m.dt,
+    }
 
 
 def pull_off_and_release(h) -> tuple[float, float]:
@@ -437,8 +478,10 @@ def wp_case(case: str, factors, ref_div: float, speed: float) -> dict:
             runs[f"implicit {f:g}×"] = wp_measure(case, "implicit", f, speed)
         except Exception as err:  # an unstable or refused run is a row, not a crash
             runs[f"implicit {f:g}×"] = {"steps": 0, "wall_s": math.nan, "failed": repr(err)}
-    print(f"\n{case}: reference explicit dt/{ref_div:g}, {ref['steps']} steps, pull-off "
-          f"{ref['pull_off']:.6g} µN, release after {ref['release']:.6g} µm")  # fmt: skip
+    print(
+        f"\n{case}: reference explicit dt/{ref_div:g}, {ref['steps']} steps, pull-off "
+        f"{ref['pull_off']:.6g} µN, release after {ref['release']:.6g} µm"
+    )
     print(f"  {'integrator':<20} {'dt [µs]':>8} {'steps':>8} {'wall [s]':>9} {'error [%]':>10}")
     for label, r in runs.items():
         if "failed" in r:
@@ -446,8 +489,10 @@ def wp_case(case: str, factors, ref_div: float, speed: float) -> dict:
             r["error"] = math.inf
             continue
         r["error"] = _wp_error(r, ref)
-        print(f"  {label:<20} {r['dt']:8.3g} {r['steps']:8d} {r['wall_s']:9.3g} "
-              f"{100 * r['error']:10.3g}")  # fmt: skip
+        print(
+            f"  {label:<20} {r['dt']:8.3g} {r['steps']:8d} {r['wall_s']:9.3g} "
+            f"{100 * r['error']:10.3g}"
+        )
     ok = [r["steps"] for k, r in runs.items() if k != "explicit" and r["error"] <= 0.005]
     exp = runs["explicit"]
     ratio = exp["steps"] / min(ok) if ok and exp["error"] <= 0.005 else math.nan
@@ -486,8 +531,11 @@ def work_precision(
     out = {}
     for case in cases:
         out[case] = wp_case(case, factors, WP_REFERENCE_DIVISOR, speed)
-    worst = float(np.min([np.nan_to_num(out[c]["default_ratio"]) if _runs_implicit(c) else 1.0
-                          for c in cases]))  # fmt: skip
+    worst = float(
+        np.min(
+            [np.nan_to_num(out[c]["default_ratio"]) if _runs_implicit(c) else 1.0 for c in cases]
+        )
+    )
     best = float(np.min([np.nan_to_num(out[c]["ratio"]) for c in cases]))
     print(f"\nsteps explicit/implicit (its best step) at ≤ 0.5 % error: {best:.1f}")
     print(f"steps explicit/default at ≤ 0.5 % error: {worst:.1f}")
@@ -501,8 +549,16 @@ def main(argv=None) -> dict:
         return work_precision(args.quick)
     default = Model(PAPER_ARRAY, n_sim=max(args.sizes)).kernel
     kernels = ["numpy"] + (["numba"] if numba_available() else [])
-    out = {"sizes": args.sizes, "kernels": kernels, "default_kernel": default, "agent": {},
-           "pymunk": {}, "bare": {}, "ratio": {}, "ratio_bare": {}}  # fmt: skip
+    out = {
+        "sizes": args.sizes,
+        "kernels": kernels,
+        "default_kernel": default,
+        "agent": {},
+        "pymunk": {},
+        "bare": {},
+        "ratio": {},
+        "ratio_bare": {},
+    }
     if args.qs_setae:
         _quasistatic_section(args.qs_setae, out)
     for n in args.sizes:

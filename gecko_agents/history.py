@@ -33,6 +33,7 @@ import hashlib
 import io
 import json
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -47,6 +48,7 @@ from gecko_agents._run_directory import (
     read_series,
     saved_run_id,
 )
+from gecko_agents._stack import user_stacklevel
 from gecko_agents.output_paths import atomic_write_bytes, make_dir
 from gecko_agents.params import SetaArray
 from gecko_agents.provenance import versions
@@ -120,6 +122,18 @@ pad still covers [µm], NaN while the tip is free. Runs of other tips, and runs 
 these fields existed, have none."""
 
 
+def probe_scale_message(scale: float) -> str:
+    """Why a run under a spherical probe does not scale to its array (``scale_to_array`` ≠ 1):
+    the simulated row is no uniform patch, each pillar meets the probe at its own height."""
+    return (
+        f"scale_to_array = {scale:g} under a spherical probe (floor.kind = 'probe'): the "
+        "simulated row is not a uniform patch of the array (each pillar meets the probe at its "
+        "own height), so its forces do not scale to array.count; simulate every pillar "
+        "(n_sim = array.count), or take the field under the probe from "
+        "gecko_agents.physics.fibril_probe_halfspace"
+    )
+
+
 @dataclass
 class History:
     """A recorded run.
@@ -136,7 +150,9 @@ class History:
         to the plate, ``root_dy_um`` (N,) root heights relative to the plate, ``floor_x_um``,
         ``floor_y_um`` (floor polyline).
     detachments : dict of arrays, one entry per detachment event: ``seta``, ``time_us``,
-        ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``.
+        ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``, and
+        ``mode`` (where its detachment started, ``"edge"`` or ``"centre"``) for a law that has
+        more than one (the mushroom tip).
     meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…),
         with the live model's facts that :func:`gecko_agents.diagnostics.diagnose` reads
         (:data:`gecko_agents.diagnostics.MODEL_FACTS`), so a loaded run is diagnosed as it ran.
@@ -161,6 +177,9 @@ class History:
         n = {len(np.asarray(v)) for v in self.scalars.values()}
         if len(n) != 1:
             raise ValueError(f"History.scalars columns differ in length: {sorted(n)}")
+        scale = self.meta.get("scale_to_array", 1.0)
+        if getattr(self.params.floor, "kind", None) == "probe" and scale != 1.0:
+            warnings.warn(probe_scale_message(scale), stacklevel=user_stacklevel())
 
     @property
     def columns(self) -> tuple[str, ...]:
@@ -216,11 +235,10 @@ class History:
             "energy_elastic_pJ": nan, "energy_kinetic_pJ": nan, "energy_dissipated_pJ": nan,
             "work_plate_pJ": nan,
         }  # fmt: skip
-        setae = {}
+        setae: dict[str, np.ndarray] = {}
         if per:
-            setae = {"force_normal_uN": per.get("force"), "overlap_um": per.get("overlap"),
-                     "state": per.get("state")}  # fmt: skip
-            setae = {k: np.asarray(v) for k, v in setae.items() if v is not None}
+            fields = {"force_normal_uN": "force", "overlap_um": "overlap", "state": "state"}
+            setae = {k: np.asarray(per[v]) for k, v in fields.items() if per.get(v) is not None}
         releases = list(getattr(result, "releases", []) or [])
         det = {
             "record": np.array([r[0] for r in releases], dtype=int),
@@ -333,7 +351,7 @@ class History:
         arrays |= {f"backing__{k}": np.asarray(v) for k, v in self.backing.items()}
         arrays["run_id"] = np.array(run_id)
         npz = io.BytesIO()
-        np.savez_compressed(npz, **arrays)
+        np.savez_compressed(npz, **arrays)  # type: ignore[arg-type]
         files["setae.npz"] = npz.getvalue()
         atomic_write_bytes(d / "setae.npz", files["setae.npz"])
         meta = self.metadata()
@@ -459,8 +477,8 @@ def energy_balance_error(h: History) -> float:
     booked = h["energy_elastic_pJ"] + h["energy_kinetic_pJ"] + h["energy_dissipated_pJ"]
     if not len(W):
         return 0.0
-    # Changes since the first record: a run may start from a loaded state (a second run() of
-    # the same model, or a model set up pressed), whose stored energy no plate work paid for.
+    # Changes since the first record: a run may start from a loaded state (a model set up
+    # pressed, as the pad peel's), whose stored energy no plate work paid for.
     err = float(np.max(np.abs((W - W[0]) - (booked - booked[0]))))
     scale = max(float(np.max(np.abs(h[c]), initial=0.0)) for c in ENERGY_SCALE_COLUMNS)
     if scale == 0.0:

@@ -309,7 +309,7 @@ def drag_pull(
 ) -> list:
     """Press to ``preload`` [µN], drag sideways by ``drag`` [µm] (positive = along the seta
     tilt, towards +x), then pull off along ``angle_deg`` [degrees from +x]."""
-    steps = [Press(preload, speed)]
+    steps: list[Segment] = [Press(preload, speed)]
     if drag != 0:
         steps.append(Move(dx=drag, speed=speed))
     return steps + [PullOff(speed, angle_deg)]

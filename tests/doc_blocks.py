@@ -33,6 +33,7 @@ EXTRA_MODULES = {
     "fast": "numba",
     "dask": "distributed",
     "video": "imageio_ffmpeg",
+    "design": "optuna",
 }
 """Optional extra → the module it installs (pyproject.toml's optional dependencies)."""
 

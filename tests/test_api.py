@@ -3,6 +3,7 @@
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 import gecko_agents as ga
@@ -41,3 +42,48 @@ def test_replace_takes_a_group_as_a_dict_the_same_as_dotted_names():
 def test_replace_refuses_an_unknown_field_inside_a_group_dict():
     with pytest.raises(ValueError, match="floor.sigmaa"):
         ga.PAPER_ARRAY.replace(floor={"sigmaa": 0.5})
+
+
+# Numerics: how a run is computed, in one object; the older keyword spellings still work.
+P5 = ga.PAPER_TABLE1.replace(mechanics="rod", seta={"L": 5.0})
+
+
+def _pull(**kw):
+    return ga.Model(P5, seed=1, **kw).run(ga.protocol.press_pull(0.5, 0.05), progress=False)
+
+
+def test_the_older_keywords_warn_and_give_the_same_history_as_numerics():
+    new = _pull(numerics=ga.Numerics(integrator="explicit", record_every=7))
+    with pytest.warns(DeprecationWarning, match=r"numerics=Numerics\(integrator=…, record_every"):
+        old = _pull(integrator="explicit", record_every=7)
+    for column in new.columns:
+        np.testing.assert_array_equal(old[column], new[column])
+    assert old.meta["numerics"] == new.meta["numerics"]
+    assert new.meta["numerics"]["record_every"] == 7
+
+
+def test_the_backing_options_are_parameters_recorded_with_the_run():
+    p = P5.replace(backing={"kind": "elastic", "drive": "peel_end"}, array={"count": 4})
+    with pytest.warns(DeprecationWarning, match="backing="):
+        m = ga.Model(p, leader_arm=5.0, peel_angle_deg=45.0)
+    assert (m.params.backing.leader_arm, m.params.backing.peel_angle_deg) == (5.0, 45.0)
+    assert m.backing.leader_arm == 5.0
+    with pytest.raises(ValueError, match="leader_arm = 5.0 µm needs Backing.drive"):
+        P5.replace(backing={"kind": "elastic", "leader_arm": 5.0})
+    with pytest.raises(ValueError, match="peel_angle_deg = 180.0"):
+        P5.replace(backing={"peel_angle_deg": 180.0})
+
+
+def test_unknown_or_doubled_model_options_are_refused_by_name():
+    with pytest.raises(TypeError, match="speed"):
+        ga.Model(P5, speed=1.0)
+    with pytest.raises(TypeError, match=r"\['dt'\] inside numerics"):
+        ga.Model(P5, numerics=ga.Numerics(), dt=0.1)
+    with pytest.raises(TypeError, match="numerics must be a Numerics"):
+        ga.Model(P5, numerics={"dt": 0.1})
+
+
+def test_from_options_takes_every_kind_of_option_without_a_warning(recwarn):
+    m = ga.Model.from_options(P5, n_sim=1, seed=2, dt=0.05, integrator="explicit")
+    assert (m.numerics.dt, m.numerics.integrator, m.seed) == (0.05, "explicit", 2)
+    assert not [w for w in recwarn if issubclass(w.category, DeprecationWarning)]

@@ -10,7 +10,7 @@ import pytest
 from gecko_agents import history, protocol
 from gecko_agents.backing.elastic import ElasticBacking, Strip
 from gecko_agents.backing.rigid import RigidBacking
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY, Backing
 
 EI, LENGTH, N_LINKS, RHO_A = 1e4, 100.0, 10, 1.0  # µN·µm², µm, -, ng/µm
@@ -170,11 +170,11 @@ def test_backing_kind_chooses_the_backing():
     assert type(m) is Model and type(m.backing) is ElasticBacking
     assert m.kernel == "numpy"
     with pytest.raises(ValueError, match="kernel"):
-        Model(elastic, kernel="python")
+        Model(elastic, numerics=Numerics(kernel="python"))
     with pytest.raises(ValueError, match="contact"):
-        Model(elastic, contact="callback")
+        Model(elastic, numerics=Numerics(contact="callback"))
     with pytest.raises(ValueError, match="rigid plate"):
-        Model(STUBBY, leader_arm=10.0)
+        Model(STUBBY.replace(backing={"leader_arm": 10.0}))
 
 
 def test_peel_detachment_front_starts_at_the_pulled_edge_and_moves():

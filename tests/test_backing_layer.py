@@ -10,6 +10,7 @@ from gecko_agents import history, protocol
 from gecko_agents.backing import LayerBacking
 from gecko_agents.backing.layer import ToeplitzSolver
 from gecko_agents.model import Model
+from gecko_agents.numerics import Numerics
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.params.backing import Backing
 from gecko_agents.physics import layer
@@ -20,7 +21,7 @@ ROW = PAPER_ARRAY.replace(**{"array.count": 20, "seta.L": 5.0, "floor.sigma": 0.
 def _run(params, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(params, seed=1, **kw)
+        m = Model(params, seed=1, numerics=Numerics(**kw))
         h = m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
     return m, h
 
@@ -53,13 +54,13 @@ def test_layer_kind_chooses_the_backing_and_its_step():
         rtol=1e-12,
     )
     with pytest.raises(ValueError, match="integrator = 'implicit'"):
-        Model(_layer(), integrator="implicit")
+        Model(_layer(), numerics=Numerics(integrator="implicit"))
     with pytest.raises(ValueError, match="kernel"):
-        Model(_layer(), kernel="numba")
+        Model(_layer(), numerics=Numerics(kernel="numba"))
     with pytest.raises(ValueError, match="contact"):
-        Model(_layer(), contact="callback")
-    with pytest.raises(ValueError, match="no backing options"):
-        Model(_layer(), leader_arm=5.0)
+        Model(_layer(), numerics=Numerics(contact="callback"))
+    with pytest.raises(ValueError, match="leader_arm"):
+        Model(_layer(drive="peel_end", leader_arm=5.0))
 
 
 @pytest.mark.parametrize(("field", "value"), [("nu_b", -0.1), ("nu_b", 0.5), ("t_b", 0.0)])

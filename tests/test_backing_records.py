@@ -11,7 +11,7 @@ import pytest
 
 from gecko_agents import history, protocol, render
 from gecko_agents.backing.elastic import STRIP_ARRAYS, STRIP_COLUMNS
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY
 
 ROUGH = PAPER_ARRAY.replace(**{"array.count": 6, "seta.L": 5.0, "floor.sigma": 0.3})
@@ -45,7 +45,12 @@ def test_rigid_plate_histories_are_bit_identical_to_before(kernel, press, digest
     )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(ROUGH, seed=2, kernel=kernel, record_setae=True, integrator="explicit")
+        m = Model(
+            ROUGH,
+            seed=2,
+            record_setae=True,
+            numerics=Numerics(kernel=kernel, integrator="explicit"),
+        )
         h = m.run(prot, progress=False)
     assert "strip_front_x_um" not in h.scalars and not h.backing
     assert _digest(h) == digest
@@ -58,7 +63,7 @@ def peeled(tmp_path_factory):
         **{"array.count": 12, "seta.L": 5.0, "floor.sigma": 0.0, "backing.kind": "elastic",
            "backing.E_b": 1.413, "backing.drive": "peel_end"}
     )  # fmt: skip
-    m = Model(p, seed=1, record_setae=True, integrator="explicit")
+    m = Model(p, seed=1, record_setae=True, numerics=Numerics(integrator="explicit"))
     h = m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
     return m, h, h.save(tmp_path_factory.mktemp("runs") / "peel")
 

@@ -16,8 +16,9 @@ from gecko_agents.model import Model
 from gecko_agents.runfiles import run as runfile
 
 EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.toml"))
-RUN_EXAMPLES = [p for p in EXAMPLES if "point" not in tomllib.loads(p.read_text())]
-SWEEP_EXAMPLES = [p for p in EXAMPLES if p not in RUN_EXAMPLES]
+KINDS = {p: {"point", "objectives"} & set(tomllib.loads(p.read_text())) for p in EXAMPLES}
+RUN_EXAMPLES = [p for p in EXAMPLES if not KINDS[p]]  # design files: tests/test_design.py
+SWEEP_EXAMPLES = [p for p in EXAMPLES if "point" in KINDS[p]]
 
 GOOD = """\
 preset = "PAPER_TABLE1"

@@ -8,7 +8,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from gecko_agents import contact, protocol
-from gecko_agents.model import Model, numba_available
+from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.params import PAPER_TABLE1, TIPS
 from gecko_agents.physics import jkr
 
@@ -125,10 +125,12 @@ def test_reference_callback_path_agrees_with_every_kernel(tip):
         **{"mechanics": "rod", "seta.L": 5.0, "tip": tip, "array.count": 3, "floor.sigma": 0.2}
     )
     prot = protocol.press_pull(0.3, speed=0.05)
-    ref = Model(p, contact="callback", record_every=5).run(prot, progress=False)
+    ref = Model(p, numerics=Numerics(contact="callback", record_every=5)).run(prot, progress=False)
     kernels = ["numpy", "python"] + (["numba"] if numba_available() else [])
     for kernel in kernels:
-        h = Model(p, kernel=kernel, record_every=5, integrator="explicit").run(prot, progress=False)
+        h = Model(p, numerics=Numerics(kernel=kernel, record_every=5, integrator="explicit")).run(
+            prot, progress=False
+        )
         scale = max(float(np.max(np.abs(ref["force_normal_uN"]))), 1e-12)
         (
             assert_allclose(

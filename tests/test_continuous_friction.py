@@ -7,7 +7,7 @@ import pytest
 
 from gecko_agents import floor, protocol
 from gecko_agents.history import ENERGY_RTOL, STATE_SLIP, energy_balance_error
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_TABLE1
 from gecko_agents.physics import beam
 
@@ -53,8 +53,12 @@ def test_tip_sliding_over_facets_dissipates_the_coulomb_work():
     p = SLIDER
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the JKR contact radius of this soft tip: a ≈ 0.8 R
-        m = Model(p, floor_profile=_sawtooth(p), integrator="explicit", record_every=1,
-                  record_setae=True)  # fmt: skip
+        m = Model(
+            p,
+            floor_profile=_sawtooth(p),
+            record_setae=True,
+            numerics=Numerics(integrator="explicit", record_every=1),
+        )
         drag = [protocol.PressTo(0.3, 0.05), protocol.Move(dx=16.0, speed=0.05)]
         h = m.run(drag, progress=False)
     assert not m.world.pads

@@ -12,7 +12,7 @@ from gecko_agents import protocol
 from gecko_agents.analysis.pull import pull_off
 from gecko_agents.contact import FlatPunch, contact_law
 from gecko_agents.floor.probe import probe_heights, probe_profile
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY, Contact
 from gecko_agents.physics import fibril_probe, punch
 
@@ -168,7 +168,7 @@ def test_probe_test_matches_independent_fibrils(probe_radius, preload, request):
         **{"array.count": n, "floor.kind": "probe", "floor.probe_radius": probe_radius,
            "friction.mu": 0.5}
     )  # fmt: skip
-    m = Model(p, n_sim=n, seed=0, record_every=1)
+    m = Model(p, n_sim=n, seed=0, numerics=Numerics(record_every=1))
     h = m.run(protocol.preload_pull(preload, speed=0.04), progress=False)
     c = p.contact
     k = 1.0 / (1.0 / p.axial_stiffness + 1.0 / float(punch.punch_stiffness(c.R, c.E_star)))

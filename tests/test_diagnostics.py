@@ -14,7 +14,7 @@ from gecko_agents import history as hist
 from gecko_agents import protocol
 from gecko_agents.backing.elastic import ElasticBacking
 from gecko_agents.contact import contact_law
-from gecko_agents.model import Model, cost
+from gecko_agents.model import Model, Numerics, cost
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1, Contact
 from gecko_agents.physics import jkr
 
@@ -294,7 +294,7 @@ def test_a_loaded_run_that_never_touched_is_diagnosed_as_the_live_one(monkeypatc
     assert dg.diagnose(g, warn=False) == h.meta["validity"]
     with pytest.raises(dg.MeaninglessRunError) as live:
         # The explicit step: at 20 µm/µs the implicit one's touch is marginal (a tip grazes).
-        m = Model(STIFF, n_sim=1, seed=1, integrator="explicit")
+        m = Model(STIFF, n_sim=1, seed=1, numerics=Numerics(integrator="explicit"))
         m.run(protocol.press_pull(0.5, speed=20.0), progress=False)
     past = hist.load(live.value.history.save(tmp_path / "past"))
     with pytest.raises(dg.MeaninglessRunError) as loaded:

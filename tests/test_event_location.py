@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.model.implicit import IMPLICIT_DT_FACTOR
 from gecko_agents.params import PAPER_ARRAY
 
@@ -85,7 +85,7 @@ def test_location_is_what_keeps_the_releases(explicit, located):
     err_located = np.max(np.abs(_releases(h) - y_exp))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m_off = Model(ROUGH, n_sim=N, seed=1, integrator="implicit")
+        m_off = Model(ROUGH, n_sim=N, seed=1, numerics=Numerics(integrator="implicit"))
         m_off._implicit.k_event = 1  # the step near an event as long as between them
         h_off = m_off.run(protocol.press_pull(1.0), progress=False)
     assert m_off._implicit.n_located == 0
@@ -109,7 +109,7 @@ def _linear_sphere_run(share, monkeypatch):
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(PAPER_TABLE1.replace(**over), n_sim=n, record_every=1)
+        m = Model(PAPER_TABLE1.replace(**over), n_sim=n, numerics=Numerics(record_every=1))
         # Not Model.run: the suite's check of every history would refuse share = ∞'s books.
         return m, run_protocol(m, proto(0.005), False, 50_000_000, None, True)
 
@@ -176,10 +176,10 @@ def test_a_fast_segment_keeps_its_travel_cap_with_a_long_event_step():
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        explicit = Model(ROUGH, n_sim=2, seed=1, integrator="explicit").dt
+        explicit = Model(ROUGH, n_sim=2, seed=1, numerics=Numerics(integrator="explicit")).dt
         steps = {}
         for ev in (None, 10 * explicit):
-            m = Model(ROUGH, n_sim=2, seed=1, event_dt=ev)
+            m = Model(ROUGH, n_sim=2, seed=1, numerics=Numerics(event_dt=ev))
             m._implicit.begin_segment(0.5)
             steps[ev] = m.dt
     assert steps[None] == pytest.approx(explicit, rel=1e-12)

@@ -12,7 +12,7 @@ from gecko_agents import protocol
 from gecko_agents.analysis.drag import drag_span
 from gecko_agents.analysis.pull import release_point
 from gecko_agents.history import STATE_STICK
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY
 
 SETA = PAPER_ARRAY.replace(
@@ -25,7 +25,7 @@ def _release_force(beta):
     """The force [µN] at the release point (the largest force held in tension) of a
     gripping-dragged spatula seta pulled at β [deg] from +x (the pull's angle from the gripping
     shear axis is 180° − β), the plate at the quasi-static speed."""
-    h = Model(SETA, seed=1, record_every=1).run(
+    h = Model(SETA, seed=1, numerics=Numerics(record_every=1)).run(
         protocol.drag_pull(0.2, -8.0, beta, speed=protocol.DEFAULT_SPEED), progress=False
     )
     release = release_point(h)
@@ -45,7 +45,7 @@ def _push_over_the_pad(mu):
     from gecko_agents.contact import contact_law
 
     p = SETA.replace(**{"friction.mu": mu})
-    h = Model(p, seed=1, record_every=1, record_setae=True).run(
+    h = Model(p, seed=1, record_setae=True, numerics=Numerics(record_every=1)).run(
         protocol.drag_pull(0.2, 15.0, 90.0, speed=0.05), progress=False
     )
     start, end = drag_span(h)

@@ -12,7 +12,7 @@ import pytest
 from gecko_agents import protocol
 from gecko_agents.console import WarningLog, summary_line
 from gecko_agents.diagnostics import ValidityWarning
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 
 STUBBY = PAPER_ARRAY.replace(**{"array.count": 3, "seta.L": 5.0, "floor.sigma": 0.3})
@@ -248,7 +248,7 @@ def test_quasi_static_value_predicts_the_change_of_halving_the_speed(case):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for speed in (v, v / 2):
-            m = Model(params, n_sim=n, seed=1, record_every=1)
+            m = Model(params, n_sim=n, seed=1, numerics=Numerics(record_every=1))
             runs.append(m.run(protocol.press_pull(depth, speed=speed), progress=False))
     fast, slow = runs
     q = fast.meta["validity"]["items"]["quasi_static"]["value"]

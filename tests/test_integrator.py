@@ -19,7 +19,7 @@ from gecko_agents import quasistatic as qs
 from gecko_agents.analysis.pull import pull_off
 from gecko_agents.bench import pull_off_and_release
 from gecko_agents.history import STATE_FREE, STATE_SLIP, energy_balance_error
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.model.implicit import implicit_time_step
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 from gecko_agents.physics import beam
@@ -59,7 +59,10 @@ def test_auto_is_the_default_and_picks_the_verified_integrator():
         runs.append((_hash(h), h.meta["integrator"]))
     assert runs[0] == runs[1] and runs[0][1] == "implicit"
     auto = {"integrator": "auto"}
-    assert Model(p, contact="callback", **auto).integrator == "explicit"
+    assert (
+        Model.from_options(p, **auto, numerics=Numerics(contact="callback")).integrator
+        == "explicit"
+    )
     assert Model(p.replace(mechanics="elastica"), n_sim=1, **auto).integrator == "explicit"
     assert Model(p.replace(**{"backing.kind": "elastic"}), **auto).integrator == "implicit"
     assert Model(p.replace(tip="spatula"), **auto).integrator == "implicit"
@@ -67,14 +70,14 @@ def test_auto_is_the_default_and_picks_the_verified_integrator():
 
 def test_bad_integrator_and_dt_are_refused():
     with pytest.raises(ValueError, match="integrator = 'rk4'"):
-        Model(ROD, n_sim=1, integrator="rk4")
+        Model(ROD, n_sim=1, numerics=Numerics(integrator="rk4"))
     with pytest.raises(ValueError, match="needs contact = 'batch', got 'callback'"):
-        Model(ROD, n_sim=1, integrator="implicit", contact="callback")
+        Model(ROD, n_sim=1, numerics=Numerics(integrator="implicit", contact="callback"))
     with pytest.raises(ValueError, match="dt = -1"):
-        Model(ROD, n_sim=1, integrator="implicit", dt=-1.0)
+        Model(ROD, n_sim=1, numerics=Numerics(integrator="implicit", dt=-1.0))
     # No stability bound: a step 50 times the explicit one is accepted.
-    dt0 = Model(ROD, n_sim=1, integrator="explicit").dt
-    assert Model(ROD, n_sim=1, integrator="implicit", dt=50 * dt0).dt == 50 * dt0
+    dt0 = Model(ROD, n_sim=1, numerics=Numerics(integrator="explicit")).dt
+    assert Model(ROD, n_sim=1, numerics=Numerics(integrator="implicit", dt=50 * dt0)).dt == 50 * dt0
 
 
 @pytest.fixture(scope="module")
@@ -108,7 +111,7 @@ def test_release_converges_at_first_order_as_dt_falls():
     dt0's plate travel, the resolution of a located release (0.0035, 0.0015, 0.0015 µm
     measured against 0.0035 µm; 0.013 µm at 40 dt0 while only the tip's speed located it)."""
     speed = 0.02
-    dt0 = Model(ROD, n_sim=1, integrator="explicit").dt
+    dt0 = Model(ROD, n_sim=1, numerics=Numerics(integrator="explicit")).dt
     _, d_ref, _, _ = _pull(ROD, speed, dt=dt0 / 4)
     factors = (1.0, 0.5, 0.25)
     errors = [abs(_pull(ROD, speed, integrator="implicit", dt=f * dt0)[1] - d_ref) for f in factors]
@@ -127,12 +130,12 @@ def test_stiff_contact_runs_stably_at_the_default_step():
     explicit step its contact allows (3.75 × its stability bound 2/ω_max): no blow-up, the JKR
     pull-off (independent of E) within 1 %, the tip lets go once, the books close."""
     p = ROD.replace(**{"contact.E1": 100 * ROD.contact.E1})
-    m = Model(p, n_sim=1, integrator="implicit")
+    m = Model(p, n_sim=1, numerics=Numerics(integrator="implicit"))
     assert m.dt > 1.9 * 2.0 / m.omega_max
     # Recorded at the default interval: recorded every step, the snap-off's books show for
     # one step a swing of 3 % of the run's energy that the next step takes back.
     f, d, n, h = _pull(p, 0.005, integrator="implicit", record_every=None)
-    fc = Model(p, n_sim=1, integrator="explicit").Fc
+    fc = Model(p, n_sim=1, numerics=Numerics(integrator="explicit")).Fc
     assert abs(f - fc) <= 0.01 * fc, (f, fc)
     assert np.all(np.isfinite(h["energy_kinetic_pJ"]))
 
@@ -145,7 +148,7 @@ def test_energy_books_close_with_the_scheme_dissipation():
     f, d, n, h = _pull(ROD, 0.01, integrator="implicit")
     assert energy_balance_error(h) < 0.05
     assert h.meta["implicit_dissipated_pJ"] > 0.0
-    dt = Model(ROD, n_sim=1, integrator="implicit").dt / 4
+    dt = Model(ROD, n_sim=1, numerics=Numerics(integrator="implicit")).dt / 4
     assert energy_balance_error(_pull(ROD, 0.01, integrator="implicit", dt=dt)[3]) < 0.02
 
 
@@ -236,7 +239,7 @@ def test_a_change_of_step_is_booked_exactly(monkeypatch):
     monkeypatch.setattr(ImplicitStep, "substeps", alternate)
     f, d, n, h = _pull(ROD, 0.01, integrator="implicit")
     assert energy_balance_error(h) <= 0.02
-    assert h.meta["dt_us"] == Model(ROD, n_sim=1, integrator="implicit").dt
+    assert h.meta["dt_us"] == Model(ROD, n_sim=1, numerics=Numerics(integrator="implicit")).dt
 
 
 # A stubby rod seta (L = 5 µm) pressed and dragged at 0.1 µm/µs, as tests/test_model.py's
@@ -249,8 +252,11 @@ def _drag(params, kernel, depth=0.3):
     the implicit step, recorded every step with its seta's columns."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a/R of the pressed tip is beyond the JKR range
-        m = Model(params, kernel=kernel, integrator="implicit", record_every=1,
-                  record_setae=True)  # fmt: skip
+        m = Model(
+            params,
+            record_setae=True,
+            numerics=Numerics(kernel=kernel, integrator="implicit", record_every=1),
+        )
         return m.run(
             [protocol.PressTo(depth, 0.05), protocol.Move(dx=8.0, speed=0.1)], progress=False
         )
@@ -294,7 +300,7 @@ def test_a_tip_in_tension_holds_no_shear_under_the_paper_cap():
     )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the linear seta leaves its small-deflection range
-        m = Model(p, integrator="implicit", record_every=1, record_setae=True)
+        m = Model(p, record_setae=True, numerics=Numerics(integrator="implicit", record_every=1))
         h = m.run(protocol.press_pull(0.5, speed=0.02), progress=False)
     P, state = h.setae["force_normal_uN"], h.setae["state"]
     tension = (state != STATE_FREE) & (P < 0.0)
@@ -367,10 +373,14 @@ def test_rough_continuous_floor_matches_quasistatic_curve(factor):
     heights = rng.normal(0.0, p.floor.sigma, p.array.count)
     slopes = rng.uniform(-0.25, 0.25, p.array.count)
     prof = _facet_floor(p, heights, slopes)
-    dt = None if factor is None else factor * Model(p, floor_profile=prof, integrator="explicit").dt
+    dt = (
+        None
+        if factor is None
+        else factor * Model(p, floor_profile=prof, numerics=Numerics(integrator="explicit")).dt
+    )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(p, floor_profile=prof, integrator="implicit", dt=dt)
+        m = Model(p, floor_profile=prof, numerics=Numerics(integrator="implicit", dt=dt))
         h = m.run(protocol.press_pull(0.5, speed=SPEED), progress=False)
     assert not m.world.pads and m._implicit.normal is not None
     sub = 10
@@ -403,7 +413,7 @@ def test_steep_facet_with_friction_matches_the_explicit_step(slope):
     for integrator in ("explicit", "implicit"):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            m = Model(p, floor_profile=prof, integrator=integrator)
+            m = Model(p, floor_profile=prof, numerics=Numerics(integrator=integrator))
             h = m.run(protocol.press_pull(0.5, speed=SPEED), progress=False)
         assert len(h.detachments["plate_y_um"]) == 1
         runs.append((h.peak_pull_off, h.detachments["plate_y_um"][0], h["plate_y_um"].min()))
@@ -429,7 +439,7 @@ def test_drag_over_a_rough_continuous_floor_matches_the_explicit_step():
     for integrator in ("explicit", "implicit"):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            m = Model(p, integrator=integrator, record_every=1)
+            m = Model(p, numerics=Numerics(integrator=integrator, record_every=1))
             h = m.run(protocol.drag_pull(3.0, 10.0, 90.0, speed=SPEED), progress=False)
         assert not m.world.pads and len(h.detachments["seta"]) == 10
         pull.append(h.peak_pull_off)
@@ -450,7 +460,7 @@ def test_gripping_dragged_spatula_pulls_off_as_the_explicit_step():
     for integrator in ("explicit", "implicit"):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # validity warning of the contact radius
-            m = Model(p, n_sim=1, seed=7, integrator=integrator, record_every=1)
+            m = Model(p, n_sim=1, seed=7, numerics=Numerics(integrator=integrator, record_every=1))
             h = m.run(protocol.drag_pull(0.2, 8.0, 90.0, speed=0.005), progress=False)
         pull.append(pull_off(h).adhesion)
     assert m.dt == implicit_time_step(None, m.omega_max)  # the default step
@@ -504,7 +514,7 @@ def test_spatula_books_close_at_the_default_step_with_the_papers_friction_law():
     p = PAPER_TABLE1.replace(**{"mechanics": "rod", "tip": "spatula", "friction.law": "paper"})
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # validity warning of the contact radius
-        m = Model(p, n_sim=1, record_every=1)
+        m = Model(p, n_sim=1, numerics=Numerics(record_every=1))
         h = m.run(protocol.drag_pull(1.0, 0.5, 90.0, protocol.DEFAULT_SPEED), progress=False)
     assert m.integrator == "implicit" and m.dt == implicit_time_step(None, m.omega_max)
     # A quarter of ENERGY_RTOL: 2.5 times the 0.19 % measured, a tenth of the 4.75 % before.
@@ -544,7 +554,9 @@ def test_sliding_pad_pulls_off_as_the_explicit_step():
     for integrator in ("explicit", "implicit"):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # validity warning of the contact radius
-            h = Model(p, seed=1, integrator=integrator, record_every=1).run(prot, progress=False)
+            h = Model(p, seed=1, numerics=Numerics(integrator=integrator, record_every=1)).run(
+                prot, progress=False
+            )
         pull.append(pull_off(h, fa.DRAG).adhesion)
     # Half a percent, the issue's bound for an event against the explicit reference.
     assert abs(pull[1] - pull[0]) <= 0.005 * pull[0], pull

@@ -17,7 +17,7 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.bench import _wp_error, pull_off_and_release
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_TABLE1
 
 SPEED = 0.02  # plate speed [µm/µs]
@@ -54,7 +54,9 @@ def _measure(params, proto, **kw) -> dict:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # validity warnings of the contact radius
         kw = {"integrator": "explicit"} | kw
-        h = Model(params, n_sim=1, record_every=1, **kw).run(proto, progress=False)
+        h = Model.from_options(params, n_sim=1, **kw, numerics=Numerics(record_every=1)).run(
+            proto, progress=False
+        )
     pull, release = pull_off_and_release(h)
     return {"pull_off": pull, "release": release}
 
@@ -70,7 +72,7 @@ def test_pull_off_converges_at_first_order(law):
     crack kinetics measured)."""
     params, proto = LAWS[law]
     factors = SPHERE_FACTORS if law == "sphere" else FACTORS
-    dt0 = Model(params, n_sim=1, integrator="explicit").dt
+    dt0 = Model(params, n_sim=1, numerics=Numerics(integrator="explicit")).dt
     ref = _measure(params, proto, dt=dt0 / 4) if law == "sphere" else _measure(params, proto)
     errors = [_wp_error(_measure(params, proto, integrator="implicit", dt=f * dt0), ref)
               for f in factors]  # fmt: skip

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.model import Model, numba_available
+from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.model.step_loop import BLOCK
 from gecko_agents.params import PAPER_ARRAY
 
@@ -24,7 +24,12 @@ DRAG_PULL = protocol.drag_pull(10.0, 12.0, 60.0, speed=0.05)
 def _run(kernel, threaded=False):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(ARRAY, kernel=kernel, record_setae=True, seed=3, threads=2 if threaded else 1)
+        m = Model(
+            ARRAY,
+            record_setae=True,
+            seed=3,
+            numerics=Numerics(kernel=kernel, threads=2 if threaded else 1),
+        )
         if threaded and m.loop_threads < 2:
             pytest.skip("numba runs on one thread here (NUMBA_NUM_THREADS)")
         return m.run(DRAG_PULL, progress=False)

@@ -10,7 +10,7 @@ from numpy.testing import assert_allclose
 from gecko_agents import protocol
 from gecko_agents import quasistatic as qs
 from gecko_agents.history import STATE_FREE
-from gecko_agents.model import Model, SimulationUnstable, numba_available
+from gecko_agents.model import Model, Numerics, SimulationUnstable, numba_available
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 from gecko_agents.physics import beam, jkr
 
@@ -167,8 +167,8 @@ def test_energy_balance():
         warnings.simplefilter("ignore")
         # The explicit step at half its step; the implicit step books its numerical
         # dissipation per step without a sign (tests/test_integrator.py checks its balance).
-        m0 = Model(STUBBY, integrator="explicit")
-        m = Model(STUBBY, dt=m0.dt / 2, integrator="explicit")
+        m0 = Model(STUBBY, numerics=Numerics(integrator="explicit"))
+        m = Model(STUBBY, numerics=Numerics(dt=m0.dt / 2, integrator="explicit"))
         h = m.run(protocol.press_pull(0.5, speed=SPEED), progress=False)
     W = h["work_plate_pJ"]
     E = h["energy_elastic_pJ"] + h["energy_kinetic_pJ"] + h["energy_dissipated_pJ"]
@@ -193,9 +193,9 @@ def test_same_seed_same_history_and_seed_matters():
 def test_reference_callback_path_gives_the_same_history(kernel):
     p = STUBBY.replace(**{"array.count": 3})
     hs = [
-        Model(p, contact=c, record_every=5, integrator="explicit", **kw).run(
-            protocol.press_pull(0.3, speed=0.05), progress=False
-        )
+        Model.from_options(
+            p, **kw, numerics=Numerics(contact=c, record_every=5, integrator="explicit")
+        ).run(protocol.press_pull(0.3, speed=0.05), progress=False)
         for c, kw in (("batch", {"kernel": kernel}), ("callback", {}))
     ]
     assert len(hs[0]) == len(hs[1])
@@ -227,8 +227,10 @@ def test_kernels_give_the_same_history(kernel, mechanics):
     prot = protocol.drag_pull(10.0, 12.0 if mechanics == "rod" else -8.0, 60.0, speed=0.05)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        ref = Model(p, kernel="numpy", record_setae=True).run(prot, progress=False)
-        m = Model(p, kernel=kernel, record_setae=True)
+        ref = Model(p, record_setae=True, numerics=Numerics(kernel="numpy")).run(
+            prot, progress=False
+        )
+        m = Model(p, record_setae=True, numerics=Numerics(kernel=kernel))
         h = m.run(prot, progress=False)
     assert h.meta["kernel"] == kernel and ref.meta["kernel"] == "numpy"
     _same_history(ref, h)
@@ -281,7 +283,9 @@ def test_convergence_in_dt_and_speed():
             ("dt/2", base.dt / 2, SPEED),
             ("v/2", base.dt, SPEED / 2),
         ):
-            h = Model(p, dt=dt).run(protocol.press_pull(0.4, speed=v), progress=False)
+            h = Model(p, numerics=Numerics(dt=dt)).run(
+                protocol.press_pull(0.4, speed=v), progress=False
+            )
             peaks[name] = h.peak_pull_off
     assert abs(peaks["dt/2"] / peaks["base"] - 1) < 0.01
     assert abs(peaks["v/2"] / peaks["base"] - 1) < 0.01
@@ -291,20 +295,23 @@ def test_bad_input_and_instability():
     m = Model(STUBBY)
     bound = 2 / m.omega_max
     with pytest.raises(ValueError, match="dt = .* stable range"):
-        Model(STUBBY, dt=1.01 * bound, integrator="explicit")
+        Model(STUBBY, numerics=Numerics(dt=1.01 * bound, integrator="explicit"))
     with pytest.raises(ValueError, match="n_sim"):
         Model(PAPER_ARRAY)
     with pytest.raises(ValueError, match="contact"):
-        Model(STUBBY, contact="psychic")
+        Model(STUBBY, numerics=Numerics(contact="psychic"))
     with pytest.raises(ValueError, match="callback"):
-        Model(STUBBY.replace(**{"floor.correlation_length": 3.0}), contact="callback")
+        Model(
+            STUBBY.replace(**{"floor.correlation_length": 3.0}),
+            numerics=Numerics(contact="callback"),
+        )
     with pytest.raises(ValueError, match="protocol is empty"):
         m.run([], progress=False)
     with pytest.raises(ValueError, match="speed"):
         protocol.Move(dy=1.0, speed=-1.0)
     # A run whose kinetic energy runs away stops with an actionable message.
     with pytest.raises(SimulationUnstable, match="reduce dt"):
-        Model(STUBBY, dt=0.99 * bound, integrator="explicit").run(
+        Model(STUBBY, numerics=Numerics(dt=0.99 * bound, integrator="explicit")).run(
             protocol.press_pull(0.5, speed=0.5), progress=False, ke_bound=1e-9
         )
 
@@ -358,7 +365,7 @@ def test_sliding_dissipates_the_coulomb_work(kernel):
     if kernel == "numba" and not numba_available():
         pytest.skip("numba not installed")
     p = PAPER_TABLE1.replace(**{"mechanics": "rod", "seta.L": 5.0})
-    m = Model(p, kernel=kernel, record_setae=True, record_every=5)
+    m = Model(p, record_setae=True, numerics=Numerics(kernel=kernel, record_every=5))
     h = m.run([protocol.PressTo(0.3, 0.05), protocol.Move(dx=8.0, speed=0.1)], progress=False)
     Fc = p.contact.pull_off_force
     slide = np.flatnonzero(h.setae["state"][:, 0] == 2)

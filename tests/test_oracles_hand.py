@@ -25,7 +25,7 @@ from gecko_agents import protocol
 from gecko_agents import quasistatic as qs
 from gecko_agents.contact import JKRSphere, ShearedJKRSphere, mindlin_stiffness
 from gecko_agents.history import STATE_SLIP, STATE_STICK
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1, Contact
 from gecko_agents.physics import beam
 from gecko_agents.physics.friction import combined_shear_modulus, stick_stiffness
@@ -268,8 +268,8 @@ def test_sliding_dissipates_the_paper_coulomb_work(kernel):
     energy scale at the default dt with records every step, 2 % at dt/4), which the suite's
     invariant check (conftest.py) would flag; the steady slide balances to 1e-4."""
     p = PAPER_TABLE1.replace(**{"mechanics": "rod", "seta.L": 5.0, **PAPER_FRICTION})
-    dt = Model(p, kernel=kernel).dt / 4
-    m = Model(p, kernel=kernel, record_setae=True, record_every=20, dt=dt)
+    dt = Model(p, numerics=Numerics(kernel=kernel)).dt / 4
+    m = Model(p, record_setae=True, numerics=Numerics(kernel=kernel, record_every=20, dt=dt))
     h = m.run([protocol.PressTo(1.5, 0.05), protocol.Move(dx=8.0, speed=0.1)], progress=False)
     state = h.setae["state"][:, 0]
     k = np.arange(len(state) // 2, len(state) - 1)

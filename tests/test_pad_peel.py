@@ -162,7 +162,7 @@ def test_leader_arm_is_laid_out_at_the_peel_angle_stress_free(pad_peel):
     """The arm's links continue the pad's +x end at ψ: its end node sits at the pad's edge
     plus the arm's length along ψ, and the strip stores no bending energy in that shape."""
     p = pad_peel.BASE.replace(**{"array.count": 20})
-    m = Model(p, leader_arm=30.0, peel_angle_deg=40.0)
+    m = Model(p.replace(backing={"leader_arm": 30.0, "peel_angle_deg": 40.0}))
     b = m.backing.info
     x, y = m.backing.strip.nodes()
     arm = b["leader_arm_um"]
@@ -188,7 +188,7 @@ def test_bad_leader_arm_refused(pad_peel, kwargs):
 def test_leader_arm_needs_the_peel_drive():
     p = PAPER_ARRAY.replace(**{"array.count": 8, "backing.kind": "elastic"})
     with pytest.raises(ValueError, match="Backing.drive"):
-        Model(p, leader_arm=10.0)
+        Model(p.replace(backing={"leader_arm": 10.0}))
 
 
 def test_seta_work_of_separation_quasistatic_against_its_closed_form(pad_peel):

@@ -23,14 +23,15 @@ from gecko_agents import calibrate as cal
 from gecko_agents import cli, protocol, render, sweep
 from gecko_agents import history as hist
 from gecko_agents.floor import readers
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.model.cost import RunCostError
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 from gecko_agents.protocol import PressLimitError
 
 ROOT = Path(__file__).resolve().parents[1]
 RUN_FILE = GOOD.replace("n_sim = 1", 'n_sim = 1\nkernel = "numpy"')  # no compilation to wait for
-STIFF = PAPER_TABLE1.replace(**{"seta.L": 5.0})  # one short seta: quick runs
+STIFF = PAPER_TABLE1.replace(**{"seta.L": 5.0})
+NUMPY = Numerics(kernel="numpy")  # no compilation to wait for  # one short seta: quick runs
 CAL_BASE = PAPER_ARRAY.replace(**{"array.count": 400, "seta.L": 5.0, "floor.sigma": 0.5})
 
 
@@ -184,11 +185,11 @@ ROWS = [
     Row("run file: press_to -0.5 um", lambda p: _run_file(p, PRESS_ABOVE), 1,
         ("MeaninglessRunError", "no tip ever touched")),
     Row("press to 1e9 uN",
-        lambda p: _raised(lambda: Model(STIFF, n_sim=1, seed=1, kernel="numpy").run(
+        lambda p: _raised(lambda: Model(STIFF, n_sim=1, seed=1, numerics=NUMPY).run(
             [protocol.Press(1e9, speed=0.05)], progress=False)),
         PressLimitError, ("preload=1e+09",)),
     Row("press_to 1e6 um",
-        lambda p: _raised(lambda: Model(STIFF, n_sim=1, seed=1, kernel="numpy").run(
+        lambda p: _raised(lambda: Model(STIFF, n_sim=1, seed=1, numerics=NUMPY).run(
             [protocol.PressTo(1e6)], progress=False)),
         ValueError, ("PressTo.depth", "1000000")),
     # Calibration (defect 3).
@@ -449,10 +450,10 @@ ROWS += [
         ("links = 2", "[14, 200]")),
     # 6. Every route to a long run, refused before any step.
     Row("implicit event_dt 1e-9",
-        lambda p: _raised(lambda: Model(P41, integrator="implicit", event_dt=1e-9).run(
+        lambda p: _raised(lambda: Model(P41, numerics=Numerics(event_dt=1e-9)).run(
             protocol.press_pull(0.5), progress=False)), RunCostError, ("event_dt = 1e-09",)),
     Row("implicit dt 1e9",
-        lambda p: _raised(lambda: Model(P41, integrator="implicit", dt=1e9).run(
+        lambda p: _raised(lambda: Model(P41, numerics=Numerics(integrator="implicit", dt=1e9)).run(
             protocol.press_pull(0.5), progress=False)), RunCostError, ("dt = 1e+09",)),
     Row("run file dt_us 1e9", lambda p: _run_file(p, MODEL_DT_1E9), 2, ("dt = 1e+09",)),
     Row("PullOff clearance 1e9",

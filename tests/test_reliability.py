@@ -16,7 +16,7 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.diagnostics import MeaninglessRunError, ValidityWarning
-from gecko_agents.model import Model, SimulationUnstable, cost, runner
+from gecko_agents.model import Model, Numerics, SimulationUnstable, cost, runner
 from gecko_agents.params import PAPER_TABLE1
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -37,7 +37,7 @@ def test_a_plate_that_outruns_its_setae_is_an_error():
 def test_the_error_keeps_the_recorded_history():
     try:
         # The explicit step: at 20 µm/µs the implicit one's touch is marginal (a tip grazes).
-        m = Model(STIFF, n_sim=1, seed=1, integrator="explicit")
+        m = Model(STIFF, n_sim=1, seed=1, numerics=Numerics(integrator="explicit"))
         m.run(protocol.press_pull(0.5, speed=20.0), progress=False)
     except MeaninglessRunError as err:
         assert err.history is not None and err.history["n_attached"].max() == 0

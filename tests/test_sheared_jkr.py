@@ -14,7 +14,7 @@ from gecko_agents import protocol, quasistatic
 from gecko_agents.analysis.pull import pull_off
 from gecko_agents.contact import JKRSphere, ShearedJKRSphere, contact_law
 from gecko_agents.contact.sheared_jkr import _radius
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import jkr
 from gecko_agents.physics import savkoor_briggs as sj
@@ -210,7 +210,7 @@ def _drag_pull(params, drag, kernel="numba", speed=0.05, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         p = params.replace(**{"array.count": 1})
-        m = Model(p, seed=1, kernel=kernel, record_every=1, **kw)
+        m = Model.from_options(p, seed=1, **kw, numerics=Numerics(kernel=kernel, record_every=1))
         return m.run(protocol.drag_pull(0.2, drag, 90.0, speed=speed), progress=False)
 
 
@@ -271,8 +271,8 @@ def test_kernels_agree(kernel):
     prot = [*dp[:-1], protocol.Move(dx=-10.0, speed=0.05), dp[-1]]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        ref = Model(p, kernel="numpy").run(prot, progress=False)
-        h = Model(p, kernel=kernel).run(prot, progress=False)
+        ref = Model(p, numerics=Numerics(kernel="numpy")).run(prot, progress=False)
+        h = Model(p, numerics=Numerics(kernel=kernel)).run(prot, progress=False)
     for col in ref.scalars:
         scale = np.abs(ref[col]).max() + 1e-300
         assert np.abs(ref[col] - h[col]).max() <= 1e-9 * scale, col

@@ -12,7 +12,7 @@ from gecko_agents.analysis.pull import pull_off
 from gecko_agents.contact import contact_law
 from gecko_agents.contact.spatula import K_MU, K_PAPER, _film_force
 from gecko_agents.history import STATE_SLIP, STATE_STICK
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY
 
 SPATULA = PAPER_ARRAY.replace(**{"tip": "spatula", "mechanics": "rod", "floor.sigma": 0.0})
@@ -157,7 +157,7 @@ def _pull_off(drag, kernel="numba", mu=10.0, speed=protocol.DEFAULT_SPEED, dampi
     at 90°, the plate at ``speed`` [µm/µs]; and its history."""
     p = SPATULA.replace(**{"friction.mu": mu})
     extra = {} if damping is None else {"damping": damping}
-    m = Model(p, n_sim=1, seed=7, kernel=kernel, **extra)
+    m = Model.from_options(p, n_sim=1, seed=7, **extra, numerics=Numerics(kernel=kernel))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         h = m.run(protocol.drag_pull(0.2, drag, 90.0, speed=speed), progress=False)
@@ -357,8 +357,10 @@ def test_kernels_agree_on_a_pressed_drag(kernel):
     ]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        ref = Model(p, kernel="numpy", record_setae=True).run(prot, progress=False)
-        h = Model(p, kernel=kernel, record_setae=True).run(prot, progress=False)
+        ref = Model(p, record_setae=True, numerics=Numerics(kernel="numpy")).run(
+            prot, progress=False
+        )
+        h = Model(p, record_setae=True, numerics=Numerics(kernel=kernel)).run(prot, progress=False)
     assert len(h) == len(ref)
     for col in ref.scalars:
         scale = np.abs(ref[col]).max() + 1e-300
@@ -383,8 +385,8 @@ def test_energy_error_of_the_final_peel_is_first_order_in_dt():
     for f in (1.0, 0.5):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            m = Model(p, seed=1, integrator="explicit")
-            m = Model(p, seed=1, dt=m.dt * f, integrator="explicit")
+            m = Model(p, seed=1, numerics=Numerics(integrator="explicit"))
+            m = Model(p, seed=1, numerics=Numerics(dt=m.dt * f, integrator="explicit"))
             errs.append(energy_balance_error(m.run(prot, progress=False)))
     assert errs[0] > 0.2 * ENERGY_RTOL  # a measurable error, not rounding
     assert errs[1] == pytest.approx(0.5 * errs[0], rel=0.15)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.model import Model, implicit, numba_available
+from gecko_agents.model import Model, Numerics, implicit, numba_available
 from gecko_agents.model.implicit_kernel import pad_kernels, pad_solver, step_books
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import beam, jkr
@@ -27,7 +27,13 @@ DRAG = protocol.drag_pull(2.0, 3.0, 60.0, speed=0.05)
 def _model(params, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return Model(params, seed=3, kernel="numba", record_every=1, record_setae=True, **kw)
+        return Model.from_options(
+            params,
+            seed=3,
+            record_setae=True,
+            **kw,
+            numerics=Numerics(kernel="numba", record_every=1),
+        )
 
 
 def _run(params, compiled: bool, monkeypatch):

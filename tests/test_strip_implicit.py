@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from gecko_agents import history, protocol
-from gecko_agents.backing.bench import elastic_pressed_model
 from gecko_agents.backing.elastic import COUPLING_OMEGA_DT
-from gecko_agents.model import Model
+from gecko_agents.bench import elastic_pressed_model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.model.implicit import implicit_time_step
 from gecko_agents.params import PAPER_ARRAY
 
@@ -32,7 +32,7 @@ TILTED = PAPER_ARRAY.replace(
 def _run(params, integrator, prot, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(params, seed=1, integrator=integrator, **kw)
+        m = Model.from_options(params, seed=1, **kw, numerics=Numerics(integrator=integrator))
         return m, m.run(prot, progress=False)
 
 
@@ -44,7 +44,7 @@ def _tilted(integrator, params=TILTED):
     """The misalignment study's press to 0.2 N·Fc and pull at 0.05 µm/µs, recorded every step."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(params, seed=1, integrator="explicit")
+        m = Model(params, seed=1, numerics=Numerics(integrator="explicit"))
     n_fc = m.n * m.Fc  # [µN]
     return _run(params, integrator, protocol.preload_pull(0.2 * n_fc, speed=0.05),
                 record_every=1)  # fmt: skip
@@ -172,7 +172,7 @@ def test_the_default_step_keeps_the_strips_coupling_stable(factor):
     kw = {"seed": 1, "leader_arm": pad_peel.ARM, "peel_angle_deg": 30.0}
     dt = None
     if factor is not None:
-        dt = factor * Model(p, integrator="explicit", **kw).dt
+        dt = factor * Model.from_options(p, **kw, numerics=Numerics(integrator="explicit")).dt
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         if factor is None:
@@ -192,7 +192,7 @@ def test_a_long_event_step_is_held_to_the_strips_coupling_bound():
 
     p = pad_peel.BASE.replace(**{"array.count": 40})
     kw = {"seed": 1, "leader_arm": pad_peel.ARM, "peel_angle_deg": 30.0}
-    event_dt = 15.0 * Model(p, integrator="explicit", **kw).dt
+    event_dt = 15.0 * Model.from_options(p, **kw, numerics=Numerics(integrator="explicit")).dt
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         m = elastic_pressed_model(40, pad_peel.DEPTH, 60, p, event_dt=event_dt, **kw)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from gecko_agents import protocol
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.model.setup import numba_threads
 from gecko_agents.params import PAPER_ARRAY
 
@@ -47,8 +47,8 @@ def _same_history(a, b):
 
 
 def test_lazy_detection_has_full_detections_flags_and_state_on_every_step():
-    full = Model(ROUGH, seed=7, detection="full")
-    lazy = Model(ROUGH, seed=7, detection="lazy")
+    full = Model(ROUGH, seed=7, numerics=Numerics(detection="full"))
+    lazy = Model(ROUGH, seed=7, numerics=Numerics(detection="lazy"))
     assert (full.world.detection, lazy.world.detection) == ("full", "lazy")
     begins = separates = slid = sensors = steps = 0
     prev = np.zeros(full.n, dtype=bool)
@@ -85,7 +85,7 @@ def test_lazy_and_full_detection_give_bit_identical_histories():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for det in ("full", "lazy"):
-            m = Model(p, seed=3, detection=det, record_setae=True)
+            m = Model(p, seed=3, record_setae=True, numerics=Numerics(detection=det))
             runs[det] = m.run(protocol.drag_pull(1.0, 1.0, 60.0, speed=SPEED), progress=False)
     a, b = runs["full"], runs["lazy"]
     assert (a.meta["detection"], b.meta["detection"]) == ("full", "lazy")
@@ -94,7 +94,7 @@ def test_lazy_and_full_detection_give_bit_identical_histories():
 
 def test_auto_detection_is_lazy_on_pads_and_full_elsewhere():
     assert Model(ROUGH, n_sim=5).world.detection == "lazy"
-    assert Model(ROUGH, n_sim=5, contact="callback").world.detection == "full"
+    assert Model(ROUGH, n_sim=5, numerics=Numerics(contact="callback")).world.detection == "full"
     smooth = ROUGH.replace(**{"floor.correlation_length": 3.0})
     assert Model(smooth, n_sim=5).world.detection == "full"
 
@@ -126,7 +126,7 @@ def test_threads_give_the_same_history():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for threads in (1, 3):
-            m = Model(p, seed=3, record_setae=True, threads=threads)
+            m = Model(p, seed=3, record_setae=True, numerics=Numerics(threads=threads))
             runs[threads] = m.run(protocol.drag_pull(1.0, 6.0, 60.0, speed=SPEED), progress=False)
     a, b = runs[1], runs[3]
     assert a.meta["loop_threads"] == 1
@@ -141,7 +141,7 @@ def test_threads_give_the_same_history():
 )
 def test_bad_threads_refused_naming_it(threads, kw):
     with pytest.raises(ValueError, match="threads = "):
-        Model(ROUGH, n_sim=5, threads=threads, **kw)
+        Model.from_options(ROUGH, n_sim=5, **kw, numerics=Numerics(threads=threads))
 
 
 def test_automatic_threads_only_for_large_models_and_only_on_idle_cores(tmp_path, monkeypatch):

@@ -88,7 +88,6 @@ __all__ = [
     "STRIP_ARRAYS",
     "bending_length",
     "strip_step",
-    "peel",
     "OMEGA_DT",
     "MIN_LINKS",
 ]
@@ -122,16 +121,12 @@ def strip_step(model) -> float:
     """The strip's own step [µs] in ``model`` (a :class:`gecko_agents.model.Model`): the
     model's dt with the explicit integrator (the strip steps with the tips); with the implicit
     one, the explicit step the model would take (0.75/ω_max of the tips' stiffest spring,
-    ``gecko_agents.model.setup.explicit_time_step``), or the model's dt if shorter. The
+    the model's ``explicit_dt``), or the model's dt if shorter. The
     links' inertia is scaled for this step (:class:`ElasticBacking`), and the strip sub-cycles
     the tips' step in steps no longer than it (:meth:`ElasticBacking.roots`)."""
     if model.integrator != "implicit":
         return model.dt
-    from gecko_agents.model.setup import explicit_time_step
-
-    h = explicit_time_step(None, model.omega_max, model.k_max, model.mass,
-                           model.law.rate_dependent)  # fmt: skip
-    return min(h, model.dt)
+    return min(model.explicit_dt, model.dt)
 
 
 class ElasticBacking:
@@ -145,15 +140,13 @@ class ElasticBacking:
     Parameters
     ----------
     model : the :class:`gecko_agents.model.Model` being built (world, state, physics, dt).
-    leader_arm : [µm] > 0 (with ``backing.drive = "peel_end"``) adds a pre-peeled arm of that
-        length beyond the pad's +x edge: links of the same strip with no setae under them,
-        laid out at ``peel_angle_deg`` from the floor, stress-free in that shape (the kink's
-        joint has that rest angle); the handle holds the arm's end, so pulling the handle
-        along the same angle peels the pad at a steady angle (a handle pulled from the end of
-        a flat strip drags it instead). Not with a misalignment. ``Model(params,
-        leader_arm=…)`` passes it here.
-    peel_angle_deg : [deg] angle of the leader arm from the floor (+x, the pulled side; 90 =
-        straight up), in (0, 180).
+        Its ``params.backing.leader_arm`` [µm] > 0 (with ``drive = "peel_end"``) adds a
+        pre-peeled arm of that length beyond the pad's +x edge: links of the same strip with
+        no setae under them, laid out at ``params.backing.peel_angle_deg`` from the floor (+x,
+        the pulled side; 90 = straight up), stress-free in that shape (the kink's joint has
+        that rest angle); the handle holds the arm's end, so pulling the handle along the same
+        angle peels the pad at a steady angle (a handle pulled from the end of a flat strip
+        drags it instead).
 
     Attributes
     ----------
@@ -179,18 +172,9 @@ class ElasticBacking:
             )
         return "numpy"
 
-    def __init__(self, model, leader_arm: float = 0.0, peel_angle_deg: float = 90.0):
-        bk = model.params.backing
-        if not (math.isfinite(leader_arm) and leader_arm >= 0.0):
-            raise ValueError(f"leader_arm = {leader_arm!r} µm must be ≥ 0")
-        if leader_arm and (bk.drive != "peel_end" or bk.misalignment_deg):
-            raise ValueError(
-                f"leader_arm = {leader_arm!r} µm needs Backing.drive = 'peel_end' (got "
-                f"{bk.drive!r}) and Backing.misalignment_deg = 0 (got {bk.misalignment_deg!r})"
-            )
-        if not 0.0 < peel_angle_deg < 180.0:
-            raise ValueError(f"peel_angle_deg = {peel_angle_deg!r} must be in (0, 180)")
-        self.leader_arm, self.peel_angle_deg = float(leader_arm), float(peel_angle_deg)
+    def __init__(self, model):
+        bk = model.params.backing  # its leader_arm and peel_angle_deg, checked there
+        self.leader_arm, self.peel_angle_deg = float(bk.leader_arm), float(bk.peel_angle_deg)
         self.params, self.world, self.state = model.params, model.world, model.state
         self.physics, self.n, self._model = model.physics, model.n, model
         self.dt = strip_step(model)
@@ -225,8 +209,16 @@ class ElasticBacking:
         if alpha:
             self._lift(0.5 * length * abs(math.sin(alpha)), alpha)
         n_arm = math.ceil(self.leader_arm / ell - 1e-9)  # links of the leader arm
-        strip = Strip(-0.5 * length, ell, n_links + n_arm, w.plate.position.y, EI, rho_A,
-                      bk.damping_ratio, angle=alpha)  # fmt: skip
+        strip = Strip(
+            -0.5 * length,
+            ell,
+            n_links + n_arm,
+            w.plate.position.y,
+            EI,
+            rho_A,
+            bk.damping_ratio,
+            angle=alpha,
+        )
         if n_arm:
             strip.kink_up(n_links, math.radians(self.peel_angle_deg))
         k_each = self._attach_handle(strip, n_links, n_arm, length, alpha)
@@ -253,13 +245,20 @@ class ElasticBacking:
         [µm] (the roots' frame, the pad centred on 0: a leader arm's nodes lie beyond
         ``length_um``/2)."""
         self.info = {
-            "EI_uN_um2": EI, "width_um": pitch, "length_um": length, "n_links": strip.n,
-            "pad_links": n_links, "leader_arm_um": n_arm * ell,
+            "EI_uN_um2": EI,
+            "width_um": pitch,
+            "length_um": length,
+            "n_links": strip.n,
+            "pad_links": n_links,
+            "leader_arm_um": n_arm * ell,
             "peel_angle_deg": self.peel_angle_deg if n_arm else None,
-            "link_um": ell, "bending_length_um": lam, "foundation_uN_per_um2": k_f,
-            "mass_scale": mass, "moment_scale": moment,
+            "link_um": ell,
+            "bending_length_um": lam,
+            "foundation_uN_per_um2": k_f,
+            "mass_scale": mass,
+            "moment_scale": moment,
             "handle_stiffness_each_uN_per_um": k_each,
-        }  # fmt: skip
+        }
 
     def _attach_handle(self, strip, n_links, n_arm, length, alpha) -> float:
         """The handle spring's points on the strip: k_h/n per link centre (uniform) or k_h on
@@ -332,7 +331,8 @@ class ElasticBacking:
         move from x₀ to x₁ = x₀ + v₀·dt in it whatever their forces (pymunk's semi-implicit
         Euler; ``state.pv``, ``state.xy``), so each sub-step's seta springs pull the root
         points where the sub-step takes them towards the tips' point on that path
-        (:meth:`gecko_agents.model.Model.spring_force`), with the seta dampers' force of the
+        (:meth:`~gecko_agents.model.stepping.Stepping.spring_force`),
+        with the seta dampers' force of the
         last step; the handle spring as in :meth:`advance`. Books what :meth:`advance` books
         (the seta dampers' share at the root points' velocities; the handle's share is booked
         by :meth:`advance` with this step's damper forces); keeps the force on the handle."""
@@ -350,10 +350,15 @@ class ElasticBacking:
             fs = (F[:, 0] + Fdx, F[:, 1] + Fdy)
             back = (k - 1 - j) * h  # the handle's time to the step's end [µs]
             self._handle_force = self._substep(
-                h, (hx - vpx * back, hy - vpy * back), (vpx, vpy), (0.0, 0.0),
+                h,
+                (hx - vpx * back, hy - vpy * back),
+                (vpx, vpy),
+                (0.0, 0.0),
                 (-np.bincount(link, fs[0], nl), -np.bincount(link, fs[1], nl)),
-                (ox, oy), damp, fs,
-            )  # fmt: skip
+                (ox, oy),
+                damp,
+                fs,
+            )
 
     def hold(self, state) -> None:
         """Keep the seta spring + damping forces on the tips (``state.F`` before the contacts
@@ -469,7 +474,8 @@ class ElasticBacking:
 
     def kinetic_energy(self, tips: float) -> float:
         """Kinetic energy of the tips (``tips`` [pJ]) and of the strip's links [pJ] (both in
-        the form ½m·v(n−½)·v(n+½) of :meth:`gecko_agents.model.Model.kinetic_energy`)."""
+        the form ½m·v(n−½)·v(n+½) of
+        :meth:`~gecko_agents.model.stepping.Stepping.kinetic_energy`)."""
         return tips + self.strip.kinetic
 
     def record(self) -> tuple[dict, dict]:
@@ -477,15 +483,3 @@ class ElasticBacking:
         (:data:`STRIP_COLUMNS`), the nodes' positions (:data:`STRIP_ARRAYS`)."""
         scalars = dict(zip(STRIP_COLUMNS, (self.front_x(), *self.setae_force), strict=True))
         return scalars, dict(zip(STRIP_ARRAYS, self.strip.nodes(), strict=True))
-
-
-def peel(depth: float, psi_deg: float, speed: float = 0.05) -> list:
-    """Press ``depth`` [µm], then pull the handle away at ``psi_deg`` from the floor (+x, the
-    side the setae lean to; 90 = straight up) at ``speed`` [µm/µs]: with
-    ``backing.drive = "peel_end"`` the strip's +x end is peeled at the angle ψ. Kendall's tape
-    (1975, J Phys D 8:1449), inextensible: F/b = w_eff/(1 − cos ψ), so a shallower peel needs
-    more force (measured, 12 setae, E_b = 1.413 MPa: peak handle force 22.8 µN at 30°,
-    20.6 µN at 90°)."""
-    from gecko_agents import protocol
-
-    return [protocol.PressTo(depth, speed), protocol.PullOff(speed, angle_deg=psi_deg)]

@@ -131,13 +131,13 @@ class LayerBacking:
             )
         return "numpy"
 
-    def __init__(self, model, **options):
-        if options:
-            raise ValueError(
-                f"Model got unexpected keyword arguments {sorted(options)}: the layer backing "
-                "(params.backing.kind = 'layer') takes no backing options"
-            )
+    def __init__(self, model):
         p = model.params
+        if p.backing.leader_arm:
+            raise ValueError(
+                f"Backing.leader_arm = {p.backing.leader_arm!r} µm needs kind = 'elastic' (the "
+                "layer backing, kind = 'layer', has no leader arm)"
+            )
         if p.mechanics not in ("linear", "rod"):
             raise ValueError(
                 f"mechanics = {p.mechanics!r}: the layer backing (backing.kind = 'layer') "

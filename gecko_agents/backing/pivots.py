@@ -56,7 +56,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import cho_solve_banded, cholesky_banded
 
-from gecko_agents.backing import pivots_loop as backing_pivots_loop
+import gecko_agents.backing.pivots_loop as backing_pivots_loop
 
 __all__ = ["ChainPivots", "BAUMGARTE_BETA", "NEWTON_SOLVES"]
 
@@ -78,8 +78,14 @@ class ChainPivots:
     from the gap after the step as well (position-level, as SHAKE: Ryckaert, Ciccotti &
     Berendsen 1977, J Comput Phys 23:327); 0 is the velocity-level solve with β alone."""
 
-    def __init__(self, n_links: int, ell: float, beta: float = BAUMGARTE_BETA,
-                 newton: int = NEWTON_SOLVES, compiled: bool = True):  # fmt: skip
+    def __init__(
+        self,
+        n_links: int,
+        ell: float,
+        beta: float = BAUMGARTE_BETA,
+        newton: int = NEWTON_SOLVES,
+        compiled: bool = True,
+    ):
         self.n, self.h, self.beta, self.newton = int(n_links), 0.5 * float(ell), float(beta), newton
         self.anchor = None
         self.gap_max = self.gap_next = 0.0
@@ -202,8 +208,9 @@ class ChainPivots:
             ix, iy, it = self._generalised(imp[0::2], imp[1::2], px, py)
             # Where the step then takes the links next (x⁺ + v⁺·dt) and the gap left there.
             phi2 = phi + (w + it / inertia) * dt
-            gx, gy = self._gaps(x + (vx + ix / m) * dt, y + (vy + iy / m) * dt,
-                                np.cos(phi2), np.sin(phi2))  # fmt: skip
+            gx, gy = self._gaps(
+                x + (vx + ix / m) * dt, y + (vy + iy / m) * dt, np.cos(phi2), np.sin(phi2)
+            )
             self.gap_next = float(np.sqrt(np.max(gx * gx + gy * gy)))
             if solve == self.newton:
                 break

@@ -109,8 +109,9 @@ def _generalised(lam, c, s, h, off, fx, fy, tq):
             tq[r - 1] += h * (c[r - 1] * ly - s[r - 1] * lx)
 
 
-def chain_pivot_forces(x, y, phi, vx, vy, w, m, inertia, dt, h, beta, clamp, ax, ay, newton,
-                       fx, fy, tq):  # fmt: skip
+def chain_pivot_forces(
+    x, y, phi, vx, vy, w, m, inertia, dt, h, beta, clamp, ax, ay, newton, fx, fy, tq
+):
     """Pivot forces fx, fy [µN] and torques tq [pJ] (written in place) of
     :meth:`gecko_agents.backing.pivots.ChainPivots.forces`; returns (gap_max, gap_next) [µm]."""
     n = x.size

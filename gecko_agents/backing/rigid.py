@@ -48,12 +48,7 @@ class RigidBacking:
         """The kernel the model runs with ``kernel`` and ``contact`` asked for: any."""
         return kernel
 
-    def __init__(self, model, **options):
-        if options:
-            raise ValueError(
-                f"Model got unexpected keyword arguments {sorted(options)}: the rigid plate "
-                "(params.backing.kind = 'rigid') takes no backing options"
-            )
+    def __init__(self, model):
         self.world = model.world
         self.geometry = {}
         """Static arrays for ``History.geometry`` (none for the rigid plate)."""

@@ -71,7 +71,8 @@ class Strip:
     * :attr:`energy_bending` [pJ]: ½·k_r·Σ(φ_{j+1} − φ_j − rest_j)² at the new angles
       (rest angles 0 but where :meth:`kink_up` laid a leader arm);
     * :attr:`kinetic` [pJ]: Σ ½m·v_n·v_{n+1} + ½I·ω_n·ω_{n+1} (the form semi-implicit Euler
-      conserves for a linear spring, as :meth:`gecko_agents.model.Model.kinetic_energy`);
+      conserves for a linear spring, as
+      :meth:`~gecko_agents.model.stepping.Stepping.kinetic_energy`);
     * :attr:`dissipated` [pJ]: the joint dampers' dissipation in the step;
     * ``rows``: the links' (x, y, φ, vx, vy, ω) after the step (those before it in
       ``rows_before``).
@@ -122,8 +123,10 @@ class Strip:
         if not self.angle:
             return float(x), float(y0)
         c = x0 + 0.5 * self.n * self.ell
-        return (float(c + (x - c) * math.cos(self.angle)),
-                float(y0 + (x - c) * math.sin(self.angle)))  # fmt: skip
+        return (
+            float(c + (x - c) * math.cos(self.angle)),
+            float(y0 + (x - c) * math.sin(self.angle)),
+        )
 
     def clamp_left(self):
         """Clamp the left end to the static body: a pivot and the half-link rotary spring

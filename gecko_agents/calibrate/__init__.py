@@ -47,20 +47,11 @@ quadratic by ≤ 3.4e-5 of itself with the ``linear`` seta and ≤ 1.7e-3 (mostl
 3e-2. The Jacobian step (``diff_step`` = 0.02 of each bound interval, log or linear) moves the
 pull-off by 1–10 %, ≥ 10× that noise.
 
-Speed (measured, not a test): a fit of six pull-off-vs-preload points (the paper's Fig 10 and
-11a numbers) with two free parameters (w, σ) of the paper's 10⁷ array, ``linear`` seta, two
-starts, 63 model evaluations: 50 s of CPU on one core, 139 s wall while the 2-core machine
-ran at load 10–17. With the ``rod`` seta (a Newton solve per seta and step instead of a table)
-the five-point Fig 10 + 11a fit took 52 evaluations and 534 s wall at load 5–17 while the
-Newton iterated the whole batch of setae until the last had converged (one seta at its fold
-kept every other iterating to the limit). It now iterates each seta on its own, in one loop
-compiled by numba (:func:`gecko_agents.quasistatic.rod_equilibrium.rod_newton`; same fitted
-values to 3e-8 relative): the two-start fit took 56.5 and 52.8 s against 266.1 and 251.7 s
-before (4.7–4.8×), one start 27.5–28.1 s against 94.4–127.8 s (3.4–4.5×), measured on
-2026-11-26 alternating old and new runs at load 7–12. Without numba (the same iteration
-vectorized over the setae not yet converged: the fitted values of before bit for bit) one
-start took 95.5 s against 100.5 s: there numpy's per-call overhead, not the number of setae
-iterated, sets the cost.
+Cost: one forward evaluation is one quasi-static run of the array; with the ``rod`` seta each
+seta's Newton solve iterates on its own in a loop compiled by numba
+(:func:`gecko_agents.quasistatic.rod_equilibrium.rod_newton`), so a seta at its fold does not
+keep the others iterating. Measured fit times are in the documentation (explanation,
+"Performance").
 
 Units: µm, µN (see :mod:`gecko_agents.params`).
 

@@ -57,6 +57,7 @@ from gecko_agents.cli.common import (
     UsageError,
 )
 from gecko_agents.cli.common import error as _err
+from gecko_agents.cli.design import add_design, cmd_design
 from gecko_agents.cli.runs import add_run, add_sweep, cmd_run, cmd_sweep
 
 
@@ -220,6 +221,12 @@ COMMANDS: dict[str, Command] = {
         "gecko-agents sweep examples/sweep_roughness_preload.toml --quick\n"
         "  gecko-agents sweep examples/sweep_roughness_preload.toml --resume "
         "--dask local",
+    ),
+    "design": Command(
+        add_design,
+        cmd_design,
+        "search fibre array designs for a surface, a material and a process (needs optuna)",
+        "gecko-agents design examples/design_pillars.toml --quick --out /tmp/design",
     ),
     "reproduce": Command(
         _add_reproduce,

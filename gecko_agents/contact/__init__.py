@@ -38,7 +38,8 @@ the rest of the model have one home in :mod:`gecko_agents.physics` (the friction
 Mindlin's stick stiffness: :mod:`gecko_agents.physics.friction`), compiled where called.
 
 Layout: :mod:`.base` (interface, shared scalar helpers), one module per law (:mod:`.jkr_sphere`,
-:mod:`.rate_jkr`, :mod:`.hertz`, :mod:`.flat_punch`, :mod:`.spatula`, :mod:`.sheared_jkr`) and
+:mod:`.rate_jkr`, :mod:`.hertz`, :mod:`.flat_punch`, :mod:`.mushroom`, :mod:`.spatula`,
+:mod:`.sheared_jkr`) and
 :mod:`.registry` (names).
 Adding a law: write one module with a subclass of :class:`ContactLaw`, register it in
 :data:`TIP_LAWS`, add its tests. Nothing in the model changes.
@@ -48,6 +49,7 @@ from gecko_agents.contact.base import ContactLaw, branch_radius, mindlin_stiffne
 from gecko_agents.contact.flat_punch import FlatPunch
 from gecko_agents.contact.hertz import HertzSphere
 from gecko_agents.contact.jkr_sphere import JKRSphere
+from gecko_agents.contact.mushroom import MushroomTip
 from gecko_agents.contact.rate_jkr import RateJKRSphere
 from gecko_agents.contact.registry import TIP_LAWS, bounds, contact_law
 from gecko_agents.contact.sheared_jkr import ShearedJKRSphere
@@ -59,6 +61,7 @@ __all__ = [
     "RateJKRSphere",
     "HertzSphere",
     "FlatPunch",
+    "MushroomTip",
     "SpatulaTip",
     "ShearedJKRSphere",
     "TIP_LAWS",

@@ -82,6 +82,9 @@ class ContactLaw:
     # A tangential law's contact damping also acts while the tip slides (the spatula's film);
     # False: only while it sticks, as the sphere's stick spring (kernels, :mod:`.loop`).
     damp_sliding: bool = True
+    # Where a tip's detachment starts, for a law with more than one way to let go (the
+    # mushroom's "edge" or "centre"), recorded with each detachment; "" for the others.
+    release_mode: str = ""
     label: str = ""  # how error messages name the law's parameters ("tip = <name>" if empty)
     max_tension: float = math.nan  # largest tension a tip can hold [µN] (nan: Fc)
     # The energy balance's tolerance in units of history.ENERGY_RTOL: 1, or 2 for a law with a

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from gecko_agents.contact.base import ContactLaw, mindlin_stiffness
-from gecko_agents.physics import punch
+from gecko_agents.physics import flaw_tolerance, punch
 
 __all__ = ["FlatPunch"]
 
@@ -37,10 +37,16 @@ class FlatPunch(ContactLaw):
     go earlier (:func:`gecko_agents.physics.punch.tilted_pull_off`, F = F_K − 3|M|/a, not yet
     used here); this law is the aligned limit.
 
+    An interface of finite strength ``contact.sigma0`` = σ₀ caps the pull-off at σ₀ over the
+    face where that is below Kendall's (flaw tolerance:
+    :func:`gecko_agents.physics.flaw_tolerance.punch_pull_off`, Tang, Hui & Glassmaker 2005,
+    J R Soc Interface 2:505); the face lets go at δ = −F/(2E*a), the same Sneddon stiffness.
+    σ₀ = inf (default) is Kendall's law exactly.
+
     Parameters
     ----------
     contact : :class:`gecko_agents.params.Contact` (R = punch radius [µm], moduli [MPa],
-        w [µN/µm]).
+        w [µN/µm], sigma0 [MPa]).
     """
 
     name = "flat_punch"
@@ -57,8 +63,12 @@ class FlatPunch(ContactLaw):
         a, w, E = contact.jkr_args()
         self.R = self.a = a
         self.w, self.E_star = w, E
-        self.pull_off_force = float(punch.kendall_pull_off(a, w, E))
-        self.detach_overlap = float(punch.kendall_detach_overlap(a, w, E))
+        self.sigma0 = float(contact.sigma0)
+        self.set_pull_off(float(flaw_tolerance.punch_pull_off(a, w, E, self.sigma0)))
+        # A face moment moves the detachment (gecko_agents.model.face_opening) where asked:
+        # the edge lets go at 3|M|/a − P = edge_force [µN].
+        self.edge_opening = bool(contact.edge_opening)
+        self.edge_force = self.pull_off_force
         self.attach_overlap = 0.0
         self.jump_radius = a
         self.a0 = a
@@ -66,6 +76,17 @@ class FlatPunch(ContactLaw):
         self.zero_load_stiffness = float(punch.punch_stiffness(a, E))
         k = self.constants = np.zeros(3)
         k[K_A], k[K_STIFFNESS], k[K_HALF_STIFFNESS] = a, 2.0 * E * a, E * a
+
+    def set_pull_off(self, force: float) -> None:
+        """Let the face go at the tension ``force`` [µN], at δ = −F/(2E*a) on Sneddon's
+        stiffness; Kendall's own force keeps Kendall's closed-form overlap
+        (:func:`gecko_agents.physics.punch.kendall_detach_overlap`)."""
+        a, w, E = self.a, self.w, self.E_star
+        self.pull_off_force = force
+        if force == float(punch.kendall_pull_off(a, w, E)):
+            self.detach_overlap = float(punch.kendall_detach_overlap(a, w, E))
+        else:
+            self.detach_overlap = -force / float(punch.punch_stiffness(a, E))
 
     def stiffest(self, load: float) -> float:
         return self.zero_load_stiffness

@@ -2,7 +2,9 @@
 
 * ``paper_figures/`` — numbers the source paper's text states for its figures (Fig 8, 10, 11);
 * ``surfaces/`` — two measured surfaces: a stylus-profilometer line scan (Dektak,
-  ``dektak_profile.csv``) and an AFM map (WSxM, ``wsxm_afm.top``).
+  ``dektak_profile.csv``) and an AFM map (WSxM, ``wsxm_afm.top``);
+* ``literature/`` — the published measurements of the literature comparison
+  (``validation.toml``: sources, quotes, addresses read, values, scatter and parameters).
 """
 
 from pathlib import Path
@@ -16,3 +18,7 @@ DEKTAK_PROFILE = SURFACES / "dektak_profile.csv"
 """A stylus-profilometer line scan (x, height; see ``surfaces/README.md``)."""
 WSXM_AFM = SURFACES / "wsxm_afm.top"
 """An AFM height map in WSxM format (see ``surfaces/README.md``)."""
+LITERATURE = DATA_DIR / "literature"
+"""Published measurements, as read (provenance in ``literature/README.md``)."""
+LITERATURE_ROWS = LITERATURE / "validation.toml"
+"""The rows of the literature comparison (TOML; ``gecko_agents.studies.validation_rows``)."""

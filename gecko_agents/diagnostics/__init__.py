@@ -118,6 +118,8 @@ import numpy as np
 from gecko_agents._stack import user_stacklevel
 from gecko_agents.contact import contact_law
 from gecko_agents.diagnostics import resolution
+from gecko_agents.diagnostics.limits import LIMITS
+from gecko_agents.diagnostics.table import validity_table
 from gecko_agents.physics import jkr
 
 __all__ = [
@@ -134,20 +136,6 @@ __all__ = [
 Z0_UM = 3.0e-4
 """Equilibrium separation z0 of Tabor's parameter [µm] (0.3 nm; module docstring, ``tabor``)."""
 
-LIMITS = {
-    "a_over_R": ("≤", 0.1),
-    "tabor": ("≥", 5.0),
-    "linear_deflection": ("≤", 0.1),
-    "quasi_static": ("≤", 0.05),
-    "time_step": ("≤", 1.0),
-    "touched": ("≥", 1.0),
-    "crack_deborah": ("≤", 100.0),
-    "records": ("≤", 0.05),
-    "release_step": ("≤", 0.02),
-    "pillars_meet": ("≥", 1.0),
-    "probe_curvature": ("≤", 0.1),
-}
-"""Item → (relation, limit); the reasons and sources are in the module docstring."""
 
 MODEL_FACTS = {
     "dt_us": "the time step dt [µs]",
@@ -324,21 +312,33 @@ def _facts(history) -> _Run:
     k_contact = law.stiffest(max(P_comp, 5 * c.pull_off_force))
     k_max = m["axial_stiffness_uN_per_um"] + k_contact + m["tangential_stiffness_uN_per_um"]
     return _Run(
-        R=R, w=w, E=E, adhesive=adhesive, P_comp=P_comp,
+        R=R,
+        w=w,
+        E=E,
+        adhesive=adhesive,
+        P_comp=P_comp,
         touched=bool(np.max(history["n_attached"], initial=0) > 0),
         a0=float(jkr.zero_load_contact_radius(R, w, E)) if adhesive else 0.0,
-        v=float(m["protocol_speed_um_per_us"]), v_peak=_speed_at_peak(history),
-        Fc=float(law.pull_off_force), Ky=float(p.Ky), flat_face=bool(law.flat_face),
-        zeta=float((history.meta.get("damping") or {}).get("seta", 1.0)), film=bool(law.film),
+        v=float(m["protocol_speed_um_per_us"]),
+        v_peak=_speed_at_peak(history),
+        Fc=float(law.pull_off_force),
+        Ky=float(p.Ky),
+        flat_face=bool(law.flat_face),
+        zeta=float((history.meta.get("damping") or {}).get("seta", 1.0)),
+        film=bool(law.film),
         stroke=abs(c.snap_off_overlap) if adhesive else None,
         floor_top=floor_top,
         reached=float(np.min(history["plate_y_um"], initial=np.inf)) <= z_touch + floor_top,
-        z_touch=z_touch, settle_time=float(m["settle_time_us"]), dt=float(m["dt_us"]),
+        z_touch=z_touch,
+        settle_time=float(m["settle_time_us"]),
+        dt=float(m["dt_us"]),
         event_dt=float(history.meta.get("event_dt_us", m["dt_us"])),
         implicit=history.meta.get("integrator") == "implicit",
-        mass=float(m["mass_ng"]), k_max=k_max, omega_max=float(m["omega_max_per_us"]),
+        mass=float(m["mass_ng"]),
+        k_max=k_max,
+        omega_max=float(m["omega_max_per_us"]),
         warned_linear=bool(m["linear_deflection_warned"]),
-    )  # fmt: skip
+    )
 
 
 def _a_over_R(f: _Run) -> dict:
@@ -420,12 +420,15 @@ def _quasi_static(history, f: _Run) -> dict:
     else:  # no force scale (Hertz), or a film whose own dampers add to the seta's
         meaning = (
             f"not judged: tip = {history.params.tip!r} "
-            + ("peels a film whose contact damping adds to the seta's (measured: 4–6 × q/2)"
-               if f.film else "has no pull-off force")
+            + (
+                "peels a film whose contact damping adds to the seta's (measured: 4–6 × q/2)"
+                if f.film
+                else "has no pull-off force"
+            )
             + f"; halve the plate speed ({f.v_peak:.3g} µm/µs at the peak) until the forces "
             "stop moving (a spatula's pull-off is first order in the speed: the "
             "frictional-adhesion study's plate-speed table)"
-        )  # fmt: skip
+        )
     item = _item(
         "quasi_static",
         lag_force / f.Fc if judged else None,
@@ -467,7 +470,7 @@ def _touched(f: _Run) -> dict:
         1.0 if f.touched else 0.0,
         "whether any tip ever attached; a run whose plate never reached the floor (pull-off "
         "only, free travel) need not touch",
-        "gecko_agents issue 18 (a plate that outruns its setae measures nothing)",
+        "a plate that outruns its setae measures nothing (MeaninglessRunError)",
         applies=f.touched or f.reached,
     )
 
@@ -576,6 +579,3 @@ def diagnose(history, *, warn: bool = True) -> dict:
 
 def _fmt(value) -> str:
     return "?" if value is None else f"{value:.3g}"
-
-
-from gecko_agents.diagnostics.table import validity_table  # noqa: E402

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from gecko_agents.diagnostics.limits import LIMITS
+
 __all__ = ["validity_table"]
 
 
@@ -25,8 +27,6 @@ def validity_table(runs, labels=None) -> str:
         labels, runs = list(runs), list(runs.values())
     runs = list(runs)
     labels = list(labels) if labels is not None else [f"run {i + 1}" for i in range(len(runs))]
-    from gecko_agents.diagnostics import LIMITS
-
     names = list(LIMITS)
     head = "| run | " + " | ".join(f"{n} ({LIMITS[n][0]} {LIMITS[n][1]:g})" for n in names)
     lines = [head + " |", "|" + " --- |" * (len(names) + 1)]

@@ -187,7 +187,7 @@ def _whole_block(text: str, columns: tuple[int, int]) -> tuple[str, np.ndarray] 
                     comments=None,
                     ndmin=2,
                     dtype=float,
-                )  # fmt: skip
+                )
             )
         except ValueError:
             return None

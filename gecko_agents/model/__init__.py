@@ -48,6 +48,7 @@ from gecko_agents.model.setup import (
     choose_threads,
     detection_mode,
     elastica_kernel,
+    explicit_time_step,
     numba_available,
     time_step,
 )
@@ -55,6 +56,12 @@ from gecko_agents.model.state import SetaState
 from gecko_agents.model.step_numpy import LoopConstants, NumpyStep
 from gecko_agents.model.stepping import Stepping
 from gecko_agents.model.world import World
+from gecko_agents.numerics import (
+    BACKING_OPTIONS,
+    Numerics,
+    older_spellings,
+    split_options,
+)
 from gecko_agents.params import SetaArray, check_seed
 from gecko_agents.physics import beam
 from gecko_agents.physics.elastica import Elastica
@@ -63,6 +70,7 @@ from gecko_agents.protocol import DEFAULT_SPEED
 __all__ = [
     "Damping",
     "Model",
+    "Numerics",
     "SimulationUnstable",
     "numba_available",
     "seta_mass",
@@ -82,48 +90,16 @@ class Model(Stepping):
     seed : seed of the run's single ``numpy.random.Generator`` (default ``params.floor.seed``):
         an integer ≥ 0 (Python or numpy; bool, float and str are refused, naming ``seed``), or
         a ``numpy.random.Generator`` from which the seed is drawn (recorded in the history).
-    dt : time step [µs]. Explicit: default 0.75/ω_max from the stiffest spring and the tip mass
-        (0.375/ω_max with crack kinetics, :class:`gecko_agents.contact.RateJKRSphere`); a dt
-        at or above the stability bound 2/ω_max is refused. Implicit: any dt > 0, default
-        :func:`gecko_agents.model.implicit.implicit_time_step`.
-    integrator : ``"auto"`` (default: the implicit step where it is verified, else the
-        explicit one, :func:`gecko_agents.model.implicit.check_integrator`), ``"explicit"``
-        (pymunk's semi-implicit Euler on the model's forces, stable below 2/ω_max) or
-        ``"implicit"`` (each tip's force linearly implicit in its seta, contact and stick
-        springs and dampers, :mod:`gecko_agents.model.implicit`: a step bounded by accuracy,
-        not by the contact springs; batch contact only).
-    event_dt : the implicit step near an event (snap, fold, slip) [µs] (default one explicit
-        step): longer, fewer steps where events are many (a rough array), each release later by
-        about as many explicit steps of plate travel (README "Speed"); explicit step: refused.
-    contact : ``"batch"`` (fast, default) or ``"callback"`` (per-contact reference path).
+    numerics : how the run is computed (:class:`Numerics`: integrator, dt, event_dt,
+        record_every, kernel, contact path, detection, threads); default ``Numerics()``. Its
+        fields were keyword arguments of ``Model`` itself: those spellings still work, with a
+        DeprecationWarning, until 0.3.
     damping : :class:`Damping` ratios.
-    record_every : record every this many steps (default: every 0.02 µm of plate travel at the
-        default speed, about 20 steps; the implicit step's vary, so it then records by time).
     record_setae : also record per-seta arrays (needed for animations).
-    verbose : print the chosen time step.
-    kernel : how a pad-floor step with the batch contact path is computed: ``"numba"`` (one
-        compiled loop; needs numba, ``pip install 'gecko_agents[fast]'``), ``"numpy"``
-        (vectorized) or ``"python"`` (the same loop run by the interpreter: fastest without
-        numba for a handful of setae). ``"auto"`` (default): numba if installed, else python
-        up to 6 setae and numpy above; other floors and paths always use numpy. All give the
-        same history to rounding; the one used is ``meta["kernel"]`` of the history.
-    threads : with more than 1, the numba loop runs its blocks of setae on numba's threads
-        (``NUMBA_NUM_THREADS``; the same history bit for bit, ``meta["loop_threads"]``).
-        None (default): from ``gecko_agents.model.step_loop.PARALLEL_MIN_SETAE`` setae on, as
-        many as the cores other processes leave idle when the model is built
-        (:func:`gecko_agents.model.setup.choose_threads`), 1 below. Threads pay on an idle
-        machine and cost 2–3× when they wait for a busy core.
     floor_profile : a given floor (:class:`gecko_agents.floor.Profile`, e.g. a measured
         surface from :func:`gecko_agents.floor.from_profile`) instead of one drawn from
         ``params.floor``.
-    detection : how pymunk finds tip–floor contact candidates: ``"full"`` (every tip's sensor
-        tested every step: the reference), ``"lazy"`` (pad floors with ``contact="batch"``: a
-        tip has its sensor only near the sensor's edge, where events happen,
-        :meth:`gecko_agents.model.world.World.update_sensors`; the same flags every step, so the
-        same history) or ``"auto"`` (default: lazy where it applies). ``meta["detection"]``.
-    **backing_options : options of the backing ``params.backing.kind`` chooses (the
-        elastic strip's ``leader_arm`` [µm] and ``peel_angle_deg`` [deg],
-        :class:`gecko_agents.backing.elastic.ElasticBacking`); the rigid plate takes none.
+    verbose : print the chosen time step.
 
     Attributes
     ----------
@@ -142,20 +118,18 @@ class Model(Stepping):
         *,
         n_sim: int | None = None,
         seed: int | None = None,
-        dt: float | None = None,
-        contact: str = "batch",
+        numerics: Numerics | None = None,
         damping: Damping = DEFAULT_DAMPING,
-        record_every: int | None = None,
         record_setae: bool = False,
-        verbose: bool = False,
-        kernel: str = "auto",
         floor_profile: Profile | None = None,
-        detection: str = "auto",
-        threads: int | None = None,
-        integrator: str = "auto",
-        event_dt: float | None = None,
-        **backing_options,
+        verbose: bool = False,
+        **older,
     ):
+        params, numerics = older_spellings(params, numerics, older)
+        self.numerics = numerics
+        dt, contact, record_every = numerics.dt, numerics.contact, numerics.record_every
+        kernel, detection, threads = numerics.kernel, numerics.detection, numerics.threads
+        integrator, event_dt = numerics.integrator, numerics.event_dt
         n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
         self.integrator = check_integrator(integrator, contact, params)
         backing = backing_class(params.backing.kind)
@@ -213,7 +187,20 @@ class Model(Stepping):
         self.reaction = (0.0, 0.0)
         self._work_step = 0.0
         self.reset_state_arrays()
-        self.backing = backing(self, **backing_options)
+        self.backing = backing(self)
+
+    @classmethod
+    def from_options(cls, params: SetaArray, **options) -> Model:
+        """A model from one flat set of keyword options: :class:`Numerics` fields (``dt``,
+        ``integrator``, …), ``params.backing`` fields (``leader_arm``, ``peel_angle_deg``) and
+        the model's own arguments (``n_sim``, ``seed``, …), for helpers and run files that
+        pass options through."""
+        num, rest = split_options(options)
+        backing = {k: rest.pop(k) for k in BACKING_OPTIONS if k in rest}
+        if backing:
+            params = params.replace(backing=backing)
+        numerics = rest.pop("numerics", None) or Numerics()
+        return cls(params, numerics=numerics.replace(**num), **rest)
 
     def _set_step_parts(self, params, kernel: str, dt, event_dt) -> str:
         """The implicit step (its default step if ``dt`` is None; ``event_dt`` as
@@ -283,6 +270,14 @@ class Model(Stepping):
     def external_force(self) -> np.ndarray:
         """Extra force on each tip (N, 2) [µN] (probing and tests); the plate does not see it."""
         return self.state.external_force
+
+    @property
+    def explicit_dt(self) -> float:
+        """The explicit step this model would take [µs] (0.75/ω_max; 0.375/ω_max with crack
+        kinetics): the elastic strip's own step under the implicit step."""
+        return explicit_time_step(
+            None, self.omega_max, self.k_max, self.mass, self.law.rate_dependent
+        )
 
     @property
     def event_dt(self) -> float:

@@ -51,8 +51,9 @@ def run_cost(n_setae: int, durations_us, dt_us: float, event_dt_us: float | None
     dt_us : the step [µs]. event_dt_us : the implicit step near events [µs], or None.
     """
     located = 1.0 if event_dt_us is None else max(1.0, math.ceil(dt_us / event_dt_us - 1e-9))
-    steps = sum(max(1.0, math.ceil(d / dt_us - 1e-9)) if math.isfinite(d) else d
-                for d in durations_us)  # fmt: skip
+    steps = sum(
+        max(1.0, math.ceil(d / dt_us - 1e-9)) if math.isfinite(d) else d for d in durations_us
+    )
     return max(n_setae, STEP_OVERHEAD_SETAE) * steps * located
 
 

@@ -89,34 +89,13 @@ __all__ = [
 INTEGRATORS = ("explicit", "implicit", "auto")
 
 IMPLICIT_DT_FACTOR = 20.0
-"""Default implicit step in units of the explicit one (0.75/ω_max): chosen by the
-work-precision benchmark (``python -m gecko_agents.bench --work-precision``, one seta at
-0.005 µm/µs against the explicit step at dt/2), not by stability. With event location
-(:meth:`ImplicitStep.substeps`) at 10 and 20 explicit steps, steps explicit/implicit and the
-larger of the pull-off and release errors (2026-11-26):
-
-================  ==============  ==============  =================================
-case              10×             20×             energy books at 20× (ENERGY_RTOL)
-================  ==============  ==============  =================================
-linear sphere     7.9×, 0.012 %   14.6×, 0.012 %  0.26 % (2 %)
-rod sphere        7.4×, 0.009 %   16.8×, 0.009 %  0.45 % (2 %)
-Hertz             9.8×, 0.091 %   16.3×, 0.16 %   0.58 % (2 %)
-crack kinetics    15.1×, 0.25 %   34.3×, 0.40 %   1.37 % (4 %)
-Savkoor-Briggs    9.2×, 0.0006 %  19.2×, 0.002 %  0.43 % (2 %)
-================  ==============  ==============  =================================
-
-Every case within 0.5 % and its books within tolerance (recorded every step) at 20×; at 10×
-every case but crack kinetics took less than a tenth of the explicit steps (the 10× column
-while a released tip's ringing located every step it rang: 20× gave 11.4–23.7× then,
-:data:`FREE_RINGING_SHARE`). At the default
-plate speed the travel cap :data:`IMPLICIT_TRAVEL` (2 µs) is just above 20 explicit steps
-of the paper's rod seta (1.98 µs); the linear and Hertz cases' explicit steps are longer, so
-their default is 18 and 17 of them within the cap (:func:`implicit_time_step`). A rough
-floor's arrays gain less (events are many; each located step takes 20 steps of the explicit
-length instead of 10): the 10³-seta rod press-pull on a σ = 0.5 µm pad floor 14 070 →
-13 255 steps (11 127 since the ringing change), its pull-off −0.010 % from the explicit
-step's (+0.032 % at 10×), every tip's release within 0.0015 µm of plate travel of the
-explicit step's at both."""
+"""Default implicit step in units of the explicit one (0.75/ω_max) [-], chosen by accuracy, not
+stability: the work-precision benchmark (``python -m gecko_agents.bench --work-precision``, one
+seta against the explicit step at dt/2) keeps every case within 0.5 % of the reference and its
+energy books within :data:`gecko_agents.history.ENERGY_RTOL` at it. The measured table is in
+the documentation (explanation, "Performance"); ``tests/test_integrator_convergence.py`` pins
+the errors. At the default plate speed :data:`IMPLICIT_TRAVEL` caps it
+(:func:`implicit_time_step`)."""
 
 IMPLICIT_TRAVEL = 0.01
 """Largest plate travel per default implicit step at the default plate speed [µm]."""
@@ -125,36 +104,17 @@ FREE_RINGING_SHARE = 0.1 * ENERGY_RTOL
 """Free tips faster than twice the plate count as near an event (:meth:`ImplicitStep.substeps`)
 only while their kinetic energy together exceeds this share of the run's energy scale so far
 [-] (:func:`gecko_agents.history.energy_balance_error`'s scale): a tenth of the balance's
-tolerance, since long steps booked a ringing seta's energy to within about its size (a
-single linear seta: 1.2 times its ringing's peak kinetic energy, 2026-11-26)."""
+tolerance, since long steps book a ringing seta's energy only to within about its size
+(``tests/test_event_location.py`` checks both sides)."""
 
 IMPLICIT_EVENT_FACTOR = 1.0
 """The step near an event (:meth:`ImplicitStep.substeps`) in units of the explicit one
-(0.75/ω_max), at most the step between events; ``Model(event_dt=...)`` sets another. Chosen
-by accuracy: a located tip lets go about three event steps of plate travel later than at the
-explicit step (2.6–3.6), the scheme's own first-order error, so the event step is the
-resolution of every release. The 10³-seta rod press-pull on a σ = 0.5 µm pad floor at the
-default step (20 explicit steps) against the explicit step (32 491 steps; against itself at
-dt/2: 0.003 % per tip, +0.011 %), each tip's release as plate travel from the turning point
-(8.8–11.7 µm), its largest difference over the 974 tips, and the energy books (2026-11-26):
-
-===========================  ======  ==================  ========  =====
-event step [explicit steps]  steps   release, each tip   pull-off  books
-===========================  ======  ==================  ========  =====
-1                            11 127  0.0015 µm, 0.017 %  −0.010 %  0.04 %
-2                            6 109   0.0035 µm, 0.039 %  −0.009 %  0.09 %
-5                            3 119   0.0089 µm, 0.10 %   +0.092 %  0.41 %
-10                           2 132   0.018 µm, 0.20 %    +0.12 %   1.1 %
-none (nothing located)       1 629   0.036 µm, 0.40 %    +0.27 %   1.6 %
-===========================  ======  ==================  ========  =====
-
-Every setting meets 0.5 % there; the books set the limit elsewhere: on a flat floor, where
-every tip snaps off in one step, 2.2 % at 4 and 7.9 % at 10 explicit steps (tolerance 2 %;
-1.8 % at 5, the value depending on where the snap-off falls in the step), a single seta's
-past 2 (README "Speed"). At 10⁴ setae the steps are 12 855, 3 410 and 2 238 at 1, 5 and 10.
-A single seta's release (the work-precision cases) moves as little: at 10 explicit steps
-between events, 5 explicit steps near them leave the rod sphere's release 0.052 % and the
-linear sphere's 0.071 % from the reference (0.009 % and 0.012 % at 1)."""
+(0.75/ω_max) [-], at most the step between events; ``Model(event_dt=...)`` sets another. Chosen
+by accuracy: a located tip lets go a few event steps of plate travel later than at the
+explicit step, the scheme's own first-order error, so the event step is the resolution of
+every release; longer event steps trade the energy books on a flat floor, where every tip
+snaps off in one step, for fewer steps on rough floors (the measured table: documentation,
+explanation, "Performance"; ``tests/test_event_location.py``)."""
 
 
 def check_integrator(integrator, contact: str, params=None) -> str:

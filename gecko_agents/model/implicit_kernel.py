@@ -39,8 +39,31 @@ __all__ = [
 ]
 
 
-def pad_solve(rod, K, L, Ka, k_phi, xy, root_dx, root_dy, pv, F, kn, kt, cn, ct, film, q,
-              c_seta, dt, mass, rx, ry, rvx, rvy):  # fmt: skip
+def pad_solve(
+    rod,
+    K,
+    L,
+    Ka,
+    k_phi,
+    xy,
+    root_dx,
+    root_dy,
+    pv,
+    F,
+    kn,
+    kt,
+    cn,
+    ct,
+    film,
+    q,
+    c_seta,
+    dt,
+    mass,
+    rx,
+    ry,
+    rvx,
+    rvy,
+):
     """F' [µN] of every tip ((2, N), new): the linearly implicit step's 2×2 solve
     (``ImplicitStep._solve`` on a pad floor, with the seta's
     stiffness of :meth:`~gecko_agents.model.implicit.ImplicitStep.seta_stiffness`).
@@ -190,8 +213,28 @@ def solve(kernels, step, kn, kt, cn, ct, roots, F):
     m = step.m
     s, w = m.state, m.world
     rod = m.params.mechanics != "linear"
-    out = kernels[0](rod, m.K, m.L, m.Ka, m.k_phi, s.xy, w.root_dx, w.root_dy, s.pv, F, kn, kt,
-                     cn, ct, step.film, step._kxy, m.c_seta, m.dt, m.mass, *roots)  # fmt: skip
+    out = kernels[0](
+        rod,
+        m.K,
+        m.L,
+        m.Ka,
+        m.k_phi,
+        s.xy,
+        w.root_dx,
+        w.root_dy,
+        s.pv,
+        F,
+        kn,
+        kt,
+        cn,
+        ct,
+        step.film,
+        step._kxy,
+        m.c_seta,
+        m.dt,
+        m.mass,
+        *roots,
+    )
     return out[0], out[1]
 
 

@@ -41,13 +41,16 @@ class Recorder:
     per_seta : also record the per-seta arrays :data:`~gecko_agents.history.PER_SETA_FIELDS`.
     film : with ``per_seta``, also the film tip's :data:`~gecko_agents.history.FILM_FIELDS`
         (its peel front is the state's ``anchor``, its attached length the state's ``a``).
+    mode : the contact law's ``release_mode`` (where its tips' detachment starts); if not
+        empty, each detachment also records it as ``mode``.
     """
 
-    def __init__(self, per_seta: bool, film: bool = False):
+    def __init__(self, per_seta: bool, film: bool = False, mode: str = ""):
         self.rows = {c: [] for c in SCALAR_COLUMNS}
         fields = PER_SETA_FIELDS + (FILM_FIELDS if film else ())
         self.per = {f: [] for f in fields} if per_seta else {}
-        self.det = {k: [] for k in DETACHMENT_FIELDS}
+        self.det = {k: [] for k in DETACHMENT_FIELDS + (("mode",) if mode else ())}
+        self.mode = mode
         # The backing's columns and per-record arrays, as its record() names them (none for
         # the rigid plate).
         self.backing_rows: dict[str, list] = {}
@@ -119,6 +122,8 @@ class Recorder:
             self.det["overlap_um"].append(overlap)
             self.det["release_overlap_um"].append(release)
             self.det["force_uN"].append(force)
+            if self.mode:
+                self.det["mode"].append(self.mode)
 
     def history(self, params, seed: int, geometry: dict, meta: dict) -> History:
         """The recorded :class:`~gecko_agents.history.History`."""

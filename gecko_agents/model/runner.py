@@ -64,14 +64,22 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
     m.reset_state_arrays()
     if m._implicit is not None:
         m._implicit.energy_scale = 0.0  # the run's own (History.energy_balance_error)
-    run = _Run(Recorder(m.record_setae, film=m.law.film), ke_bound, max_steps, fast_approach)
+    run = _Run(
+        Recorder(m.record_setae, film=m.law.film, mode=m.law.release_mode),
+        ke_bound,
+        max_steps,
+        fast_approach,
+    )
     for seg in segments:
         seg.check(m)  # a depth this plate cannot reach is refused before any step
     # refuse or warn before stepping when absurd, force control at its longest
     check_cost(
-        m.n, [seg.longest_duration(m) for seg in segments], m.dt,
-        None if m._implicit is None else m.event_dt, [repr(seg) for seg in segments],
-    )  # fmt: skip
+        m.n,
+        [seg.longest_duration(m) for seg in segments],
+        m.dt,
+        None if m._implicit is None else m.event_dt,
+        [repr(seg) for seg in segments],
+    )
     t_wall = time.perf_counter()
     for i, seg in enumerate(segments, 1):
         bar = SegmentBar(m, seg, f"{i}/{len(segments)}", progress)
@@ -82,29 +90,42 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
             bar.close()
     run.recorder.record(m, run.work, run.dissipated)
     meta = {
-        "dt_us": m.dt, "n_steps": run.n_steps, "record_every": m.record_every,
-        "n_sim": m.n, "scale_to_array": m.params.array.count / m.n,
-        "protocol": [f"{seg!r}" for seg in segments], "contact_path": m.contact_path,
-        "kernel": m.kernel, "loop_threads": m.loop_threads,
+        "dt_us": m.dt,
+        "n_steps": run.n_steps,
+        "record_every": m.record_every,
+        "n_sim": m.n,
+        "scale_to_array": m.params.array.count / m.n,
+        "protocol": [f"{seg!r}" for seg in segments],
+        "contact_path": m.contact_path,
+        "kernel": m.kernel,
+        "loop_threads": m.loop_threads,
         "detection": m.world.detection,
-        "tip_law": m.law.name, "tip_bounds": tip_bounds(m.law),
+        "tip_law": m.law.name,
+        "tip_bounds": tip_bounds(m.law),
         "energy_complete": m.energy_complete,
         "floor_statistics": floor_statistics(m.world.profile, m.params.floor),
         "skipped_travel_um": run.skipped,
-        "damping": dataclasses.asdict(m.damping), "mass_ng": m.mass,
+        "damping": dataclasses.asdict(m.damping),
+        "mass_ng": m.mass,
         "tangential_stiffness_uN_per_um": m.k_t,
-        "wall_time_s": time.perf_counter() - t_wall, "versions": versions(),
+        "wall_time_s": time.perf_counter() - t_wall,
+        "versions": versions(),
+        "numerics": dataclasses.asdict(m.numerics),
         "stepped_force_normal_range_uN": [run.force_lo, run.force_hi] if run.n_steps else None,
         "release_step_travel_um": run.release_travel,
         "min_neighbour_distance_um": run.neighbours if math.isfinite(run.neighbours) else None,
         **model_facts(m, segments),
-    }  # fmt: skip
+    }
     if m.backing.info is not None:
         meta["backing"] = m.backing.info
     w = m.world
-    geometry = {"root_dx_um": w.root_dx, "root_dy_um": w.root_dy,
-                "floor_x_um": w.profile.x, "floor_y_um": w.profile.y,
-                **m.backing.geometry}  # fmt: skip
+    geometry = {
+        "root_dx_um": w.root_dx,
+        "root_dy_um": w.root_dy,
+        "floor_x_um": w.profile.x,
+        "floor_y_um": w.profile.y,
+        **m.backing.geometry,
+    }
     history = run.recorder.history(m.params, m.seed, geometry, meta)
     history.meta["validity"] = diagnose(history)
     return history
@@ -129,8 +150,7 @@ class SegmentBar:
         self.m, self.t0 = m, m.time
         total = _segment_total(m, seg)
         desc = f"gecko_agents {label} {type(seg).__name__} (dt = {m.dt:.3g} µs)"
-        self.bar = tqdm(total=total, unit="µs", disable=not progress, desc=desc,
-                        mininterval=0.5)  # fmt: skip
+        self.bar = tqdm(total=total, unit="µs", disable=not progress, desc=desc, mininterval=0.5)
 
     def update(self) -> None:
         """Advance to the segment's elapsed simulated time [whole µs], never past the total."""

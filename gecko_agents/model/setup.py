@@ -19,9 +19,18 @@ from gecko_agents.model.step_loop import PARALLEL_MIN_SETAE, pad_loop
 from gecko_agents.model.step_loop import numba_available as _numba_installed
 from gecko_agents.params import SetaArray
 
-__all__ = ["KERNELS", "MAX_N", "MAX_THREADS", "checked_arguments", "choose_kernel",
-           "choose_threads", "detection_mode", "floor_statistics", "idle_cores",
-           "numba_available"]  # fmt: skip
+__all__ = [
+    "KERNELS",
+    "MAX_N",
+    "MAX_THREADS",
+    "checked_arguments",
+    "choose_kernel",
+    "choose_threads",
+    "detection_mode",
+    "floor_statistics",
+    "idle_cores",
+    "numba_available",
+]
 
 KERNELS = ("auto", "numpy", "numba", "python")
 MAX_N = 200_000  # peak RSS pressed and stepping: ~1.1 GB here, ~0.7 GB at 10⁵ (bench.pressed_model)

@@ -42,9 +42,32 @@ ROWS = (
 """Row names of the block, in order (see :class:`SetaState` for their meaning)."""
 
 (
-    PX, PY, VX, VY, X, Y, FX, FY, DMPX, DMPY, AX, AY, AC, XI, P, FT, DELTA, JUMP, UX, UY, FDX, FDY,
-    S0, P0, UC,
-) = range(len(ROWS))  # fmt: skip
+    PX,
+    PY,
+    VX,
+    VY,
+    X,
+    Y,
+    FX,
+    FY,
+    DMPX,
+    DMPY,
+    AX,
+    AY,
+    AC,
+    XI,
+    P,
+    FT,
+    DELTA,
+    JUMP,
+    UX,
+    UY,
+    FDX,
+    FDY,
+    S0,
+    P0,
+    UC,
+) = range(len(ROWS))
 
 
 class SetaState:

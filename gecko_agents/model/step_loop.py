@@ -112,8 +112,28 @@ def _jit(compiled: bool, **options):
 def _springs_pass(energy, rate: bool, jit):
     """Pass 1 of a block: springs, damping, overlaps and contact state changes."""
 
-    def springs(b0, b1, data, rows, c, k, pnx, pny, vpx, vpy, has_ext, h, cand, attached, S,
-                ext, rest, root, lost_idx, gone_idx):  # fmt: skip
+    def springs(
+        b0,
+        b1,
+        data,
+        rows,
+        c,
+        k,
+        pnx,
+        pny,
+        vpx,
+        vpy,
+        has_ext,
+        h,
+        cand,
+        attached,
+        S,
+        ext,
+        rest,
+        root,
+        lost_idx,
+        gone_idx,
+    ):
         R, dc, kt, arel = c.R, c.detach, c.k_t, c.release
         opx = opy = diss = sfdx = sfdy = max_u2 = 0.0
         nl = ng = 0
@@ -293,8 +313,31 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
 
         blocks = numba.prange
 
-    def loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand, attached, slip,
-             S, ext, pad_c, rest, root, lost_idx, gone_idx, res):  # fmt: skip
+    def loop(
+        data,
+        rows,
+        out,
+        c,
+        k,
+        pnx,
+        pny,
+        vpx,
+        vpy,
+        vref,
+        has_ext,
+        h,
+        cand,
+        attached,
+        slip,
+        S,
+        ext,
+        pad_c,
+        rest,
+        root,
+        lost_idx,
+        gone_idx,
+        res,
+    ):
         n = S.shape[1]
         fast2, slow2 = 4.0 * vref * vref, vref * vref
         n_blocks = (n + BLOCK - 1) // BLOCK
@@ -303,9 +346,27 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
             b0 = b * BLOCK
             b1 = min(n, b0 + BLOCK)
             opx, opy, sfdx, sfdy, max_u2, diss, nl, ng = springs(
-                b0, b1, data, rows, c, k, pnx, pny, vpx, vpy, has_ext, h, cand, attached, S,
-                ext, rest, root, lost_idx, gone_idx,
-            )  # fmt: skip
+                b0,
+                b1,
+                data,
+                rows,
+                c,
+                k,
+                pnx,
+                pny,
+                vpx,
+                vpy,
+                has_ext,
+                h,
+                cand,
+                attached,
+                S,
+                ext,
+                rest,
+                root,
+                lost_idx,
+                gone_idx,
+            )
             diss = radii(b0, b1, c, k, attached, S, diss)
             diss, dd, drift = forces(
                 b0, b1, rows, out, c, k, fast2, slow2, attached, slip, S, pad_c, diss
@@ -388,8 +449,31 @@ def _tangential_loop(law_type, compiled: bool):
         return None
     film = _film_contact(_jit(compiled)(law_type.step_scalar), jit, law_type.damp_sliding)
 
-    def loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand, attached, slip,
-             S, ext, pad_c, rest, root, lost_idx, gone_idx, res):  # fmt: skip
+    def loop(
+        data,
+        rows,
+        out,
+        c,
+        k,
+        pnx,
+        pny,
+        vpx,
+        vpy,
+        vref,
+        has_ext,
+        h,
+        cand,
+        attached,
+        slip,
+        S,
+        ext,
+        pad_c,
+        rest,
+        root,
+        lost_idx,
+        gone_idx,
+        res,
+    ):
         R, hm = c.R, c.hm
         fast2, slow2 = 4.0 * vref * vref, vref * vref
         opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0

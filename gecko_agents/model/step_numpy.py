@@ -31,6 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from gecko_agents.model.face_opening import FaceOpening
 from gecko_agents.model.step_pads import PadContact
 
 __all__ = ["LoopConstants", "NumpyStep"]
@@ -91,6 +92,8 @@ class NumpyStep(PadContact):
         self.max_u2 = 0.0  # largest |u|² of a linear seta this step [µm²]
         self.chain = None  # the elastica of mechanics="elastica" (physics.elastica.Elastica)
         self.holds_tip = law.flat_face  # a bonded flat face keeps the tip's direction
+        # contact.edge_opening: the faces' detachment moves with their moment (face_opening)
+        self.opening = FaceOpening(law, n) if getattr(law, "edge_opening", False) else None
         # (2, N): each tip's contact normal at its last contact step (NumpyStep.contact's
         # stick spring carries ξ over from it; the implicit step reads it).
         self.normal = np.zeros((2, n))
@@ -111,8 +114,12 @@ class NumpyStep(PadContact):
             np.subtract(y, pny, out=dy)
             dy -= self.world.root_dy
             held = s.attached if self.holds_tip else False
+            if self.opening is not None:  # an opened face no longer holds its direction
+                held = held & ~self.opening.opened
             F = self.chain.solve(np.column_stack([dx, dy]), held)[0]
             self.diss += self.chain.released  # a bonded face let go: its clamp's energy
+            if self.opening is not None:
+                self.opening.update(self.chain.face_moment())
             Fx[:], Fy[:] = F[:, 0], F[:, 1]
         elif not c.rod:
             ux, uy = s.u
@@ -269,7 +276,10 @@ class NumpyStep(PadContact):
         qx, qy, nx, ny, delta = self.geometry(ps, x, y)
         att0 = s.attached[tips]
         new = ~att0 & (delta >= law.attach_overlap)
-        gone = att0 & (delta < c.detach)
+        if self.opening is None:
+            gone = att0 & (delta < c.detach)
+        else:
+            gone = self.opening.screen(tips, delta, att0)
         if law.rate_dependent:  # the crack has run through
             gone |= att0 & (s.a[tips] <= c.release)
         att = (att0 | new) & ~gone

@@ -90,7 +90,10 @@ class PadContact:
         place); returns (every tip attached, the new attachments or None)."""
         s, c, law = self.s, self.c, self.law
         all_att, all_cand = bool(att.all()), bool(cand.all())
-        lo = d < c.detach
+        if self.opening is None:
+            lo = d < c.detach
+        else:
+            lo = self.opening.screen(slice(None), d, att)
         if law.rate_dependent:  # the crack has run through
             lo |= s.a <= c.release
         gone = lo if all_att else lo & att

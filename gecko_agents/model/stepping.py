@@ -166,11 +166,30 @@ class Stepping:
         res = self._res
         ext = s.external_force
         self._loop(
-            data, w.order, w.out, self._constants, self.law.constants, pnx, pny, vpx, vpy,
-            max(math.hypot(vpx, vpy), 1e-4), bool(ext.any()), w.h, s.candidate_step,
-            s.attached, s.slip, s.block, ext, w.pad_centre, ph.rest, ph.root, self._lost_idx,
-            self._gone_idx, res,
-        )  # fmt: skip
+            data,
+            w.order,
+            w.out,
+            self._constants,
+            self.law.constants,
+            pnx,
+            pny,
+            vpx,
+            vpy,
+            max(math.hypot(vpx, vpy), 1e-4),
+            bool(ext.any()),
+            w.h,
+            s.candidate_step,
+            s.attached,
+            s.slip,
+            s.block,
+            ext,
+            w.pad_centre,
+            ph.rest,
+            ph.root,
+            self._lost_idx,
+            self._gone_idx,
+            res,
+        )
         if self._implicit is not None:
             ph.diss += self._implicit.correct((pnx, pny, vpx, vpy), rebook_damping=True)
             w.write_forces(s.F)

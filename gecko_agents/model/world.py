@@ -400,7 +400,7 @@ class World:
             or np.abs(tvx - vx).max() > tol_v
             or np.abs(tvy - vy).max() > tol_v
         ):
-            return 0.0  # fmt: skip
+            return 0.0
         reach = self.sensor_radius + 2.0 * speed * dt
         if self.pads:
             gap = float(np.min(py - self.h)) - reach

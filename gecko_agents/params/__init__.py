@@ -45,6 +45,7 @@ from gecko_agents.params.checks import (
     SURFACE_ENERGY_MAX,
     check,
 )
+from gecko_agents.params.tips import FLAT_FACE_TIPS, Mushroom, check_tip_options
 from gecko_agents.physics import beam, jkr
 from gecko_agents.physics.friction import friction_cap
 
@@ -53,10 +54,11 @@ DETACHMENT_RULES = ("fold", "delta_s", "load_control")
 SHEAR_COUPLINGS = ("none", "savkoor_briggs")
 MIN_LINKS = 14
 """Fewest links of the elastica's bar chain: its three Euler loads within 2 % (``Seta.links``)."""
-TIPS = ("sphere", "hertz", "spatula", "flat_punch")
+TIPS = ("sphere", "hertz", "spatula", "flat_punch", "mushroom")
 """Tip contact laws (``gecko_agents.contact.TIP_LAWS``): the adhesive JKR sphere of the
 paper, a Hertz sphere without adhesion, a thin-film spatula that peels (:class:`Spatula`) or
-the flat end of a pillar, a punch of radius ``contact.R`` (Kendall 1971, J Phys D 4:1186)."""
+the flat end of a pillar, a punch of radius ``contact.R`` (Kendall 1971, J Phys D 4:1186), or
+a mushroom tip, a flange of radius ``contact.R`` on its stalk (:class:`Mushroom`)."""
 FRICTION_LAWS = ("adhesive", "paper")
 FLOOR_KINDS = ("gaussian", "self_affine", "probe")
 
@@ -102,6 +104,17 @@ class Contact:
         contact and lowers the tension it holds, the strongest coupling (real interfaces are tougher
         in shear, Johnson 1997, Proc R Soc A 453:163). Elastic contact (``crack_speed = inf``) with
         the ``"fold"`` detachment and a pad floor only.
+    sigma0 : cohesive strength σ₀ of the interface [MPa], > 0; ``inf`` (default) is an
+        interface without a strength limit (Kendall's punch). Finite: a flat face
+        (``tip = "flat_punch"`` or ``"mushroom"``) pulls off at no more than its strength over
+        its area (flaw tolerance; Tang, Hui & Glassmaker 2005, J R Soc Interface 2:505;
+        :mod:`gecko_agents.physics.flaw_tolerance`).
+    edge_opening : ``False`` (default): a bonded flat face lets go by its normal force alone.
+        ``True``: the moment a bonded face of an elastica pillar carries moves its detachment,
+        the edge opening where 3|M|/a − P reaches the edge-mode pull-off, under tension or
+        compression (a buckled pillar), and the face bonds again only after its tip has left
+        the floor (:mod:`gecko_agents.model.face_opening`; Paretkar et al. 2013, J R Soc
+        Interface 10:20130171). Flat-faced tips with ``mechanics = "elastica"`` only.
     """
 
     R: float = 4.0
@@ -117,8 +130,13 @@ class Contact:
     crack_closing_speed: float = math.inf
     detachment: str = "fold"
     shear_coupling: str = "none"
+    sigma0: float = math.inf
+    edge_opening: bool = False
 
     def __post_init__(self):
+        _check(self, "sigma0", 0.0, math.inf, hi_open=False)
+        if not isinstance(self.edge_opening, bool):
+            raise ValueError(f"Contact.edge_opening = {self.edge_opening!r} must be True or False")
         if self.shear_coupling not in SHEAR_COUPLINGS:
             raise ValueError(
                 f"Contact.shear_coupling = {self.shear_coupling!r} must be one of {SHEAR_COUPLINGS}"
@@ -195,8 +213,9 @@ class Seta:
     density : material density [ng/µm³]; polyurethane ≈ 1.2e-3 (1200 kg/m³).
     links : links of the bar chain of ``mechanics = "elastica"`` [-], 14–200; 16 (default)
         puts the clamped–free, clamped–pinned and clamped–clamped buckling loads within
-        1.3 % of Euler's, 14 within 2 % (they converge as 1/n²; fewer links buckle far
-        early: 2 at 0.41–0.59 × Euler, :mod:`gecko_agents.physics.elastica`).
+        1.3 % of the continuous column's, shear included, 14 within 2 % (they converge as
+        1/n²; fewer links buckle far early: 2 at 0.41–0.59 × Euler;
+        :mod:`gecko_agents.physics.columns`, :mod:`gecko_agents.physics.elastica`).
     imperfection : the elastica's initial crookedness [-], in (0, 0.1]: its stress-free shape
         is an arc whose tip lies imperfection·L to +x of the straight seta; it picks the side a
         vertical pillar buckles to. A straight chain (0) never leaves its straight branch, past
@@ -411,6 +430,7 @@ class SetaArray:
     tip: str = "sphere"
     spatula: Spatula = field(default_factory=Spatula)
     backing: Backing = field(default_factory=Backing)
+    mushroom: Mushroom = field(default_factory=Mushroom)
 
     def __post_init__(self):
         for name, cls in _GROUPS.items():
@@ -424,14 +444,15 @@ class SetaArray:
             raise ValueError(f"SetaArray.mechanics = {self.mechanics!r} must be one of {MECHANICS}")
         if self.tip not in TIPS:
             raise ValueError(f"SetaArray.tip = {self.tip!r} must be one of {TIPS}")
-        if self.tip == "flat_punch":
-            _check_punch_contact(self.contact)
+        if self.tip in FLAT_FACE_TIPS:
+            _check_punch_contact(self.contact, self.tip)
             if self.floor.kind == "probe" and self.contact.R >= self.floor.probe_radius:
                 raise ValueError(
-                    f"Contact.R = {self.contact.R!r} µm (the punch face's radius) must be "
-                    f"smaller than Floor.probe_radius = {self.floor.probe_radius!r} µm: a flat "
-                    "face as wide as the probe cannot sit on it"
+                    f"Contact.R = {self.contact.R!r} µm (the face's radius) must be smaller "
+                    f"than Floor.probe_radius = {self.floor.probe_radius!r} µm: a flat face as "
+                    "wide as the probe cannot sit on it"
                 )
+        check_tip_options(self)
 
     # Derived quantities used throughout ---------------------------------------------------
     @property
@@ -482,7 +503,7 @@ class SetaArray:
                     raise ValueError(f"unknown parameter {key!r}")
                 top[part] = value
                 continue
-            if part not in {"contact", "seta", "array", "floor", "friction", "spatula", "backing"}:
+            if part not in _GROUPS:
                 raise ValueError(f"unknown parameter group {part!r} in {key!r}")
             sub = getattr(self, part)
             if name not in {f.name for f in dataclasses.fields(sub)}:
@@ -509,10 +530,11 @@ class SetaArray:
             tip=d.get("tip", "sphere"),
             spatula=Spatula(**d.get("spatula", {})),
             backing=Backing(**d.get("backing", {})),
+            mushroom=Mushroom(**d.get("mushroom", {})),
         )
 
 
-def _check_punch_contact(c: Contact) -> None:
+def _check_punch_contact(c: Contact, tip: str = "flat_punch") -> None:
     """Refuse, naming the field, contact options a flat punch does not model (they belong to
     the sphere: crack kinetics, the Savkoor–Briggs coupling, the paper's δs rule, eq 8)."""
     for name, ok, allowed in (
@@ -523,7 +545,7 @@ def _check_punch_contact(c: Contact) -> None:
         if not ok:
             raise ValueError(
                 f"Contact.{name} = {getattr(c, name)!r} is a sphere tip's option; with "
-                f"tip = 'flat_punch' it must be {allowed}"
+                f"tip = {tip!r} it must be {allowed}"
             )
 
 
@@ -535,6 +557,7 @@ _GROUPS = {
     "friction": Friction,
     "spatula": Spatula,
     "backing": Backing,
+    "mushroom": Mushroom,
 }
 
 

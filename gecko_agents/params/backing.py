@@ -59,6 +59,10 @@ class Backing:
     drive : ``"uniform"`` (the handle pulls every link with k_h/n_links) or ``"peel_end"`` (the
         handle pulls the +x end of the strip).
     damping_ratio : damping ratio of the rotary springs and the handle spring [-]; default 0.3.
+    leader_arm : length of a rigid leader arm from the strip's +x end to where the handle
+        pulls [µm] (``drive = "peel_end"``, aligned); default 0, none.
+    peel_angle_deg : the peel angle the leader arm's handle holds [degrees], in (0, 180);
+        default 90.
     misalignment_deg : angle between backing and floor at contact [degrees]; default 0
         (aligned). The strip and the handle that holds it are turned by it about the strip's
         centre, counter-clockwise: a positive angle lifts the +x end, so the −x edge touches
@@ -78,6 +82,8 @@ class Backing:
     drive: str = "uniform"
     damping_ratio: float = 0.3
     misalignment_deg: float = 0.0
+    leader_arm: float = 0.0
+    peel_angle_deg: float = 90.0
 
     def __post_init__(self):
         if self.kind not in BACKING_KINDS:
@@ -93,6 +99,14 @@ class Backing:
         _check(self, "handle_stiffness", 0.0, 1e12)
         _check(self, "damping_ratio", 0.0, 10.0, lo_open=False)
         _check(self, "misalignment_deg", -10.0, 10.0, lo_open=False, hi_open=False)
+        _check(self, "leader_arm", 0.0, 1e6, lo_open=False, hi_open=False)
+        _check(self, "peel_angle_deg", 0.0, 180.0)
+        if self.leader_arm and (self.drive != "peel_end" or self.misalignment_deg):
+            raise ValueError(
+                f"Backing.leader_arm = {self.leader_arm!r} µm needs Backing.drive = 'peel_end' "
+                f"(got {self.drive!r}) and Backing.misalignment_deg = 0 (got "
+                f"{self.misalignment_deg!r})"
+            )
         if self.kind == "layer" and not self.nu_b >= 0.0:
             raise ValueError(
                 f"Backing.nu_b = {self.nu_b!r} must be in [0, 0.5) with kind = 'layer' (the "

@@ -11,8 +11,16 @@ import math
 
 import numpy as np
 
-__all__ = ["check", "MODULUS_RANGE", "LENGTH_RANGE", "SURFACE_ENERGY_MAX", "DENSITY_RANGE",
-           "COUNT_MAX", "ROUGHNESS_MAX", "FRICTION_MAX"]  # fmt: skip
+__all__ = [
+    "check",
+    "MODULUS_RANGE",
+    "LENGTH_RANGE",
+    "SURFACE_ENERGY_MAX",
+    "DENSITY_RANGE",
+    "COUNT_MAX",
+    "ROUGHNESS_MAX",
+    "FRICTION_MAX",
+]
 
 
 def check(

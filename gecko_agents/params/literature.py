@@ -25,12 +25,13 @@ __all__ = [
     "GRAVISH2010_SETA",
     "FRICTIONAL_SPATULA",
     "FRICTIONAL_SPHERE",
+    "KRONER_PILLARS",
 ]
 
 
 AUTUMN2006_SETA = SetaArray(
     contact=Contact(E1=1600.0, nu1=0.3),
-    seta=Seta(r=3.0, L=80.0, theta_deg=45.0),
+    seta=Seta(r=1.5, L=63.0, theta_deg=45.0),
     array=Array(count=1, pitch=4.0),
     floor=Floor(sigma=0.0),
 )
@@ -40,12 +41,12 @@ Autumn, Majidi, Groff, Dittmore & Fearing (2006, J Exp Biol 209:3558, doi:10.124
 Cited: E = 1.6 GPa = 1600 MPa, the setal keratin's bending modulus of *Gekko gecko* (Peattie,
 Majidi, Corder & Full 2007, "Ancestrally high elastic modulus of gecko setal β-keratin"; its
 abstract: "Gekko gecko (1.6 GPa +/- 0.15s.e.; n=24 setae)"; journal and pages not in the text
-we read). Assumed (the
-text we could read does not give the geometry Autumn et al. used): L = 80 µm, the middle of
-the "30–130 µm long" setae of Autumn et al. (2000, Nature 405:681); r = 3 µm, the middle of a
-"2-10 um wide" seta (a secondary source: the Harvard soft-matter wiki's gecko page); θ = 45°
-between shaft and backing (no source read gives the shaft angle). The contact fields are not
-used by these rows (stiffness only)."""
+we read). Cited as a range (the text we could read does not give the geometry of the setae
+Autumn et al. tested): r = 1.5 µm and L = 63 µm, the middles of the published tokay ranges
+"ca. 2–4 μm in diameter and ca. 11–115 μm in length, depending on the location on the
+subdigital pad" (Scientific Reports 2022, doi:10.1038/s41598-022-15698-2, introduction).
+Assumed: θ = 45° between shaft and backing (no source read gives the shaft angle). The contact
+fields are not used by these rows (stiffness only)."""
 
 TOKAY_SETAL_DENSITY = 0.0144
 """Setae per µm² of a tokay toe pad [1/µm²] (14 400 per mm²). Assumed: a secondary web source
@@ -104,3 +105,14 @@ Exp Biol 209:3569) and Gillies & Fearing (2014, J R Soc Interface 11:20140021)."
 
 FRICTIONAL_SPHERE = FRICTIONAL_SPATULA.replace(**{"tip": "sphere"})
 """:data:`FRICTIONAL_SPATULA` with the paper's JKR sphere tip (R = 4 µm)."""
+
+KRONER_PILLARS = PAPER_ARRAY.replace(
+    **{**_STRIP, "seta.L": 1.95, "seta.r": 2.35, "seta.theta_deg": 90.0, "tip": "flat_punch",
+       "contact.R": 2.35, "array.pitch": 9.4, "friction.mu": 0.5, "backing.drive": "uniform"}
+)  # fmt: skip
+"""Kroner et al.'s patterned PDMS structures (Leibniz INM; "structure diameters of 4.7μm and
+heights of 0.82 μm and 1.95 μm", abstract) as vertical pillars with flat punches on the
+misalignment study's strip and stiff mount. Cited: r = a = 2.35 µm and L = 1.95 µm (the taller
+structures). Assumed: the paper's polyurethane and its w (their PDMS modulus and work of
+adhesion are not in the abstract), a pitch of twice the diameter, μ = 0.5; the tilt and the
+number of pillars (the probe's size) are set per run."""

@@ -21,7 +21,7 @@ def jitable(fn):
     """Mark a scalar formula for numba's per-seta loops, returning ``fn`` unchanged.
 
     numba's ``register_jitable`` only attaches an overload to the function object, so the
-    registration is deferred until a compiled loop is imported (:func:`register_jitables`):
+    registration is deferred until a compiled loop is imported (``register_jitables``):
     importing the physics does not import numba.
     """
     if "numba" in sys.modules:

@@ -13,16 +13,13 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from gecko_agents.physics import jkr
 from gecko_agents.physics._util import jitable, register_jitables
 from gecko_agents.physics.friction import friction_cap, friction_cap_slope
-
-if TYPE_CHECKING:
-    from gecko_agents.quasistatic.rod import RodSetup
+from gecko_agents.quasistatic.rod_setup import RodSetup
 
 SLIDE, STICK_SPRING, STICK_RIGID = 0, 1, 2
 """Lateral mode of a solve: slide with F_t = s·cap(P); stick on the contact's spring k_t;
@@ -45,7 +42,8 @@ def rod_force(x, y, Ka, k_phi, L, theta):
 
     At rest (ℓ = L, Δφ = 0) H is the paper's 2×2 stiffness K of eq 20–21 (Ka along the rod,
     Kp across it), so rod and ``linear`` agree for small deflections. The same formula as
-    :meth:`gecko_agents.model.Model.spring_force`. Scalars or arrays (numba compiles it into
+    :meth:`~gecko_agents.model.stepping.Stepping.spring_force`.
+    Scalars or arrays (numba compiles it into
     :func:`newton_loop`).
 
     Parameters

@@ -238,8 +238,11 @@ def plot_history(history: History, path=None, ax: Axes | None = None) -> Figure:
             fig = ax.figure
         apply_style(ax)
         draw_force_curve(ax, history, annotate=True)
-        ax.set_title(f"{_count_title(history)}, {history.params.mechanics} mechanics, "
-                     f"{len(history)} records", fontsize="medium")  # fmt: skip
+        ax.set_title(
+            f"{_count_title(history)}, {history.params.mechanics} mechanics, "
+            f"{len(history)} records",
+            fontsize="medium",
+        )
         ax.legend(loc="best")
     if path is not None:
         save_figure(fig, path)

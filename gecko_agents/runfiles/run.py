@@ -39,6 +39,10 @@ Run file
     # preset = "press_pull"
     # depth_um = 0.5
 
+    [floor]                            # optional: a measured scan as the floor
+    file = "dektak"                    # the packaged scan (gecko_agents.data) or a path
+    offset_um = 0.0                    # where on the scan the floor starts [µm] (default 0)
+
     [quick.model]                      # what `--quick` changes: [quick.params],
     n_sim = 1                          # [quick.model] merge into the tables above,
                                        # quick.protocol replaces the protocol
@@ -174,13 +178,14 @@ class RunSpec:
     protocol: list
     description: str = ""
     resolved: dict = field(default_factory=dict)
+    floor_profile: object = None
 
     def build_model(self):
         """The :class:`~gecko_agents.model.Model` (its own checks reported as run-file errors)."""
         from gecko_agents.model import Model
 
         try:
-            return Model(self.params, **self.model)
+            return Model.from_options(self.params, **self.model, floor_profile=self.floor_profile)
         except (ValueError, TypeError) as err:
             m = re.match(r"(n_sim|dt|event_dt|kernel|seed|integrator)\b", str(err))
             key = {v: k for k, v in _MODEL_ARGS.items()}.get(m.group(1), m.group(1)) if m else None
@@ -188,7 +193,38 @@ class RunSpec:
             raise RunFileError(f"{self.path}: {where}: {err}") from None
 
 
-_RUN_KEYS = {"description", "preset", "params", "model", "protocol", "quick"}
+_RUN_KEYS = {"description", "preset", "params", "model", "protocol", "quick", "floor"}
+SCANS = {"dektak": "DEKTAK_PROFILE"}
+"""``[floor] file`` names of the scans shipped in :mod:`gecko_agents.data`."""
+
+
+def _floor(ctx: Ctx, table: dict):
+    """The measured floor of a ``[floor]`` table (None without one): the scan from
+    ``offset_um`` on, its start moved to x = 0."""
+    if not table:
+        return None
+    ctx.keys("[floor]", table, {"file", "offset_um"})
+    name = ctx.type_("[floor] file", table.get("file", ""), str)
+    from gecko_agents import data, floor
+    from gecko_agents.floor import readers
+
+    path = getattr(data, SCANS[name]) if name in SCANS else ctx.path.parent / name
+    if not name or not Path(path).is_file():
+        raise ctx.error("[floor] file", f"{name!r} is not a readable scan; give a path "
+                        f"(relative to the run file) or one of {', '.join(SCANS)}")  # fmt: skip
+    try:
+        prof = readers.load(path)
+    except (ValueError, OSError) as err:
+        raise ctx.error("[floor] file", f"{name!r} cannot be read as a profile: {err}") from None
+    offset = ctx.type_("[floor] offset_um", table.get("offset_um", 0.0), float)
+    span = float(prof.x[-1] - prof.x[0])
+    if not 0.0 <= offset < span:
+        raise ctx.error("[floor] offset_um", f"{offset!r} is outside the scan, [0, {span:g}) µm")
+    k = int(np.searchsorted(prof.x, prof.x[0] + offset))
+    return floor.Profile(x=prof.x[k:] - prof.x[k], y=prof.y[k:], spacing=prof.spacing,
+                         source=prof.source)  # fmt: skip
+
+
 _RUN_QUICK_KEYS = {"params", "model", "protocol"}
 
 
@@ -228,6 +264,9 @@ def _run_variant(ctx: Ctx, data: dict, quick: dict | None, path: Path, raw: byte
             "description", f"has {len(description)} characters; at most {MAX_DESCRIPTION}"
         )
     resolved = {"preset": name, "params": overrides, "model": model_t, "protocol": data["protocol"]}
+    floor_t = sub_table(ctx, data, "floor")
+    if floor_t:
+        resolved["floor"] = floor_t
     return RunSpec(
         path=path,
         text=raw,
@@ -239,6 +278,7 @@ def _run_variant(ctx: Ctx, data: dict, quick: dict | None, path: Path, raw: byte
         protocol=segments,
         description=description,
         resolved=resolved,
+        floor_profile=_floor(ctx, floor_t),
     )
 
 

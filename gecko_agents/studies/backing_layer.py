@@ -59,6 +59,7 @@ import numpy as np
 from gecko_agents import protocol, render
 from gecko_agents.history import energy_balance_error
 from gecko_agents.model import Model
+from gecko_agents.numerics import Numerics
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import layer_field
 from gecko_agents.studies.common import (
@@ -114,7 +115,7 @@ def row_point(n: int, t: float | None) -> dict:
     p = ROW.replace(**{"array.count": n})
     if t is not None:
         p = p.replace(**{"backing.kind": "layer", "backing.t_b": t})
-    m = Model(p, seed=SEED, integrator="explicit", record_every=1)  # every step: the peak
+    m = Model(p, seed=SEED, numerics=Numerics(integrator="explicit", record_every=1))  # the peak
     h = m.run(protocol.press_pull(DEPTH, speed=SPEED), progress=False)
     pull = -float(np.min(h["plate_force_y_uN"]))
     return {"t_um": math.inf if t is None else t, "n": n, "pull_off_uN": pull,
@@ -129,7 +130,7 @@ def step_cost(n: int, steps: int) -> dict:
     models = {}
     for kind in ("rigid", "layer"):
         p = ROW.replace(**{"array.count": n, "backing.kind": kind, "backing.t_b": 160.0})
-        models[kind] = Model(p, seed=SEED, integrator="explicit", kernel="numpy")
+        models[kind] = Model(p, seed=SEED, numerics=Numerics(integrator="explicit", kernel="numpy"))
     spent = dict.fromkeys(models, 0.0)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the linear beam's large-deflection note

@@ -75,23 +75,38 @@ def run_point(n: int, E_b: float | None) -> dict:
     if E_b is None:
         m = Model(p, seed=1)
         h = m.run(protocol.press_pull(DEPTH, speed=SPEED), progress=False)
-        return {"E_b_MPa": math.inf, "beta": math.inf, "n": n,
-                "pull_off_uN": -float(np.min(h["plate_force_y_uN"])),
-                "N_Fc_uN": n * m.Fc, "front_travel_um": math.nan,
-                "mass_scale": 1.0}  # fmt: skip
-    p = p.replace(**{"backing.kind": "elastic", "backing.E_b": E_b,
-                     "backing.drive": "peel_end",
-                     "backing.handle_stiffness": HANDLE})  # fmt: skip
+        return {
+            "E_b_MPa": math.inf,
+            "beta": math.inf,
+            "n": n,
+            "pull_off_uN": -float(np.min(h["plate_force_y_uN"])),
+            "N_Fc_uN": n * m.Fc,
+            "front_travel_um": math.nan,
+            "mass_scale": 1.0,
+        }
+    p = p.replace(
+        **{
+            "backing.kind": "elastic",
+            "backing.E_b": E_b,
+            "backing.drive": "peel_end",
+            "backing.handle_stiffness": HANDLE,
+        }
+    )
     m = Model(p, seed=1)
     h = m.run(protocol.press_pull(DEPTH, speed=SPEED), progress=False)
     b = h.meta["backing"]
     front = h["strip_front_x_um"]
     front = front[np.isfinite(front)]
     beta = 4 * b["EI_uN_um2"] / (b["foundation_uN_per_um2"] * b["length_um"] ** 4)
-    return {"E_b_MPa": E_b, "beta": beta, "n": n, "pull_off_uN": max(h["strip_setae_force_y_uN"]),
-            "N_Fc_uN": n * m.Fc,
-            "front_travel_um": float(front[0] - front[-1]) if front.size else math.nan,
-            "mass_scale": b["mass_scale"]}  # fmt: skip
+    return {
+        "E_b_MPa": E_b,
+        "beta": beta,
+        "n": n,
+        "pull_off_uN": max(h["strip_setae_force_y_uN"]),
+        "N_Fc_uN": n * m.Fc,
+        "front_travel_um": float(front[0] - front[-1]) if front.size else math.nan,
+        "mass_scale": b["mass_scale"],
+    }
 
 
 def draw(rows, out) -> None:
@@ -103,10 +118,19 @@ def draw(rows, out) -> None:
     with mpl.rc_context(render.STYLE_RC):
         fig = Figure(figsize=(6.0, 4.2), layout="constrained")
         ax = fig.subplots()
-        ax.plot([r["beta"] for r in el], [r["pull_off_uN"] / r["N_Fc_uN"] for r in el], "o-",
-                color="black", label="elastic strip peeled at one end")  # fmt: skip
-        ax.axhline(rigid["pull_off_uN"] / rigid["N_Fc_uN"], color="#1f77b4", ls="--",
-                   label="rigid plate pulled straight up")  # fmt: skip
+        ax.plot(
+            [r["beta"] for r in el],
+            [r["pull_off_uN"] / r["N_Fc_uN"] for r in el],
+            "o-",
+            color="black",
+            label="elastic strip peeled at one end",
+        )
+        ax.axhline(
+            rigid["pull_off_uN"] / rigid["N_Fc_uN"],
+            color="#1f77b4",
+            ls="--",
+            label="rigid plate pulled straight up",
+        )
         ax.set_xscale("log")
         ax.set_xlabel("backing / seta stiffness β = 4EI/(k_f·L_pad⁴)")
         ax.set_ylabel("pull-off / (N·Fc)")
@@ -126,14 +150,25 @@ def main(argv=None) -> dict:
     draw(rows, out)
     ratio = {f"{r['beta']:.3g}": r["pull_off_uN"] / r["N_Fc_uN"] for r in rows}
     results = {"pull_off_over_NFc_by_beta": ratio, "runtime_s": time.perf_counter() - t0}
-    write_json(out / "metadata.json", {
-        "scenario": NAME, "quick": args.quick, "params": BASE.to_dict(), "config": cfg,
-        "depth_um": DEPTH, "speed_um_per_us": SPEED, "seed": 1, "rows": rows,
-        "results": results,
-    })  # fmt: skip
-    print(f"{NAME}: pull-off/(N·Fc) by β: "
-          + ", ".join(f"{k}: {v:.3f}" for k, v in ratio.items())
-          + f"; {results['runtime_s']:.0f} s → {out}")  # fmt: skip
+    write_json(
+        out / "metadata.json",
+        {
+            "scenario": NAME,
+            "quick": args.quick,
+            "params": BASE.to_dict(),
+            "config": cfg,
+            "depth_um": DEPTH,
+            "speed_um_per_us": SPEED,
+            "seed": 1,
+            "rows": rows,
+            "results": results,
+        },
+    )
+    print(
+        f"{NAME}: pull-off/(N·Fc) by β: "
+        + ", ".join(f"{k}: {v:.3f}" for k, v in ratio.items())
+        + f"; {results['runtime_s']:.0f} s → {out}"
+    )
     return results
 
 

@@ -40,9 +40,12 @@ def full_array(params, seed, n_blocks, preload_uN):
     10⁷ setae to ~1e-9 of the peak (:func:`gecko_agents.quasistatic.representative_heights`;
     2000 vs 4000 split blocks: 1e-11, 20 000 plain block means: 1e-5, eight times slower)."""
     h, w, sample = qs.representative_heights(
-        params.array.count, params.floor.sigma, np.random.default_rng(seed), n_blocks,
+        params.array.count,
+        params.floor.sigma,
+        np.random.default_rng(seed),
+        n_blocks,
         return_sample=True,
-    )  # fmt: skip
+    )
     return qs.preload_pull(params, h, preload_uN, weights=w, sample=sample)
 
 

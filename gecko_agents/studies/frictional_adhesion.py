@@ -59,10 +59,10 @@ from gecko_agents.analysis.drag import drag_span, lean_after_drag, let_go_in_dra
 from gecko_agents.analysis.limit_curve import critical_angle, force_angle
 from gecko_agents.analysis.pull import pull_off, release_point
 from gecko_agents.analysis.ratio import gripping_over_releasing
-from gecko_agents.model import Model
+from gecko_agents.model import Model, Numerics
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping
 from gecko_agents.output_paths import atomic_write_bytes
-from gecko_agents.params import PAPER_ARRAY
+from gecko_agents.studies import frictional_adhesion_report as report
 from gecko_agents.studies.common import (
     command_line,
     jobs_arg,
@@ -71,26 +71,16 @@ from gecko_agents.studies.common import (
     write_json,
     write_table,
 )
+from gecko_agents.studies.frictional_adhesion_setup import (  # re-exported
+    BASE,
+    CONVERGENCE_SPEEDS,
+    DRAG,
+    NAME,
+    PRELOAD,
+    SPEED,
+    TIPS,
+)
 from gecko_agents.sweep.workers import map_local
-
-NAME = "frictional_adhesion"
-BASE = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.0, "array.count": 1})
-PRELOAD = 0.2  # µN: a rod seta with a spatula folds flat under 1 µN at μ = 0.2
-DRAG = 8.0  # µm
-# µm/µs: the package's quasi-static plate speed. The film's pull-off converges as the plate slows
-# (its contact dashpot adds a force ∝ v); at 0.05 µm/µs the releasing 90° pull-off was 8 % above
-# its quasi-static value (the convergence table of the full run, speed_convergence.csv).
-SPEED = protocol.DEFAULT_SPEED
-# Plate speeds [µm/µs] of the convergence check: the 90° pulls of the spatula at μ = 10, both drags.
-CONVERGENCE_SPEEDS = (0.05, 0.02, 0.01, 0.005, 0.0025)
-TIPS = {  # the scenario's tip names: parameters and labels
-    "sphere": ({"tip": "sphere"}, "sphere"),
-    "sphere_sb": (
-        {"tip": "sphere", "contact.shear_coupling": "savkoor_briggs"},
-        "sphere, Savkoor–Briggs",
-    ),
-    "spatula": ({"tip": "spatula"}, "spatula"),
-}
 
 
 def config(quick: bool) -> dict:
@@ -117,7 +107,9 @@ def run_point(
     reached (its preload overshoot) and the run's peak kinetic / peak elastic energy."""
     params = BASE.replace(**TIPS[tip][0], **{"friction.mu": mu})
     prot = protocol.drag_pull(PRELOAD, drag, beta, speed=speed)
-    model = Model(params, seed=1, record_setae=record, record_every=1, damping=damping)
+    model = Model(
+        params, seed=1, record_setae=record, damping=damping, numerics=Numerics(record_every=1)
+    )
     h = model.run(prot, progress=False)
     release = release_point(h, drag)
     start, _ = drag_span(h, drag)
@@ -233,7 +225,7 @@ def patch_point(tip: str, sigma: float, count: int, sign: int) -> dict:
     })  # fmt: skip
     drag = sign * DRAG
     prot = protocol.drag_pull(PRELOAD * count, drag, 90.0, speed=SPEED)
-    h = Model(params, seed=1, record_every=1).run(prot, progress=False)
+    h = Model(params, seed=1, numerics=Numerics(record_every=1)).run(prot, progress=False)
     held = pull_off(h, drag)
     return {"tip": tip, "sigma_um": sigma, "count": count,
             "direction": "gripping" if sign < 0 else "releasing", "drag_um": drag,
@@ -270,7 +262,9 @@ def map_point(tip: str, mu: float, theta: float, factor: float, sign: int) -> di
     drag = sign * factor * lean
     params = BASE.replace(**TIPS[tip][0], **{"friction.mu": mu, "seta.theta_deg": theta})
     prot = protocol.drag_pull(PRELOAD, drag, 90.0, speed=SPEED)
-    h = Model(params, seed=1, record_setae=True, record_every=1).run(prot, progress=False)
+    h = Model(params, seed=1, record_setae=True, numerics=Numerics(record_every=1)).run(
+        prot, progress=False
+    )
     held = pull_off(h, drag)
     adhesion, shear = held.adhesion, held.shear
     return {"tip": tip, "mu": mu, "theta_deg": theta, "drag_over_lean": factor,
@@ -377,8 +371,6 @@ def _extra_args(p) -> None:
 
 @command_line
 def main(argv=None) -> dict:
-    from gecko_agents.studies import frictional_adhesion_report as report
-
     args = parse_args(
         __doc__, argv,
         extra=_extra_args,

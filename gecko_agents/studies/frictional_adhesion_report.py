@@ -17,7 +17,7 @@ from gecko_agents.analysis.ratio import gripping_over_releasing
 from gecko_agents.contact import contact_law
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING
 from gecko_agents.physics import savkoor_briggs as sheared_jkr
-from gecko_agents.studies.frictional_adhesion import BASE, DRAG, NAME, PRELOAD, SPEED, TIPS
+from gecko_agents.studies.frictional_adhesion_setup import BASE, DRAG, NAME, PRELOAD, SPEED, TIPS
 
 
 def report_text(summary, quick, map_rows, below_rows, patch_rows, conv_rows, conv) -> str:
@@ -115,8 +115,10 @@ def patch_section(rows: list[dict]) -> list[str]:
         "|---|---|---|---|---|",
     ]
     for tip, sigma in dict.fromkeys((r["tip"], r["sigma_um"]) for r in rows):
-        g, r_ = (next(r for r in rows if (r["tip"], r["sigma_um"], r["direction"]) ==
-                      (tip, sigma, way)) for way in ("gripping", "releasing"))  # fmt: skip
+        g, r_ = (
+            next(r for r in rows if (r["tip"], r["sigma_um"], r["direction"]) == (tip, sigma, way))
+            for way in ("gripping", "releasing")
+        )
         ratio = gripping_over_releasing(g["pull_off_per_seta_uN"], r_["pull_off_per_seta_uN"])
         lines.append(
             f"| {TIPS[tip][1]} | {sigma:g} | {g['attached_after_drag']} / "
@@ -134,8 +136,12 @@ def draw_map(rows: list[dict], mcfg: dict, out) -> None:
     with mpl.rc_context(render.STYLE_RC):
         fig = Figure(figsize=(11.0, 4.4), layout="constrained")
         ax_r, ax_phi = fig.subplots(1, 2)
-        colours = {("spatula", 10.0): "#d62728", ("spatula", 0.2): "#fc9272",
-                   ("sphere", 10.0): "#1f77b4", ("sphere_sb", 10.0): "#2ca02c"}  # fmt: skip
+        colours = {
+            ("spatula", 10.0): "#d62728",
+            ("spatula", 0.2): "#fc9272",
+            ("sphere", 10.0): "#1f77b4",
+            ("sphere_sb", 10.0): "#2ca02c",
+        }
         dashes = {55.0: ":", 60.0: "-", 75.0: "--"}
         for tip, mu in mcfg["cases"]:
             for theta in mcfg["thetas"]:
@@ -152,17 +158,28 @@ def draw_map(rows: list[dict], mcfg: dict, out) -> None:
                 )
                 for way, mk in (("gripping", "o"), ("releasing", "^")):
                     d = [r for r in sel if r["direction"] == way]
-                    ax_phi.plot([r["drag_over_lean"] for r in d],
-                                [r["peel_angle_at_pull_off_deg"] for r in d], mk + ls, color=c,
-                                label=f"{lab}, {way}")  # fmt: skip
+                    ax_phi.plot(
+                        [r["drag_over_lean"] for r in d],
+                        [r["peel_angle_at_pull_off_deg"] for r in d],
+                        mk + ls,
+                        color=c,
+                        label=f"{lab}, {way}",
+                    )
         # Runs whose tip let go in the drag itself: their pull starts from a fresh contact.
         # (Each map row carries its pair's ratio, so a lost run marks that ratio.)
         lost = [r for r in rows if math.isfinite(r["let_go_in_drag_at_um"])]
         for ax, key in ((ax_r, "gripping_over_releasing"), (ax_phi, "peel_angle_at_pull_off_deg")):
             if lost:
-                ax.plot([r["drag_over_lean"] for r in lost], [r[key] for r in lost], "x",
-                        color="k", ms=9, mew=1.5, zorder=5,
-                        label="tip let go in the drag")  # fmt: skip
+                ax.plot(
+                    [r["drag_over_lean"] for r in lost],
+                    [r[key] for r in lost],
+                    "x",
+                    color="k",
+                    ms=9,
+                    mew=1.5,
+                    zorder=5,
+                    label="tip let go in the drag",
+                )
         ax_r.axhline(2.0, color="0.6", lw=0.8)
         ax_r.set_xlabel("drag / lean (L cos θ)")
         ax_r.set_ylabel("pull-off at 90°: gripping / releasing")
@@ -194,14 +211,19 @@ def draw(rows: list[dict], cfg: dict, out) -> None:
         }
         for ax, mu in zip(axes, cfg["mus"], strict=True):
             for (tip, drag), (st, c) in styles.items():
-                sel = [r for r in rows if r["tip"] == tip and r["mu"] == mu
-                       and r["drag_um"] == drag]  # fmt: skip
+                sel = [
+                    r for r in rows if r["tip"] == tip and r["mu"] == mu and r["drag_um"] == drag
+                ]
                 if not sel:
                     continue
                 way = "gripping (−x)" if drag < 0 else "releasing (+x)"
-                ax.plot([r["shear_at_release_uN"] for r in sel],
-                        [r["adhesion_at_release_uN"] for r in sel], st, color=c,
-                        label=f"{TIPS[tip][1]}, dragged {way}")  # fmt: skip
+                ax.plot(
+                    [r["shear_at_release_uN"] for r in sel],
+                    [r["adhesion_at_release_uN"] for r in sel],
+                    st,
+                    color=c,
+                    label=f"{TIPS[tip][1]}, dragged {way}",
+                )
             if "sphere_sb" in cfg["tips"]:  # the closed form beside the coupled sphere
                 law = contact_law(BASE.replace(**TIPS["sphere_sb"][0]))
                 T = np.linspace(*ax.get_xlim(), 200)
@@ -339,7 +361,7 @@ def map_section(rows: list[dict]) -> list[str]:
             " (0: the tip let go in the gripping drag and did not touch again). "
             if min(ratios) == 0
             else ". "
-        )  # fmt: skip
+        )
         + let_go_sentence(rows)
         + "A sphere tip is held tangentially by its adhesive friction μ(P + 2Fc), so a "
         "releasing drag past the lean flips its seta (lean > 90°) and the release force "
@@ -391,8 +413,12 @@ def below_map_section(rows: list[dict]) -> list[str]:
 
 def film_lost_clause(rows: list[dict]) -> str:
     """ ", until …" when a spatula at μ = 10 lost its film in a gripping drag of the map."""
-    lost = [r for r in rows if (r["tip"], r["mu"], r["direction"]) == ("spatula", 10.0, "gripping")
-            and math.isfinite(r["let_go_in_drag_at_um"])]  # fmt: skip
+    lost = [
+        r
+        for r in rows
+        if (r["tip"], r["mu"], r["direction"]) == ("spatula", 10.0, "gripping")
+        and math.isfinite(r["let_go_in_drag_at_um"])
+    ]
     if not lost:
         return ""
     first = min(lost, key=lambda r: r["drag_over_lean"])

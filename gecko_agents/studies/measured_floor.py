@@ -38,7 +38,7 @@ DEFAULT_FILE = DEKTAK_PROFILE
 
 def make_model(params, profile, **kwargs) -> Model:
     """``Model(params, floor_profile=profile, **kwargs)`` (the generated floor if None)."""
-    return Model(params, floor_profile=profile, **kwargs)
+    return Model.from_options(params, floor_profile=profile, **kwargs)
 
 
 def _extra(parser):

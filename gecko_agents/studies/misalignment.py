@@ -75,16 +75,27 @@ def config(quick: bool) -> dict:
 def run_point(n: int, E_b: float, k_h: float, angle: float) -> dict:
     """One press-and-pull of ``n`` setae on a strip of modulus ``E_b`` [MPa] tilted by
     ``angle`` [deg], held by a handle of stiffness ``k_h`` [µN/µm]."""
-    p = BASE.replace(**{"array.count": n, "backing.E_b": E_b, "backing.handle_stiffness": k_h,
-                        "backing.misalignment_deg": angle})  # fmt: skip
+    p = BASE.replace(
+        **{
+            "array.count": n,
+            "backing.E_b": E_b,
+            "backing.handle_stiffness": k_h,
+            "backing.misalignment_deg": angle,
+        }
+    )
     m = Model(p, seed=1)
     h = m.run(protocol.preload_pull(PRELOAD * n * m.Fc, speed=SPEED), progress=False)
     b = h.meta["backing"]
-    return {"E_b_MPa": E_b, "handle_uN_per_um": k_h, "angle_deg": angle, "n": n,
-            "mount_uN_per_um2": k_h / b["length_um"],
-            "foundation_uN_per_um2": b["foundation_uN_per_um2"],
-            "attached_max": int(np.max(h["n_attached"])),
-            "pull_off_over_NFc": max(h["strip_setae_force_y_uN"]) / (n * m.Fc)}  # fmt: skip
+    return {
+        "E_b_MPa": E_b,
+        "handle_uN_per_um": k_h,
+        "angle_deg": angle,
+        "n": n,
+        "mount_uN_per_um2": k_h / b["length_um"],
+        "foundation_uN_per_um2": b["foundation_uN_per_um2"],
+        "attached_max": int(np.max(h["n_attached"])),
+        "pull_off_over_NFc": max(h["strip_setae_force_y_uN"]) / (n * m.Fc),
+    }
 
 
 def draw(rows, out) -> None:
@@ -98,8 +109,14 @@ def draw(rows, out) -> None:
             for (mount, k_h), colour in zip(MOUNTS.items(), ("black", "#d62728"), strict=True):
                 sel = [r for r in rows if r["E_b_MPa"] == E_b and r["handle_uN_per_um"] == k_h]
                 label = f"{strip}, {mount} ({k_h:g} µN/µm)"
-                ax.plot([r["angle_deg"] for r in sel], [r["pull_off_over_NFc"] for r in sel],
-                        "o", ls=ls, color=colour, label=label)  # fmt: skip
+                ax.plot(
+                    [r["angle_deg"] for r in sel],
+                    [r["pull_off_over_NFc"] for r in sel],
+                    "o",
+                    ls=ls,
+                    color=colour,
+                    label=label,
+                )
         ax.set_xlabel("misalignment of backing and floor [deg]")
         ax.set_ylabel("pull-off / (N·Fc)")
         ax.set_ylim(0.0, 1.1)
@@ -123,17 +140,31 @@ def main(argv=None) -> dict:
     write_table(out / f"{NAME}.csv", rows)
     draw(rows, out)
     top = max(cfg["angles_deg"])
-    at_top = {f"E_b={r['E_b_MPa']:g}, k_h={r['handle_uN_per_um']:g}": r["pull_off_over_NFc"]
-              for r in rows if r["angle_deg"] == top}  # fmt: skip
+    at_top = {
+        f"E_b={r['E_b_MPa']:g}, k_h={r['handle_uN_per_um']:g}": r["pull_off_over_NFc"]
+        for r in rows
+        if r["angle_deg"] == top
+    }
     results = {f"pull_off_over_NFc_at_{top:g}_deg": at_top, "runtime_s": time.perf_counter() - t0}
-    write_json(out / "metadata.json", {
-        "scenario": NAME, "quick": args.quick, "params": BASE.to_dict(), "config": cfg,
-        "preload_over_NFc": PRELOAD, "speed_um_per_us": SPEED, "seed": 1, "rows": rows,
-        "results": results,
-    })  # fmt: skip
-    print(f"{NAME}: pull-off/(N·Fc) at {top:g}°: "
-          + ", ".join(f"{k}: {v:.3f}" for k, v in at_top.items())
-          + f"; {results['runtime_s']:.0f} s → {out}")  # fmt: skip
+    write_json(
+        out / "metadata.json",
+        {
+            "scenario": NAME,
+            "quick": args.quick,
+            "params": BASE.to_dict(),
+            "config": cfg,
+            "preload_over_NFc": PRELOAD,
+            "speed_um_per_us": SPEED,
+            "seed": 1,
+            "rows": rows,
+            "results": results,
+        },
+    )
+    print(
+        f"{NAME}: pull-off/(N·Fc) at {top:g}°: "
+        + ", ".join(f"{k}: {v:.3f}" for k, v in at_top.items())
+        + f"; {results['runtime_s']:.0f} s → {out}"
+    )
     return results
 
 

@@ -5,7 +5,7 @@ A row of N setae (the paper's polyurethane array, stubby L = 5 µm setae, flat f
 the default elastic strip (:class:`gecko_agents.params.backing.Backing`: E_b = 1.413 MPa, t_b = 50
 µm;
 bending length λ = 39 µm ≈ 10 setae), which continues beyond the pad's +x edge as a pre-peeled
-leader arm (``Model(params, leader_arm=…, peel_angle_deg=ψ)``, the elastic backing's options:
+leader arm (``params.backing.leader_arm`` and ``peel_angle_deg = ψ``, the elastic backing's:
 links without setae, laid out
 at ψ from the floor and stress-free in that shape). The pad is preloaded (handle, strip and
 tips put 0.3 µm below touch-down, every tip attached, then left to settle), and the handle
@@ -39,15 +39,8 @@ more per peeled area than the rigid-plate pull-off of its setae, not by rate (th
 as the peel slows); the strip's local compliance in series with a releasing seta is the
 likely cause, not derived.
 
-Measured (full run, 240 setae at 0.2 µm/µs, 2026-11-23):
-
-    ψ nominal / measured   F/b [µN/µm]   w_eff (dissipated part)   Kendall F/b   ratio
-    15° / 18.0°            12.0          0.631 (0.563)             12.9          0.93
-    30° / 31.5°             5.11         0.752 (0.684)              5.09         1.00
-    45° / 47.0°             2.60         0.810 (0.743)              2.55         1.02
-    60° / 63.2°             1.60         0.847 (0.780)              1.54         1.04
-    75° / 80.5°             1.10         0.863 (0.795)              1.03         1.07
-    90° / 99.6°             0.831        0.876 (0.808)              0.750        1.11
+The full run (240 setae at 0.2 µm/µs) writes F/b, w_eff and Kendall's F/b at each angle to
+``pad_peel.csv`` (its measured table: documentation, explanation, "The elastic strip"):
 
 Kendall's order holds (F/b(30°) = 6.2 × F/b(90°); 6.8 × with each run's own w_eff). w_eff
 grows with ψ (0.63 → 0.88 µN/µm) although the front runs 5× slower at 90° than at 15°, so
@@ -74,7 +67,7 @@ import time
 import numpy as np
 
 from gecko_agents import protocol, render
-from gecko_agents.backing.bench import elastic_pressed_model
+from gecko_agents.bench import elastic_pressed_model
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.render.backing import BackingTrack
@@ -89,9 +82,14 @@ from gecko_agents.studies.common import (
 
 NAME = "pad_peel"
 BASE = PAPER_ARRAY.replace(
-    **{"seta.L": 5.0, "floor.sigma": 0.0, "backing.kind": "elastic",
-       "backing.drive": "peel_end", "backing.handle_stiffness": 50.0}
-)  # fmt: skip
+    **{
+        "seta.L": 5.0,
+        "floor.sigma": 0.0,
+        "backing.kind": "elastic",
+        "backing.drive": "peel_end",
+        "backing.handle_stiffness": 50.0,
+    }
+)
 ARM = 100.0
 """Leader arm [µm]: 2.5 λ, so the arm's end is clear of the bending zone at the front."""
 DEPTH, SETTLE = 0.3, 300  # preload below touch-down [µm], steps of rest after it
@@ -103,8 +101,12 @@ PLATEAU = (0.2, 0.8)
 def config(quick: bool) -> dict:
     if quick:
         return {"n": 1000, "angles": [30.0], "speed": 0.5, "front_fraction": 0.4}
-    return {"n": 240, "angles": [15.0, 30.0, 45.0, 60.0, 75.0, 90.0], "speed": 0.2,
-            "front_fraction": 1.0}  # fmt: skip
+    return {
+        "n": 240,
+        "angles": [15.0, 30.0, 45.0, 60.0, 75.0, 90.0],
+        "speed": 0.2,
+        "front_fraction": 1.0,
+    }
 
 
 def handle_direction_deg(psi: float) -> float:
@@ -119,8 +121,16 @@ def preloaded_model(
     """A pad of ``n`` setae on the strip with a leader arm at ``psi`` [deg], handle, strip and
     tips put ``DEPTH`` below touch-down and left ``SETTLE`` steps to settle (every tip
     attached); ``record_setae`` for an animation."""
-    return elastic_pressed_model(n, DEPTH, SETTLE, params, seed=SEED, leader_arm=arm,
-                                 peel_angle_deg=psi, record_setae=record_setae)  # fmt: skip
+    return elastic_pressed_model(
+        n,
+        DEPTH,
+        SETTLE,
+        params,
+        seed=SEED,
+        leader_arm=arm,
+        peel_angle_deg=psi,
+        record_setae=record_setae,
+    )
 
 
 def peel(m: Model, psi: float, speed: float, front_fraction: float = 1.0):
@@ -173,28 +183,42 @@ def steady_peel(h, width: float) -> dict:
     w_eff = w_diss + e_seta / (pitch * width)
     one_minus_cos = 1.0 - math.cos(math.radians(psi))
     kendall = w_eff / one_minus_cos
-    return {"psi_measured_deg": psi, "F_uN": F_mean, "F_magnitude_mean_uN": float(F.mean()),
-            "F_sd_uN": float(F.std()), "F_per_width_uN_per_um": F_mean / width,
-            "front_advance_um": da, "front_speed_um_per_us": float(da / (t2 - t1)),
-            "dissipated_pJ": dD, "elastic_change_pJ": dE,
-            "work_minus_kinetic_pJ": change("work_plate_pJ") - change("energy_kinetic_pJ"),
-            "adhesion_energy_per_seta_pJ": e_seta, "w_eff_uN_per_um": w_eff,
-            "w_dissipated_uN_per_um": w_diss, "w_all_stored_uN_per_um": (dD + dE) / (da * width),
-            "kendall_F_per_width_uN_per_um": kendall,
-            "ratio_to_kendall": F_mean / width / kendall,
-            "ratio_to_kendall_dissipated_only": F_mean / width * one_minus_cos / w_diss,
-            "ratio_to_kendall_all_stored": F_mean * one_minus_cos * da / (dD + dE),
-            }  # fmt: skip
+    return {
+        "psi_measured_deg": psi,
+        "F_uN": F_mean,
+        "F_magnitude_mean_uN": float(F.mean()),
+        "F_sd_uN": float(F.std()),
+        "F_per_width_uN_per_um": F_mean / width,
+        "front_advance_um": da,
+        "front_speed_um_per_us": float(da / (t2 - t1)),
+        "dissipated_pJ": dD,
+        "elastic_change_pJ": dE,
+        "work_minus_kinetic_pJ": change("work_plate_pJ") - change("energy_kinetic_pJ"),
+        "adhesion_energy_per_seta_pJ": e_seta,
+        "w_eff_uN_per_um": w_eff,
+        "w_dissipated_uN_per_um": w_diss,
+        "w_all_stored_uN_per_um": (dD + dE) / (da * width),
+        "kendall_F_per_width_uN_per_um": kendall,
+        "ratio_to_kendall": F_mean / width / kendall,
+        "ratio_to_kendall_dissipated_only": F_mean / width * one_minus_cos / w_diss,
+        "ratio_to_kendall_all_stored": F_mean * one_minus_cos * da / (dD + dE),
+    }
 
 
 def run_point(n: int, psi: float, speed: float, front_fraction: float) -> tuple[dict, object]:
     t0 = time.perf_counter()
     m = preloaded_model(n, psi)
     h = peel(m, psi, speed, front_fraction)
-    row = {"psi_deg": psi, "n": n, "speed_um_per_us": speed,
-           "handle_direction_deg": handle_direction_deg(psi),
-           **steady_peel(h, m.params.array.pitch), "N_Fc_uN": m.n * m.Fc,
-           "n_steps": h.meta["n_steps"], "runtime_s": time.perf_counter() - t0}  # fmt: skip
+    row = {
+        "psi_deg": psi,
+        "n": n,
+        "speed_um_per_us": speed,
+        "handle_direction_deg": handle_direction_deg(psi),
+        **steady_peel(h, m.params.array.pitch),
+        "N_Fc_uN": m.n * m.Fc,
+        "n_steps": h.meta["n_steps"],
+        "runtime_s": time.perf_counter() - t0,
+    }
     return row, h
 
 
@@ -206,14 +230,29 @@ def draw(rows, histories, out) -> None:
         fig = Figure(figsize=(10.0, 4.2), layout="constrained")
         ax, ax2 = fig.subplots(1, 2)
         psi = np.array([r["psi_measured_deg"] for r in rows])
-        ax.plot(psi, [r["F_per_width_uN_per_um"] for r in rows], "o", color="black",
-                label="simulated: mean handle force / b on the plateau")  # fmt: skip
-        ax.plot(psi, [r["kendall_F_per_width_uN_per_um"] for r in rows], "s", mfc="none",
-                color=GREY, label="Kendall with each run's own w_eff")  # fmt: skip
+        ax.plot(
+            psi,
+            [r["F_per_width_uN_per_um"] for r in rows],
+            "o",
+            color="black",
+            label="simulated: mean handle force / b on the plateau",
+        )
+        ax.plot(
+            psi,
+            [r["kendall_F_per_width_uN_per_um"] for r in rows],
+            "s",
+            mfc="none",
+            color=GREY,
+            label="Kendall with each run's own w_eff",
+        )
         w = np.mean([r["w_eff_uN_per_um"] for r in rows])
         grid = np.linspace(min(12.0, psi.min()), max(95.0, psi.max()), 200)
-        ax.plot(grid, w / (1.0 - np.cos(np.radians(grid))), color=GREY,
-                label=f"Kendall, w_eff = {w:.3g} µN/µm (mean)")  # fmt: skip
+        ax.plot(
+            grid,
+            w / (1.0 - np.cos(np.radians(grid))),
+            color=GREY,
+            label=f"Kendall, w_eff = {w:.3g} µN/µm (mean)",
+        )
         ax.set_yscale("log")
         ax.set_xlabel("peel angle ψ [deg] (measured force angle)")
         ax.set_ylabel("peel force per width F/b [µN/µm]")
@@ -230,8 +269,9 @@ def draw(rows, histories, out) -> None:
             ax2.plot(x, y, color=shade, lw=1.2)
             a = track.front_abscissa(k)
             if math.isfinite(a):
-                ax2.plot(np.interp(a, node_s, x), np.interp(a, node_s, y), "o", color="#d62728",
-                         ms=4)  # fmt: skip
+                ax2.plot(
+                    np.interp(a, node_s, x), np.interp(a, node_s, y), "o", color="#d62728", ms=4
+                )
         ax2.set_xlabel("x [µm]")
         ax2.set_ylabel("y [µm]")
         ax2.set_aspect("equal", adjustable="datalim")
@@ -270,21 +310,34 @@ def main(argv=None) -> dict:
         row, h = run_point(cfg["n"], psi, cfg["speed"], cfg["front_fraction"])
         rows.append(row)
         histories.append(h)
-        print(f"ψ = {psi:.0f}°: F/b = {row['F_per_width_uN_per_um']:.3g} µN/µm at "
-              f"{row['psi_measured_deg']:.1f}°, w_eff = {row['w_eff_uN_per_um']:.3g} µN/µm, "
-              f"Kendall ×{row['ratio_to_kendall']:.3f} ({row['runtime_s']:.0f} s)")  # fmt: skip
+        print(
+            f"ψ = {psi:.0f}°: F/b = {row['F_per_width_uN_per_um']:.3g} µN/µm at "
+            f"{row['psi_measured_deg']:.1f}°, w_eff = {row['w_eff_uN_per_um']:.3g} µN/µm, "
+            f"Kendall ×{row['ratio_to_kendall']:.3f} ({row['runtime_s']:.0f} s)"
+        )
     write_table(out / f"{NAME}.csv", rows)
     draw(rows, histories, out)
-    results = {"F_per_width_by_psi": {f"{r['psi_deg']:.0f}": r["F_per_width_uN_per_um"]
-                                      for r in rows},
-               "ratio_to_kendall_by_psi": {f"{r['psi_deg']:.0f}": r["ratio_to_kendall"]
-                                           for r in rows},
-               "runtime_s": time.perf_counter() - t0}  # fmt: skip
-    write_json(out / "metadata.json", {
-        "scenario": NAME, "quick": args.quick, "params": BASE.to_dict(), "config": cfg,
-        "leader_arm_um": ARM, "depth_um": DEPTH, "settle_steps": SETTLE, "seed": SEED,
-        "plateau": PLATEAU, "rows": rows, "results": results,
-    })  # fmt: skip
+    results = {
+        "F_per_width_by_psi": {f"{r['psi_deg']:.0f}": r["F_per_width_uN_per_um"] for r in rows},
+        "ratio_to_kendall_by_psi": {f"{r['psi_deg']:.0f}": r["ratio_to_kendall"] for r in rows},
+        "runtime_s": time.perf_counter() - t0,
+    }
+    write_json(
+        out / "metadata.json",
+        {
+            "scenario": NAME,
+            "quick": args.quick,
+            "params": BASE.to_dict(),
+            "config": cfg,
+            "leader_arm_um": ARM,
+            "depth_um": DEPTH,
+            "settle_steps": SETTLE,
+            "seed": SEED,
+            "plateau": PLATEAU,
+            "rows": rows,
+            "results": results,
+        },
+    )
     if args.animate:
         animate_peel(out)
     print(f"{NAME}: {results['runtime_s']:.0f} s → {out}")

@@ -15,34 +15,45 @@ carries no more than about its Euler load, so a force preload above it would cru
 pulls them straight off at 0.05 µm/µs (friction μ = 0.5). The preload is the largest force
 the pillars carried.
 
-Buckling is marked where the preload per pillar reached the Euler load of the pillar's end
-condition: clamped–clamped 4π²EI/L² for the flat punch (face held flat, stuck), clamped–pinned
-2.046π²EI/L² for the sphere and the spatula (stuck, free to turn) — the loads the model meets
-within 2 % (``tests/test_pillars.py``); a pillar pressed past buckling carries about that load
-(a little more while the press runs: the bending mode grows slowly near the bifurcation).
+Buckling is marked where the preload per pillar reached the buckling load of the pillar's end
+condition with shear (:func:`gecko_agents.physics.columns.shear_column_load`): clamped–clamped
+for the flat punch (face held flat, stuck), clamped–pinned for the sphere and the spatula
+(stuck, free to turn) — the loads the model meets within 2 % (``tests/test_pillars.py``).
+At L/2r = 5 and 10 shear puts them 22 % and 7 % below Euler's 4π²EI/L² for the punch and 14 %
+and 4 % below 2.046π²EI/L² for the others (column ``euler_load_uN`` keeps Euler's). A pillar
+pressed past buckling carries about that load (a little more while the press runs: the
+bending mode grows slowly near the bifurcation).
 
-What the model says (full run, 48 runs, 115 s; the table ``pillar_designs.csv``):
+What the model says (full run, 66 runs, the table ``pillar_designs.csv``):
 
-* The flat punch wins on every floor and at every press: 285–291 kPa of backing, against
-  71–73 kPa for the sphere and 33–35 kPa for the spatula. That is each tip's own pull-off over
-  16 µm²: Kendall's 4.66 µN for a 1.5 µm punch, 1.5πRw = 1.17 µN for the sphere, the film's
-  peel force for the spatula. A punch's whole face bonds; a sphere's contact is a fraction
-  of it (and its a/R = 1.0 here is far outside JKR's a ≪ R: the validity table flags it).
+* The mushroom wins on every floor and at every press: 626–635 kPa of backing, against
+  280–291 kPa for the flat punch, 71–73 kPa for the sphere and 33–35 kPa for the spatula.
+  That is each tip's own pull-off over 16 µm²: σ₀ = 1 MPa over the mushroom's 1.8 µm flange
+  (its rim not singular, it lets go from its centre; an upper bound, see
+  :mod:`gecko_agents.physics.mushroom`), Kendall's 4.66 µN for a 1.5 µm punch, 1.5πRw =
+  1.17 µN for the sphere, the film's peel force for the spatula. A punch's whole face bonds; a
+  sphere's contact is a fraction of it (and its a/R = 1.0 here is far outside JKR's a ≪ R: the
+  validity table flags it).
 * The rough floor (σ = 0.2 µm pads) costs at most 2 %, because each pillar meets its own flat
   pad (eq 28): a punch face is never tilted against its pad, and the pillars are compliant
   enough to reach pads 0.2 µm apart. On the measured scan a 1 % press (0.15 µm) of the
-  shorter pillars leaves some of them off the floor: 116 kPa for the punch, 43 kPa for the
-  sphere. A 5 % press brings them all on.
-* Buckling costs nothing measurable: 0.98–1.00 × the pull-off of the same design pressed below
-  its Euler load. The measured floor's 1.2 × is the partial contact of the 1 % press, not
-  buckling. The punch face stays bonded and flat through the buckle, and the column
-  straightens as it is pulled.
+  shorter pillars leaves some of them off the floor: 116 kPa for the punch, 380 kPa for the
+  mushroom, 43 kPa for the sphere. A 5 % press brings them all on.
+* Buckling costs nothing measurable with the faces held bonded (the default): 0.98–1.00 × the
+  pull-off of the same design pressed below its buckling load. The measured floor's 1.15–1.24 ×
+  is the partial contact of the 1 % press, not buckling. The punch face stays bonded and flat
+  through the buckle, and the column straightens as it is pulled.
 
 Experiments on mushroom pillars report "extremely low pull-off force" once the pillars buckle
 (Yagüe Isla & Kroner 2015, Adv Funct Mater 25:2444, the literature report's row): their
-pillars' ends tilt and peel at the edge when the column buckles. The model's punch face does not
-tilt, so it cannot show that loss; a tilting face is the missing physics, not a parameter to
-tune.
+pillars' ends tilt and peel at the edge when the column buckles. With the faces' edges free to
+open (``contact.edge_opening``, :mod:`gecko_agents.model.face_opening`; the study's
+``pillar_buckling.png``, :mod:`.pillar_buckling`) a round-edged punch loses its whole pull-off
+once its buckled face's edge reaches the toughness, which happens for large pillars first: a
+1.5 µm punch keeps it after a 40 % press, a 15 µm one loses it after 20 %. A mushroom whose
+rim is not singular keeps it at every size, as Paretkar et al.'s (2013) end-flap fibrils do;
+the model does not reproduce a mushroom's loss (a tilted flange's partial contact is not
+modelled).
 
 The tilted face in closed form (``pillar_tilt.png``, table ``pillar_tilt.csv``): a punch face
 bonded at a tilt α, or carrying the moment a lateral load Q puts on it, opens at one edge
@@ -59,19 +70,29 @@ on 400 µm PDMS pillars find the flat tip's pull-off "strongly" tilt dependent a
 mushroom's not, once in full contact (Kroner & Arzt, "Single macropillars as model systems
 for tilt angle dependent adhesion measurements", abstract read; journal details not checked):
 the same trend, not a quantitative comparison (their tilt is of the probe before contact).
-The dynamic law does not use this yet: the elastica holds the bonded face rigidly and its
-moment does not reach the contact law's detachment. What it would change is measured here:
-each flat-punch run logs, by the same criterion, the largest K/K_c its faces' edges reach while
-pressed and the face moment's share 3|M|/a over F_K while pulled (:class:`EdgeLog`, table
-columns ``edge_K_over_Kc_pressed`` and ``moment_share_pulled``). Full run: pressed past
-buckling (20 % of L) the edge reaches K/K_c = 0.28–0.37 on the three floors (G ≤ 0.14 w);
-below Euler's load it stays closed (K ≤ 0; 0.08–0.11 for L/2r = 10 pressed 5 %, just
-past its load). Pulled, the moment adds at most 0.07 % of F_K. So the clamped face's moment
-would not open the edge in these straight press-pulls, and the buckling loss of the
-experiments is not this moment.
+The study's runs hold the bonded face rigidly (``contact.edge_opening`` off), so the moment
+does not reach the detachment; what it would change is measured here: each flat-punch run logs,
+by the same criterion, the largest K/K_c its faces' edges reach while pressed and the face
+moment's share 3|M|/a over F_K while pulled (:class:`EdgeLog`, table columns
+``edge_K_over_Kc_pressed`` and ``moment_share_pulled``). Full run: pressed past buckling (20 %
+of L) the edge reaches K/K_c = 0.34–0.39 on the three floors (G ≤ 0.15 w); below its buckling
+load it stays closed (K ≤ 0; 0.09–0.11 for L/2r = 10 pressed 5 %, just past its load). Pulled,
+the moment adds at most 0.02 % of F_K. So the clamped face's moment does not open the edge of
+these 1.5 µm pillars in straight press-pulls; it opens that of larger ones
+(:mod:`.pillar_buckling`).
+
+The flat-faced tips have an interface strength σ₀ = 1 MPa (an assumption, :data:`SIGMA0`),
+and the full run adds a mushroom tip (flange 1.2 × the stalk, sharp 45° rim, no defect: it lets
+go from its centre at σ₀ over the flange). Contact splitting (:mod:`.pillar_splitting`,
+``pillar_splitting.png``): pull-off per area of backing against pillar radius at a fixed area
+fraction, the closed forms with single pillars of the model on them (within 0.03 %). A flat
+punch gains as a^−1/2 (Kendall) only down to its flaw-tolerant radius a_cr = 8E*w/(πσ₀²),
+7.2 µm at σ₀ = 0.3 MPa and 0.65 µm at 1 MPa, and not below; a mushroom whose rim is not
+singular holds σ₀ over its flange at every size, 636 kPa here, unless a defect that scales with
+it brings Griffith's a^−1/2 back above 1.3 µm.
 
 ``--quick``: flat glass, one aspect ratio (L/2r = 5), the sphere and the flat punch, two
-press depths (1 % and 20 % of L).
+press depths (1 % and 20 % of L), two radii of the splitting runs.
 """
 
 from __future__ import annotations
@@ -87,8 +108,10 @@ from gecko_agents.data import DEKTAK_PROFILE
 from gecko_agents.floor import readers
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
-from gecko_agents.physics import punch
+from gecko_agents.physics import columns, punch
 from gecko_agents.physics.elastica import Elastica
+from gecko_agents.studies import pillar_buckling as pb
+from gecko_agents.studies import pillar_splitting as ps
 from gecko_agents.studies.common import (
     command_line,
     output_dir,
@@ -105,16 +128,24 @@ BASE = PAPER_ARRAY.replace(
        "floor.sigma": 0.0, "spatula.b": 2 * R_PILLAR}
 )  # fmt: skip
 FLOORS = ("flat", "rough", "measured")
-EULER = {"flat_punch": 4.0, "sphere": 2.046, "spatula": 2.046}  # × π²EI/L²
-MARKERS = {"sphere": "o", "flat_punch": "s", "spatula": "^"}
+EULER = {"flat_punch": 4.0, "mushroom": 4.0, "sphere": 2.046, "spatula": 2.046}  # × π²EI/L²
+MARKERS = {"sphere": "o", "flat_punch": "s", "spatula": "^", "mushroom": "D"}
+SIGMA0 = 1.0
+"""Interface strength of the flat-faced tips [MPa], an assumption (Aksak, Şahin & Sitti's 2014
+value for PDMS); the 1.5 µm punch's Kendall stress, 0.66 MPa, lies below it, so the punch is
+Kendall's. The mushroom: flange 1.2 × the stalk, a sharp 45° rim (not singular), no defect."""
 
 
 def config(quick: bool) -> dict:
     if quick:
         return {"tips": ["sphere", "flat_punch"], "aspect": [5.0], "floors": ["flat"],
-                "strains": [0.01, 0.2]}  # fmt: skip
-    return {"tips": ["sphere", "flat_punch", "spatula"], "aspect": [5.0, 10.0],
-            "floors": list(FLOORS), "strains": [0.01, 0.05, 0.2]}  # fmt: skip
+                "strains": [0.01, 0.2], "split_radii": [0.3, 3.0],
+                "split_designs": ps.QUICK_DESIGNS, "buckling_radii": [15.0],
+                "buckling_strains": [0.01, 0.2]}  # fmt: skip
+    return {"tips": ["sphere", "flat_punch", "spatula", "mushroom"], "aspect": [5.0, 10.0],
+            "floors": list(FLOORS), "strains": [0.01, 0.05, 0.2],
+            "split_radii": [0.2, 0.6, 2.0, 6.0], "split_designs": None,
+            "buckling_radii": [1.5, 5.0, 15.0], "buckling_strains": [0.01, 0.2, 0.4]}  # fmt: skip
 
 
 def euler_load(tip: str, L: float) -> float:
@@ -123,9 +154,22 @@ def euler_load(tip: str, L: float) -> float:
     return EULER[tip] * math.pi**2 * EI / L**2
 
 
+def buckling_load(tip: str, L: float) -> float:
+    """The buckling load of a pillar of length L [µm] with ``tip``'s end condition, shear
+    included (:func:`gecko_agents.physics.columns.shear_column_load`) [µN]."""
+    chain = Elastica(1, L, R_PILLAR, BASE.contact.E1, math.pi / 2, nu=BASE.contact.nu1)
+    case = "clamped" if EULER[tip] == 4.0 else "pinned"
+    return float(columns.shear_column_load(chain.EI, chain.kGA, L, case))
+
+
 def params_for(tip: str, aspect: float, floor_kind: str):
     L = 2.0 * R_PILLAR * aspect
     over = {"tip": tip, "seta.L": L}
+    if tip in ("flat_punch", "mushroom"):
+        over |= {"contact.sigma0": SIGMA0}
+    if tip == "mushroom":
+        over |= {"contact.R": 1.2 * R_PILLAR, "mushroom.rim": "sharp",
+                 "mushroom.rim_angle_deg": 45.0}  # fmt: skip
     if floor_kind == "rough":
         over |= {"floor.sigma": 0.2}
     return BASE.replace(**over)
@@ -144,7 +188,7 @@ class EdgeLog(Elastica):
     def solve(self, d, held):
         F, U = super().solve(d, held)
         if np.any(self.held):
-            M = np.abs(self.k[-1] * (self.phi[self.held, -1] - self.clamp[self.held]))
+            M = np.abs(self.face_moment()[self.held])
             P = -F[self.held, 1]  # the tip sits below its root: pressed, the pillar pushes down
             pressed, pulled = P > 0, P < 0
             term = 3.0 * M / self.edge_a
@@ -173,10 +217,11 @@ def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
     preload = float(np.max(h["force_normal_uN"])) / N_PILLARS
     area = N_PILLARS * p.array.pitch**2  # µm² of backing
     F = pull_off(h).adhesion
-    P_E = euler_load(tip, p.seta.L)
+    P_E, P_cr = euler_load(tip, p.seta.L), buckling_load(tip, p.seta.L)
     return {"tip": tip, "aspect_L_over_2r": aspect, "L_um": p.seta.L, "floor": floor_kind,
             "press_strain": strain, "preload_per_pillar_uN": preload, "euler_load_uN": P_E,
-            "buckled": bool(preload >= 0.98 * P_E), "pull_off_uN": F,
+            "buckling_load_uN": P_cr, "buckled": bool(preload >= 0.98 * P_cr),
+            "pull_off_uN": F,
             "pull_off_per_area_kPa": 1e3 * F / area,
             "attached_max": int(np.max(h["n_attached"])),
             "edge_K_over_Kc_pressed": log.press_peak if log and log.press_peak > -math.inf
@@ -224,7 +269,7 @@ def elastica_face_moment(L: float, u: float) -> tuple[float, float]:
     """Lateral force [µN] and face moment [µN·µm] of the study's pillar (bar-chain elastica,
     length L [µm]) whose face, bonded at rest and clamped there, is pushed u [µm] sideways with
     no axial force (its end's height found by the secant method)."""
-    chain = Elastica(1, L, R_PILLAR, BASE.contact.E1, math.pi / 2)
+    chain = Elastica(1, L, R_PILLAR, BASE.contact.E1, math.pi / 2, nu=BASE.contact.nu1)
     rest = chain.rest_end()
     chain.solve(rest[None, :], True)  # the face bonds at rest and is clamped there
 
@@ -239,7 +284,7 @@ def elastica_face_moment(L: float, u: float) -> tuple[float, float]:
             break
         y0, y1, f0 = y1, y1 - f1 * (y1 - y0) / (f1 - f0), f1
         f1 = axial(y1)
-    return float(chain.lam[0, 0]), float(chain.k[-1] * (chain.phi[0, -1] - chain.clamp[0]))
+    return float(chain.lam[0, 0]), float(chain.face_moment()[0])
 
 
 def draw_tilt(rows, out) -> None:
@@ -312,8 +357,8 @@ def section(rows, lines) -> str:
         "(`pillar_designs/pillar_designs.png`, table `pillar_designs.csv`).", "",
         *[f"- {line}" for line in lines], "",
         "Pull-off after a preload that buckled the pillars, over that below it "
-        "(experiments on PDMS pillars lose adhesion there; the model's punch face does not "
-        "tilt, see the study's docstring):", "", *kept, "",
+        "(experiments on PDMS pillars lose adhesion there; these runs hold the faces bonded, "
+        "see `pillar_buckling.png` for faces free to open):", "", *kept, "",
         "The punch faces' edges by the tilted-punch criterion (K/K_c = (3|M|/a − P)/F_K, "
         "M the clamped face's moment; 1 would open the edge):", "", *edges, "", "",
     ])  # fmt: skip
@@ -328,7 +373,8 @@ def tilt_section(tilt) -> str:
              f"lateral load of {r['lateral_uN']:.3g} µN" for r in gone]  # fmt: skip
     return "\n".join([
         "Flat punch with a tilted face or a lateral load (closed form, "
-        "`pillar_designs/pillar_tilt.png`; F = F_K − 3|M|/a, not yet in the dynamic law):",
+        "`pillar_designs/pillar_tilt.png`; F = F_K − 3|M|/a, in the dynamic law with "
+        "contact.edge_opening):",
         "", *lines, "",
     ])  # fmt: skip
 
@@ -386,6 +432,13 @@ def main(argv=None) -> dict:
     tilt = tilt_rows(cfg["aspect"])
     write_table(out / "pillar_tilt.csv", tilt)
     draw_tilt(tilt, out)
+    split = ps.splitting_rows(BASE, np.geomspace(0.05, 50.0, 61))
+    split += ps.model_rows(BASE, cfg["split_radii"], SPEED, cfg["split_designs"])
+    write_table(out / "pillar_splitting.csv", split)
+    ps.draw_splitting(split, BASE, out)
+    buck = pb.buckling_rows(BASE, cfg["buckling_radii"], cfg["buckling_strains"], SPEED)
+    write_table(out / "pillar_buckling.csv", buck)
+    pb.draw_buckling(buck, out)
     lines = winners(rows)
     results = {"winners": lines, "runtime_s": time.perf_counter() - t0}
     write_json(out / "metadata.json", {
@@ -394,7 +447,14 @@ def main(argv=None) -> dict:
         "floor_file": DEKTAK_PROFILE.name if profile is not None else None,
         "results": results,
     })  # fmt: skip
-    (out / "section.md").write_text(section(rows, lines) + tilt_section(tilt))
+    (out / "section.md").write_text(
+        section(rows, lines)
+        + tilt_section(tilt)
+        + "\n"
+        + ps.splitting_section(split, BASE)
+        + "\n"
+        + pb.buckling_section(buck)
+    )
     print("\n".join(f"{NAME}: {line}" for line in lines))
     print(f"{NAME}: {len(rows)} runs, {results['runtime_s']:.0f} s → {out}")
     return results

@@ -42,8 +42,7 @@ KE_QUASI_STATIC = 0.1  # above this peak kinetic/elastic energy a run is marked 
 def config(quick: bool) -> dict:
     if quick:
         return {"speeds": [1e-2, 1e-1], "crack_speeds": [math.inf, 1.0], "patch": 3}
-    return {"speeds": [1e-3, 1e-2, 1e-1, 1.0], "crack_speeds": [math.inf, 1.0, 0.1],
-            "patch": 40}  # fmt: skip
+    return {"speeds": [1e-3, 1e-2, 1e-1, 1.0], "crack_speeds": [math.inf, 1.0, 0.1], "patch": 40}
 
 
 def run_point(v_star: float, speed: float, n_sim: int, progress: bool) -> dict:
@@ -74,20 +73,32 @@ def draw(rows: list[dict], cfg: dict, Fc: float, out) -> None:
         colours = ["black", "#1f77b4", "#d62728"]
         for v_star, c in zip(cfg["crack_speeds"], colours, strict=False):
             for n_sim, style in ((1, "o-"), (cfg["patch"], "s--")):
-                sel = [r for r in rows if r["crack_speed_um_per_us"] == v_star
-                       and r["n_sim"] == n_sim]  # fmt: skip
+                sel = [
+                    r for r in rows if r["crack_speed_um_per_us"] == v_star and r["n_sim"] == n_sim
+                ]
                 x = [r["pull_speed_um_per_us"] for r in sel]
                 name = "elastic (v* = ∞)" if math.isinf(v_star) else f"v* = {v_star:g} µm/µs"
                 who = "1 seta" if n_sim == 1 else f"{n_sim} setae"
-                ax_f.plot(x, [r["pull_off_per_seta_uN"] for r in sel], style, color=c,
-                          label=f"{name}, {who}")  # fmt: skip
+                ax_f.plot(
+                    x,
+                    [r["pull_off_per_seta_uN"] for r in sel],
+                    style,
+                    color=c,
+                    label=f"{name}, {who}",
+                )
                 ax_d.plot(x, [r["dissipated_per_seta_pJ"] for r in sel], style, color=c)
                 # Hollow: not quasi-static (inertia matters), see the module docstring.
                 fast = [r for r in sel if r["max_kinetic_to_elastic"] > KE_QUASI_STATIC]
                 keys = ((ax_f, "pull_off_per_seta_uN"), (ax_d, "dissipated_per_seta_pJ"))
                 for ax, key in keys:
-                    ax.plot([r["pull_speed_um_per_us"] for r in fast], [r[key] for r in fast],
-                            style[0], color="white", ms=3.5, zorder=3)  # fmt: skip
+                    ax.plot(
+                        [r["pull_speed_um_per_us"] for r in fast],
+                        [r[key] for r in fast],
+                        style[0],
+                        color="white",
+                        ms=3.5,
+                        zorder=3,
+                    )
         ax_f.axhline(Fc, color="0.5", ls=":", label=f"Fc = 1.5πRw = {Fc:.2f} µN")
         hollow = f"hollow: peak kinetic > {KE_QUASI_STATIC:.0%} of elastic energy"
         ax_f.plot([], [], "o", mfc="white", mec="0.3", label=hollow)
@@ -110,9 +121,12 @@ def main(argv=None) -> dict:
     out = output_dir(NAME, args)
     cfg = config(args.quick)
     t0 = time.perf_counter()
-    rows = [run_point(v_star, v, n_sim, not args.no_progress)
-            for v_star in cfg["crack_speeds"] for n_sim in (1, cfg["patch"])
-            for v in cfg["speeds"]]  # fmt: skip
+    rows = [
+        run_point(v_star, v, n_sim, not args.no_progress)
+        for v_star in cfg["crack_speeds"]
+        for n_sim in (1, cfg["patch"])
+        for v in cfg["speeds"]
+    ]
     write_table(out / "sweep.csv", rows)
     Fc = BASE.contact.pull_off_force
     draw(rows, cfg, Fc, out)
@@ -126,14 +140,24 @@ def main(argv=None) -> dict:
         "runtime_s": time.perf_counter() - t0,
         "claims": [],
     }
-    write_json(out / "metadata.json", {
-        "scenario": NAME, "quick": args.quick, "params": BASE.to_dict(),
-        "depth_um": DEPTH, "press_speed_um_per_us": PRESS_SPEED, "config": cfg,
-        "seed": 1, "results": results,
-    })  # fmt: skip
-    print(f"{NAME}: pull-off fast/slow per seta "
-          + ", ".join(f"v*={k}: ×{v:.3f}" for k, v in results["rise_fast_over_slow"].items())
-          + f"; {results['runtime_s']:.0f} s → {out}")  # fmt: skip
+    write_json(
+        out / "metadata.json",
+        {
+            "scenario": NAME,
+            "quick": args.quick,
+            "params": BASE.to_dict(),
+            "depth_um": DEPTH,
+            "press_speed_um_per_us": PRESS_SPEED,
+            "config": cfg,
+            "seed": 1,
+            "results": results,
+        },
+    )
+    print(
+        f"{NAME}: pull-off fast/slow per seta "
+        + ", ".join(f"v*={k}: ×{v:.3f}" for k, v in results["rise_fast_over_slow"].items())
+        + f"; {results['runtime_s']:.0f} s → {out}"
+    )
     return results
 
 

@@ -125,15 +125,18 @@ def markdown(rows: list[dict], timings: dict, quick: bool) -> str:
 
 def _add_jobs(parser) -> None:
     parser.add_argument(
-        "--jobs", type=jobs_arg, default=min(2, os.cpu_count() or 1),
+        "--jobs",
+        type=jobs_arg,
+        default=min(2, os.cpu_count() or 1),
         help="scenarios run at once in separate processes (default 2; 1 runs them in order "
         "in this process)",
-    )  # fmt: skip
+    )
     parser.add_argument(
-        "--beyond", action="store_true",
+        "--beyond",
+        action="store_true",
         help="also run the studies beyond the paper (calibration to the paper's figures, pull "
         "speed, frictional adhesion) and add their sections to the report",
-    )  # fmt: skip
+    )
 
 
 def run_scenarios(base: Path, args, log: WarningLog) -> dict:
@@ -193,16 +196,18 @@ def validity_section(runs: dict) -> str:
 
     if not runs:
         return ""
-    return "\n".join([
-        "## Validity of the runs",
-        "",
-        "Each agent run of this report against the range of its models (✗: outside; limits "
-        "and sources in `gecko_agents/diagnostics.py`). The paper's tip has a0/R ≈ 0.7, far "
-        "from the a ≪ R that JKR assumes, so every run is flagged for a/R; the linear seta "
-        "leaves its small-deflection range whenever it holds a tip in tension.",
-        "",
-        validity_table(runs),
-    ])  # fmt: skip
+    return "\n".join(
+        [
+            "## Validity of the runs",
+            "",
+            "Each agent run of this report against the range of its models (✗: outside; limits "
+            "and sources in `gecko_agents/diagnostics.py`). The paper's tip has a0/R ≈ 0.7, far "
+            "from the a ≪ R that JKR assumes, so every run is flagged for a/R; the linear seta "
+            "leaves its small-deflection range whenever it holds a tip in tension.",
+            "",
+            validity_table(runs),
+        ]
+    )
 
 
 def extra_sections(base: Path, args, runs: dict) -> str:
@@ -210,12 +215,13 @@ def extra_sections(base: Path, args, runs: dict) -> str:
     the studies beyond the paper wrote in this run."""
     parts = [validity_section(runs)]
     if args.beyond:
-        for name, files in (("calibrate_paper", ("calibration_section.md",
-                                                 "validation_section.md")),
-                            ("pull_speed", ()),
-                            ("frictional_adhesion", ("beyond_the_paper.md",)),
-                            ("pillar_designs", ("section.md",)),
-                            ("probe_test", ("section.md",))):  # fmt: skip
+        for name, files in (
+            ("calibrate_paper", ("calibration_section.md", "validation_section.md")),
+            ("pull_speed", ()),
+            ("frictional_adhesion", ("beyond_the_paper.md",)),
+            ("pillar_designs", ("section.md",)),
+            ("probe_test", ("section.md",)),
+        ):
             for f in files:
                 path = base / name / f
                 if path.is_file():
@@ -240,15 +246,21 @@ def pull_speed_section(out: Path) -> str:
         "|---|---|---|---|---|",
     ]
     for r in rows:
-        lines.append(f"| {r['crack_speed_um_per_us']} | {r['pull_speed_um_per_us']} | "
-                     f"{float(r['pull_off_per_seta_uN']):.3f} | "
-                     f"{float(r['dissipated_per_seta_pJ']):.2f} | "
-                     f"{float(r['max_kinetic_to_elastic']):.3f} |")  # fmt: skip
-    lines += ["", "Viscoelastic crack kinetics (Maugis & Barquins 1978) makes a faster pull "
-              "hold more and dissipate more; the elastic tip (v* = inf) only changes where the "
-              "pull stops being quasi-static (peak kinetic/elastic > 0.1). Gecko setal arrays "
-              "also gain friction and adhesion with speed (Gravish et al. 2010, J R Soc "
-              "Interface 7:259).", ""]  # fmt: skip
+        lines.append(
+            f"| {r['crack_speed_um_per_us']} | {r['pull_speed_um_per_us']} | "
+            f"{float(r['pull_off_per_seta_uN']):.3f} | "
+            f"{float(r['dissipated_per_seta_pJ']):.2f} | "
+            f"{float(r['max_kinetic_to_elastic']):.3f} |"
+        )
+    lines += [
+        "",
+        "Viscoelastic crack kinetics (Maugis & Barquins 1978) makes a faster pull "
+        "hold more and dissipate more; the elastic tip (v* = inf) only changes where the "
+        "pull stops being quasi-static (peak kinetic/elastic > 0.1). Gecko setal arrays "
+        "also gain friction and adhesion with speed (Gravish et al. 2010, J R Soc "
+        "Interface 7:259).",
+        "",
+    ]
     return "\n".join(lines)
 
 
@@ -289,8 +301,7 @@ def _main(args, base: Path, log: WarningLog) -> dict:
         run_scenario("validation", argv, log.verbosity)
     total = time.perf_counter() - t_all
     print(f"wrote {base / 'paper_comparison.md'} ({len(rows)} claims) in {total:.0f} s")
-    return {"claims": rows, "timings": timings, "total_s": total, "results": results,
-            "runs": runs}  # fmt: skip
+    return {"claims": rows, "timings": timings, "total_s": total, "results": results, "runs": runs}
 
 
 if __name__ == "__main__":

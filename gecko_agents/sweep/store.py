@@ -42,9 +42,14 @@ def point_key(
     if code is None:
         code = code_fingerprint()
     text = canonical_json(
-        {"point_fn": fn_name, "fn_kwargs": fn_kwargs, "params": params.to_dict(), "seed": seed,
-         "code": code}
-    )  # fmt: skip
+        {
+            "point_fn": fn_name,
+            "fn_kwargs": fn_kwargs,
+            "params": params.to_dict(),
+            "seed": seed,
+            "code": code,
+        }
+    )
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 

@@ -1,0 +1,100 @@
+"""The ``design`` subcommand: a design file to a searched, confirmed and reported set of fibre
+array designs (:mod:`gecko_agents.design`)."""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+from pathlib import Path
+
+from gecko_agents.cli.common import EXIT_INTERRUPTED, EXIT_OK, PROG, UsageError, checked, error
+from gecko_agents.output_paths import output_dir_arg
+
+__all__ = ["add_design", "cmd_design"]
+
+
+def add_design(p: argparse.ArgumentParser) -> None:
+    from gecko_agents.sweep import parse_dask_arg
+
+    p.add_argument("designfile", type=Path, help="design file (TOML; see examples/)")
+    p.add_argument(
+        "--out",
+        type=output_dir_arg,
+        default=None,
+        help="output folder (default designs/<design file name>); a study stored there is resumed",
+    )
+    p.add_argument(
+        "--trials", type=int, default=None, help="screening trials (default: the file's)"
+    )
+    p.add_argument(
+        "--storage",
+        default=None,
+        metavar="URL",
+        help="Optuna database URL shared by several workers (default: an SQLite file "
+        "study.db in the output folder)",
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=1,
+        help="worker processes sharing the study and the confirmations (default 1)",
+    )
+    p.add_argument(
+        "--dask",
+        type=parse_dask_arg,
+        default=None,
+        metavar="ADDR",
+        help="'local' (a Dask cluster of --workers processes) or tcp://host:port (a running "
+        "scheduler; its workers need the design extra and a --storage URL they reach)",
+    )
+    p.add_argument("--quick", action="store_true", help="the file's [quick] variant")
+
+
+def cmd_design(args, extra) -> int:
+    from gecko_agents.design import load_design, run_design
+    from gecko_agents.design.search import require_optuna
+
+    spec = load_design(args.designfile, quick=args.quick)
+    if args.trials is not None and args.trials < 1:
+        raise UsageError(f"--trials {args.trials} must be ≥ 1")
+    if args.workers < 1:
+        raise UsageError(f"--workers {args.workers} must be ≥ 1")
+    try:
+        require_optuna()
+    except ImportError as err:
+        raise UsageError(str(err)) from None
+    out = args.out if args.out is not None else checked(Path("designs") / spec.path.stem)
+    from gecko_agents.design.study import check_output
+
+    try:
+        check_output(out)
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    again = [PROG, "design", str(args.designfile)] + (["--quick"] if args.quick else [])
+    again += ["--out", str(out)] + (["--storage", args.storage] if args.storage else [])
+    print(f"{spec.path}{' (quick)' if spec.quick else ''}: {', '.join(spec.objectives)} over "
+          f"{', '.join([*spec.ranges, *[c for c, v in spec.choices.items() if len(v) > 1]])} "
+          f"→ {out}/")  # fmt: skip
+    t0 = time.perf_counter()
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", category=UserWarning)  # Optuna's experimental notes
+            summary = run_design(spec, out, trials=args.trials, storage=args.storage,
+                                 workers=args.workers, dask=args.dask)  # fmt: skip
+    except ImportError as err:  # --dask without the dask extra
+        raise UsageError(str(err)) from None
+    except KeyboardInterrupt:
+        error("interrupted: every finished trial is stored; resume with: " + " ".join(again))
+        return EXIT_INTERRUPTED
+    best = summary["best"]
+    print(f"wrote {out}/report.md in {time.perf_counter() - t0:.1f} s: {summary['trials']} "
+          f"trials, {len(best)} designs confirmed")  # fmt: skip
+    if best:
+        b = best[0]
+        knobs = ", ".join(
+            f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}"
+            for k, v in b["design"].items()
+        )
+        print(f"best: {knobs}; engine {b['engine']['mean']:.4g} kPa")
+    return EXIT_OK

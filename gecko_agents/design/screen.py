@@ -1,0 +1,243 @@
+"""The screen: a design's objectives and constraints from the package's fast models.
+
+A row of ``test.pillars`` pillars on a rigid backing stands over the surface (the floor drawn
+as the time-stepped engine draws it, :func:`gecko_agents.floor.for_array` with the run's seed:
+a row as long as the engine's meets the very heights its tips meet; a longer row draws a longer
+generated floor, whose heights differ), is pressed
+to the test's preload (a pressure on the backing, shared over the row's backing area n·s²) and
+pulled straight off (these laws are elastic and rate-free: the pull speed is the engine's).
+Per tip kind (:data:`~gecko_agents.design.space.TIP_KINDS`):
+
+* a tip with a closed-form release force (flat punch: Kendall's √(8πE*wa³); spatula: the 90°
+  peel w·b; Hertz: none) is a linear fibril, the pillar's normal stiffness (eq 20 of the
+  paper: axial EπR²/L for a vertical pillar) in series with the bonded contact's (Sneddon's
+  2E*a for the punch), letting go at that force:
+  :func:`gecko_agents.physics.fibril_probe.probe_pull_off` (the independent-fibril model of
+  Noderer et al. 2007, Proc R Soc A, doi:10.1098/rspa.2007.1891);
+* the JKR sphere is the quasi-static solver on linear setae
+  (:func:`gecko_agents.quasistatic.preload_pull`, the paper's eq 22–27), which finds each
+  tip's release at the fold of the spring–contact system.
+
+Floor seeds and backing tilts (``test.misalignment_spread_deg``: −spread, 0, +spread; a tilt
+adds the ramp x·tan α to the heights) give the spread; ``test.release_tilt_deg`` gives the
+release force. Units: µm, µN, MPa; pressures on the backing in kPa.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gecko_agents import floor
+from gecko_agents.design.space import KPA, TIP_KINDS, measured_profile, overrides_of
+from gecko_agents.params import SetaArray
+from gecko_agents.physics import beam, fibril_probe
+
+__all__ = ["design_params", "row_heights", "evaluate", "euler_load", "measured_profile"]
+
+
+def design_params(spec, values: dict, n: int | None = None) -> SetaArray:
+    """The engine's parameter set of one design: the design file's base, the design's knobs,
+    ``n`` pillars in the row (default ``test.pillars``)."""
+    from gecko_agents.design.schema import base_params
+
+    values = {**spec.fixed, **values}
+    p = base_params(spec).replace(**overrides_of(values))
+    return p.replace(**{"array.count": int(n or spec.test["pillars"])})
+
+
+def measured_offset(spec, profile: floor.Profile, row_length: float, i: int) -> float:
+    """Where on the scan the row of floor seed ``i`` starts [µm]: 0 for the first seed, then
+    drawn uniformly over the scan's length left beyond the row (seeded by the study's seed)."""
+    span = float(profile.x[-1] - profile.x[0]) - row_length
+    if i == 0 or span <= 0:
+        return 0.0
+    return float(np.random.default_rng([spec.seed, i]).uniform(0.0, span))
+
+
+def crop(profile: floor.Profile, offset: float) -> floor.Profile:
+    """The scan from ``offset`` [µm] on, its start moved to x = 0."""
+    k = int(np.searchsorted(profile.x, profile.x[0] + offset))
+    x = profile.x[k:] - profile.x[k]
+    return floor.Profile(x=x, y=profile.y[k:], spacing=profile.spacing, source=profile.source)
+
+
+def floor_seed(spec, i: int) -> int:
+    """The seed of floor ``i`` of a study: ``seed + i`` (also the engine run's seed)."""
+    return spec.seed + i
+
+
+def row_heights(spec, p: SetaArray, i: int) -> np.ndarray:
+    """Floor heights [µm] under the row's tips for floor seed ``i``: the profile the engine
+    builds (:func:`gecko_agents.floor.for_array`, the same touch-down abscissae and margin)."""
+    n, L, theta = p.array.count, p.seta.L, p.seta.theta
+    touch_x = (np.arange(n) - (n - 1) / 2.0) * p.array.pitch + float(
+        beam.rest_tip_offset(L, theta)[0]
+    )
+    measured = engine_floor(spec, p, i)
+    rng = np.random.default_rng(floor_seed(spec, i))
+    prof = floor.for_array(p.floor, touch_x, p.array.pitch, 50.0 + 3 * L, rng, measured=measured)
+    if prof.pad_heights is not None:
+        return np.asarray(prof.pad_heights, float)
+    return np.asarray(prof.height_at(touch_x), float)
+
+
+def engine_floor(spec, p: SetaArray, i: int) -> floor.Profile | None:
+    """The measured profile the engine is given for floor seed ``i`` (None for generated)."""
+    if spec.surface["kind"] != "measured":
+        return None
+    prof = measured_profile(spec.surface["file"])
+    row = (p.array.count - 1) * p.array.pitch + 2 * (50.0 + 3 * p.seta.L)
+    return crop(prof, measured_offset(spec, prof, row, i))
+
+
+def euler_load(p: SetaArray, factor: float) -> float:
+    """Buckling load c·π²EI/L² of a pillar [µN], I = πr⁴/4 (Euler; the factor c of the end
+    condition, :class:`~gecko_agents.design.space.TipKind`)."""
+    EI = p.contact.E1 * math.pi * p.seta.r**4 / 4.0
+    return factor * math.pi**2 * EI / p.seta.L**2
+
+
+def fibril_stiffness(p: SetaArray) -> float:
+    """Normal stiffness of one pillar and its bonded contact in series [µN/µm]: the pillar's
+    eq 20 (Ky of the paper) and the tip law's contact stiffness, if any."""
+    k = p.Ky
+    kind = TIP_KINDS[p.tip]
+    if kind.contact_stiffness is not None:
+        k = 1.0 / (1.0 / k + 1.0 / kind.contact_stiffness(p.contact.R, p.contact.E_star))
+    return k
+
+
+def pull_off(p: SetaArray, heights: np.ndarray, preload: float) -> tuple[float, float]:
+    """(pull-off [µN], largest force one pillar carries at the preload [µN]) of the row over
+    ``heights`` pressed to ``preload`` [µN] and pulled straight off."""
+    kind = TIP_KINDS[p.tip]
+    h = heights - np.max(heights)
+    if kind.release_force is None:  # the JKR sphere: the quasi-static solver
+        from gecko_agents import quasistatic
+
+        lin = p.replace(mechanics="linear")
+        res = quasistatic.preload_pull(lin, heights, preload, record_setae=True)
+        return float(res.pull_off), float(np.max(res.per_seta["force"]))
+    k = fibril_stiffness(p)
+    d_max = fibril_probe.depth_for_preload(preload, h, k)
+    F_r = kind.release_force(p.contact.R, p.contact.work_of_adhesion, p.contact.E_star)
+    return fibril_probe.probe_pull_off(h, k, F_r, d_max), k * d_max
+
+
+def _tilted(heights: np.ndarray, pitch: float, alpha_deg: float) -> np.ndarray:
+    x = (np.arange(heights.size) - (heights.size - 1) / 2.0) * pitch
+    return heights + x * math.tan(math.radians(alpha_deg))
+
+
+def tilts(spec) -> tuple[float, ...]:
+    """Backing tilts the spread is taken over [°]: 0, or −spread, 0 and +spread."""
+    a = spec.test["misalignment_spread_deg"]
+    return (0.0,) if a == 0 else (-a, 0.0, a)
+
+
+def evaluate(spec, values: dict) -> dict:
+    """One design's screen: ``objectives`` (name → value, the units of
+    :data:`~gecko_agents.design.space.OBJECTIVES`), ``constraints`` (key → violation, ≤ 0
+    where the design keeps the bound, as a fraction of it), ``metrics`` (what the report
+    shows) and ``validity`` (the screen's assumptions, each judged for this design)."""
+    p = design_params(spec, values)
+    n, s = p.array.count, p.array.pitch
+    area = n * s * s
+    preload = spec.test["preload_kPa"] * KPA * area
+    per_area, peak_pillar, full_touch = [], 0.0, 0.0
+    k = fibril_stiffness(p)  # the force that brings the lowest tip down: Σ k·(h_max − h_i)
+    for i in range(spec.test["floor_seeds"]):
+        h = row_heights(spec, p, i)
+        for alpha in tilts(spec):
+            ht = _tilted(h, s, alpha)
+            F, top = pull_off(p, ht, preload)
+            per_area.append(F / area / KPA)
+            peak_pillar = max(peak_pillar, top)
+            full_touch = max(full_touch, float(np.sum(np.max(ht) - ht)) * k / area / KPA)
+    per_area = np.asarray(per_area)
+    mean = float(np.mean(per_area))
+    h0 = _tilted(row_heights(spec, p, 0), s, spec.test["release_tilt_deg"])
+    release = pull_off(p, h0, preload)[0] / area / KPA
+    kind = TIP_KINDS[p.tip]
+    vertical = p.seta.theta_deg == 90.0
+    P_E = euler_load(p, kind.euler_factor) if vertical else math.inf
+    objectives = {
+        "pull_off_per_area": mean,
+        "worst_case": float(np.min(per_area)),
+        "spread": float(np.std(per_area) / mean) if mean > 0 else 1.0,
+        "release_force": float(release),
+    }
+    metrics = {
+        "pitch_um": s,
+        "L_um": p.seta.L,
+        "gap_um": s - 2 * p.seta.r,
+        "fill_fraction": math.pi * p.seta.r**2 / s**2,
+        "euler_load_uN": P_E,
+        "preload_per_pillar_uN": preload / n,
+        "peak_pillar_force_uN": peak_pillar,
+        "full_contact_kPa": full_touch,
+        "pull_off_std_kPa": float(np.std(per_area)),
+    }
+    return {
+        "objectives": objectives,
+        "constraints": constraint_values(spec, values, p, metrics),
+        "metrics": metrics,
+        "validity": validity(spec, p, metrics),
+    }
+
+
+def constraint_values(spec, values: dict, p: SetaArray, m: dict) -> dict:
+    """Each constraint of the design file as a violation, ≤ 0 where the design keeps it (a
+    fraction of the bound). The buckling bound is the equal share of the pressure,
+    ``no_buckling_below_kPa``·s², against the Euler load (leaning pillars bend rather than
+    buckle: no bound)."""
+    c, out = spec.constraints, {}
+    values = {**spec.fixed, **values}
+    if "min_radius_um" in c:
+        out["min_radius_um"] = (c["min_radius_um"] - p.seta.r) / c["min_radius_um"]
+    if "max_aspect_ratio" in c:
+        ar = values["aspect_ratio"]
+        out["max_aspect_ratio"] = (ar - c["max_aspect_ratio"]) / c["max_aspect_ratio"]
+    if "min_gap_um" in c:
+        out["min_gap_um"] = (c["min_gap_um"] - m["gap_um"]) / max(c["min_gap_um"], 1e-9)
+    if "no_buckling_below_kPa" in c:
+        share = c["no_buckling_below_kPa"] * KPA * p.array.pitch**2
+        out["no_buckling_below_kPa"] = (
+            (share - m["euler_load_uN"]) / m["euler_load_uN"]
+            if math.isfinite(m["euler_load_uN"])
+            else -1.0
+        )
+    if "max_preload_kPa" in c:
+        out["max_preload_kPa"] = (m["full_contact_kPa"] - c["max_preload_kPa"]) / c[
+            "max_preload_kPa"
+        ]
+    return out
+
+
+def validity(spec, p: SetaArray, m: dict) -> list[dict]:
+    """The screen's assumptions for this design: ``name``, ``ok`` (True, False, or None where
+    it is not judged), ``meaning``."""
+    elastic = p.backing.kind == "elastic"
+    below = bool(m["peak_pillar_force_uN"] < m["euler_load_uN"])
+    return [
+        {
+            "name": "screen_below_buckling",
+            "ok": below,
+            "meaning": "the most loaded pillar stays below its Euler load at the test preload "
+            "(the screen's pillars are linear springs; a buckled one carries no more)",
+        },
+        {
+            "name": "screen_rigid_backing",
+            "ok": not elastic,
+            "meaning": "the screen shares the load over a rigid backing; an elastic backing is "
+            "judged by the engine's confirmation only",
+        },
+        {
+            "name": "screen_small_lean",
+            "ok": p.seta.theta_deg == 90.0 or None,
+            "meaning": "a leaning pillar is the paper's linear beam (eq 16-21) in the screen and "
+            "an elastica in the engine",
+        },
+    ]

@@ -1,0 +1,246 @@
+"""The search: an Optuna study over a design file's space, screened by
+:func:`gecko_agents.design.screen.evaluate`.
+
+Optuna (Akiba et al. 2019, KDD, doi:10.1145/3292500.3330701) is imported only here and only
+when a search runs (``pip install 'gecko_agents[design]'``). One objective is searched with
+its tree-structured Parzen estimator (TPE; Bergstra et al. 2011, NeurIPS), several with NSGA-II
+(Deb et al. 2002, IEEE Trans Evol Comput 6:182); both take the constraints (≤ 0 feasible). The
+trials are stored in an SQLite file in the output folder by default, so a killed study resumes
+with every finished trial kept; a database URL (``--storage``) lets several workers share one
+study. Every trial records its design, its floor seeds, the design file's digest and the code's
+version and fingerprint.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from gecko_agents.design.screen import evaluate, floor_seed
+from gecko_agents.design.space import KNOBS
+
+__all__ = ["require_optuna", "study_name", "open_study", "run_search", "suggest", "STUDY_DB"]
+
+STUDY_DB = "study.db"
+"""The default trial store's file name in the output folder."""
+
+CAUGHT = (ValueError, FloatingPointError, ZeroDivisionError)
+"""What a model raises on a design it refuses: the trial fails, the study goes on, and the
+report counts the failures with their first reason."""
+
+
+def require_optuna():
+    """The ``optuna`` module, or ImportError saying how to install it."""
+    try:
+        import optuna
+    except ImportError:
+        raise ImportError(
+            "the design search needs Optuna: pip install 'gecko_agents[design]' "
+            "(or pip install optuna)"
+        ) from None
+    optuna.logging.set_verbosity(optuna.logging.WARNING)
+    return optuna
+
+
+def study_name(spec) -> str:
+    """The study's name in its store: the design file's stem, its digest and its variant, so
+    an edited design file starts a new study rather than mixing trials."""
+    return f"{spec.path.stem}-{spec.sha256[:12]}{'-quick' if spec.quick else ''}"
+
+
+def search_bounds(spec, key: str) -> tuple[float, float]:
+    """The range a knob is sampled in: the design file's, narrowed by the fabrication bounds
+    that concern that knob alone (smallest radius, largest aspect ratio), so no trial is spent
+    on a design the process cannot make."""
+    lo, hi = spec.ranges[key]
+    c = spec.constraints
+    if key == "radius_um" and "min_radius_um" in c:
+        lo = max(lo, c["min_radius_um"])
+    if key == "aspect_ratio" and "max_aspect_ratio" in c:
+        hi = min(hi, c["max_aspect_ratio"])
+    return lo, hi
+
+
+def suggest(spec, trial) -> dict:
+    """One design drawn by the study's sampler (knobs the design file fixes are not drawn)."""
+    values = {}
+    for cat, names in spec.choices.items():
+        values[cat] = names[0] if len(names) == 1 else trial.suggest_categorical(cat, list(names))
+    for key in KNOBS:
+        if key in spec.ranges:
+            lo, hi = search_bounds(spec, key)
+            values[key] = trial.suggest_float(key, lo, hi, log=KNOBS[key].log)
+    return values
+
+
+def _own_constraints(optuna) -> bool:
+    """Whether this Optuna stores constraints on the trial (``Trial.set_constraint``, 5.0 on);
+    older ones take a ``constraints_func``."""
+    return hasattr(optuna.trial.Trial, "set_constraint")
+
+
+def _sampler(spec, optuna):
+    kw = {} if _own_constraints(optuna) else {"constraints_func": _constraints_of}
+    if len(spec.objectives) == 1:
+        return optuna.samplers.TPESampler(seed=spec.seed, n_startup_trials=10, **kw)
+    return optuna.samplers.NSGAIISampler(seed=spec.seed, population_size=20, **kw)
+
+
+def _constraints_of(frozen) -> list[float]:
+    return list(frozen.user_attrs.get("constraint_values", [0.0]))
+
+
+def local_storage(out: Path) -> str:
+    """The URL of the default store: the SQLite file :data:`STUDY_DB` in ``out``."""
+    return f"sqlite:///{(Path(out) / STUDY_DB).resolve()}"
+
+
+def open_study(spec, out: Path, storage: str | None = None):
+    """The study of ``spec`` in ``storage`` (default: ``out/study.db``), created or, if it
+    exists there, loaded with its trials."""
+    optuna = require_optuna()
+    local = storage is None
+    if local:
+        out.mkdir(parents=True, exist_ok=True)
+        storage = local_storage(out)
+    study = optuna.create_study(
+        study_name=study_name(spec),
+        storage=_storage(storage, optuna),
+        sampler=_sampler(spec, optuna),
+        directions=spec.directions,
+        load_if_exists=True,
+    )
+    if local:  # one process per local file: a running trial there was cut off by a kill
+        running = study.get_trials(deepcopy=False, states=(optuna.trial.TrialState.RUNNING,))
+        for t in running:
+            study._storage.set_trial_state_values(t._trial_id, optuna.trial.TrialState.FAIL)
+    study.set_user_attr("design_sha256", spec.sha256)
+    return study
+
+
+def _storage(url: str, optuna):
+    """Optuna's database storage at ``url``; an SQLite file in write-ahead-log mode with
+    ``synchronous = NORMAL``: a commit survives the process being killed (it may not survive
+    the machine losing power), and a trial costs milliseconds instead of an fsync per record."""
+    rdb = optuna.storages.RDBStorage(url)
+    if url.startswith("sqlite"):
+        from sqlalchemy import event
+
+        def fast(conn, _record):
+            conn.execute("PRAGMA journal_mode=WAL")
+            conn.execute("PRAGMA synchronous=NORMAL")
+
+        event.listen(rdb.engine, "connect", fast)
+        rdb.engine.dispose()
+    return rdb
+
+
+def _provenance() -> dict:
+    from gecko_agents import __version__
+    from gecko_agents.provenance import code_fingerprint
+
+    return {"version": __version__, "fingerprint": code_fingerprint()}
+
+
+def objective_fn(spec):
+    """The function Optuna calls: a design's screened objectives, its constraints and records
+    stored on the trial."""
+    code = _provenance()
+    own = _own_constraints(require_optuna())
+
+    def objective(trial):
+        values = suggest(spec, trial)
+        try:
+            res = evaluate(spec, values)
+        except CAUGHT as err:  # a design a model refuses: a failed trial, its reason kept
+            trial.set_user_attr("error", f"{type(err).__name__}: {err}")
+            raise
+        cons = [res["constraints"][k] for k in sorted(res["constraints"])] or [0.0]
+        trial.set_user_attr("constraint_values", [float(c) for c in cons])
+        if own:
+            for k in sorted(res["constraints"]):
+                trial.set_constraint(k, res["constraints"][k])
+        trial.set_user_attr("screen", res["objectives"])
+        trial.set_user_attr("design", values)
+        seeds = [floor_seed(spec, i) for i in range(spec.test["floor_seeds"])]
+        trial.set_user_attr("record", {
+            "constraints": res["constraints"], "metrics": res["metrics"],
+            "validity": res["validity"], "floor_seeds": seeds, "study_seed": spec.seed,
+            "design_sha256": spec.sha256, "code_version": code["version"],
+            "code_fingerprint": code["fingerprint"],
+        })  # fmt: skip
+        out = [res["objectives"][o] for o in spec.objectives]
+        return out[0] if len(out) == 1 else out
+
+    return objective
+
+
+def failed(study) -> list:
+    """The study's failed trials (a model refused the design, or a run was cut off)."""
+    optuna = require_optuna()
+    return study.get_trials(deepcopy=False, states=(optuna.trial.TrialState.FAIL,))
+
+
+def completed(study) -> list:
+    optuna = require_optuna()
+    return study.get_trials(deepcopy=False, states=(optuna.trial.TrialState.COMPLETE,))
+
+
+def run_search(spec, out: Path, *, trials: int | None = None, storage: str | None = None,
+               progress=None):  # fmt: skip
+    """Run the study until it holds ``trials`` (default ``spec.trials``) finished trials,
+    counting those an earlier or a parallel worker finished. Returns the study."""
+    optuna = require_optuna()
+    target = spec.trials if trials is None else trials
+    study = open_study(spec, out, storage)
+    left = target - len(completed(study))
+    if left > 0:
+        stop = optuna.study.MaxTrialsCallback(target, states=(optuna.trial.TrialState.COMPLETE,))
+        callbacks = [stop] + ([progress] if progress else [])
+        study.optimize(
+            objective_fn(spec), n_trials=left, callbacks=callbacks, catch=CAUGHT,
+            gc_after_trial=False,
+        )  # fmt: skip
+    return study
+
+
+def feasible(trial) -> bool:
+    return all(c <= 0 for c in trial.user_attrs.get("constraint_values", [0.0]))
+
+
+def ranked(spec, trials: list) -> list:
+    """Feasible trials, each design once, best first: by the first objective for one
+    objective; the non-dominated ones (the Pareto front) first, each part by the first
+    objective, for several."""
+    ok, seen = [], set()
+    for t in trials:  # a sampler may draw one design again: keep its first trial
+        key = tuple(sorted(t.params.items()))
+        if feasible(t) and all(math.isfinite(v) for v in t.values) and key not in seen:
+            seen.add(key)
+            ok.append(t)
+    sign = [1.0 if d == "maximize" else -1.0 for d in spec.directions]
+
+    def key(t):
+        return tuple(-s * v for s, v in zip(sign, t.values, strict=True))
+
+    if len(spec.objectives) == 1:
+        return sorted(ok, key=key)
+    front = pareto_front(spec, ok)
+    ids = {t.number for t in front}
+    return sorted(front, key=key) + sorted([t for t in ok if t.number not in ids], key=key)
+
+
+def pareto_front(spec, trials: list) -> list:
+    """The trials no other trial beats in every objective (and strictly in one)."""
+    sign = [1.0 if d == "maximize" else -1.0 for d in spec.directions]
+    vals = [[s * v for s, v in zip(sign, t.values, strict=True)] for t in trials]
+
+    def dominated(i):
+        a = vals[i]
+        return any(
+            all(b >= x for b, x in zip(vals[j], a, strict=True)) and vals[j] != a
+            for j in range(len(vals))
+            if j != i
+        )
+
+    return [t for i, t in enumerate(trials) if not dominated(i)]

@@ -1,0 +1,257 @@
+"""The design search's tables: the material, the tip kinds it can choose, the knobs of the
+search space, the objectives and the constraints. Adding a tip law, a backing parameter or a
+material property to the search is one entry in :data:`TIP_KINDS`, :data:`KNOBS` or
+:data:`MATERIAL`; nothing else changes.
+
+Units: µm, µN, MPa (= µN/µm²), µN/µm for the work of adhesion; pressures on the backing in kPa
+(1 kPa = 1e-3 µN/µm²), the unit pull-off per area of fibre arrays is published in.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from gecko_agents.params.checks import MODULUS_RANGE, SURFACE_ENERGY_MAX
+from gecko_agents.physics import punch
+
+__all__ = [
+    "KPA",
+    "MATERIAL",
+    "TipKind",
+    "TIP_KINDS",
+    "Knob",
+    "KNOBS",
+    "EXCLUSIVE_KNOBS",
+    "CATEGORIES",
+    "OBJECTIVES",
+    "CONSTRAINTS",
+    "pitch_of",
+    "overrides_of",
+]
+
+KPA = 1e-3
+"""1 kPa in µN/µm² (MPa = µN/µm²)."""
+
+
+MATERIAL: dict[str, tuple[tuple[float, float], str]] = {
+    "E_MPa": (MODULUS_RANGE, "contact.E1"),
+    "nu": ((0.0, 0.5), "contact.nu1"),
+    "w_J_per_m2": ((0.0, 2 * SURFACE_ENERGY_MAX), "contact.w"),
+}
+"""``[material]`` key → (allowed range, the :class:`~gecko_agents.params.SetaArray`
+parameter it sets). A material property a new tip law needs (an interface strength) is one
+entry here."""
+
+
+@dataclass(frozen=True)
+class TipKind:
+    """A tip law the search can choose.
+
+    Attributes
+    ----------
+    tip : ``SetaArray.tip`` of the law (:data:`gecko_agents.params.TIPS`).
+    release_force : (tip radius a [µm], w [µN/µm], E* [MPa]) → the force [µN] at which one tip
+        lets go under a straight pull, from the law's closed form; None where the screen uses
+        the quasi-static solver instead (the JKR sphere, whose release depends on the
+        pillar's stiffness, :mod:`gecko_agents.quasistatic`).
+    contact_stiffness : (a, E*) → the bonded contact's normal stiffness [µN/µm] (in series
+        with the pillar), or None for a contact much stiffer than its pillar.
+    euler_factor : c in the pillar's buckling load c·π²EI/L² for the end condition the tip
+        holds (4: clamped–clamped, the punch's face held flat; 2.046: clamped–pinned, a tip
+        free to turn; Timoshenko & Gere 1961, Theory of Elastic Stability, §2.5).
+    floors : the surface kinds the law stands on in the time-stepped engine.
+    source : the law's source, for the report.
+    """
+
+    tip: str
+    release_force: Callable[[float, float, float], float] | None
+    contact_stiffness: Callable[[float, float], float] | None
+    euler_factor: float
+    floors: tuple[str, ...]
+    source: str
+
+
+ALL_FLOORS = ("measured", "gaussian", "self_affine", "flat", "probe")
+
+TIP_KINDS: dict[str, TipKind] = {
+    "flat_punch": TipKind(
+        "flat_punch",
+        lambda a, w, E: float(punch.kendall_pull_off(a, w, E)),
+        lambda a, E: float(punch.punch_stiffness(a, E)),
+        4.0,
+        ALL_FLOORS,
+        "Kendall 1971, J Phys D 4:1186 (pull-off); Sneddon 1965, Int J Eng Sci 3:47",
+    ),
+    "sphere": TipKind(
+        "sphere", None, None, 2.046, ALL_FLOORS, "Johnson, Kendall & Roberts 1971, Proc R Soc A"
+    ),
+    "hertz": TipKind(
+        "hertz", lambda a, w, E: 0.0, None, 2.046, ALL_FLOORS, "Hertz 1882 (no adhesion)"
+    ),
+    "spatula": TipKind(
+        "spatula",
+        lambda a, w, E: 2.0 * a * w,  # Kendall's 90° peel of a film as wide as the pillar
+        None,
+        2.046,
+        ("gaussian", "flat"),
+        "Kendall 1975, J Phys D 8:1449 (90° peel, F = w·b, b = 2r)",
+    ),
+}
+"""Tip kind → :class:`TipKind`."""
+
+
+@dataclass(frozen=True)
+class Knob:
+    """A searchable design parameter: its design-file key, unit, allowed range, whether the
+    search samples it on a log scale, and what it sets.
+
+    ``apply(value, values) -> {dotted SetaArray parameter: value}``; ``values`` holds the
+    design's other knobs (the stalk radius, for an aspect ratio).
+    """
+
+    key: str
+    unit: str
+    bounds: tuple[float, float]
+    log: bool
+    apply: Callable[[float, dict], dict]
+    doc: str
+
+
+def pitch_of(values: dict) -> float:
+    """Centre-to-centre spacing of the square lattice [µm]: ``spacing_um``, or from the fill
+    fraction f = πr²/s² (the share of the backing the pillars' sections cover)."""
+    if "spacing_um" in values:
+        return float(values["spacing_um"])
+    return values["radius_um"] * math.sqrt(math.pi / values["fill_fraction"])
+
+
+KNOBS: dict[str, Knob] = {
+    "radius_um": Knob(
+        "radius_um",
+        "µm",
+        (0.05, 100.0),
+        True,
+        lambda v, d: {"seta.r": v, "contact.R": v, "spatula.b": 2.0 * v},
+        "stalk radius r; the tip (sphere, punch face) has the same radius",
+    ),
+    "aspect_ratio": Knob(
+        "aspect_ratio",
+        "-",
+        (0.5, 50.0),
+        False,
+        lambda v, d: {"seta.L": 2.0 * d["radius_um"] * v},
+        "L/(2r): pillar length over diameter",
+    ),
+    "lean_deg": Knob(
+        "lean_deg",
+        "°",
+        (10.0, 90.0),
+        False,
+        lambda v, d: {"seta.theta_deg": v},
+        "angle between the pillar and the backing; 90 is vertical",
+    ),
+    "fill_fraction": Knob(
+        "fill_fraction",
+        "-",
+        (0.001, 0.78),
+        True,
+        lambda v, d: {"array.pitch": pitch_of(d)},
+        "πr²/s² on a square lattice (at most π/4: touching pillars)",
+    ),
+    "spacing_um": Knob(
+        "spacing_um",
+        "µm",
+        (0.2, 1000.0),
+        True,
+        lambda v, d: {"array.pitch": v},
+        "centre-to-centre spacing s",
+    ),
+    "backing_thickness_um": Knob(
+        "backing_thickness_um",
+        "µm",
+        (1.0, 5000.0),
+        True,
+        lambda v, d: {"backing.t_b": v},
+        "thickness of the elastic backing strip (backing = 'elastic')",
+    ),
+    "backing_modulus_MPa": Knob(
+        "backing_modulus_MPa",
+        "MPa",
+        (0.01, 1e4),
+        True,
+        lambda v, d: {"backing.E_b": v},
+        "modulus of the elastic backing strip (backing = 'elastic')",
+    ),
+}
+"""Design-file key in ``[space]`` → :class:`Knob`."""
+
+EXCLUSIVE_KNOBS = (("fill_fraction", "spacing_um"),)
+"""Knobs of which a design file gives exactly one."""
+
+CATEGORIES: dict[str, tuple[str, ...]] = {
+    "tip": tuple(TIP_KINDS),
+    "backing": ("rigid", "elastic"),
+}
+"""Categorical knobs in ``[space]``: a name or a list of names to choose from."""
+
+BACKING_KNOBS = ("backing_thickness_um", "backing_modulus_MPa")
+
+
+def overrides_of(values: dict) -> dict:
+    """The dotted :class:`~gecko_agents.params.SetaArray` overrides of one design."""
+    out = {"tip": values["tip"], "backing.kind": values.get("backing", "rigid")}
+    for key, knob in KNOBS.items():
+        if key in values and not (key in BACKING_KNOBS and out["backing.kind"] == "rigid"):
+            out |= knob.apply(values[key], values)
+    return out
+
+
+OBJECTIVES: dict[str, tuple[str, str, str]] = {
+    "pull_off_per_area": (
+        "maximize",
+        "kPa",
+        "mean pull-off over the backing area, over floor seeds and tilts",
+    ),
+    "worst_case": ("maximize", "kPa", "smallest pull-off per area over floor seeds and tilts"),
+    "spread": (
+        "minimize",
+        "-",
+        "relative spread of the pull-off, std/mean over floor seeds and tilts "
+        "(1 for a design that holds nothing)",
+    ),
+    "release_force": (
+        "minimize",
+        "kPa",
+        "pull-off per area with the backing tilted by test.release_tilt_deg "
+        "(a gripper lets go by tilting)",
+    ),
+}
+"""Objective name → (direction, unit, meaning)."""
+
+CONSTRAINTS: dict[str, tuple[str, str]] = {
+    "min_radius_um": ("µm", "smallest stalk radius the process makes"),
+    "max_aspect_ratio": ("-", "largest aspect ratio L/(2r) the process makes"),
+    "min_gap_um": ("µm", "smallest gap s − 2r between neighbouring pillars"),
+    "no_buckling_below_kPa": (
+        "kPa",
+        "pillars carry this pressure on the backing, shared equally, below their Euler load",
+    ),
+    "max_preload_kPa": (
+        "kPa",
+        "largest pressure on the backing the user can apply: every pillar of the row "
+        "touches the surface at or below it",
+    ),
+}
+"""Constraint key in ``[constraints]`` → (unit, meaning); each is a bound a design must keep."""
+
+
+@functools.cache
+def measured_profile(path: str):
+    """The measured scan of a design file, a :class:`gecko_agents.floor.Profile` (read once
+    per process)."""
+    from gecko_agents.floor import readers
+
+    return readers.load(path)

@@ -1,0 +1,136 @@
+"""A design search from end to end: screen with Optuna, confirm the best designs with the
+engine, write the tables, figures, run files and report (:mod:`gecko_agents.design`)."""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from pathlib import Path
+
+import gecko_agents.design.confirm as confirm
+import gecko_agents.design.parallel as parallel
+import gecko_agents.design.report as report
+import gecko_agents.design.search as search
+
+__all__ = ["run_design", "screen_flags", "check_output", "OUTPUT_FILES"]
+
+OUTPUT_FILES = ("study.db", "trials.csv", "best.json", "report.md", "pareto_front.png",
+                "objectives_vs_parameters.png", "runs")  # fmt: skip
+"""What a design search writes into its output folder (``runs`` a folder of run files)."""
+
+
+def check_output(out: Path) -> None:
+    """Refuse, before any trial, an output folder a search must not write into: a file, or a
+    folder that is neither empty nor a design search's (holding none of :data:`OUTPUT_FILES`),
+    whose files are a user's."""
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"{out}: exists and is not a folder; choose another --out")
+    names = sorted(p.name for p in out.iterdir()) if out.is_dir() else []
+    if names and not set(names) & set(OUTPUT_FILES):
+        shown = ", ".join(names[:5]) + (" …" if len(names) > 5 else "")
+        raise ValueError(
+            f"{out}: is not empty ({shown}) and holds no design search; a search writes "
+            "into a new or empty folder or continues its own: choose another --out"
+        )
+
+
+def screen_flags(trials: list) -> dict:
+    """Screen validity items not met: name → (trials that broke it, its meaning)."""
+    out: dict = {}
+    for t in trials:
+        for item in t.user_attrs.get("record", {}).get("validity", []):
+            if item["ok"] is False:
+                n, _ = out.get(item["name"], (0, ""))
+                out[item["name"]] = (n + 1, item["meaning"])
+    return out
+
+
+def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, list[dict]]:
+    from gecko_agents.output_paths import atomic_write_bytes
+
+    designs = [t.user_attrs["design"] for t in chosen]
+    engine = parallel.parallel_map(confirm.confirm_design, [(spec, d) for d in designs],
+                                   workers, dask)  # fmt: skip
+    confirmed, rows = {}, []
+    (out / "runs").mkdir(parents=True, exist_ok=True)
+    for j, (t, design, eng) in enumerate(zip(chosen, designs, engine, strict=True), 1):
+        label = f"design_{j}"
+        confirmed[t.number] = eng
+        screened = t.user_attrs["screen"]
+        ref = screened["pull_off_per_area"]
+        ratio = ref / eng["mean"] if eng["mean"] > 0 else math.inf
+        rows.append({"label": label, "trial": t.number, "design": design, "screen": screened,
+                     "engine": eng, "ratio": ratio})  # fmt: skip
+        text = confirm.run_file_text(spec, design, label)
+        atomic_write_bytes(out / "runs" / f"{label}.toml", text.encode())
+        say(f"{label} (trial {t.number}): screen {ref:.4g} kPa, engine {eng['mean']:.4g} kPa "
+            f"({eng['wall_s']:.1f} s)")  # fmt: skip
+    return confirmed, rows
+
+
+def _versions() -> dict:
+    """The package's and its libraries' versions, Optuna's and the code's fingerprint."""
+    from importlib.metadata import version
+
+    from gecko_agents.provenance import code_fingerprint, versions
+
+    return {**versions(), "optuna": version("optuna"), "code_fingerprint": code_fingerprint()}
+
+
+def _search(spec, out: Path, trials, storage, workers: int, dask):
+    """The study filled to its trials, by this process or by ``workers`` workers sharing its
+    store (a killed run's cut-off trials in a local file are marked failed once, first)."""
+    if workers <= 1 and dask is None:
+        return search.run_search(spec, out, trials=trials, storage=storage)
+    search.open_study(spec, out, storage)
+    url = storage or search.local_storage(out)
+    parallel.parallel_map(parallel.search_worker, [(spec, str(out), trials, url)] * workers,
+                          workers, dask)  # fmt: skip
+    return search.open_study(spec, out, url)
+
+
+def run_design(spec, out, *, trials: int | None = None, storage: str | None = None,
+               workers: int = 1, dask: str | None = None, say=print) -> dict:  # fmt: skip
+    """Run a checked design file's search into ``out``: the study (resumed if ``out`` or
+    ``storage`` already holds it; ``workers`` local processes, or as many Dask workers at
+    ``dask``, share it and the confirmations), the engine's confirmation of the
+    ``spec.confirm`` best designs (the Pareto front first), and ``trials.csv``,
+    ``best.json``, ``pareto_front.png``, ``objectives_vs_parameters.png``, ``runs/*.toml``
+    and ``report.md``. Returns the summary written to ``best.json``."""
+    out = Path(out)
+    check_output(out)
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    study = _search(spec, out, trials, storage, workers, dask)
+    done = search.completed(study)
+    t_screen = time.perf_counter() - t0
+    say(f"{len(done)} screening trials in the study ({t_screen:.1f} s)")
+    ranked = search.ranked(spec, done)
+    front = search.pareto_front(spec, ranked) if len(spec.objectives) > 1 else ranked[:1]
+    confirmed, rows = _confirm(spec, ranked[: spec.confirm], out, say, workers, dask)
+    on_front = {t.number for t in front}
+    for r in rows:
+        r["front"] = r["trial"] in on_front
+    imp = report.importances(study, spec)
+    report.write_csv(out / "trials.csv", report.trial_rows(spec, done, confirmed))
+    report.draw_front(spec, done, front, confirmed, out)
+    report.draw_parameters(spec, done, out)
+    flags = screen_flags(done)
+    fails = [t.user_attrs.get("error", "cut off") for t in search.failed(study)]
+    if fails:
+        flags["failed_trials"] = (len(fails), f"the first: {fails[0]}")
+    text = report.report_text(spec, rows, imp, len(done), flags)
+    from gecko_agents.output_paths import atomic_write_bytes
+
+    atomic_write_bytes(out / "report.md", text.encode())
+    summary = {
+        "design_file": str(spec.path), "sha256": spec.sha256, "quick": spec.quick,
+        "study": search.study_name(spec), "trials": len(done), "screen_s": t_screen,
+        "wall_s": time.perf_counter() - t0, "best": rows, "importances": imp,
+        "pareto_front": [t.number for t in front], "workers": workers, "dask": dask,
+        "versions": _versions(),
+    }  # fmt: skip
+    atomic_write_bytes(out / "best.json", json.dumps(summary, indent=1, default=str).encode())
+    return summary

@@ -1,0 +1,127 @@
+"""An interface with a strength σ₀ (``contact.sigma0``): Tang, Hui & Glassmaker's flaw-tolerance
+law against their Table 1, Kendall's punch recovered for σ₀ → ∞, the penny crack and the
+flaw-tolerant size by hand, and the flat punch that uses them."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from gecko_agents import protocol
+from gecko_agents.contact import FlatPunch
+from gecko_agents.model import Model
+from gecko_agents.params import PAPER_ARRAY, Contact
+from gecko_agents.physics import flaw_tolerance as ft
+from gecko_agents.physics import punch
+
+PILLAR = PAPER_ARRAY.replace(
+    **{"seta.theta_deg": 90.0, "tip": "flat_punch", "array.count": 1, "floor.sigma": 0.0}
+)
+
+
+# Tang, Hui & Glassmaker 2005, Table 1 (https://pmc.ncbi.nlm.nih.gov/articles/PMC1618499/
+# table/tbl1): E [MPa], ν, w [mJ/m² = 1e-3 µN/µm], σ₀ [MPa], a [µm] → χ, σ_s [MPa] as printed,
+# and half a unit of σ_s's last printed digit (0 where σ_s = σ₀, the flaw-insensitive rows).
+TABLE1 = [
+    (1.0, 0.5, 50.0, 0.1, 10.0, 0.24, 0.1, 0.0),  # PDMS, flaw insensitive
+    (1.0, 0.5, 50.0, 0.1, 100.0, 2.4, 0.06, 0.005),  # PDMS, flaw sensitive
+    (2000.0, 0.5, 50.0, 20.0, 1.0, 0.48, 20.0, 0.0),  # keratin, flaw insensitive
+    (2000.0, 0.5, 50.0, 20.0, 10.0, 4.8, 8.88, 0.005),  # keratin, flaw sensitive
+]
+
+
+@pytest.mark.parametrize("E, nu, w_mJ, sigma0, a, chi, sigma_s, half_digit", TABLE1)
+def test_tang_table1_rows(E, nu, w_mJ, sigma0, a, chi, sigma_s, half_digit):
+    E_star, w = E / (1 - nu**2), w_mJ * 1e-3
+    assert float(f"{ft.flaw_parameter(a, sigma0, E_star, w):.2g}") == chi  # printed to 2 digits
+    sigma_c = ft.tang_strength(a, sigma0, E_star, w)  # 8.883 and 0.0586 where printed 8.88, 0.06
+    assert sigma_c == pytest.approx(sigma_s, abs=half_digit + 1e-12)
+
+
+def test_aksak_chi_for_del_campo_pdms_fibres():
+    """Aksak, Şahin & Sitti 2014 (and their patent US 2015/0368519): PDMS E = 1.42 MPa,
+    ν = 0.5, w = 25 mJ/m², σ₀ = 1 MPa, a = 10 µm give χ = 33.6."""
+    chi = ft.flaw_parameter(10.0, 1.0, 1.42 / 0.75, 0.025)
+    assert chi == pytest.approx(33.6, abs=0.05)
+
+
+def test_hand_values():
+    E_star, w = 2.0, 0.05
+    # χ = σ₀²a/(2πE*w) = 0.25·4/(2π·0.1) = 1.5915…
+    assert ft.flaw_parameter(4.0, 0.5, E_star, w) == pytest.approx(1.0 / (0.2 * math.pi))
+    # Φ = 0.83·χ^−0.4 above χ = 0.83^2.5, 1 below
+    assert ft.strength_ratio(0.83**2.5) == pytest.approx(1.0)
+    assert ft.strength_ratio(10.0) == pytest.approx(0.83 * 10**-0.4)
+    assert ft.strength_ratio(0.1) == 1.0
+    # Kendall's mean stress √(8E*w/(πa)) is the pull-off over πa²
+    F = punch.kendall_pull_off(4.0, w, E_star)
+    assert ft.kendall_strength(4.0, w, E_star) == pytest.approx(F / (math.pi * 16.0), rel=1e-12)
+    # a_cr = 8E*w/(πσ₀²): Kendall's stress is σ₀ there, χ = 4/π²
+    a_cr = ft.flaw_tolerant_radius(0.5, E_star, w)
+    assert a_cr == pytest.approx(0.8 / (0.25 * math.pi))
+    assert ft.kendall_strength(a_cr, w, E_star) == pytest.approx(0.5, rel=1e-12)
+    assert ft.flaw_parameter(a_cr, 0.5, E_star, w) == pytest.approx(4 / math.pi**2)
+    # Griffith's penny crack: σ = √(πE*w/(2c)) = √(π·0.1/2) at c = 1; G = 2σ²c/(πE*) = w
+    s = ft.penny_crack_strength(1.0, w, E_star)
+    assert s == pytest.approx(math.sqrt(0.05 * math.pi))
+    assert 2 * s**2 * 1.0 / (math.pi * E_star) == pytest.approx(w, rel=1e-12)
+    assert ft.penny_crack_strength(1.0, w, E_star, sigma0=0.1) == 0.1  # bounded by σ₀
+    assert ft.penny_crack_strength(0.0, w, E_star, sigma0=0.3) == 0.3  # no defect: uniform
+
+
+def test_kendall_is_recovered_as_sigma0_grows():
+    a, w, E_star = np.array([0.1, 1.0, 10.0]), 0.05, 2.0
+    kendall = punch.kendall_pull_off(a, w, E_star)
+    assert np.array_equal(ft.punch_pull_off(a, w, E_star), kendall)  # σ₀ = inf: exactly
+    assert np.allclose(ft.punch_pull_off(a, w, E_star, 1e6), kendall, rtol=1e-15)
+    # below the flaw-tolerant size the cap σ₀πa² acts; above it Kendall's
+    s0 = 1.0
+    a_cr = ft.flaw_tolerant_radius(s0, E_star, w)
+    for x in (0.3 * a_cr, 0.9 * a_cr):
+        assert ft.punch_pull_off(x, w, E_star, s0) == pytest.approx(math.pi * x * x * s0)
+    for x in (1.1 * a_cr, 5 * a_cr, 100 * a_cr):
+        assert ft.punch_pull_off(x, w, E_star, s0) == punch.kendall_pull_off(x, w, E_star)
+
+
+def test_pull_off_per_area_stops_growing_below_the_flaw_tolerant_size():
+    a = np.geomspace(0.01, 100.0, 60)
+    per_area = ft.punch_pull_off(a, 0.05, 2.0, 1.0) / (np.pi * a * a)
+    assert per_area.max() == pytest.approx(1.0)
+    assert np.all(np.diff(per_area) <= 1e-15)  # never rises with size
+
+
+def test_flat_punch_law_with_sigma0():
+    c = Contact(R=2.0, sigma0=0.05)
+    law, free = FlatPunch(c), FlatPunch(Contact(R=2.0))
+    F = math.pi * 4.0 * 0.05  # χ ≪ 1 here: σ₀πa² < Kendall's
+    assert F < free.pull_off_force
+    assert law.pull_off_force == pytest.approx(F, rel=1e-12)
+    assert law.detach_overlap == pytest.approx(-F / (2 * c.E_star * 2.0), rel=1e-12)
+    assert law.force(np.array([2.0]), np.array([law.detach_overlap]))[0] == pytest.approx(-F)
+    # a strong interface: Kendall's numbers, bit for bit
+    strong = FlatPunch(Contact(R=2.0, sigma0=1e9))
+    assert strong.pull_off_force == free.pull_off_force
+    assert strong.detach_overlap == free.detach_overlap
+
+
+def test_sigma0_is_refused_out_of_range_or_on_a_tip_without_a_face():
+    for bad in (0.0, -1.0, math.nan):
+        with pytest.raises(ValueError, match=r"Contact.sigma0 = .* outside the allowed range"):
+            Contact(sigma0=bad)
+    with pytest.raises(ValueError, match="Contact.sigma0 = 1.0 acts on a flat face"):
+        PAPER_ARRAY.replace(**{"contact.sigma0": 1.0})
+
+
+def test_punch_pulls_off_at_the_capped_force_in_the_model():
+    """A vertical rod with a punch of a = 0.75 µm (E* ≈ 1.55 MPa, w ≈ 0.165 µN/µm: Kendall's
+    1.64 µN) on an interface of σ₀ = 0.3 MPa, pressed and pulled slowly, lets go at σ₀πa² =
+    0.53 µN within 2 % (the tip's inertia at a finite pull speed)."""
+    p = PILLAR.replace(**{"contact.R": 0.75, "contact.sigma0": 0.3})
+    F = math.pi * 0.75**2 * 0.3
+    assert punch.kendall_pull_off(0.75, p.contact.work_of_adhesion, p.contact.E_star) > 3 * F
+    m = Model(p, n_sim=1, seed=0)
+    h = m.run(protocol.press_pull(0.1, speed=0.005), progress=False)
+    assert h.peak_pull_off == pytest.approx(F, rel=0.02)
+    assert h.detachments["force_uN"][0] == pytest.approx(-F, rel=0.02)
