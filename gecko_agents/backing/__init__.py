@@ -2,16 +2,18 @@
 by ``params.backing.kind`` (:data:`BACKINGS`): the rigid plate of the paper
 (:class:`~gecko_agents.backing.rigid.RigidBacking`, which also states the interface) or an
 elastic strip pulled through a handle spring
-(:class:`~gecko_agents.backing.elastic.ElasticBacking`)."""
+(:class:`~gecko_agents.backing.elastic.ElasticBacking`) or an elastic layer bonded to the holder
+(:class:`~gecko_agents.backing.layer.LayerBacking`)."""
 
 from __future__ import annotations
 
 from gecko_agents.backing.elastic import ElasticBacking
+from gecko_agents.backing.layer import LayerBacking
 from gecko_agents.backing.rigid import RigidBacking
 
-__all__ = ["BACKINGS", "backing_class", "ElasticBacking", "RigidBacking"]
+__all__ = ["BACKINGS", "backing_class", "ElasticBacking", "LayerBacking", "RigidBacking"]
 
-BACKINGS = {"rigid": RigidBacking, "elastic": ElasticBacking}
+BACKINGS = {"rigid": RigidBacking, "elastic": ElasticBacking, "layer": LayerBacking}
 """The backing class of each ``params.backing.kind``."""
 
 

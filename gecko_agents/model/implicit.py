@@ -123,12 +123,14 @@ def check_integrator(integrator, contact: str, params=None) -> str:
     contact forces after the step's). ``"auto"`` is the implicit step where it is verified,
     the explicit one elsewhere:
 
-    - ``contact = "callback"``; ``mechanics = "elastica"`` (no Jacobian of the chain).
+    - ``contact = "callback"``; ``mechanics = "elastica"`` (no Jacobian of the chain);
+      ``backing.kind = "layer"`` (:mod:`gecko_agents.backing.layer`).
 
     Why the spatula and the elastic backing run implicitly, with what they were measured to
     give against the explicit step: docs/physics.md, "Time stepping"."""
     if integrator == "auto":
         verified = contact == "batch" and (params is None or params.mechanics != "elastica")
+        verified = verified and (params is None or params.backing.kind != "layer")
         return "implicit" if verified else "explicit"
     if integrator not in INTEGRATORS:
         raise ValueError(f"integrator = {integrator!r} must be one of {INTEGRATORS}")

@@ -14,7 +14,7 @@ __all__ = ["Backing", "BACKING_KINDS", "BACKING_DRIVES"]
 _check = check
 
 
-BACKING_KINDS = ("rigid", "elastic")
+BACKING_KINDS = ("rigid", "elastic", "layer")
 BACKING_DRIVES = ("uniform", "peel_end")
 
 
@@ -33,12 +33,17 @@ class Backing:
     EI = E_b·b·t_b³ / (12(1 − ν_b²)) [µN·µm²] (plane strain plate, Timoshenko & Woinowsky-Krieger
     1959, Theory of Plates and Shells, eq 3) and its mass per length ρ_b·b·t_b [ng/µm].
 
+    ``kind = "layer"`` is an elastic layer of thickness ``t_b``, modulus ``E_b`` and Poisson
+    ratio ``nu_b`` bonded to the holder, the roots on its free surface coupled through it
+    (:mod:`gecko_agents.backing.layer`; ν_b in [0, 0.5), the incompressible limit being the
+    field model's, :mod:`gecko_agents.physics.layer`); the strip's other fields are unused.
+
     Attributes
     ----------
-    kind : ``"rigid"`` or ``"elastic"``.
-    t_b : strip thickness [µm]; default 50 µm, an assumption in the range of the backing layers
-        of polyurethane microfibre adhesives (tens to hundreds of µm, Murphy, Aksak & Sitti 2009,
-        Small 5:170).
+    kind : ``"rigid"``, ``"elastic"`` or ``"layer"``.
+    t_b : strip (or layer) thickness [µm]; default 50 µm, an assumption in the range of the
+        backing layers of polyurethane microfibre adhesives (tens to hundreds of µm, Murphy,
+        Aksak & Sitti 2009, Small 5:170).
     E_b : strip modulus [MPa]; default 1.413 MPa, the paper's polyurethane (Table 1's E), the
         setae and backing being cast in one piece.
     nu_b : strip Poisson ratio [-]; default 0.3 (Table 1's ν).
@@ -106,6 +111,11 @@ class Backing:
                 f"Backing.leader_arm = {self.leader_arm!r} µm needs Backing.drive = 'peel_end' "
                 f"(got {self.drive!r}) and Backing.misalignment_deg = 0 (got "
                 f"{self.misalignment_deg!r})"
+            )
+        if self.kind == "layer" and not self.nu_b >= 0.0:
+            raise ValueError(
+                f"Backing.nu_b = {self.nu_b!r} must be in [0, 0.5) with kind = 'layer' (the "
+                "layer's Green's function, gecko_agents.physics.layer)"
             )
         if self.misalignment_deg != 0.0 and self.kind != "elastic":
             raise ValueError(

@@ -33,6 +33,7 @@ __all__ = [
     "edge_release_rate",
     "punch_rotation_stiffness",
     "tilted_punch_pressure",
+    "plane_punch_pressure",
     "edge_stress_intensity",
     "tilted_pull_off",
     "tilt_pull_off",
@@ -146,6 +147,24 @@ def tilted_punch_pressure(r, theta, P, M, a):
     """
     root = np.sqrt(np.square(a) - np.square(r))
     return (P + 3.0 * M * np.multiply(r, np.cos(theta)) / np.square(a)) / (2.0 * np.pi * a * root)
+
+
+def plane_punch_pressure(x, a, P):
+    """Pressure under a rigid flat punch of half-width a pressed into a half-space in plane
+    strain by a force P per length [force/length²], compressive positive:
+    p(x) = P/(π√(a² − x²)) for |x| < a, the classical plane punch problem (Johnson 1985,
+    Contact Mechanics, ch. 2, line loading of a half-space; derived from the singular
+    integral equation of the symmetric load in Wikiversity's "Introduction to
+    Elasticity/Flat punch indentation"): the edge singularity of
+    :func:`tilted_punch_pressure` on a strip. The oracle of load sharing through a thick
+    backing layer (``tests/test_layer.py``).
+
+    Parameters
+    ----------
+    x : abscissa from the face's centre, |x| < a [length]. a : half-width [length].
+    P : normal force per length (> 0 compressive) [force/length].
+    """
+    return P / (np.pi * np.sqrt(np.square(a) - np.square(x)))
 
 
 def edge_stress_intensity(P, M, a, theta=np.pi):

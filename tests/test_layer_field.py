@@ -1,0 +1,101 @@
+"""The quasi-static fibre field on a layer (gecko_agents.physics.layer_field): its FFT and
+conjugate-gradient solution against the exact event-driven probe test on the dense layer
+compliance, the rigid-backing closed form, and its refusals."""
+
+import math
+
+import numpy as np
+import pytest
+
+from gecko_agents.params import PAPER_ARRAY
+from gecko_agents.physics import fibril_probe, layer
+from gecko_agents.physics import fibril_probe_halfspace as halfspace
+from gecko_agents.physics import layer_field as lf
+
+E, NU, F_R, K = 1.413, 0.3, 4.66, 2.0
+
+
+def _field(t, n=9):
+    return lf.LayerField(n=n, pitch=4.0, radius=1.5, stiffness=K, release_force=F_R,
+                         thickness=t, modulus=E, poisson=NU)  # fmt: skip
+
+
+@pytest.mark.parametrize("t", [10.0, 200.0, math.inf])
+@pytest.mark.parametrize(("probe_radius", "tilt"), [(60.0, 0.0), (math.inf, 0.0), (math.inf, 0.5)])
+def test_field_is_the_event_driven_probe_test(t, probe_radius, tilt):
+    """The same pull-off and contact as probe_test(h, I/k + C_layer, F_r, P) (dense)."""
+    field = _field(t)
+    h = lf.probe_heights(field, probe_radius, tilt)
+    x, y = field.positions()
+    C = layer.field_compliance(x.ravel(), y.ravel(), t, E, NU, 1.5) + np.eye(x.size) / K
+    exact = halfspace.probe_test(h.ravel(), C, F_R, 20.0)
+    got = lf.press_pull(field, h, 20.0, resolution=1e-9)
+    assert got.pull_off == pytest.approx(exact.pull_off, rel=1e-8)
+    assert got.attached_max == exact.attached_max
+    assert got.depth_max == pytest.approx(exact.depth_max, rel=1e-8)
+    assert np.isfinite(got.released_at).sum() == exact.attached_max
+
+
+def test_rigid_limit_is_independent_fibres():
+    """A very stiff layer: the independent-fibre closed form (fibril_probe) under a sphere."""
+    field = lf.LayerField(n=15, pitch=4.0, radius=1.5, stiffness=K, release_force=F_R,
+                          thickness=1.0, modulus=1e7, poisson=0.3)  # fmt: skip
+    h = lf.probe_heights(field, 80.0)
+    got = lf.press_pull(field, h, 30.0, resolution=1e-9)
+    d_max = fibril_probe.depth_for_preload(30.0, h.ravel(), K)
+    closed = fibril_probe.probe_pull_off(h.ravel(), K, F_R, d_max)
+    assert got.pull_off == pytest.approx(closed, rel=1e-6)
+
+
+def test_flat_probe_thin_layer_holds_more():
+    """Aligned flat probe: a thin layer shares the load, a thick one loads the edge."""
+    pulls = [lf.press_pull(_field(t, 15), np.zeros((15, 15)), 10.0).pull_off for t in (4.0, 400.0)]
+    assert pulls[0] > pulls[1]
+    assert pulls[0] <= 15 * 15 * F_R * (1 + 1e-9)
+
+
+def test_from_params_and_heights():
+    f = lf.LayerField.from_params(PAPER_ARRAY, 5, thickness=160.0)
+    assert (f.thickness, f.modulus, f.poisson) == (160.0, PAPER_ARRAY.backing.E_b, 0.3)
+    assert f.pitch == PAPER_ARRAY.array.pitch and f.release_force > 0
+    h = lf.probe_heights(_field(20.0, 5), math.inf, 1.0)
+    assert h.max() == 0.0 and np.all(h[0] == 0.0)  # the −x edge touches first
+    assert h[-1, 0] == pytest.approx(-math.tan(math.radians(1.0)) * 16.0)
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "match"),
+    [("thickness", 0.0, "thickness"), ("thickness", -2.0, "thickness"),
+     ("poisson", 0.6, r"poisson = 0\.6 must be in \[0, 0\.5\]"), ("poisson", -0.1, "poisson"),
+     ("radius", 3.0, "radius"), ("n", 0, "n = 0"), ("stiffness", 0.0, "stiffness")],
+)  # fmt: skip
+def test_bad_field_refused(field, value, match):
+    kw = {"n": 5, "pitch": 4.0, "radius": 1.5, "stiffness": K, "release_force": F_R,
+          "thickness": 10.0, "modulus": E, "poisson": NU} | {field: value}  # fmt: skip
+    with pytest.raises(ValueError, match=match):
+        lf.LayerField(**kw)
+
+
+def test_bad_test_refused():
+    field = _field(10.0, 5)
+    with pytest.raises(ValueError, match="preload"):
+        lf.press_pull(field, np.zeros((5, 5)), 0.0)
+    with pytest.raises(ValueError, match="heights"):
+        lf.press_pull(field, np.zeros((4, 5)), 1.0)
+    with pytest.raises(ValueError, match="tilt_deg"):
+        lf.probe_heights(field, 50.0, 1.0)
+
+
+def test_incompressible_layer_is_taken_as_it_is():
+    """ν = ½ (no confined modulus: G → q²t³/(3μ)) is the dense event-driven test's too; on
+    a thin layer the confined centre is the stiffest place and lets go first, the edges,
+    free to contract, last."""
+    field = lf.LayerField(n=9, pitch=4.0, radius=1.5, stiffness=K, release_force=F_R,
+                          thickness=4.0, modulus=0.3, poisson=0.5)  # fmt: skip
+    x, y = field.positions()
+    C = layer.field_compliance(x.ravel(), y.ravel(), 4.0, 0.3, 0.5, 1.5) + np.eye(x.size) / K
+    exact = halfspace.probe_test(np.zeros(x.size), C, F_R, 10.0)
+    got = lf.press_pull(field, np.zeros((9, 9)), 10.0, resolution=1e-9)
+    assert got.pull_off == pytest.approx(exact.pull_off, rel=1e-8)
+    ev = got.release_event
+    assert ev[4, 4] == ev.min() and ev[0, 4] > ev[4, 4] and ev[0, 0] > ev[4, 4]
