@@ -255,14 +255,34 @@ def booth_aligned(quick: bool = True, k_stiff: float | None = None) -> dict:
     return {"value": s / c, "text": f"×{s / c:.4f} ({s:.4f} over {c:.4f} N·Fc, {n} setae)"}
 
 
+def _layer_pull_off(n: int, t: float) -> float:
+    """Pull-off over N·F_r of an n×n field of the backing-layer study's pillars on a layer of
+    thickness ``t`` [µm] (E = 1.413 MPa, the paper's polyurethane), pressed by a flat probe and
+    pulled off (:func:`gecko_agents.studies.backing_layer.field_point`)."""
+    from gecko_agents.studies import backing_layer as bl
+
+    return bl.field_point(n, t, 1.413, "flat")[0]["pull_off_over_NFr"]
+
+
 def kim_sitti_backing(quick: bool = True) -> dict:
-    """Pull-off on the 160 µm strip over the 1120 µm one, aligned, pulled straight up."""
-    n = 40 if quick else 200
-    thin = pad_pull_off(lit.KIM_SITTI2007_THIN, n, 0.0)
-    thick = pad_pull_off(lit.KIM_SITTI2007_THICK, n, 0.0)
+    """Pull-off of a fibre field on a 160 µm layer over that on a 1120 µm one (the layer
+    backing's field model, flat probe, aligned)."""
+    n = 10 if quick else 50
+    thin, thick = _layer_pull_off(n, 160.0), _layer_pull_off(n, 1120.0)
     return {
         "value": thin / thick,
-        "text": f"×{thin / thick:.4f} ({thin:.3f} over {thick:.3f} N·Fc, {n} setae)",
+        "text": f"×{thin / thick:.3f} ({thin:.3f} over {thick:.3f} N·F_r, {n}×{n} fibres)",
+    }
+
+
+def booth_layer_aligned(quick: bool = True, t: float = 100.0) -> dict:
+    """Pull-off, aligned, on a layer of thickness ``t`` [µm] over that on one 3.1× as thick
+    (3.1× as compliant: a thin layer's compliance ∝ t), the layer backing's field model."""
+    n = 10 if quick else 50
+    thin, thick = _layer_pull_off(n, t), _layer_pull_off(n, 3.1 * t)
+    return {
+        "value": thin / thick,
+        "text": f"×{thin / thick:.4f} ({thin:.4f} over {thick:.4f} N·F_r, {n}×{n} fibres)",
     }
 
 
@@ -497,7 +517,8 @@ OURS = {
         seta_stiffness, seta_anisotropy, seta_vertical_along, array_modulus,
         frictional_adhesion, ptfe_friction, gillies_smooth, gillies_rough, kendall_peel,
         kendall_angle_law,
-        booth_misalignment, booth_aligned, kim_sitti_backing, kroner_flat_misalignment,
+        booth_misalignment, booth_aligned, booth_layer_aligned, kim_sitti_backing,
+        kroner_flat_misalignment,
         kroner_flat_preload, kroner_sphere_preload, kroner_flat_misaligned_preload,
         kroner_flat_more_misaligned,
         kroner_sphere_over_flat, greiner_radius, greiner_aspect, buckled_preload,
