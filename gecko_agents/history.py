@@ -226,15 +226,20 @@ class History:
             else nan
         )
         scalars = {
-            "time_us": nan, "plate_x_um": np.zeros(n), "plate_y_um": result.plate_y,
+            "time_us": nan,
+            "plate_x_um": np.zeros(n),
+            "plate_y_um": result.plate_y,
             "force_normal_uN": result.force_normal,
             "force_tangential_uN": result.force_tangential,
             "plate_force_x_uN": -np.asarray(result.force_tangential, dtype=float),
             "plate_force_y_uN": result.force_normal,
-            "n_attached": result.n_attached, "n_sliding": sliding,
-            "energy_elastic_pJ": nan, "energy_kinetic_pJ": nan, "energy_dissipated_pJ": nan,
+            "n_attached": result.n_attached,
+            "n_sliding": sliding,
+            "energy_elastic_pJ": nan,
+            "energy_kinetic_pJ": nan,
+            "energy_dissipated_pJ": nan,
             "work_plate_pJ": nan,
-        }  # fmt: skip
+        }
         setae: dict[str, np.ndarray] = {}
         if per:
             fields = {"force_normal_uN": "force", "overlap_um": "overlap", "state": "state"}
@@ -246,10 +251,16 @@ class History:
             "plate_y_um": np.array([result.plate_y[r[0]] for r in releases], dtype=float),
             "overlap_um": np.array([r[2] for r in releases], dtype=float),
         }
-        geometry = {"floor_heights_um": np.asarray(result.heights),
-                    "weights": np.asarray(result.weights)}  # fmt: skip
-        meta = {"solver": "quasistatic", "n_sim": int(len(result.heights)),
-                "scale_to_array": 1.0, "versions": versions()}  # fmt: skip
+        geometry = {
+            "floor_heights_um": np.asarray(result.heights),
+            "weights": np.asarray(result.weights),
+        }
+        meta = {
+            "solver": "quasistatic",
+            "n_sim": int(len(result.heights)),
+            "scale_to_array": 1.0,
+            "versions": versions(),
+        }
         return cls(params, int(seed), scalars, setae, geometry, det, meta)
 
     def to_dataframe(self):
@@ -519,7 +530,7 @@ def invariant_violations(
         "max_tension_uN": math.inf if rate else c.pull_off_force,
         "detach_overlap_um": 20.0 * c.snap_off_overlap if rate else c.snap_off_overlap,
         "rate_dependent": rate,
-    }  # fmt: skip
+    }
     Fc = float(bounds["max_tension_uN"])
     detach = float(bounds["detach_overlap_um"])
     if energy_rtol is None:
@@ -527,8 +538,14 @@ def invariant_violations(
         factor = bounds.get("energy_tolerance_factor", 2.0 if bounds["rate_dependent"] else 1.0)
         energy_rtol = ENERGY_RTOL * factor
     quasi_static = h.meta.get("solver") == "quasistatic"
-    untimed = ("time_us", "n_sliding", "energy_elastic_pJ", "energy_kinetic_pJ",
-               "energy_dissipated_pJ", "work_plate_pJ")  # fmt: skip
+    untimed = (
+        "time_us",
+        "n_sliding",
+        "energy_elastic_pJ",
+        "energy_kinetic_pJ",
+        "energy_dissipated_pJ",
+        "work_plate_pJ",
+    )
     if quasi_static or h.meta.get("energy_complete") is False:
         energy_rtol = False  # no (complete) energy bookkeeping: quasi-static, elastic backing
     for name in SCALAR_COLUMNS:  # a backing's own columns may hold NaN (no front)

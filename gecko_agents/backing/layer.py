@@ -153,8 +153,9 @@ class LayerBacking:
         self._model, self.world, self.state = model, model.world, model.state
         self.physics, self.n = model.physics, model.n
         # C is Toeplitz (the roots are evenly spaced): its first column is the kernel.
-        self.column = layer.line_kernel(pitch * np.arange(self.n), bk.t_b, bk.E_b, bk.nu_b,
-                                        pitch) / pitch  # fmt: skip
+        self.column = (
+            layer.line_kernel(pitch * np.arange(self.n), bk.t_b, bk.E_b, bk.nu_b, pitch) / pitch
+        )
         self._c = model.c_seta
         self._k_eff = float(model.K[1, 1]) + self._c / model.dt
         self._C = ToeplitzSolver(self.column)
@@ -166,11 +167,14 @@ class LayerBacking:
         self._Fdy_prev = np.zeros(self.n)
         self.geometry = {}
         self.info = {
-            "thickness_um": bk.t_b, "modulus_MPa": bk.E_b, "poisson": bk.nu_b,
-            "width_um": pitch, "self_compliance_um_per_uN": float(self.column[0]),
+            "thickness_um": bk.t_b,
+            "modulus_MPa": bk.E_b,
+            "poisson": bk.nu_b,
+            "width_um": pitch,
+            "self_compliance_um_per_uN": float(self.column[0]),
             "uniform_compliance_um_per_uN": float(self._C(np.ones(self.n)).max()),
             "confined_modulus_MPa": layer.confined_modulus(bk.E_b, bk.nu_b),
-        }  # fmt: skip
+        }
 
     @property
     def compliance(self) -> np.ndarray:
@@ -242,8 +246,9 @@ class LayerBacking:
     def root_positions(self, handle) -> np.ndarray:
         """Root positions (N, 2) [µm] with the holder at ``handle`` (x, y) [µm], the roots
         displaced by the layer as at the last step."""
-        return np.column_stack((handle[0] + self.world.root_dx,
-                                handle[1] + self.world.root_dy + self.w))  # fmt: skip
+        return np.column_stack(
+            (handle[0] + self.world.root_dx, handle[1] + self.world.root_dy + self.w)
+        )
 
     def energy(self) -> float:
         """The layer's elastic energy ½·P·w = ½·wᵀC⁻¹w [pJ] at the last step."""
@@ -256,6 +261,11 @@ class LayerBacking:
     def record(self) -> tuple[dict, dict]:
         """(scalar columns, per-record arrays) at a record (:data:`LAYER_COLUMNS`,
         :data:`LAYER_ARRAYS`)."""
-        scalars = dict(zip(LAYER_COLUMNS, (self.front_x(), float(np.abs(self.w).max()),
-                                           self.energy()), strict=True))  # fmt: skip
+        scalars = dict(
+            zip(
+                LAYER_COLUMNS,
+                (self.front_x(), float(np.abs(self.w).max()), self.energy()),
+                strict=True,
+            )
+        )
         return scalars, {"layer_deflection_um": self.w.copy()}

@@ -114,16 +114,24 @@ def _add_bench(p: argparse.ArgumentParser) -> None:
     )
     add_verbosity_arguments(p)
     p.add_argument(
-        "--work-precision", action="store_true",
+        "--work-precision",
+        action="store_true",
         help="the work-precision benchmark: explicit and implicit steps against their error",
-    )  # fmt: skip
+    )
 
 
 def _cmd_bench(args, extra) -> int:
     from gecko_agents import bench
 
-    flags = [f for f, on in (("--quick", args.quick), ("--no-dask", args.no_dask),
-                             ("--work-precision", args.work_precision)) if on]  # fmt: skip
+    flags = [
+        f
+        for f, on in (
+            ("--quick", args.quick),
+            ("--no-dask", args.no_dask),
+            ("--work-precision", args.work_precision),
+        )
+        if on
+    ]
     with WarningLog(verbosity(args)) as log:
         log.family("bench")
         bench.main(flags + list(extra))
@@ -146,8 +154,13 @@ def _cmd_params(args, extra) -> int:
     from gecko_agents.runfiles.run import PRESETS, preset_docs
 
     def wrapped(text: str, indent: str, first: str = "") -> str:
-        return textwrap.fill(" ".join(text.split()), HELP_WIDTH, initial_indent=first or indent,
-                             subsequent_indent=indent, break_on_hyphens=False)  # fmt: skip
+        return textwrap.fill(
+            " ".join(text.split()),
+            HELP_WIDTH,
+            initial_indent=first or indent,
+            subsequent_indent=indent,
+            break_on_hyphens=False,
+        )
 
     docs = preset_docs()
     if args.preset is None:

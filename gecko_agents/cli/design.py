@@ -73,23 +73,33 @@ def cmd_design(args, extra) -> int:
         raise UsageError(str(err)) from None
     again = [PROG, "design", str(args.designfile)] + (["--quick"] if args.quick else [])
     again += ["--out", str(out)] + (["--storage", args.storage] if args.storage else [])
-    print(f"{spec.path}{' (quick)' if spec.quick else ''}: {', '.join(spec.objectives)} over "
-          f"{', '.join([*spec.ranges, *[c for c, v in spec.choices.items() if len(v) > 1]])} "
-          f"→ {out}/")  # fmt: skip
+    print(
+        f"{spec.path}{' (quick)' if spec.quick else ''}: {', '.join(spec.objectives)} over "
+        f"{', '.join([*spec.ranges, *[c for c, v in spec.choices.items() if len(v) > 1]])} "
+        f"→ {out}/"
+    )
     t0 = time.perf_counter()
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", category=UserWarning)  # Optuna's experimental notes
-            summary = run_design(spec, out, trials=args.trials, storage=args.storage,
-                                 workers=args.workers, dask=args.dask)  # fmt: skip
+            summary = run_design(
+                spec,
+                out,
+                trials=args.trials,
+                storage=args.storage,
+                workers=args.workers,
+                dask=args.dask,
+            )
     except ImportError as err:  # --dask without the dask extra
         raise UsageError(str(err)) from None
     except KeyboardInterrupt:
         error("interrupted: every finished trial is stored; resume with: " + " ".join(again))
         return EXIT_INTERRUPTED
     best = summary["best"]
-    print(f"wrote {out}/report.md in {time.perf_counter() - t0:.1f} s: {summary['trials']} "
-          f"trials, {len(best)} designs confirmed")  # fmt: skip
+    print(
+        f"wrote {out}/report.md in {time.perf_counter() - t0:.1f} s: {summary['trials']} "
+        f"trials, {len(best)} designs confirmed"
+    )
     if best:
         b = best[0]
         knobs = ", ".join(

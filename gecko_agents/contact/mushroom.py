@@ -36,9 +36,15 @@ class MushroomTip(FlatPunch):
     def __init__(self, contact, shape):
         super().__init__(contact)
         modes = mushroom.pull_offs(
-            self.a, shape.defect_radius, self.w, self.E_star, self.sigma0,
-            shape.rim, shape.rim_angle_deg, contact.nu1,
-        )  # fmt: skip
+            self.a,
+            shape.defect_radius,
+            self.w,
+            self.E_star,
+            self.sigma0,
+            shape.rim,
+            shape.rim_angle_deg,
+            contact.nu1,
+        )
         self.mode_forces = modes
         self.release_mode = min(modes, key=modes.get)
         force = modes[self.release_mode]

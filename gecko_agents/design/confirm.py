@@ -51,8 +51,11 @@ def _engine_run(spec, values, i, tilt, flagged) -> float:
     h = Model(p, **kw).run(prot, progress=False)
     for name, item in h.meta["validity"]["items"].items():
         if item.get("ok") is False:
-            flagged[name] = {"value": item.get("value"), "rule": item.get("rule"),
-                             "meaning": item.get("meaning")}  # fmt: skip
+            flagged[name] = {
+                "value": item.get("value"),
+                "rule": item.get("rule"),
+                "meaning": item.get("meaning"),
+            }
     return pull_off(h).adhesion / (p.array.count * p.array.pitch**2) / KPA
 
 
@@ -111,7 +114,7 @@ def run_file_text(spec, values: dict, label: str) -> str:
         f"# {label} of the design search {spec.path.name}: "
         + ", ".join(
             f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}" for k, v in values.items()
-        ),  # fmt: skip
+        ),
         f"#   gecko-agents run {label}.toml",
         f"description = {json.dumps(f'{label} of {spec.path.name} (engine run, floor seed 0)')}",
         'preset = "PAPER_ARRAY"',
@@ -124,8 +127,12 @@ def run_file_text(spec, values: dict, label: str) -> str:
         f"seed = {kw['seed']}",
     ]
     if kw["floor_profile"] is not None:
-        lines += ["", "[floor]", f"file = {json.dumps(_scan_name(spec))}",
-                  f"offset_um = {_offset(kw['floor_profile'], spec):.9g}"]  # fmt: skip
+        lines += [
+            "",
+            "[floor]",
+            f"file = {json.dumps(_scan_name(spec))}",
+            f"offset_um = {_offset(kw['floor_profile'], spec):.9g}",
+        ]
     lines += [
         "",
         "[protocol]",

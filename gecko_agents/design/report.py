@@ -17,8 +17,15 @@ from pathlib import Path
 from gecko_agents.design.confirm import DISAGREE
 from gecko_agents.design.space import KNOBS, OBJECTIVES, TIP_KINDS
 
-__all__ = ["PUBLISHED", "trial_rows", "write_csv", "draw_front", "draw_parameters",
-           "importances", "report_text"]  # fmt: skip
+__all__ = [
+    "PUBLISHED",
+    "trial_rows",
+    "write_csv",
+    "draw_front",
+    "draw_parameters",
+    "importances",
+    "report_text",
+]
 
 PUBLISHED = [
     {
@@ -109,8 +116,14 @@ def draw_front(spec, trials: list, best: list, confirmed: dict, out: Path) -> No
         if conf and spec.objectives[0] == "pull_off_per_area":
             x, y = pts(conf)
             engine = [confirmed[t.number]["mean"] for t in conf]
-            ax.plot(engine if two else x, y if two else engine, "x", ms=10, color="k",
-                    label="engine (confirmed)")  # fmt: skip
+            ax.plot(
+                engine if two else x,
+                y if two else engine,
+                "x",
+                ms=10,
+                color="k",
+                label="engine (confirmed)",
+            )
         ax.set_xlabel(_label(spec.objectives[0]) if two else "trial")
         ax.set_ylabel(_label(spec.objectives[1] if two else spec.objectives[0]))
         ax.legend(fontsize="small")
@@ -140,10 +153,15 @@ def draw_parameters(spec, trials: list, out: Path) -> None:
                     sel = [t for t in trials if tuple(t.params.get(c) for c in cats) == group]
                     for ok, face in ((True, f"C{g}"), (False, "none")):
                         part = [t for t in sel if _feasible(t) is ok]
-                        ax.plot([t.params[key] for t in part], [t.values[i] for t in part], "o",
-                                ms=3.5, color=f"C{g}", mfc=face,
-                                label=("/".join(map(str, group)) or "feasible")
-                                if ok else None)  # fmt: skip
+                        ax.plot(
+                            [t.params[key] for t in part],
+                            [t.values[i] for t in part],
+                            "o",
+                            ms=3.5,
+                            color=f"C{g}",
+                            mfc=face,
+                            label=("/".join(map(str, group)) or "feasible") if ok else None,
+                        )
                 if KNOBS[key].log:
                     ax.set_xscale("log")
                     for axis in (ax.xaxis.set_major_formatter, ax.xaxis.set_minor_formatter):
@@ -170,9 +188,10 @@ def importances(study, spec) -> dict:
             with warnings.catch_warnings():  # its note that it ranks low values: the sign does
                 warnings.filterwarnings("ignore", message="PedAnovaImportanceEvaluator")
                 imp = optuna.importance.get_param_importances(
-                    study, target=lambda t, i=i, s=sign: s * t.values[i],
+                    study,
+                    target=lambda t, i=i, s=sign: s * t.values[i],
                     evaluator=optuna.importance.PedAnovaImportanceEvaluator(),
-                )  # fmt: skip
+                )
         except (ValueError, RuntimeError, ZeroDivisionError):
             imp = {}
         out[name] = {k: float(v) for k, v in imp.items()}
@@ -186,8 +205,14 @@ def _fmt(v) -> str:
 def best_table(spec, rows: list[dict]) -> list[str]:
     """Markdown table of the confirmed designs: knobs, screened and confirmed values."""
     knobs = [*[c for c, v in spec.choices.items() if len(v) > 1], *spec.ranges]
-    head = ["design", *knobs, *[f"screen {o}" for o in spec.objectives],
-            "engine pull-off [kPa]", "engine spread", "screen/engine"]  # fmt: skip
+    head = [
+        "design",
+        *knobs,
+        *[f"screen {o}" for o in spec.objectives],
+        "engine pull-off [kPa]",
+        "engine spread",
+        "screen/engine",
+    ]
     release = "release_force" in spec.objectives
     head += ["engine release [kPa]"] if release else []
     several = len(spec.objectives) > 1
@@ -195,9 +220,14 @@ def best_table(spec, rows: list[dict]) -> list[str]:
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
         e = r["engine"]
-        cells = [r["label"], *[_fmt(r["design"].get(k)) for k in knobs],
-                 *[_fmt(r["screen"][o]) for o in spec.objectives],
-                 _fmt(e["mean"]), _fmt(e["spread"]), _fmt(r["ratio"])]  # fmt: skip
+        cells = [
+            r["label"],
+            *[_fmt(r["design"].get(k)) for k in knobs],
+            *[_fmt(r["screen"][o]) for o in spec.objectives],
+            _fmt(e["mean"]),
+            _fmt(e["spread"]),
+            _fmt(r["ratio"]),
+        ]
         if release:
             cells.append(
                 "screen only (rigid plate)" if e["release"] is None else _fmt(e["release"])
@@ -213,20 +243,30 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
     items, the parameter importances, and the published designs beside them."""
     disagree = [r for r in rows if not abs(r["ratio"] - 1.0) <= DISAGREE]
     lines = [
-        f"# Design search: {spec.path.name}{' (quick)' if spec.quick else ''}", "",
-        spec.description, "",
+        f"# Design search: {spec.path.name}{' (quick)' if spec.quick else ''}",
+        "",
+        spec.description,
+        "",
         f"{n_trials} screening trials (seed {spec.seed}; objectives "
         f"{', '.join(f'{o} ({OBJECTIVES[o][0]})' for o in spec.objectives)}); "
         f"{len(rows)} designs confirmed with the time-stepped engine "
-        f"({spec.test['engine_pillars']} pillars, {spec.test['engine_seeds']} floor seeds).", "",
-        "## Best designs", "", *best_table(spec, rows), "",
+        f"({spec.test['engine_pillars']} pillars, {spec.test['engine_seeds']} floor seeds).",
+        "",
+        "## Best designs",
+        "",
+        *best_table(spec, rows),
+        "",
         "Run files that reproduce each engine run: `runs/<design>.toml` "
-        "(`gecko-agents run runs/design_1.toml`).", "",
-        "## Where the screen and the engine disagree", "",
-    ]  # fmt: skip
-    lines += [f"- {r['label']}: screen {_fmt(r['screen']['pull_off_per_area'])} kPa, engine "
-              f"{_fmt(r['engine']['mean'])} kPa (ratio {_fmt(r['ratio'])})"
-              for r in disagree] or [f"- none beyond ±{DISAGREE:.0%}"]  # fmt: skip
+        "(`gecko-agents run runs/design_1.toml`).",
+        "",
+        "## Where the screen and the engine disagree",
+        "",
+    ]
+    lines += [
+        f"- {r['label']}: screen {_fmt(r['screen']['pull_off_per_area'])} kPa, engine "
+        f"{_fmt(r['engine']['mean'])} kPa (ratio {_fmt(r['ratio'])})"
+        for r in disagree
+    ] or [f"- none beyond ±{DISAGREE:.0%}"]
     lines += ["", "## Models", ""]
     for tip in spec.choices["tip"]:
         kind = TIP_KINDS[tip]
@@ -235,15 +275,21 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
             if kind.release_force is None
             else "linear fibrils over the floor, released at the law's closed-form force"
         )
-        lines.append(f"- {tip}: screen — {screen} ({kind.source}); engine — "
-                     "gecko_agents.model.Model, elastica pillars, the same floors")  # fmt: skip
+        lines.append(
+            f"- {tip}: screen — {screen} ({kind.source}); engine — "
+            "gecko_agents.model.Model, elastica pillars, the same floors"
+        )
     lines += ["", "## Validity items not met", ""]
-    lines += [f"- screen, {name}: not met in {n} of {n_trials} trials ({meaning})"
-              for name, (n, meaning) in screen_flags.items()] or ["- screen: none"]  # fmt: skip
+    lines += [
+        f"- screen, {name}: not met in {n} of {n_trials} trials ({meaning})"
+        for name, (n, meaning) in screen_flags.items()
+    ] or ["- screen: none"]
     for r in rows:
         for name, item in r["engine"]["validity_flags"].items():
-            lines.append(f"- engine, {r['label']}, {name}: {_fmt(item['value'])} "
-                         f"(rule {item['rule']}; {item['meaning']})")  # fmt: skip
+            lines.append(
+                f"- engine, {r['label']}, {name}: {_fmt(item['value'])} "
+                f"(rule {item['rule']}; {item['meaning']})"
+            )
     lines += ["", "## Parameter importances (PED-ANOVA)", ""]
     for obj, d in imp.items():
         lines.append(f"- {obj}: " + (", ".join(f"{k} {v:.2f}" for k, v in d.items()) or "—"))

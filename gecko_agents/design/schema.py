@@ -51,11 +51,23 @@ _TEST_NUM = {
     "misalignment_spread_deg": (0.0, 5.0),
     "release_tilt_deg": (0.0, 10.0),
 }
-_TEST_INT = {"floor_seeds": (1, 50), "pillars": (2, 2000), "engine_pillars": (1, 40),
-             "engine_seeds": (1, 10)}  # fmt: skip
-_TEST_DEFAULTS = {"probe": "flat", "probe_radius_um": 100.0, "pull_speed_um_per_us": 0.05,
-                  "misalignment_spread_deg": 0.0, "release_tilt_deg": 1.0, "floor_seeds": 3,
-                  "pillars": 20, "engine_pillars": 5, "engine_seeds": 2}  # fmt: skip
+_TEST_INT = {
+    "floor_seeds": (1, 50),
+    "pillars": (2, 2000),
+    "engine_pillars": (1, 40),
+    "engine_seeds": (1, 10),
+}
+_TEST_DEFAULTS = {
+    "probe": "flat",
+    "probe_radius_um": 100.0,
+    "pull_speed_um_per_us": 0.05,
+    "misalignment_spread_deg": 0.0,
+    "release_tilt_deg": 1.0,
+    "floor_seeds": 3,
+    "pillars": 20,
+    "engine_pillars": 5,
+    "engine_seeds": 2,
+}
 
 
 @dataclass(frozen=True)
@@ -109,12 +121,17 @@ def base_params(spec: DesignSpec) -> SetaArray:
     if spec.test["probe"] == "sphere":
         over |= {"floor.kind": "probe", "floor.probe_radius": spec.test["probe_radius_um"]}
     elif s["kind"] == "gaussian":
-        over |= {"floor.sigma": s.get("sigma_um", 0.0),
-                 "floor.correlation_length": s.get("correlation_length_um", 0.0)}  # fmt: skip
+        over |= {
+            "floor.sigma": s.get("sigma_um", 0.0),
+            "floor.correlation_length": s.get("correlation_length_um", 0.0),
+        }
     elif s["kind"] == "self_affine":
         over |= {"floor.kind": "self_affine", "floor.sigma": s.get("sigma_um", 0.0)}
-        for k, p in (("hurst", "hurst"), ("short_cutoff_um", "short_cutoff"),
-                     ("long_cutoff_um", "long_cutoff")):  # fmt: skip
+        for k, p in (
+            ("hurst", "hurst"),
+            ("short_cutoff_um", "short_cutoff"),
+            ("long_cutoff_um", "long_cutoff"),
+        ):
             if k in s:
                 over[f"floor.{p}"] = s[k]
     return PAPER_ARRAY.replace(**over)
@@ -267,8 +284,10 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
                 f"{', '.join(TIP_KINDS[tip].floors)})",
             )
     span = {**{k: (v, v) for k, v in spec.fixed.items()}, **spec.ranges}
-    for key, knob, above in (("min_radius_um", "radius_um", True),
-                             ("max_aspect_ratio", "aspect_ratio", False)):  # fmt: skip
+    for key, knob, above in (
+        ("min_radius_um", "radius_um", True),
+        ("max_aspect_ratio", "aspect_ratio", False),
+    ):
         bound = spec.constraints.get(key)
         lo, hi = span[knob]
         if bound is not None and (bound > hi if above else bound < lo):
@@ -285,8 +304,10 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
                 p = base.replace(**overrides_of(values))
             except (ValueError, TypeError) as err:
                 shown = ", ".join(f"{k} = {v:g}" for k, v in corner) or "the fixed values"
-                raise ctx.error("[space]", f"the design at {shown} (tip {tip!r}) is not a "
-                                f"valid parameter set: {err}") from None  # fmt: skip
+                raise ctx.error(
+                    "[space]",
+                    f"the design at {shown} (tip {tip!r}) is not a valid parameter set: {err}",
+                ) from None
             _check_scan(ctx, spec, p, corner)
 
 
@@ -324,19 +345,30 @@ def _variant(ctx: Ctx, data: dict, quick_t: dict, path: Path, raw: bytes, quick:
     if not ranges and all(len(v) == 1 for v in choices.values()):
         raise ctx.error("[space]", "fixes every knob: give at least one range or list to search")
     spec = DesignSpec(
-        path=path, text=raw, sha256=hashlib.sha256(raw).hexdigest(), quick=quick,
-        description=description, seed=seed, trials=trials, confirm=confirm,
+        path=path,
+        text=raw,
+        sha256=hashlib.sha256(raw).hexdigest(),
+        quick=quick,
+        description=description,
+        seed=seed,
+        trials=trials,
+        confirm=confirm,
         material=_material(ctx, sub_table(ctx, data, "material")),
         surface=_surface(ctx, sub_table(ctx, data, "surface")),
         test=_test(ctx, sub_table(ctx, data, "test"), quick_t.get("test", {})),
-        fixed=fixed, ranges=ranges, choices=choices,
+        fixed=fixed,
+        ranges=ranges,
+        choices=choices,
         objectives=_objectives(ctx, data["objectives"]),
         constraints=_constraints(ctx, sub_table(ctx, data, "constraints")),
         resolved={k: v for k, v in data.items() if k != "quick"},
-    )  # fmt: skip
+    )
     if spec.test["probe"] == "sphere" and spec.surface["kind"] != "flat":
-        raise ctx.error("[test] probe", "'sphere': the probe is the surface; give [surface] "
-                        f"kind = 'flat', not {spec.surface['kind']!r}")  # fmt: skip
+        raise ctx.error(
+            "[test] probe",
+            "'sphere': the probe is the surface; give [surface] "
+            f"kind = 'flat', not {spec.surface['kind']!r}",
+        )
     if spec.test["probe"] == "sphere" and spec.test["pillars"] != spec.test["engine_pillars"]:
         t = spec.test
         raise ctx.error(

@@ -163,12 +163,19 @@ def objective_fn(spec):
         trial.set_user_attr("screen", res["objectives"])
         trial.set_user_attr("design", values)
         seeds = [floor_seed(spec, i) for i in range(spec.test["floor_seeds"])]
-        trial.set_user_attr("record", {
-            "constraints": res["constraints"], "metrics": res["metrics"],
-            "validity": res["validity"], "floor_seeds": seeds, "study_seed": spec.seed,
-            "design_sha256": spec.sha256, "code_version": code["version"],
-            "code_fingerprint": code["fingerprint"],
-        })  # fmt: skip
+        trial.set_user_attr(
+            "record",
+            {
+                "constraints": res["constraints"],
+                "metrics": res["metrics"],
+                "validity": res["validity"],
+                "floor_seeds": seeds,
+                "study_seed": spec.seed,
+                "design_sha256": spec.sha256,
+                "code_version": code["version"],
+                "code_fingerprint": code["fingerprint"],
+            },
+        )
         out = [res["objectives"][o] for o in spec.objectives]
         return out[0] if len(out) == 1 else out
 
@@ -186,8 +193,9 @@ def completed(study) -> list:
     return study.get_trials(deepcopy=False, states=(optuna.trial.TrialState.COMPLETE,))
 
 
-def run_search(spec, out: Path, *, trials: int | None = None, storage: str | None = None,
-               progress=None):  # fmt: skip
+def run_search(
+    spec, out: Path, *, trials: int | None = None, storage: str | None = None, progress=None
+):
     """Run the study until it holds ``trials`` (default ``spec.trials``) finished trials,
     counting those an earlier or a parallel worker finished. Returns the study."""
     optuna = require_optuna()
@@ -198,9 +206,12 @@ def run_search(spec, out: Path, *, trials: int | None = None, storage: str | Non
         stop = optuna.study.MaxTrialsCallback(target, states=(optuna.trial.TrialState.COMPLETE,))
         callbacks = [stop] + ([progress] if progress else [])
         study.optimize(
-            objective_fn(spec), n_trials=left, callbacks=callbacks, catch=CAUGHT,
+            objective_fn(spec),
+            n_trials=left,
+            callbacks=callbacks,
+            catch=CAUGHT,
             gc_after_trial=False,
-        )  # fmt: skip
+        )
     return study
 
 

@@ -15,8 +15,15 @@ import gecko_agents.design.search as search
 
 __all__ = ["run_design", "screen_flags", "check_output", "OUTPUT_FILES"]
 
-OUTPUT_FILES = ("study.db", "trials.csv", "best.json", "report.md", "pareto_front.png",
-                "objectives_vs_parameters.png", "runs")  # fmt: skip
+OUTPUT_FILES = (
+    "study.db",
+    "trials.csv",
+    "best.json",
+    "report.md",
+    "pareto_front.png",
+    "objectives_vs_parameters.png",
+    "runs",
+)
 """What a design search writes into its output folder (``runs`` a folder of run files)."""
 
 
@@ -51,8 +58,9 @@ def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, li
     from gecko_agents.output_paths import atomic_write_bytes
 
     designs = [t.user_attrs["design"] for t in chosen]
-    engine = parallel.parallel_map(confirm.confirm_design, [(spec, d) for d in designs],
-                                   workers, dask)  # fmt: skip
+    engine = parallel.parallel_map(
+        confirm.confirm_design, [(spec, d) for d in designs], workers, dask
+    )
     confirmed, rows = {}, []
     (out / "runs").mkdir(parents=True, exist_ok=True)
     for j, (t, design, eng) in enumerate(zip(chosen, designs, engine, strict=True), 1):
@@ -61,12 +69,22 @@ def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, li
         screened = t.user_attrs["screen"]
         ref = screened["pull_off_per_area"]
         ratio = ref / eng["mean"] if eng["mean"] > 0 else math.inf
-        rows.append({"label": label, "trial": t.number, "design": design, "screen": screened,
-                     "engine": eng, "ratio": ratio})  # fmt: skip
+        rows.append(
+            {
+                "label": label,
+                "trial": t.number,
+                "design": design,
+                "screen": screened,
+                "engine": eng,
+                "ratio": ratio,
+            }
+        )
         text = confirm.run_file_text(spec, design, label)
         atomic_write_bytes(out / "runs" / f"{label}.toml", text.encode())
-        say(f"{label} (trial {t.number}): screen {ref:.4g} kPa, engine {eng['mean']:.4g} kPa "
-            f"({eng['wall_s']:.1f} s)")  # fmt: skip
+        say(
+            f"{label} (trial {t.number}): screen {ref:.4g} kPa, engine {eng['mean']:.4g} kPa "
+            f"({eng['wall_s']:.1f} s)"
+        )
     return confirmed, rows
 
 
@@ -86,13 +104,22 @@ def _search(spec, out: Path, trials, storage, workers: int, dask):
         return search.run_search(spec, out, trials=trials, storage=storage)
     search.open_study(spec, out, storage)
     url = storage or search.local_storage(out)
-    parallel.parallel_map(parallel.search_worker, [(spec, str(out), trials, url)] * workers,
-                          workers, dask)  # fmt: skip
+    parallel.parallel_map(
+        parallel.search_worker, [(spec, str(out), trials, url)] * workers, workers, dask
+    )
     return search.open_study(spec, out, url)
 
 
-def run_design(spec, out, *, trials: int | None = None, storage: str | None = None,
-               workers: int = 1, dask: str | None = None, say=print) -> dict:  # fmt: skip
+def run_design(
+    spec,
+    out,
+    *,
+    trials: int | None = None,
+    storage: str | None = None,
+    workers: int = 1,
+    dask: str | None = None,
+    say=print,
+) -> dict:
     """Run a checked design file's search into ``out``: the study (resumed if ``out`` or
     ``storage`` already holds it; ``workers`` local processes, or as many Dask workers at
     ``dask``, share it and the confirmations), the engine's confirmation of the
@@ -126,11 +153,19 @@ def run_design(spec, out, *, trials: int | None = None, storage: str | None = No
 
     atomic_write_bytes(out / "report.md", text.encode())
     summary = {
-        "design_file": str(spec.path), "sha256": spec.sha256, "quick": spec.quick,
-        "study": search.study_name(spec), "trials": len(done), "screen_s": t_screen,
-        "wall_s": time.perf_counter() - t0, "best": rows, "importances": imp,
-        "pareto_front": [t.number for t in front], "workers": workers, "dask": dask,
+        "design_file": str(spec.path),
+        "sha256": spec.sha256,
+        "quick": spec.quick,
+        "study": search.study_name(spec),
+        "trials": len(done),
+        "screen_s": t_screen,
+        "wall_s": time.perf_counter() - t0,
+        "best": rows,
+        "importances": imp,
+        "pareto_front": [t.number for t in front],
+        "workers": workers,
+        "dask": dask,
         "versions": _versions(),
-    }  # fmt: skip
+    }
     atomic_write_bytes(out / "best.json", json.dumps(summary, indent=1, default=str).encode())
     return summary

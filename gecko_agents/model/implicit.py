@@ -258,9 +258,13 @@ class ImplicitStep:
             k_raw[idx] = np.where(finite, k, -np.inf)
             if self.film:  # the film's own tangent, its front held (SpatulaTip.jacobian)
                 kxx, kxy, kyy = law.jacobian(
-                    s.xy[0, idx] - s.anchor[0, idx], s.delta[idx], s.s0[idx], s.xi[idx],
-                    s.a[idx], s.p0[idx],
-                )  # fmt: skip
+                    s.xy[0, idx] - s.anchor[0, idx],
+                    s.delta[idx],
+                    s.s0[idx],
+                    s.xi[idx],
+                    s.a[idx],
+                    s.p0[idx],
+                )
                 kn[idx], kt[idx] = kyy, kxx
                 self._kxy[idx] = kxy
             else:
@@ -300,8 +304,19 @@ class ImplicitStep:
         # ½dt·v₀·(ΔF_prev + ΔF): they book ½m·v₀·v₁, whose change is ½dt·v₀·(F'_prev + F').
         # F := F', and J the impulse of the forces the books pair with the next step's dt.
         books = step_books if pad is None else pad[2]
-        e, ed = books(vx, vy, fx, fy, s.F, self._dF, s.F_damp_seta, s.F_damp_contact, self._J,
-                      dt, rebook_damping)  # fmt: skip
+        e, ed = books(
+            vx,
+            vy,
+            fx,
+            fy,
+            s.F,
+            self._dF,
+            s.F_damp_seta,
+            s.F_damp_contact,
+            self._J,
+            dt,
+            rebook_damping,
+        )
         work = 0.5 * dt * float(np.add.reduce(e))  # np.sum's reduction
         self.numerical_dissipated -= work
         if rebook_damping:
@@ -498,8 +513,11 @@ class ImplicitStep:
             v_ref = max(math.hypot(*vp), 1e-4)
             vx, vy = s.pv[2], s.pv[3]
             att = s.attached
-            vn = vy if self.normal is None else np.where(att, vx * self.normal[0]
-                                                         + vy * self.normal[1], vy)  # fmt: skip
+            vn = (
+                vy
+                if self.normal is None
+                else np.where(att, vx * self.normal[0] + vy * self.normal[1], vy)
+            )
             reach = 2.0 * dt * np.abs(vn)
             d = s.delta
             with np.errstate(invalid="ignore"):

@@ -95,9 +95,14 @@ Assumed: the reference crack speed v* = 1 µm/µs and n = 0.5 (the package's Gre
 default): neither gecko keratin nor their silicone is characterised in the text we read."""
 
 FRICTIONAL_SPATULA = PAPER_ARRAY.replace(
-    **{"mechanics": "rod", "floor.sigma": 0.0, "array.count": 1, "tip": "spatula",
-       "friction.mu": 10.0}
-)  # fmt: skip
+    **{
+        "mechanics": "rod",
+        "floor.sigma": 0.0,
+        "array.count": 1,
+        "tip": "spatula",
+        "friction.mu": 10.0,
+    }
+)
 """The frictional-adhesion seta of ``gecko_agents.studies.frictional_adhesion`` (rod, θ =
 60°, flat floor) with the spatula film tip (package defaults b = 3 µm, h = 1 µm, ℓ0 = 3 µm,
 all assumptions) and the nearly bonded pad μ = 10 of that study, for Autumn et al. (2006, J
@@ -107,9 +112,18 @@ FRICTIONAL_SPHERE = FRICTIONAL_SPATULA.replace(**{"tip": "sphere"})
 """:data:`FRICTIONAL_SPATULA` with the paper's JKR sphere tip (R = 4 µm)."""
 
 KRONER_PILLARS = PAPER_ARRAY.replace(
-    **{**_STRIP, "seta.L": 1.95, "seta.r": 2.35, "seta.theta_deg": 90.0, "tip": "flat_punch",
-       "contact.R": 2.35, "array.pitch": 9.4, "friction.mu": 0.5, "backing.drive": "uniform"}
-)  # fmt: skip
+    **{
+        **_STRIP,
+        "seta.L": 1.95,
+        "seta.r": 2.35,
+        "seta.theta_deg": 90.0,
+        "tip": "flat_punch",
+        "contact.R": 2.35,
+        "array.pitch": 9.4,
+        "friction.mu": 0.5,
+        "backing.drive": "uniform",
+    }
+)
 """Kroner et al.'s patterned PDMS structures (Leibniz INM; "structure diameters of 4.7μm and
 heights of 0.82 μm and 1.95 μm", abstract) as vertical pillars with flat punches on the
 misalignment study's strip and stiff mount. Cited: r = a = 2.35 µm and L = 1.95 µm (the taller

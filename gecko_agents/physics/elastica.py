@@ -80,8 +80,9 @@ class Elastica:
     shear : ``False`` leaves shear out (κGA → ∞, the Euler–Bernoulli chain).
     """
 
-    def __init__(self, n_setae, L, r, E, theta, links=DEFAULT_LINKS, imperfection=1e-3,
-                 nu=0.3, shear=True):  # fmt: skip
+    def __init__(
+        self, n_setae, L, r, E, theta, links=DEFAULT_LINKS, imperfection=1e-3, nu=0.3, shear=True
+    ):
         self.n, self.N = int(links), int(n_setae)
         self.L, self.ell = float(L), float(L) / links
         self.EI = E * math.pi * r**4 / 4.0
@@ -136,8 +137,16 @@ class Elastica:
     def of(cls, params, n_setae: int) -> Elastica:
         """The chains of ``n_setae`` setae of a :class:`gecko_agents.params.SetaArray`."""
         s = params.seta
-        return cls(n_setae, s.L, s.r, params.contact.E1, s.theta, s.links, s.imperfection,
-                   params.contact.nu1)  # fmt: skip
+        return cls(
+            n_setae,
+            s.L,
+            s.r,
+            params.contact.E1,
+            s.theta,
+            s.links,
+            s.imperfection,
+            params.contact.nu1,
+        )
 
     def peek(self, d) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`solve` at ``d`` with the tips held as in the last solve, leaving the chain's
@@ -145,13 +154,29 @@ class Elastica:
         last = self._last
         if last is not None and np.array_equal(last[0], d):  # the step's own positions
             return last[1], last[2]
-        kept = (self.phi, self.stretch, self.lam, self.iterations, self.held, self.clamp.copy(),
-                self.released, last)  # fmt: skip
+        kept = (
+            self.phi,
+            self.stretch,
+            self.lam,
+            self.iterations,
+            self.held,
+            self.clamp.copy(),
+            self.released,
+            last,
+        )
         try:
             return self.solve(d, self.held)
         finally:
-            (self.phi, self.stretch, self.lam, self.iterations, self.held, self.clamp,
-             self.released, self._last) = kept  # fmt: skip
+            (
+                self.phi,
+                self.stretch,
+                self.lam,
+                self.iterations,
+                self.held,
+                self.clamp,
+                self.released,
+                self._last,
+            ) = kept
 
     # ------------------------------------------------------------------ geometry
     def _end(self, phi, s):
@@ -200,8 +225,9 @@ class Elastica:
         c, sn = np.cos(phi), np.sin(phi)
         ell = (self.ell + s / n)[:, None]
         u = self._joints(phi, clamp)
-        grad = np.where(held[:, None], u @ (self.D.T @ self.Ks[1]).T,
-                        u[:, :n] @ (self.D[:n].T @ self.Ks[0]).T)  # fmt: skip
+        grad = np.where(
+            held[:, None], u @ (self.D.T @ self.Ks[1]).T, u[:, :n] @ (self.D[:n].T @ self.Ks[0]).T
+        )
         Jx, Jy = -ell * sn, ell * c  # ∂r/∂φ_j
         lx, ly = lam[:, :1], lam[:, 1:]
         res = np.zeros((N, n + 3))

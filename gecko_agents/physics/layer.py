@@ -201,8 +201,9 @@ def _second_antiderivative(x, t):
     ax = np.abs(x)
     with np.errstate(divide="ignore", invalid="ignore"):
         xlog = np.where(ax > 0.0, x * x * np.log(np.where(ax > 0.0, ax, 1.0)), 0.0)
-    return (0.5 * (x * x - t * t) * np.log(x * x + t * t) + 2.0 * t * x * np.arctan(x / t)
-            - xlog) / (2.0 * np.pi)  # fmt: skip
+    return (
+        0.5 * (x * x - t * t) * np.log(x * x + t * t) + 2.0 * t * x * np.arctan(x / t) - xlog
+    ) / (2.0 * np.pi)
 
 
 def line_kernel(d, thickness: float, modulus: float, poisson: float, width: float):
@@ -230,8 +231,11 @@ def line_kernel(d, thickness: float, modulus: float, poisson: float, width: floa
         raise ValueError(f"width = {width!r} µm must be in (0, inf)")
     d = np.abs(np.asarray(d, float))
     Es = contact_modulus(E, nu)
-    cut = (_second_antiderivative(d + w, t) - 2.0 * _second_antiderivative(d, t)
-           + _second_antiderivative(d - w, t)) / (w * w)  # fmt: skip
+    cut = (
+        _second_antiderivative(d + w, t)
+        - 2.0 * _second_antiderivative(d, t)
+        + _second_antiderivative(d - w, t)
+    ) / (w * w)
     s, ws = _quadrature(CUTOFF + w / t)
     rest = (layer_factor(s, nu) - 1.0 + np.exp(-s)) / s * np.sinc(s * w / (2.0 * np.pi * t)) ** 2
     near = d <= CUTOFF * t

@@ -98,8 +98,14 @@ class LayerField:
         k = 1.0 / (1.0 / params.Ky + 1.0 / law.zero_load_stiffness)
         b = params.backing
         kw = {"thickness": b.t_b, "modulus": b.E_b, "poisson": b.nu_b} | layer_kw
-        return cls(n=int(n), pitch=params.array.pitch, radius=params.seta.r, stiffness=k,
-                   release_force=law.pull_off_force, **kw)  # fmt: skip
+        return cls(
+            n=int(n),
+            pitch=params.array.pitch,
+            radius=params.seta.r,
+            stiffness=k,
+            release_force=law.pull_off_force,
+            **kw,
+        )
 
     def positions(self) -> tuple[np.ndarray, np.ndarray]:
         """Fibre positions (x, y) [µm], each (n, n), the field centred on 0."""
@@ -291,8 +297,10 @@ def press_pull(
     n_max = int(att.sum())
     released = np.full(h.shape, np.nan), np.full(h.shape, -1)
     x, y = field.positions()
-    best = _pull(solver, h, att, d_max, field.release_force, resolution, np.hypot(x, y),
-                 released, path)  # fmt: skip
+    best = _pull(
+        solver, h, att, d_max, field.release_force, resolution, np.hypot(x, y), released, path
+    )
     d, F, n, front = (np.array(v) for v in zip(*path, strict=True))
-    return FieldTest(best, d_max, n_max, d, F, n.astype(int), front, *released,
-                     solver.solves, op.calls)  # fmt: skip
+    return FieldTest(
+        best, d_max, n_max, d, F, n.astype(int), front, *released, solver.solves, op.calls
+    )

@@ -210,8 +210,11 @@ def _floor(ctx: Ctx, table: dict):
 
     path = getattr(data, SCANS[name]) if name in SCANS else ctx.path.parent / name
     if not name or not Path(path).is_file():
-        raise ctx.error("[floor] file", f"{name!r} is not a readable scan; give a path "
-                        f"(relative to the run file) or one of {', '.join(SCANS)}")  # fmt: skip
+        raise ctx.error(
+            "[floor] file",
+            f"{name!r} is not a readable scan; give a path "
+            f"(relative to the run file) or one of {', '.join(SCANS)}",
+        )
     try:
         prof = readers.load(path)
     except (ValueError, OSError) as err:
@@ -221,8 +224,9 @@ def _floor(ctx: Ctx, table: dict):
     if not 0.0 <= offset < span:
         raise ctx.error("[floor] offset_um", f"{offset!r} is outside the scan, [0, {span:g}) µm")
     k = int(np.searchsorted(prof.x, prof.x[0] + offset))
-    return floor.Profile(x=prof.x[k:] - prof.x[k], y=prof.y[k:], spacing=prof.spacing,
-                         source=prof.source)  # fmt: skip
+    return floor.Profile(
+        x=prof.x[k:] - prof.x[k], y=prof.y[k:], spacing=prof.spacing, source=prof.source
+    )
 
 
 _RUN_QUICK_KEYS = {"params", "model", "protocol"}

@@ -73,8 +73,12 @@ from gecko_agents.studies.probe_test import PILLARS
 
 NAME = "backing_layer"
 ROW = PAPER_ARRAY.replace(**{"seta.L": 5.0, "floor.sigma": 0.0})
-PROBES = {"flat": (math.inf, 0.0), "flat, 1°": (math.inf, 1.0), "flat, 3°": (math.inf, 3.0),
-          "sphere": (500.0, 0.0)}  # fmt: skip
+PROBES = {
+    "flat": (math.inf, 0.0),
+    "flat, 1°": (math.inf, 1.0),
+    "flat, 3°": (math.inf, 3.0),
+    "sphere": (500.0, 0.0),
+}
 """Probe radius R_p [µm] (inf: flat) and tilt [deg] of each probe."""
 PRELOAD = {"flat": 0.2, "sphere": 0.05}
 """Preload of the field over N·F_r [-], flat probes and the sphere."""
@@ -84,13 +88,26 @@ KIM_SITTI = {"thin_um": 160.0, "thick_um": 1120.0, "ratio": 9.0}
 
 def config(quick: bool) -> dict:
     if quick:
-        return {"n": 10, "t_um": [10.0, 160.0, 1120.0], "E_MPa": [1.413], "n_large": None,
-                "row_n": 8, "row_t_um": [10.0, 160.0, 1120.0], "cost_n": 100,
-                "cost_steps": 100}  # fmt: skip
-    return {"n": 50, "t_um": [10.0, 20.0, 40.0, 80.0, 160.0, 320.0, 640.0, 1120.0, 2000.0],
-            "E_MPa": [0.3, 1.413, 5.0], "n_large": 100, "row_n": 40,
-            "row_t_um": [10.0, 40.0, 160.0, 640.0, 1120.0], "cost_n": 1000,
-            "cost_steps": 2000}  # fmt: skip
+        return {
+            "n": 10,
+            "t_um": [10.0, 160.0, 1120.0],
+            "E_MPa": [1.413],
+            "n_large": None,
+            "row_n": 8,
+            "row_t_um": [10.0, 160.0, 1120.0],
+            "cost_n": 100,
+            "cost_steps": 100,
+        }
+    return {
+        "n": 50,
+        "t_um": [10.0, 20.0, 40.0, 80.0, 160.0, 320.0, 640.0, 1120.0, 2000.0],
+        "E_MPa": [0.3, 1.413, 5.0],
+        "n_large": 100,
+        "row_n": 40,
+        "row_t_um": [10.0, 40.0, 160.0, 640.0, 1120.0],
+        "cost_n": 1000,
+        "cost_steps": 2000,
+    }
 
 
 def field_point(n: int, t: float, E: float, probe: str):
@@ -103,10 +120,18 @@ def field_point(n: int, t: float, E: float, probe: str):
     preload = PRELOAD["sphere" if math.isfinite(radius) else "flat"] * N_Fr
     t0 = time.perf_counter()
     r = layer_field.press_pull(f, h, preload, resolution=1e-3)
-    return {"probe": probe, "n": n, "t_um": t, "E_MPa": E, "preload_uN": preload,
-            "pull_off_uN": r.pull_off, "pull_off_over_NFr": r.pull_off / N_Fr,
-            "attached_max": r.attached_max, "events": len(r.depth),
-            "runtime_s": time.perf_counter() - t0}, r  # fmt: skip
+    return {
+        "probe": probe,
+        "n": n,
+        "t_um": t,
+        "E_MPa": E,
+        "preload_uN": preload,
+        "pull_off_uN": r.pull_off,
+        "pull_off_over_NFr": r.pull_off / N_Fr,
+        "attached_max": r.attached_max,
+        "events": len(r.depth),
+        "runtime_s": time.perf_counter() - t0,
+    }, r
 
 
 def row_point(n: int, t: float | None) -> dict:
@@ -118,9 +143,13 @@ def row_point(n: int, t: float | None) -> dict:
     m = Model(p, seed=SEED, numerics=Numerics(integrator="explicit", record_every=1))  # the peak
     h = m.run(protocol.press_pull(DEPTH, speed=SPEED), progress=False)
     pull = -float(np.min(h["plate_force_y_uN"]))
-    return {"t_um": math.inf if t is None else t, "n": n, "pull_off_uN": pull,
-            "pull_off_over_NFc": pull / (n * m.Fc),
-            "energy_balance_error": energy_balance_error(h)}  # fmt: skip
+    return {
+        "t_um": math.inf if t is None else t,
+        "n": n,
+        "pull_off_uN": pull,
+        "pull_off_over_NFc": pull / (n * m.Fc),
+        "energy_balance_error": energy_balance_error(h),
+    }
 
 
 def step_cost(n: int, steps: int) -> dict:
@@ -141,8 +170,12 @@ def step_cost(n: int, steps: int) -> dict:
                     m.advance(0.0, -SPEED)
                 spent[kind] += time.perf_counter() - t0
     ms = {k: 1e3 * v / (10 * max(1, steps // 10)) for k, v in spent.items()}
-    return {"n": n, "rigid_ms_per_step": ms["rigid"], "layer_ms_per_step": ms["layer"],
-            "ratio": ms["layer"] / ms["rigid"]}  # fmt: skip
+    return {
+        "n": n,
+        "rigid_ms_per_step": ms["rigid"],
+        "layer_ms_per_step": ms["layer"],
+        "ratio": ms["layer"] / ms["rigid"],
+    }
 
 
 def _by(rows, **keys):
@@ -158,25 +191,42 @@ def comparisons(field, large, row, cfg) -> list[dict]:
         return a / b
 
     flat = _by(field, probe="flat", E_MPa=E0)
-    out = [{"source": "Kim & Sitti 2007, Appl Phys Lett 91:161905",
-            "quantity": "pull-off 160 µm / 1120 µm backing", "measured": KIM_SITTI["ratio"],
+    out = [
+        {
+            "source": "Kim & Sitti 2007, Appl Phys Lett 91:161905",
+            "quantity": "pull-off 160 µm / 1120 µm backing",
+            "measured": KIM_SITTI["ratio"],
             "model_field": ratio(flat, "pull_off_uN"),
             "model_field_large": ratio(large, "pull_off_uN") if large else None,
-            "model_row": ratio(row, "pull_off_uN")}]  # fmt: skip
+            "model_row": ratio(row, "pull_off_uN"),
+        }
+    ]
     monotone = all(
         np.all(np.diff([r["pull_off_uN"] for r in _by(field, probe="flat", E_MPa=E)]) <= 1e-9)
         for E in cfg["E_MPa"]
     )
-    out.append({"source": "Booth, Bacca, McMeeking & Foster 2018",
-                "quantity": "aligned: thinnest backing detaches at the highest force",
-                "measured": True, "model_field": monotone})  # fmt: skip
+    out.append(
+        {
+            "source": "Booth, Bacca, McMeeking & Foster 2018",
+            "quantity": "aligned: thinnest backing detaches at the highest force",
+            "measured": True,
+            "model_field": monotone,
+        }
+    )
     if len(cfg["E_MPa"]) > 1:
         t0 = min(cfg["t_um"])
-        soft, stiff = (_by(field, probe="flat, 3°", t_um=t0, E_MPa=E)[0]["pull_off_uN"]
-                       for E in (min(cfg["E_MPa"]), max(cfg["E_MPa"])))  # fmt: skip
-        out.append({"source": "Booth, Bacca, McMeeking & Foster 2018",
-                    "quantity": "misaligned: a compliant backing helps (+43 %)",
-                    "measured": 0.43, "model_field": soft / stiff - 1.0})  # fmt: skip
+        soft, stiff = (
+            _by(field, probe="flat, 3°", t_um=t0, E_MPa=E)[0]["pull_off_uN"]
+            for E in (min(cfg["E_MPa"]), max(cfg["E_MPa"]))
+        )
+        out.append(
+            {
+                "source": "Booth, Bacca, McMeeking & Foster 2018",
+                "quantity": "misaligned: a compliant backing helps (+43 %)",
+                "measured": 0.43,
+                "model_field": soft / stiff - 1.0,
+            }
+        )
     return out
 
 
@@ -200,8 +250,11 @@ def _comparison_text(comp) -> str:
         else:
             ours = f"{100 * ours:+.0f} %"
         measured = c["measured"]
-        measured = "yes" if measured is True else (f"×{measured:g}" if measured > 1 else
-                                                   f"{100 * measured:+.0f} %")  # fmt: skip
+        measured = (
+            "yes"
+            if measured is True
+            else (f"×{measured:g}" if measured > 1 else f"{100 * measured:+.0f} %")
+        )
         lines += [f"{c['source']}:", f"  {c['quantity']}", f"  measured {measured}; model {ours}"]
     return "\n".join(lines)
 
@@ -221,8 +274,9 @@ def draw(field, row, maps, cfg, out, comp=()) -> None:
         _panel_curves(ax[0, 1], by_p, "pull_off_over_NFr", "pull-off / (N·F_r)", styles)
         ax[0, 1].set_title("field, E_b = 1.413 MPa: probes")
         layer_rows = [r for r in row if math.isfinite(r["t_um"])]
-        _panel_curves(ax[0, 2], {"layer": layer_rows}, "pull_off_over_NFc",
-                      "pull-off / (N·Fc)", styles)  # fmt: skip
+        _panel_curves(
+            ax[0, 2], {"layer": layer_rows}, "pull_off_over_NFc", "pull-off / (N·Fc)", styles
+        )
         rigid = [r for r in row if not math.isfinite(r["t_um"])][0]
         ax[0, 2].axhline(rigid["pull_off_over_NFc"], color="#1f77b4", ls="--", label="rigid")
         ax[0, 2].legend(fontsize="small")
@@ -255,8 +309,11 @@ def animate_front(maps, out, frames: int = 48) -> None:
         axes = np.atleast_1d(fig.subplots(1, len(tests)))
         images = []
         for a, (t, test) in zip(axes, tests, strict=True):
-            images.append(a.imshow(np.ones_like(test.released_at).T, origin="lower",
-                                   cmap="Greys", vmin=0, vmax=1))  # fmt: skip
+            images.append(
+                a.imshow(
+                    np.ones_like(test.released_at).T, origin="lower", cmap="Greys", vmin=0, vmax=1
+                )
+            )
             a.set_title(f"t = {t:g} µm")
             a.set_xticks([])
             a.set_yticks([])
@@ -295,8 +352,10 @@ def main(argv=None) -> dict:
                     maps[t] = test
     large = []
     if cfg["n_large"]:
-        large = [field_point(cfg["n_large"], t, 1.413, "flat")[0]
-                 for t in (KIM_SITTI["thin_um"], KIM_SITTI["thick_um"])]  # fmt: skip
+        large = [
+            field_point(cfg["n_large"], t, 1.413, "flat")[0]
+            for t in (KIM_SITTI["thin_um"], KIM_SITTI["thick_um"])
+        ]
     row = [row_point(cfg["row_n"], None)] + [row_point(cfg["row_n"], t) for t in cfg["row_t_um"]]
     write_table(out / f"{NAME}_field.csv", field + large)
     write_table(out / f"{NAME}_row.csv", row)
@@ -305,17 +364,32 @@ def main(argv=None) -> dict:
     animate_front(maps, out)
     cost = step_cost(cfg["cost_n"], cfg["cost_steps"])
     results = {"comparisons": comp, "step_cost": cost, "runtime_s": time.perf_counter() - t0}
-    write_json(out / "metadata.json", {
-        "scenario": NAME, "quick": args.quick, "params_field": PILLARS.to_dict(),
-        "params_row": ROW.to_dict(), "config": cfg, "probes": PROBES, "preload": PRELOAD,
-        "depth_um": DEPTH, "speed_um_per_us": SPEED, "seed": SEED, "field": field,
-        "field_large": large, "row": row, "results": results,
-    })  # fmt: skip
+    write_json(
+        out / "metadata.json",
+        {
+            "scenario": NAME,
+            "quick": args.quick,
+            "params_field": PILLARS.to_dict(),
+            "params_row": ROW.to_dict(),
+            "config": cfg,
+            "probes": PROBES,
+            "preload": PRELOAD,
+            "depth_um": DEPTH,
+            "speed_um_per_us": SPEED,
+            "seed": SEED,
+            "field": field,
+            "field_large": large,
+            "row": row,
+            "results": results,
+        },
+    )
     k = comp[0]
-    print(f"{NAME}: pull-off 160/1120 µm: field {k['model_field']:.2f}, row "
-          f"{k['model_row']:.2f} (Kim & Sitti ×{k['measured']:g}); a step on the layer "
-          f"{cost['ratio']:.2f}× the rigid plate's at {cost['n']} setae; "
-          f"{results['runtime_s']:.0f} s → {out}")  # fmt: skip
+    print(
+        f"{NAME}: pull-off 160/1120 µm: field {k['model_field']:.2f}, row "
+        f"{k['model_row']:.2f} (Kim & Sitti ×{k['measured']:g}); a step on the layer "
+        f"{cost['ratio']:.2f}× the rigid plate's at {cost['n']} setae; "
+        f"{results['runtime_s']:.0f} s → {out}"
+    )
     return results
 
 

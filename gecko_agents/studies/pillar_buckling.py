@@ -28,12 +28,23 @@ TIPS = ("flat_punch", "mushroom")
 
 def params_for(base, tip: str, r: float):
     """One pillar of radius r [µm], aspect L/2r = 5, faces free to open (the study's base)."""
-    over = {"tip": tip, "seta.r": r, "contact.R": r, "seta.L": 10.0 * r, "array.count": 1,
-            "array.pitch": 8.0 * r / 3.0, "spatula.b": 2.0 * r,
-            "contact.edge_opening": True}  # fmt: skip
+    over = {
+        "tip": tip,
+        "seta.r": r,
+        "contact.R": r,
+        "seta.L": 10.0 * r,
+        "array.count": 1,
+        "array.pitch": 8.0 * r / 3.0,
+        "spatula.b": 2.0 * r,
+        "contact.edge_opening": True,
+    }
     if tip == "mushroom":
-        over |= {"contact.R": 1.2 * r, "contact.sigma0": 1.0, "mushroom.rim": "sharp",
-                 "mushroom.rim_angle_deg": 45.0}  # fmt: skip
+        over |= {
+            "contact.R": 1.2 * r,
+            "contact.sigma0": 1.0,
+            "mushroom.rim": "sharp",
+            "mushroom.rim_angle_deg": 45.0,
+        }
     return base.replace(**over)
 
 
@@ -52,10 +63,17 @@ def buckling_rows(base, radii, strains, speed: float) -> list[dict]:
                 h = m.run(protocol.press_pull(eps * p.seta.L, speed=speed), progress=False)
                 F = h.peak_pull_off
                 first = F if first is None else first
-                rows.append({"tip": tip, "radius_um": float(r), "press_strain": eps,
-                             "preload_uN": float(h["force_normal_uN"].max()),
-                             "pull_off_uN": F, "over_lightest_press": F / first,
-                             "faces_opened": int(m.physics.opening.count)})  # fmt: skip
+                rows.append(
+                    {
+                        "tip": tip,
+                        "radius_um": float(r),
+                        "press_strain": eps,
+                        "preload_uN": float(h["force_normal_uN"].max()),
+                        "pull_off_uN": F,
+                        "over_lightest_press": F / first,
+                        "faces_opened": int(m.physics.opening.count),
+                    }
+                )
     return rows
 
 
@@ -70,9 +88,13 @@ def draw_buckling(rows, out) -> None:
         for tip, ls, mk in (("flat_punch", "-", "s"), ("mushroom", "--", "D")):
             for r in dict.fromkeys(x["radius_um"] for x in rows):
                 sel = [x for x in rows if x["tip"] == tip and x["radius_um"] == r]
-                ax.plot([100 * x["press_strain"] for x in sel],
-                        [x["over_lightest_press"] for x in sel], ls=ls, marker=mk,
-                        label=f"{tip}, r = {r:g} µm")  # fmt: skip
+                ax.plot(
+                    [100 * x["press_strain"] for x in sel],
+                    [x["over_lightest_press"] for x in sel],
+                    ls=ls,
+                    marker=mk,
+                    label=f"{tip}, r = {r:g} µm",
+                )
         ax.set_xlabel("press depth [% of L] (past buckling above ~2 %)")
         ax.set_ylabel("pull-off / pull-off after a 1 % press")
         ax.set_title("adhesion left after buckling, edges free to open")
@@ -83,9 +105,12 @@ def draw_buckling(rows, out) -> None:
 def buckling_section(rows) -> str:
     """The report's lines: what is left after the deepest press, per tip and radius."""
     deepest = max(x["press_strain"] for x in rows)
-    lines = [f"- {x['tip']}, r = {x['radius_um']:g} µm: ×{x['over_lightest_press']:.3g} "
-             f"(faces opened by their moment: {x['faces_opened']})"
-             for x in rows if x["press_strain"] == deepest]  # fmt: skip
+    lines = [
+        f"- {x['tip']}, r = {x['radius_um']:g} µm: ×{x['over_lightest_press']:.3g} "
+        f"(faces opened by their moment: {x['faces_opened']})"
+        for x in rows
+        if x["press_strain"] == deepest
+    ]
     head = (
         f"Adhesion left after a press of {100 * deepest:g} % of L, past buckling, edges "
         "free to open (`pillar_designs/pillar_buckling.png`), over that after a 1 % press:"

@@ -123,10 +123,17 @@ from gecko_agents.studies.common import (
 NAME = "pillar_designs"
 R_PILLAR, N_PILLARS, SPEED, SEED = 1.5, 5, 0.05, 0
 BASE = PAPER_ARRAY.replace(
-    **{"seta.theta_deg": 90.0, "seta.r": R_PILLAR, "mechanics": "elastica",
-       "contact.R": R_PILLAR, "friction.mu": 0.5, "array.count": N_PILLARS,
-       "floor.sigma": 0.0, "spatula.b": 2 * R_PILLAR}
-)  # fmt: skip
+    **{
+        "seta.theta_deg": 90.0,
+        "seta.r": R_PILLAR,
+        "mechanics": "elastica",
+        "contact.R": R_PILLAR,
+        "friction.mu": 0.5,
+        "array.count": N_PILLARS,
+        "floor.sigma": 0.0,
+        "spatula.b": 2 * R_PILLAR,
+    }
+)
 FLOORS = ("flat", "rough", "measured")
 EULER = {"flat_punch": 4.0, "mushroom": 4.0, "sphere": 2.046, "spatula": 2.046}  # × π²EI/L²
 MARKERS = {"sphere": "o", "flat_punch": "s", "spatula": "^", "mushroom": "D"}
@@ -138,14 +145,26 @@ Kendall's. The mushroom: flange 1.2 × the stalk, a sharp 45° rim (not singular
 
 def config(quick: bool) -> dict:
     if quick:
-        return {"tips": ["sphere", "flat_punch"], "aspect": [5.0], "floors": ["flat"],
-                "strains": [0.01, 0.2], "split_radii": [0.3, 3.0],
-                "split_designs": ps.QUICK_DESIGNS, "buckling_radii": [15.0],
-                "buckling_strains": [0.01, 0.2]}  # fmt: skip
-    return {"tips": ["sphere", "flat_punch", "spatula", "mushroom"], "aspect": [5.0, 10.0],
-            "floors": list(FLOORS), "strains": [0.01, 0.05, 0.2],
-            "split_radii": [0.2, 0.6, 2.0, 6.0], "split_designs": None,
-            "buckling_radii": [1.5, 5.0, 15.0], "buckling_strains": [0.01, 0.2, 0.4]}  # fmt: skip
+        return {
+            "tips": ["sphere", "flat_punch"],
+            "aspect": [5.0],
+            "floors": ["flat"],
+            "strains": [0.01, 0.2],
+            "split_radii": [0.3, 3.0],
+            "split_designs": ps.QUICK_DESIGNS,
+            "buckling_radii": [15.0],
+            "buckling_strains": [0.01, 0.2],
+        }
+    return {
+        "tips": ["sphere", "flat_punch", "spatula", "mushroom"],
+        "aspect": [5.0, 10.0],
+        "floors": list(FLOORS),
+        "strains": [0.01, 0.05, 0.2],
+        "split_radii": [0.2, 0.6, 2.0, 6.0],
+        "split_designs": None,
+        "buckling_radii": [1.5, 5.0, 15.0],
+        "buckling_strains": [0.01, 0.2, 0.4],
+    }
 
 
 def euler_load(tip: str, L: float) -> float:
@@ -168,8 +187,11 @@ def params_for(tip: str, aspect: float, floor_kind: str):
     if tip in ("flat_punch", "mushroom"):
         over |= {"contact.sigma0": SIGMA0}
     if tip == "mushroom":
-        over |= {"contact.R": 1.2 * R_PILLAR, "mushroom.rim": "sharp",
-                 "mushroom.rim_angle_deg": 45.0}  # fmt: skip
+        over |= {
+            "contact.R": 1.2 * R_PILLAR,
+            "mushroom.rim": "sharp",
+            "mushroom.rim_angle_deg": 45.0,
+        }
     if floor_kind == "rough":
         over |= {"floor.sigma": 0.2}
     return BASE.replace(**over)
@@ -206,8 +228,9 @@ def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
     if tip == "spatula" and floor_kind == "measured":
         return None
     p = params_for(tip, aspect, floor_kind)
-    m = Model(p, n_sim=N_PILLARS, seed=SEED,
-              floor_profile=profile if floor_kind == "measured" else None)  # fmt: skip
+    m = Model(
+        p, n_sim=N_PILLARS, seed=SEED, floor_profile=profile if floor_kind == "measured" else None
+    )
     log = None
     if tip == "flat_punch":  # the same chain, observed (EdgeLog)
         log = m.physics.chain = EdgeLog.of(p, N_PILLARS)
@@ -218,15 +241,24 @@ def run_point(tip, aspect, floor_kind, strain, profile=None) -> dict | None:
     area = N_PILLARS * p.array.pitch**2  # µm² of backing
     F = pull_off(h).adhesion
     P_E, P_cr = euler_load(tip, p.seta.L), buckling_load(tip, p.seta.L)
-    return {"tip": tip, "aspect_L_over_2r": aspect, "L_um": p.seta.L, "floor": floor_kind,
-            "press_strain": strain, "preload_per_pillar_uN": preload, "euler_load_uN": P_E,
-            "buckling_load_uN": P_cr, "buckled": bool(preload >= 0.98 * P_cr),
-            "pull_off_uN": F,
-            "pull_off_per_area_kPa": 1e3 * F / area,
-            "attached_max": int(np.max(h["n_attached"])),
-            "edge_K_over_Kc_pressed": log.press_peak if log and log.press_peak > -math.inf
-                                      else math.nan,
-            "moment_share_pulled": log.pull_share if log else math.nan}  # fmt: skip
+    return {
+        "tip": tip,
+        "aspect_L_over_2r": aspect,
+        "L_um": p.seta.L,
+        "floor": floor_kind,
+        "press_strain": strain,
+        "preload_per_pillar_uN": preload,
+        "euler_load_uN": P_E,
+        "buckling_load_uN": P_cr,
+        "buckled": bool(preload >= 0.98 * P_cr),
+        "pull_off_uN": F,
+        "pull_off_per_area_kPa": 1e3 * F / area,
+        "attached_max": int(np.max(h["n_attached"])),
+        "edge_K_over_Kc_pressed": log.press_peak
+        if log and log.press_peak > -math.inf
+        else math.nan,
+        "moment_share_pulled": log.pull_share if log else math.nan,
+    }
 
 
 def tilt_rows(aspects, n: int = 25) -> list[dict]:
@@ -242,26 +274,51 @@ def tilt_rows(aspects, n: int = 25) -> list[dict]:
     rows = []
     for alpha in np.linspace(0.0, math.sqrt(math.pi * w / (2 * E * a)), n):
         F = float(punch.tilt_pull_off(a, w, E, alpha))
-        rows.append({"load": "tilt", "source": "closed form", "face": "half-space",
-                     "aspect_L_over_2r": math.nan, "tilt_deg": math.degrees(alpha),
-                     "lateral_uN": math.nan, "pull_off_uN": F,
-                     "over_kendall": F / F_K})  # fmt: skip
+        rows.append(
+            {
+                "load": "tilt",
+                "source": "closed form",
+                "face": "half-space",
+                "aspect_L_over_2r": math.nan,
+                "tilt_deg": math.degrees(alpha),
+                "lateral_uN": math.nan,
+                "pull_off_uN": F,
+                "over_kendall": F / F_K,
+            }
+        )
     for aspect in aspects:
         L = 2.0 * R_PILLAR * aspect
         for face, kr in (("half-space", k_r), ("rigid clamp", math.inf)):
             Q0 = 2.0 * a * F_K * (1.0 + EI / (kr * L)) / (3.0 * L)  # where F reaches 0
             for Q in np.linspace(0.0, Q0, n):
                 F = float(punch.tilted_pull_off(a, w, E, punch.lateral_load_moment(Q, L, EI, kr)))
-                rows.append({"load": "lateral", "source": "closed form", "face": face,
-                             "aspect_L_over_2r": aspect, "tilt_deg": math.nan,
-                             "lateral_uN": float(Q), "pull_off_uN": F,
-                             "over_kendall": F / F_K})  # fmt: skip
+                rows.append(
+                    {
+                        "load": "lateral",
+                        "source": "closed form",
+                        "face": face,
+                        "aspect_L_over_2r": aspect,
+                        "tilt_deg": math.nan,
+                        "lateral_uN": float(Q),
+                        "pull_off_uN": F,
+                        "over_kendall": F / F_K,
+                    }
+                )
         for frac in (0.1, 0.25):  # pushed as far as the linear beam would be at frac·Q0
             Q, M = elastica_face_moment(L, frac * Q0 * L**3 / (12.0 * EI))
             F = float(punch.tilted_pull_off(a, w, E, M))
-            rows.append({"load": "lateral", "source": "elastica", "face": "rigid clamp",
-                         "aspect_L_over_2r": aspect, "tilt_deg": math.nan,
-                         "lateral_uN": Q, "pull_off_uN": F, "over_kendall": F / F_K})  # fmt: skip
+            rows.append(
+                {
+                    "load": "lateral",
+                    "source": "elastica",
+                    "face": "rigid clamp",
+                    "aspect_L_over_2r": aspect,
+                    "tilt_deg": math.nan,
+                    "lateral_uN": Q,
+                    "pull_off_uN": F,
+                    "over_kendall": F / F_K,
+                }
+            )
     return rows
 
 
@@ -303,15 +360,29 @@ def draw_tilt(rows, out) -> None:
         for aspect in dict.fromkeys(r["aspect_L_over_2r"] for r in rows if r["load"] != "tilt"):
             color = None
             for face, ls in (("half-space", "-"), ("rigid clamp", "--")):
-                sel = [r for r in rows if r["aspect_L_over_2r"] == aspect and r["face"] == face
-                       and r["source"] == "closed form"]  # fmt: skip
-                (line,) = ax_q.plot([r["lateral_uN"] for r in sel],
-                                    [r["over_kendall"] for r in sel], ls=ls, color=color,
-                                    label=f"L/2r = {aspect:g}, face: {face}")  # fmt: skip
+                sel = [
+                    r
+                    for r in rows
+                    if r["aspect_L_over_2r"] == aspect
+                    and r["face"] == face
+                    and r["source"] == "closed form"
+                ]
+                (line,) = ax_q.plot(
+                    [r["lateral_uN"] for r in sel],
+                    [r["over_kendall"] for r in sel],
+                    ls=ls,
+                    color=color,
+                    label=f"L/2r = {aspect:g}, face: {face}",
+                )
                 color = line.get_color()
             pts = [r for r in rows if r["aspect_L_over_2r"] == aspect and r["source"] == "elastica"]
-            ax_q.plot([r["lateral_uN"] for r in pts], [r["over_kendall"] for r in pts], "o",
-                      color=color, label=f"L/2r = {aspect:g}, elastica's clamped face")  # fmt: skip
+            ax_q.plot(
+                [r["lateral_uN"] for r in pts],
+                [r["over_kendall"] for r in pts],
+                "o",
+                color=color,
+                label=f"L/2r = {aspect:g}, elastica's clamped face",
+            )
         ax_q.set_xlabel("lateral load at the pillar's end Q [µN]")
         ax_q.set_title("pillar pushed sideways: M = (QL/2)/(1 + EI/(k_r L))")
         ax_q.legend(fontsize="small")
@@ -325,9 +396,11 @@ def winners(rows) -> list[str]:
         for eps in dict.fromkeys(r["press_strain"] for r in rows):
             sel = [r for r in rows if r["floor"] == fl and r["press_strain"] == eps]
             best = max(sel, key=lambda r: r["pull_off_per_area_kPa"])
-            lines.append(f"{fl} floor, pressed {100 * eps:g} % of L: {best['tip']} at "
-                         f"L/2r = {best['aspect_L_over_2r']:g} holds "
-                         f"{best['pull_off_per_area_kPa']:.3g} kPa")  # fmt: skip
+            lines.append(
+                f"{fl} floor, pressed {100 * eps:g} % of L: {best['tip']} at "
+                f"L/2r = {best['aspect_L_over_2r']:g} holds "
+                f"{best['pull_off_per_area_kPa']:.3g} kPa"
+            )
     return lines
 
 
@@ -344,39 +417,64 @@ def section(rows, lines) -> str:
                     f"- {tip}, {fl} floor: after a buckling preload "
                     f"{np.mean(above) / np.mean(below):.3f} × the pull-off below it"
                 )
-    edges = [f"- flat_punch, {r['floor']} floor, L/2r = {r['aspect_L_over_2r']:g}, pressed "
-             f"{100 * r['press_strain']:g} % of L: edge K/K_c up to "
-             + (f"{r['edge_K_over_Kc_pressed']:.3g} pressed"
-                if math.isfinite(r["edge_K_over_Kc_pressed"]) else "— (no face pressed)")
-             + ", moment share "
-             f"{r['moment_share_pulled']:.2g} of F_K pulled"
-             for r in rows if r["tip"] == "flat_punch"]  # fmt: skip
-    return "\n".join([
-        "## Beyond the paper: pillar designs", "",
-        f"Vertical elastica pillars, r = {R_PILLAR:g} µm, {N_PILLARS} per run "
-        "(`pillar_designs/pillar_designs.png`, table `pillar_designs.csv`).", "",
-        *[f"- {line}" for line in lines], "",
-        "Pull-off after a preload that buckled the pillars, over that below it "
-        "(experiments on PDMS pillars lose adhesion there; these runs hold the faces bonded, "
-        "see `pillar_buckling.png` for faces free to open):", "", *kept, "",
-        "The punch faces' edges by the tilted-punch criterion (K/K_c = (3|M|/a − P)/F_K, "
-        "M the clamped face's moment; 1 would open the edge):", "", *edges, "", "",
-    ])  # fmt: skip
+    edges = [
+        f"- flat_punch, {r['floor']} floor, L/2r = {r['aspect_L_over_2r']:g}, pressed "
+        f"{100 * r['press_strain']:g} % of L: edge K/K_c up to "
+        + (
+            f"{r['edge_K_over_Kc_pressed']:.3g} pressed"
+            if math.isfinite(r["edge_K_over_Kc_pressed"])
+            else "— (no face pressed)"
+        )
+        + ", moment share "
+        f"{r['moment_share_pulled']:.2g} of F_K pulled"
+        for r in rows
+        if r["tip"] == "flat_punch"
+    ]
+    return "\n".join(
+        [
+            "## Beyond the paper: pillar designs",
+            "",
+            f"Vertical elastica pillars, r = {R_PILLAR:g} µm, {N_PILLARS} per run "
+            "(`pillar_designs/pillar_designs.png`, table `pillar_designs.csv`).",
+            "",
+            *[f"- {line}" for line in lines],
+            "",
+            "Pull-off after a preload that buckled the pillars, over that below it "
+            "(experiments on PDMS pillars lose adhesion there; these runs hold the faces bonded, "
+            "see `pillar_buckling.png` for faces free to open):",
+            "",
+            *kept,
+            "",
+            "The punch faces' edges by the tilted-punch criterion (K/K_c = (3|M|/a − P)/F_K, "
+            "M the clamped face's moment; 1 would open the edge):",
+            "",
+            *edges,
+            "",
+            "",
+        ]
+    )
 
 
 def tilt_section(tilt) -> str:
     """The report's lines on the tilted face: where each load leaves no pull-off."""
     gone = [r for r in tilt if r["source"] == "closed form" and r["over_kendall"] <= 1e-9]
-    lines = [f"- face held at a tilt: no pull-off left from α = {r['tilt_deg']:.3g}°"
-             if r["load"] == "tilt" else
-             f"- L/2r = {r['aspect_L_over_2r']:g}, face {r['face']}: no pull-off left from a "
-             f"lateral load of {r['lateral_uN']:.3g} µN" for r in gone]  # fmt: skip
-    return "\n".join([
-        "Flat punch with a tilted face or a lateral load (closed form, "
-        "`pillar_designs/pillar_tilt.png`; F = F_K − 3|M|/a, in the dynamic law with "
-        "contact.edge_opening):",
-        "", *lines, "",
-    ])  # fmt: skip
+    lines = [
+        f"- face held at a tilt: no pull-off left from α = {r['tilt_deg']:.3g}°"
+        if r["load"] == "tilt"
+        else f"- L/2r = {r['aspect_L_over_2r']:g}, face {r['face']}: no pull-off left from a "
+        f"lateral load of {r['lateral_uN']:.3g} µN"
+        for r in gone
+    ]
+    return "\n".join(
+        [
+            "Flat punch with a tilted face or a lateral load (closed form, "
+            "`pillar_designs/pillar_tilt.png`; F = F_K − 3|M|/a, in the dynamic law with "
+            "contact.edge_opening):",
+            "",
+            *lines,
+            "",
+        ]
+    )
 
 
 def draw(rows, cfg, out) -> None:
@@ -390,14 +488,18 @@ def draw(rows, cfg, out) -> None:
         for ax, fl in zip(axes, floors, strict=True):
             for tip in cfg["tips"]:
                 for aspect, ls in zip(cfg["aspect"], ("-", "--"), strict=False):
-                    sel = [r for r in rows if r["floor"] == fl and r["tip"] == tip
-                           and r["aspect_L_over_2r"] == aspect]  # fmt: skip
+                    sel = [
+                        r
+                        for r in rows
+                        if r["floor"] == fl and r["tip"] == tip and r["aspect_L_over_2r"] == aspect
+                    ]
                     if not sel:
                         continue
                     x = [r["preload_per_pillar_uN"] for r in sel]
                     y = [r["pull_off_per_area_kPa"] for r in sel]
-                    (line,) = ax.plot(x, y, ls=ls, marker=MARKERS[tip],
-                                      label=f"{tip}, L/2r = {aspect:g}")  # fmt: skip
+                    (line,) = ax.plot(
+                        x, y, ls=ls, marker=MARKERS[tip], label=f"{tip}, L/2r = {aspect:g}"
+                    )
                     bx = [a for a, r in zip(x, sel, strict=True) if r["buckled"]]
                     by = [b for b, r in zip(y, sel, strict=True) if r["buckled"]]
                     ax.plot(bx, by, "x", ms=11, color=line.get_color())
@@ -424,9 +526,11 @@ def main(argv=None) -> dict:
                     row = run_point(tip, aspect, fl, eps, profile)
                     if row is not None:
                         rows.append(row)
-                        print(f"{NAME}: {fl}, {tip}, L/2r = {aspect:g}, pressed "
-                              f"{100 * eps:g} % of L: {row['pull_off_per_area_kPa']:.3g} kPa",
-                              flush=True)  # fmt: skip
+                        print(
+                            f"{NAME}: {fl}, {tip}, L/2r = {aspect:g}, pressed "
+                            f"{100 * eps:g} % of L: {row['pull_off_per_area_kPa']:.3g} kPa",
+                            flush=True,
+                        )
     write_table(out / f"{NAME}.csv", rows)
     draw(rows, cfg, out)
     tilt = tilt_rows(cfg["aspect"])
@@ -441,12 +545,21 @@ def main(argv=None) -> dict:
     pb.draw_buckling(buck, out)
     lines = winners(rows)
     results = {"winners": lines, "runtime_s": time.perf_counter() - t0}
-    write_json(out / "metadata.json", {
-        "scenario": NAME, "quick": args.quick, "params": BASE.to_dict(), "config": cfg,
-        "pillars": N_PILLARS, "speed_um_per_us": SPEED, "seed": SEED, "rows": rows,
-        "floor_file": DEKTAK_PROFILE.name if profile is not None else None,
-        "results": results,
-    })  # fmt: skip
+    write_json(
+        out / "metadata.json",
+        {
+            "scenario": NAME,
+            "quick": args.quick,
+            "params": BASE.to_dict(),
+            "config": cfg,
+            "pillars": N_PILLARS,
+            "speed_um_per_us": SPEED,
+            "seed": SEED,
+            "rows": rows,
+            "floor_file": DEKTAK_PROFILE.name if profile is not None else None,
+            "results": results,
+        },
+    )
     (out / "section.md").write_text(
         section(rows, lines)
         + tilt_section(tilt)

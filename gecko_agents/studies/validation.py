@@ -56,8 +56,14 @@ TREND_AGREES = "trend agrees (sign and stated factor)"
 DISAGREES_MAGNITUDE = "disagrees (magnitude)"
 DISAGREES_SIGN = "disagrees (sign)"
 NOT_COMPARABLE = "not comparable"
-VERDICTS = (AGREES_SCATTER, AGREES_BAND, TREND_AGREES, DISAGREES_MAGNITUDE, DISAGREES_SIGN,
-            NOT_COMPARABLE)  # fmt: skip
+VERDICTS = (
+    AGREES_SCATTER,
+    AGREES_BAND,
+    TREND_AGREES,
+    DISAGREES_MAGNITUDE,
+    DISAGREES_SIGN,
+    NOT_COMPARABLE,
+)
 """The verdicts of a scored row."""
 UNSCORED = {"pending": "pending", "out of scope": "out of scope", "not read": "not scored"}
 """The verdict of a row that is not scored, by its status."""
@@ -101,14 +107,17 @@ def _outside(row: dict, value: float, sens: list[dict]) -> tuple[str, str]:
     theirs = row["theirs_value"]
     ends = [v for s in sens if s["status"] != "cited" for v in s["ours_at_ends"]]
     if row["compare"] == "value" and ends and min(ends + [value]) <= theirs <= max(ends + [value]):
-        return NOT_COMPARABLE, (f"ours is {value / theirs:.3g}× theirs, but their value lies "
-                                f"inside the {min(ends):.3g}–{max(ends):.3g} ours spans over "
-                                "the parameters we could not read for their specimen")  # fmt: skip
+        return NOT_COMPARABLE, (
+            f"ours is {value / theirs:.3g}× theirs, but their value lies "
+            f"inside the {min(ends):.3g}–{max(ends):.3g} ours spans over "
+            "the parameters we could not read for their specimen"
+        )
     how = f"±{row['scatter']:g}" if row["scatter"] is not None else f"×{row['band']:g}"
     if row["compare"] == "trend" and row["scatter"] is None:
         size = math.log(value) / math.log(theirs)
-        return DISAGREES_MAGNITUDE, (f"the same way, but ours' effect is {size:.3g}× theirs "
-                                     f"(ln ratio), outside {how}")  # fmt: skip
+        return DISAGREES_MAGNITUDE, (
+            f"the same way, but ours' effect is {size:.3g}× theirs (ln ratio), outside {how}"
+        )
     return DISAGREES_MAGNITUDE, f"ours is {value / theirs:.4g}× theirs, outside {how}"
 
 
@@ -128,10 +137,12 @@ def verdict(row: dict, ours: dict | None, sens: list[dict]) -> tuple[str, str]:
             return DISAGREES_MAGNITUDE, f"ours shows no effect ({e:+.3g}, within ±1 %)"
         if row["theirs_value"] is None:
             if e >= row["min_effect"]:
-                return TREND_AGREES, (f"the same way, effect {e:.3g} ≥ {row['min_effect']:g} "
-                                      f"({row['band_why']})")  # fmt: skip
-            return DISAGREES_MAGNITUDE, (f"the same way but effect {e:.3g} < "
-                                         f"{row['min_effect']:g} ({row['band_why']})")  # fmt: skip
+                return TREND_AGREES, (
+                    f"the same way, effect {e:.3g} ≥ {row['min_effect']:g} ({row['band_why']})"
+                )
+            return DISAGREES_MAGNITUDE, (
+                f"the same way but effect {e:.3g} < {row['min_effect']:g} ({row['band_why']})"
+            )
     return _magnitude(row, value) or _outside(row, value, sens)
 
 
@@ -148,14 +159,30 @@ def sensitivity(row: dict, quick: bool) -> list[dict]:
     fn, out = OURS[row["ours"]], []
     for prm in _ranged(row):
         lo, hi = (fn(quick, **{prm["name"]: x})["value"] for x in prm["range"])
-        out.append({"name": prm["name"], "status": prm["status"], "range": prm["range"],
-                    "unit": prm["unit"], "ours_at_ends": [lo, hi]})  # fmt: skip
+        out.append(
+            {
+                "name": prm["name"],
+                "status": prm["status"],
+                "range": prm["range"],
+                "unit": prm["unit"],
+                "ours_at_ends": [lo, hi],
+            }
+        )
     ranged = [p for p in _ranged(row) if p["status"] != "cited"]
     if row["ours"] in CLOSED_FORM and len(ranged) > 1:
-        corners = [fn(quick, **{p["name"]: x for p, x in zip(ranged, xs, strict=True)})["value"]
-                   for xs in itertools.product(*(p["range"] for p in ranged))]  # fmt: skip
-        out.append({"name": "all together", "status": "assumed", "range": None, "unit": "",
-                    "ours_at_ends": [min(corners), max(corners)]})  # fmt: skip
+        corners = [
+            fn(quick, **{p["name"]: x for p, x in zip(ranged, xs, strict=True)})["value"]
+            for xs in itertools.product(*(p["range"] for p in ranged))
+        ]
+        out.append(
+            {
+                "name": "all together",
+                "status": "assumed",
+                "range": None,
+                "unit": "",
+                "ours_at_ends": [min(corners), max(corners)],
+            }
+        )
     return out
 
 
@@ -167,11 +194,16 @@ def evaluate(row: dict, quick: bool) -> dict:
     ours = OURS[row["ours"]](quick) if row["ours"] else None
     sens = sensitivity(row, quick) if ours is not None else []
     v, why = verdict(row, ours, sens)
-    return {**row, "ours_value": None if ours is None else ours["value"],
-            "ours_values": None if ours is None else ours.get("values", [ours["value"]]),
-            "ours_text": "—" if ours is None else ours["text"], "sensitivity": sens,
-            "verdict": v, "reason": f"{why}. {row['cause']}".strip(),
-            "wall_time_s": time.perf_counter() - t0}  # fmt: skip
+    return {
+        **row,
+        "ours_value": None if ours is None else ours["value"],
+        "ours_values": None if ours is None else ours.get("values", [ours["value"]]),
+        "ours_text": "—" if ours is None else ours["text"],
+        "sensitivity": sens,
+        "verdict": v,
+        "reason": f"{why}. {row['cause']}".strip(),
+        "wall_time_s": time.perf_counter() - t0,
+    }
 
 
 def counts(rows: list[dict]) -> dict:
@@ -182,15 +214,27 @@ def counts(rows: list[dict]) -> dict:
     for kind in KINDS:
         sel = [r for r in rows if r["kind"] == kind]
         out[kind] = {v: n for v in labels if (n := sum(r["verdict"] == v for r in sel))}
-    out["scored"] = {kind: sum(r["verdict"] in VERDICTS and r["verdict"] != NOT_COMPARABLE
-                               for r in rows if r["kind"] == kind) for kind in KINDS}  # fmt: skip
+    out["scored"] = {
+        kind: sum(
+            r["verdict"] in VERDICTS and r["verdict"] != NOT_COMPARABLE
+            for r in rows
+            if r["kind"] == kind
+        )
+        for kind in KINDS
+    }
     return out
 
 
 def params_cell(row: dict) -> str:
     """The parameters column: each cited or assumed, with the reason."""
-    return "; ".join(f"{p['name']} = {p['value']}{(' ' + p['unit']) if p['unit'] else ''} "
-                     f"({p['status']}: {p['why']})" for p in row["params"]) or "—"  # fmt: skip
+    return (
+        "; ".join(
+            f"{p['name']} = {p['value']}{(' ' + p['unit']) if p['unit'] else ''} "
+            f"({p['status']}: {p['why']})"
+            for p in row["params"]
+        )
+        or "—"
+    )
 
 
 def ours_cell(row: dict) -> str:
@@ -206,19 +250,32 @@ def ours_cell(row: dict) -> str:
     return "; ".join(parts)
 
 
-KIND_TITLES = {"experiment": "Experiments", "model": "Other models (simulations, published laws)",
-               "self-consistency": "Self-consistency checks"}  # fmt: skip
+KIND_TITLES = {
+    "experiment": "Experiments",
+    "model": "Other models (simulations, published laws)",
+    "self-consistency": "Self-consistency checks",
+}
 
 
 def _table(rows: list[dict]) -> list[str]:
-    lines = ["| source | what was measured | their value (as printed) | parameters used "
-             "(cited / assumed, why) | ours | verdict | reason |",
-             "|---|---|---|---|---|---|---|"]  # fmt: skip
+    lines = [
+        "| source | what was measured | their value (as printed) | parameters used "
+        "(cited / assumed, why) | ours | verdict | reason |",
+        "|---|---|---|---|---|---|---|",
+    ]
     for r in rows:
-        cells = (r["source"], r["measured"], r["theirs"], params_cell(r), ours_cell(r),
-                 r["verdict"], r["reason"])  # fmt: skip
-        lines.append("| " + " | ".join(str(c).replace("|", "\\|").replace("\n", " ")
-                                       for c in cells) + " |")  # fmt: skip
+        cells = (
+            r["source"],
+            r["measured"],
+            r["theirs"],
+            params_cell(r),
+            ours_cell(r),
+            r["verdict"],
+            r["reason"],
+        )
+        lines.append(
+            "| " + " | ".join(str(c).replace("|", "\\|").replace("\n", " ") for c in cells) + " |"
+        )
     return lines
 
 
@@ -230,8 +287,13 @@ def summary(rows: list[dict]) -> list[str]:
         parts = ", ".join(f"{v}: {n}" for v, n in c[kind].items()) or "none"
         lines.append(f"* {KIND_TITLES[kind]}: {parts}")
     scored = c["scored"]
-    lines += ["", f"Scored (a verdict other than *not comparable*): {sum(scored.values())} rows, "
-              + ", ".join(f"{n} {k}" for k, n in scored.items()) + ".", ""]  # fmt: skip
+    lines += [
+        "",
+        f"Scored (a verdict other than *not comparable*): {sum(scored.values())} rows, "
+        + ", ".join(f"{n} {k}" for k, n in scored.items())
+        + ".",
+        "",
+    ]
     return lines
 
 
@@ -259,8 +321,12 @@ def markdown(rows: list[dict], quick: bool, total: float) -> str:
     for r in rows:
         quote = r["quote"].replace("\n", " ") or "(nothing quoted: see the row)"
         lines.append(f"* **{r['id']}** — {r['read_at']}: “{quote}”")
-    lines += ["", f"Wall time {total:.0f} s. Versions: "
-              + ", ".join(f"{k} {v}" for k, v in versions().items()), ""]  # fmt: skip
+    lines += [
+        "",
+        f"Wall time {total:.0f} s. Versions: "
+        + ", ".join(f"{k} {v}" for k, v in versions().items()),
+        "",
+    ]
     return "\n".join(lines)
 
 
@@ -291,8 +357,13 @@ def draw(rows: list[dict], out) -> None:
                 if ends:
                     ax.vlines(r["theirs_value"], min(ends), max(ends), color=c, lw=1)
                 if r["scatter"]:
-                    ax.hlines(r["ours_value"], r["theirs_value"] - r["scatter"],
-                              r["theirs_value"] + r["scatter"], color=c, lw=1)  # fmt: skip
+                    ax.hlines(
+                        r["ours_value"],
+                        r["theirs_value"] - r["scatter"],
+                        r["theirs_value"] + r["scatter"],
+                        color=c,
+                        lw=1,
+                    )
                 ax.plot([], [], "o", color=c, label=f"{r['id']}: {r['verdict']}")
             vals = [v for r in pts for v in r["ours_values"] + [r["theirs_value"]]]
             vals += [v for r in pts for s in r["sensitivity"] for v in s["ours_at_ends"]]
@@ -318,12 +389,19 @@ def main(argv=None) -> dict:
     atomic_write_bytes(out / f"{NAME}.md", markdown(rows, args.quick, total).encode())
     write_json(out / f"{NAME}.json", {"rows": rows, "quick": args.quick, "wall_time_s": total})
     draw(rows, out)
-    table = [{k: r[k] for k in ("id", "kind", "status", "quantity", "theirs_value",
-                                "ours_value", "verdict")} for r in rows]  # fmt: skip
+    table = [
+        {
+            k: r[k]
+            for k in ("id", "kind", "status", "quantity", "theirs_value", "ours_value", "verdict")
+        }
+        for r in rows
+    ]
     write_table(out / f"{NAME}.csv", table)
     c = counts(rows)
-    write_json(out / "metadata.json", {"scenario": "validation", "quick": args.quick,
-                                       "verdicts": c, "runtime_s": total})  # fmt: skip
+    write_json(
+        out / "metadata.json",
+        {"scenario": "validation", "quick": args.quick, "verdicts": c, "runtime_s": total},
+    )
     scored = c["scored"]
     print(
         f"{NAME}: {sum(scored.values())} of {len(rows)} rows scored "

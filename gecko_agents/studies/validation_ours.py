@@ -49,12 +49,14 @@ def directional_stiffness(params, direction, turn: float = 0.0) -> float:
     d = np.asarray(direction, dtype=float)
     d = d / np.linalg.norm(d)
     if turn == 0.0:
-        K = beam.stiffness_matrix(params.axial_stiffness, params.bending_stiffness,
-                                  params.seta.theta)  # fmt: skip
+        K = beam.stiffness_matrix(
+            params.axial_stiffness, params.bending_stiffness, params.seta.theta
+        )
         return float(1.0 / (d @ np.linalg.solve(K, d)))
     r, L, E = params.seta.r, params.seta.L, params.contact.E1
-    C = curved_rod.curved_rod_compliance(L, E * math.pi * r**4 / 4.0, E * math.pi * r**2,
-                                         params.seta.theta, math.radians(turn))  # fmt: skip
+    C = curved_rod.curved_rod_compliance(
+        L, E * math.pi * r**4 / 4.0, E * math.pi * r**2, params.seta.theta, math.radians(turn)
+    )
     return float(1.0 / (d @ C @ d))
 
 
@@ -77,8 +79,10 @@ def seta_anisotropy(quick: bool = True, turn: float = 0.0, **assumed) -> dict:
     p = tokay_seta(**assumed)
     along = directional_stiffness(p, ALONG, turn)
     against = directional_stiffness(p, AGAINST, turn)
-    return {"value": against / along,
-            "text": f"×{against / along:.3g} ({against:.3g} over {along:.3g} N/m)"}  # fmt: skip
+    return {
+        "value": against / along,
+        "text": f"×{against / along:.3g} ({against:.3g} over {along:.3g} N/m)",
+    }
 
 
 def seta_vertical_along(quick: bool = True, turn: float = 0.0, **assumed) -> dict:
@@ -86,8 +90,10 @@ def seta_vertical_along(quick: bool = True, turn: float = 0.0, **assumed) -> dic
     p = tokay_seta(**assumed)
     vertical = directional_stiffness(p, VERTICAL, turn)
     along = directional_stiffness(p, ALONG, turn)
-    return {"value": vertical / along,
-            "text": f"×{vertical / along:.3g} ({vertical:.3g} over {along:.3g} N/m)"}  # fmt: skip
+    return {
+        "value": vertical / along,
+        "text": f"×{vertical / along:.3g} ({vertical:.3g} over {along:.3g} N/m)",
+    }
 
 
 def array_modulus(
@@ -130,8 +136,11 @@ def gripping_pull(params, beta: float, count: int = 1) -> tuple[float, float, fl
 def frictional_adhesion(quick: bool = True, mu: float | None = None) -> dict:
     """The slope of adhesion on shear at the spatula seta's gripping releases over pull
     angles (> 0: adhesion rises with shear), and their critical angle α* [deg]."""
-    p = lit.FRICTIONAL_SPATULA if mu is None else lit.FRICTIONAL_SPATULA.replace(
-        **{"friction.mu": mu})  # fmt: skip
+    p = (
+        lit.FRICTIONAL_SPATULA
+        if mu is None
+        else lit.FRICTIONAL_SPATULA.replace(**{"friction.mu": mu})
+    )
     betas = (45.0, 90.0) if quick else (15.0, 30.0, 45.0, 60.0, 75.0, 90.0)
     rel = [gripping_pull(p, b) for b in betas]
     shear = np.array([r[1] for r in rel])
@@ -139,9 +148,11 @@ def frictional_adhesion(quick: bool = True, mu: float | None = None) -> dict:
     alpha = critical_angle(shear, adhesion)
     slope = float(np.polyfit(shear, adhesion, 1)[0]) if len(set(shear)) > 1 else math.nan
     pts = ", ".join(f"{s:.2f}/{a:.2f}" for s, a in zip(shear, adhesion, strict=True))
-    return {"value": slope,
-            "text": f"slope {slope:.2f}, α* = {alpha:.0f}°; adhesion/shear at release over pulls "
-            f"at {', '.join(f'{b:g}' for b in betas)}°: {pts} µN"}  # fmt: skip
+    return {
+        "value": slope,
+        "text": f"slope {slope:.2f}, α* = {alpha:.0f}°; adhesion/shear at release over pulls "
+        f"at {', '.join(f'{b:g}' for b in betas)}°: {pts} µN",
+    }
 
 
 def ptfe_friction(quick: bool = True, mu: float | None = None) -> dict:
@@ -155,8 +166,9 @@ def ptfe_friction(quick: bool = True, mu: float | None = None) -> dict:
         h = Model(p, seed=1, numerics=Numerics(record_every=1)).run(prot, progress=False)
         x = h["plate_x_um"]
         late = np.abs(x - x[0]) >= 0.5 * fa.DRAG
-        mus.append(float(np.abs(h["force_tangential_uN"][late]).mean()
-                         / h["force_normal_uN"][late].mean()))  # fmt: skip
+        mus.append(
+            float(np.abs(h["force_tangential_uN"][late]).mean() / h["force_normal_uN"][late].mean())
+        )
     along, against = mus
     return {
         "value": along / against,
@@ -178,10 +190,14 @@ def gillies_rough(quick: bool = True, b: float = 8.0) -> dict:
     count = 4 if quick else 16
     rough = {"array.count": count, "floor.sigma": 1.0, "floor.correlation_length": 0.0}
     spatula = lit.FRICTIONAL_SPATULA.replace(**{"spatula.b": b})
-    s, j = (gripping_pull(p.replace(**rough), 90.0, count)[2] / count
-            for p in (spatula, lit.FRICTIONAL_SPHERE))  # fmt: skip
-    return {"value": s / j, "text": f"×{s / j:.2f} ({s:.2f} over {j:.2f} µN per seta, "
-            f"{count} setae, b = {b:g} µm)"}  # fmt: skip
+    s, j = (
+        gripping_pull(p.replace(**rough), 90.0, count)[2] / count
+        for p in (spatula, lit.FRICTIONAL_SPHERE)
+    )
+    return {
+        "value": s / j,
+        "text": f"×{s / j:.2f} ({s:.2f} over {j:.2f} µN per seta, {count} setae, b = {b:g} µm)",
+    }
 
 
 # --- pads on a strip --------------------------------------------------------------------------
@@ -202,10 +218,13 @@ def kendall_peel(quick: bool = True) -> dict:
     f30, f90 = (r["F_per_width_uN_per_um"] for r in rows)
     ratios = [r["ratio_to_kendall"] for r in rows]
     worst = max(ratios, key=lambda x: abs(math.log(x)))
-    return {"value": worst, "values": ratios,
-            "text": f"F/b = {f30:.3g} µN/µm at {rows[0]['psi_measured_deg']:.0f}°, {f90:.3g} at "
-            f"{rows[1]['psi_measured_deg']:.0f}°; over Kendall with the run's w_eff: "
-            f"{ratios[0]:.2f} and {ratios[1]:.2f} ({rows[0]['n']} setae)"}  # fmt: skip
+    return {
+        "value": worst,
+        "values": ratios,
+        "text": f"F/b = {f30:.3g} µN/µm at {rows[0]['psi_measured_deg']:.0f}°, {f90:.3g} at "
+        f"{rows[1]['psi_measured_deg']:.0f}°; over Kendall with the run's w_eff: "
+        f"{ratios[0]:.2f} and {ratios[1]:.2f} ({rows[0]['n']} setae)",
+    }
 
 
 def kendall_angle_law(quick: bool = True) -> dict:
@@ -215,8 +234,11 @@ def kendall_angle_law(quick: bool = True) -> dict:
     ours = low["F_per_width_uN_per_um"] / high["F_per_width_uN_per_um"]
     psi1, psi2 = (math.radians(r["psi_measured_deg"]) for r in (low, high))
     law = (1.0 - math.cos(psi2)) / (1.0 - math.cos(psi1))
-    return {"value": ours / law, "text": f"×{ours / law:.3f} (F ratio {ours:.3g} over Kendall's "
-            f"{law:.3g} at {math.degrees(psi1):.0f}° and {math.degrees(psi2):.0f}°)"}  # fmt: skip
+    return {
+        "value": ours / law,
+        "text": f"×{ours / law:.3f} (F ratio {ours:.3g} over Kendall's "
+        f"{law:.3g} at {math.degrees(psi1):.0f}° and {math.degrees(psi2):.0f}°)",
+    }
 
 
 def pad_pull_off(params, n: int, angle: float, preload: float = mis.PRELOAD) -> float:
@@ -232,8 +254,9 @@ def _booth_mounts(k_stiff: float | None):
     stiff, compliant = lit.BOOTH2018_STIFF_MOUNT, lit.BOOTH2018_COMPLIANT_MOUNT
     if k_stiff is not None:
         stiff = stiff.replace(**{"backing.handle_stiffness": k_stiff})
-        compliant = stiff.replace(**{"backing.handle_stiffness": k_stiff /
-                                     lit.BOOTH2018_COMPLIANCE_RATIO})  # fmt: skip
+        compliant = stiff.replace(
+            **{"backing.handle_stiffness": k_stiff / lit.BOOTH2018_COMPLIANCE_RATIO}
+        )
     return stiff, compliant
 
 
@@ -243,8 +266,10 @@ def booth_misalignment(quick: bool = True, k_stiff: float | None = None) -> dict
     n, angle = (200, 0.8) if quick else (400, 0.4)
     stiff, compliant = _booth_mounts(k_stiff)
     s, c = pad_pull_off(stiff, n, angle), pad_pull_off(compliant, n, angle)
-    return {"value": c / s, "text": f"×{c / s:.3f} ({c:.3f} over {s:.3f} N·Fc, {n} setae at "
-            f"{angle:g}°)"}  # fmt: skip
+    return {
+        "value": c / s,
+        "text": f"×{c / s:.3f} ({c:.3f} over {s:.3f} N·Fc, {n} setae at {angle:g}°)",
+    }
 
 
 def booth_aligned(quick: bool = True, k_stiff: float | None = None) -> dict:
@@ -292,8 +317,10 @@ def kroner_flat_misalignment(quick: bool = True, n: float | None = None) -> dict
     n = int(n) if n is not None else (100 if quick else 200)
     tilted = pad_pull_off(lit.KRONER_PILLARS, n, 0.2)
     aligned = pad_pull_off(lit.KRONER_PILLARS, n, 0.0)
-    return {"value": tilted / aligned, "text": f"×{tilted / aligned:.3f} ({tilted:.3f} over "
-            f"{aligned:.3f} N·Fc, {n} pillars)"}  # fmt: skip
+    return {
+        "value": tilted / aligned,
+        "text": f"×{tilted / aligned:.3f} ({tilted:.3f} over {aligned:.3f} N·Fc, {n} pillars)",
+    }
 
 
 def kroner_flat_more_misaligned(quick: bool = True) -> dict:
@@ -323,8 +350,10 @@ def kroner_sphere_preload(quick: bool = True) -> dict:
     pull-off after a 1 µN preload over after 0.1 µN."""
     from gecko_agents.studies import probe_test
 
-    low, high = (probe_test.run_point("flat punch, rigid backing", 5, 30.0, f)[0]["pull_off_uN"]
-                 for f in (0.1, 1.0))  # fmt: skip
+    low, high = (
+        probe_test.run_point("flat punch, rigid backing", 5, 30.0, f)[0]["pull_off_uN"]
+        for f in (0.1, 1.0)
+    )
     return {"value": high / low, "text": f"×{high / low:.3f} ({high:.3f} over {low:.3f} µN)"}
 
 
@@ -356,9 +385,12 @@ def buckled_ratio(aspect: float, past: float) -> tuple[float, list[float], list[
 
 def _buckled(aspect: float, past: float) -> dict:
     ratio, held, peak, P_E = buckled_ratio(aspect, past)
-    return {"value": ratio, "text": f"×{ratio:.3f} ({held[1]:.2f} µN after a {peak[1]:.2f} µN "
-            f"preload over {held[0]:.2f} µN after {peak[0]:.2f} µN; P_E = {P_E:.3g} µN, "
-            f"L/2r = {aspect:g})"}  # fmt: skip
+    return {
+        "value": ratio,
+        "text": f"×{ratio:.3f} ({held[1]:.2f} µN after a {peak[1]:.2f} µN "
+        f"preload over {held[0]:.2f} µN after {peak[0]:.2f} µN; P_E = {P_E:.3g} µN, "
+        f"L/2r = {aspect:g})",
+    }
 
 
 def buckled_preload(quick: bool = True) -> dict:
@@ -419,8 +451,11 @@ def two_heights(quick: bool = True) -> dict:
     """:func:`two_height_pull_offs`: after the high preload over after the low one."""
     low, high = two_height_pull_offs()
     c = TWO_HEIGHTS
-    return {"value": high / low, "text": f"×{high / low:.3f} ({high:.2f} µN after "
-            f"{c['high']:g} µN over {low:.2f} µN after {c['low']:g} µN)"}  # fmt: skip
+    return {
+        "value": high / low,
+        "text": f"×{high / low:.3f} ({high:.2f} µN after "
+        f"{c['high']:g} µN over {low:.2f} µN after {c['low']:g} µN)",
+    }
 
 
 def kendall_punch(quick: bool = True) -> dict:
@@ -447,8 +482,16 @@ def pillar_strength(r: float, L: float) -> float:
     from gecko_agents.studies import pillar_designs as pd
 
     pitch = 8.0 * r / 3.0
-    p = pd.BASE.replace(**{"tip": "flat_punch", "seta.r": r, "contact.R": r, "seta.L": L,
-                           "array.count": 1, "array.pitch": pitch})  # fmt: skip
+    p = pd.BASE.replace(
+        **{
+            "tip": "flat_punch",
+            "seta.r": r,
+            "contact.R": r,
+            "seta.L": L,
+            "array.count": 1,
+            "array.pitch": pitch,
+        }
+    )
     h = Model(p, n_sim=1, seed=pd.SEED).run(
         protocol.press_pull(0.05 * L, speed=pd.SPEED), progress=False
     )
@@ -458,15 +501,20 @@ def pillar_strength(r: float, L: float) -> float:
 def greiner_radius(quick: bool = True) -> dict:
     """Pull-off per area of pillars of radius 2.5 µm over 25 µm, both L/2r = 1."""
     small, large = pillar_strength(2.5, 5.0), pillar_strength(25.0, 50.0)
-    return {"value": small / large, "text": f"×{small / large:.3f} ({1e3 * small:.1f} over "
-            f"{1e3 * large:.1f} kPa; Kendall's a^(−1/2) gives ×{math.sqrt(10):.3f})"}  # fmt: skip
+    return {
+        "value": small / large,
+        "text": f"×{small / large:.3f} ({1e3 * small:.1f} over "
+        f"{1e3 * large:.1f} kPa; Kendall's a^(−1/2) gives ×{math.sqrt(10):.3f})",
+    }
 
 
 def greiner_aspect(quick: bool = True) -> dict:
     """Pull-off per area of pillars of radius 2.5 µm, L/2r = 5 over L/2r = 1."""
     tall, short = pillar_strength(2.5, 25.0), pillar_strength(2.5, 5.0)
-    return {"value": tall / short, "text": f"×{tall / short:.4f} ({1e3 * tall:.2f} over "
-            f"{1e3 * short:.2f} kPa)"}  # fmt: skip
+    return {
+        "value": tall / short,
+        "text": f"×{tall / short:.4f} ({1e3 * tall:.2f} over {1e3 * short:.2f} kPa)",
+    }
 
 
 def kroner_flat_misaligned_preload(quick: bool = True) -> dict:
@@ -514,15 +562,33 @@ def tang_pdms_fibril(quick: bool = True) -> dict:
 OURS = {
     f.__name__: f
     for f in (
-        seta_stiffness, seta_anisotropy, seta_vertical_along, array_modulus,
-        frictional_adhesion, ptfe_friction, gillies_smooth, gillies_rough, kendall_peel,
+        seta_stiffness,
+        seta_anisotropy,
+        seta_vertical_along,
+        array_modulus,
+        frictional_adhesion,
+        ptfe_friction,
+        gillies_smooth,
+        gillies_rough,
+        kendall_peel,
         kendall_angle_law,
-        booth_misalignment, booth_aligned, booth_layer_aligned, kim_sitti_backing,
+        booth_misalignment,
+        booth_aligned,
+        booth_layer_aligned,
+        kim_sitti_backing,
         kroner_flat_misalignment,
-        kroner_flat_preload, kroner_sphere_preload, kroner_flat_misaligned_preload,
+        kroner_flat_preload,
+        kroner_sphere_preload,
+        kroner_flat_misaligned_preload,
         kroner_flat_more_misaligned,
-        kroner_sphere_over_flat, greiner_radius, greiner_aspect, buckled_preload,
-        buckled_short_pillar, kendall_punch, two_heights, tang_pdms_fibril,
+        kroner_sphere_over_flat,
+        greiner_radius,
+        greiner_aspect,
+        buckled_preload,
+        buckled_short_pillar,
+        kendall_punch,
+        two_heights,
+        tang_pdms_fibril,
     )
-}  # fmt: skip
+}
 """The functions a row's ``ours`` may name."""

@@ -25,8 +25,18 @@ STATUSES = ("scored", "pending", "out of scope", "not read")
 """``scored``, or why not: the physics it needs is not in the package yet (``pending``), the
 mechanism is one the package does not model, or the number could not be read."""
 REQUIRED = ("id", "source", "kind", "read_at", "quote", "measured", "theirs", "quantity", "cause")
-OPTIONAL = ("theirs_value", "scatter", "scatter_why", "band", "band_why", "min_effect", "compare",
-            "expect", "ours", "unscored")  # fmt: skip
+OPTIONAL = (
+    "theirs_value",
+    "scatter",
+    "scatter_why",
+    "band",
+    "band_why",
+    "min_effect",
+    "compare",
+    "expect",
+    "ours",
+    "unscored",
+)
 """Row fields that may be absent from the file (``None`` in the rows :func:`load_rows` gives)."""
 PARAM_FIELDS = ("name", "value", "unit", "status", "why")
 PARAM_STATUSES = ("cited", "cited range", "assumed")
@@ -37,8 +47,10 @@ def _param(where: str, p: dict) -> dict:
     if lacking:
         raise ValueError(f"{where}, parameter {p.get('name')!r} lacks {lacking}")
     if p["status"] not in PARAM_STATUSES:
-        raise ValueError(f"{where}, parameter {p['name']!r}: status {p['status']!r} is not one "
-                         f"of {PARAM_STATUSES}")  # fmt: skip
+        raise ValueError(
+            f"{where}, parameter {p['name']!r}: status {p['status']!r} is not one "
+            f"of {PARAM_STATUSES}"
+        )
     return {**{k: p[k] for k in PARAM_FIELDS}, "range": p.get("range")}
 
 
@@ -56,8 +68,9 @@ def _check(where: str, row: dict) -> None:
         raise ValueError(f"{where}: a scored row needs compare ('value' or 'trend') and ours")
     ways = [k for k in ("scatter", "band", "min_effect") if row[k] is not None]
     if not ways:
-        raise ValueError(f"{where}: a scored row states how a magnitude agrees (scatter, band or "
-                         "min_effect)")  # fmt: skip
+        raise ValueError(
+            f"{where}: a scored row states how a magnitude agrees (scatter, band or min_effect)"
+        )
     if row["min_effect"] is not None and row["theirs_value"] is not None:
         raise ValueError(f"{where}: min_effect is for a direction in words (no theirs_value)")
     if row["theirs_value"] is None and row["min_effect"] is None:
