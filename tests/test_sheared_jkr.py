@@ -258,6 +258,7 @@ def test_without_friction_it_is_the_jkr_sphere():
     )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kernel", ["python", "numba"])
 def test_kernels_agree(kernel):
     """Three setae dragged both ways and pulled: the per-seta loop (compiled or interpreted)

@@ -164,6 +164,7 @@ def _pull_off(drag, kernel="numba", mu=10.0, speed=protocol.DEFAULT_SPEED, dampi
     return pull_off(h).adhesion, h
 
 
+@pytest.mark.slow
 def test_kernels_agree_on_a_drag_and_pull():
     """Numba loop and numpy path give the same history to rounding (a fast plate: the kernels
     are compared, not the physics)."""
@@ -183,6 +184,7 @@ def test_gripping_drag_holds_at_least_twice_the_releasing_one():
     assert along >= 2.0 * against
 
 
+@pytest.mark.slow
 def test_pull_off_converges_as_the_plate_slows():
     """A quasi-static pull-off must not depend on the plate speed. The film's contact dashpot
     adds a force ∝ v to its final peel, so the releasing pull-off converges to first order:
@@ -340,6 +342,7 @@ def test_tip_friction_counted_once():
     assert _friction_cap(law.R - 0.2, law.ell0, k) == 0.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kernel", ["python", "numba"])
 def test_kernels_agree_on_a_pressed_drag(kernel):
     """Spatula setae pressed hard and dragged both ways (tip bodies stick, slide and pads peel),
