@@ -205,3 +205,19 @@ def test_peek_answers_as_a_solve_and_leaves_the_chain_as_it_was():
     F1, U1 = el.peek(d.copy())
     np.testing.assert_array_equal(F1, F0)
     np.testing.assert_array_equal(U1, U0)
+
+
+def test_a_released_tip_lets_go_of_its_clamp_energy():
+    """Tips held and then let go at the same positions: the solve books as released the
+    clamp energy ½k_n(φ_n − φ_clamp)² each released tip stored (k_n = 2EI/ℓ), nothing for a
+    tip that stays held or was never held."""
+    el, d = _bent_chains(3)
+    el.solve(np.tile(el.rest_end(), (3, 1)), [True, True, False])  # the faces bond at rest
+    el.solve(d, [True, True, False])
+    beta = el.phi[:, -1] - el.clamp
+    stored = 0.5 * (2.0 * el.EI / el.ell) * beta * beta
+    assert stored[0] > 0 and stored[1] > 0
+    el.solve(d, [False, True, False])
+    assert el.released == pytest.approx(stored[0], rel=1e-12)
+    el.solve(d, [False, True, False])
+    assert el.released == 0.0

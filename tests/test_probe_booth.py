@@ -272,27 +272,30 @@ def test_effective_work_and_fibril_compliance_by_hand():
 
 
 @pytest.mark.parametrize(
-    ("call", "name"),
+    ("call", "name"),  # the message starts with the name
     [
-        (lambda: hs.hex_lattice(0.0, 10.0), "pitch"),
-        (lambda: hs.hex_lattice(1.0, -1.0), "extent"),
-        (lambda: hs.square_lattice(-1.0, 10.0), "pitch"),
-        (lambda: hs.square_lattice(1.0, 0.0), "extent"),
-        (lambda: hs.parabolic_heights([0.0], [0.0], 0.0), "probe_radius"),
-        (lambda: hs.fibril_compliance(0.0, 1.0, 1.0), "length"),
-        (lambda: hs.fibril_compliance(1.0, np.inf, 1.0), "radius"),
-        (lambda: hs.fibril_compliance(1.0, 1.0, -2.0), "modulus"),
-        (lambda: hs.halfspace_compliance([0.0], [0.0], 0.0, 1.0, 0.3), "radius"),
-        (lambda: hs.halfspace_compliance([0.0], [0.0], 1.0, np.nan, 0.3), "modulus"),
-        (lambda: hs.probe_test([0.0], [[1.0]], 0.0, 1.0), "release_force"),
-        (lambda: hs.probe_test([0.0], [[1.0]], 1.0, -1.0), "preload"),
-        (lambda: hs.probe_test([[0.0, -0.1]], np.eye(2), 1.0, 1.0), "heights"),
-        (lambda: hs.probe_test([0.0, -0.1], [[1.0, 0.0], [0.0, 0.0]], 1.0, 1.0), "diagonal"),
-        (lambda: hs.probe_test([0.0, -0.1], [[1, 0.5], [0.5 + 5e-9, 1]], 1.0, 1.0), "symmetric"),
+        (lambda: hs.hex_lattice(0.0, 10.0), "pitch = "),
+        (lambda: hs.hex_lattice(1.0, -1.0), "extent = "),
+        (lambda: hs.square_lattice(-1.0, 10.0), "pitch = "),
+        (lambda: hs.square_lattice(1.0, 0.0), "extent = "),
+        (lambda: hs.parabolic_heights([0.0], [0.0], 0.0), "probe_radius = "),
+        (lambda: hs.fibril_compliance(0.0, 1.0, 1.0), "length = "),
+        (lambda: hs.fibril_compliance(1.0, np.inf, 1.0), "radius = "),
+        (lambda: hs.fibril_compliance(1.0, 1.0, -2.0), "modulus = "),
+        (lambda: hs.halfspace_compliance([0.0], [0.0], 0.0, 1.0, 0.3), "radius = "),
+        (lambda: hs.halfspace_compliance([0.0], [0.0], 1.0, np.nan, 0.3), "modulus = "),
+        (lambda: hs.probe_test([0.0], [[1.0]], 0.0, 1.0), "release_force = "),
+        (lambda: hs.probe_test([0.0], [[1.0]], 1.0, -1.0), "preload = "),
+        (lambda: hs.probe_test([[0.0, -0.1]], np.eye(2), 1.0, 1.0), "heights must"),
+        (lambda: hs.probe_test([0.0, -0.1], [[1.0, 0.0], [0.0, 0.0]], 1.0, 1.0), "compliance must"),
+        (
+            lambda: hs.probe_test([0.0, -0.1], [[1, 0.5], [0.5 + 5e-9, 1]], 1.0, 1.0),
+            "compliance must",
+        ),
     ],
 )
 def test_each_bad_value_is_refused_naming_it(call, name):
-    with pytest.raises(ValueError, match=name):
+    with pytest.raises(ValueError, match="^" + name):
         call()
 
 
@@ -304,3 +307,32 @@ def test_the_limits_of_the_backing_are_accepted():
         assert C[0, 1] == pytest.approx((1 - nu * nu) / (np.pi * 5.0), rel=1e-15)
     C = hs.halfspace_compliance([0.0, 2.0], [0.0, 0.0], 1.0, 1.0, 0.3)
     assert C[0, 1] == pytest.approx(0.91 / (2 * np.pi), rel=1e-15)
+
+
+def test_fibril_closed_forms_by_hand():
+    """Fibrils at h = (0, −0.2, −0.5, −0.9) µm with weights (2, 1, 3, 1), k = K:
+    - pressed to P = 0.7K the first two carry it, K(2d + (d − 0.2)) = P: d = 0.3 µm;
+    - retracting from d_max = 0.6 µm (three attached) to d = 0.1 µm the probe feels
+      K(2·0.1 + (0.1 − 0.2) + 3(0.1 − 0.5)) = −1.1K;
+    - the pull-off is the largest of the tensions just before each height lets go:
+      6F_r − 1.3K (all three), 3F_r − 0.4K, 2F_r: here 6F_r − 1.3K."""
+    h, w = np.array([0.0, -0.2, -0.5, -0.9]), np.array([2.0, 1.0, 3.0, 1.0])
+    assert fibril_probe.depth_for_preload(0.7 * K, h, K, weights=w) == pytest.approx(0.3)
+    assert fibril_probe.probe_force(0.1, h, K, 0.6, weights=w) == pytest.approx(-1.1 * K)
+    assert fibril_probe.probe_pull_off(h, K, F_R, 0.6, weights=w) == pytest.approx(
+        6 * F_R - 1.3 * K, rel=1e-12
+    )
+
+
+@pytest.mark.parametrize("lattice", [hs.square_lattice, hs.hex_lattice])
+@pytest.mark.parametrize("pitch", [0.5, 2.0])
+def test_small_patches_counted_by_hand(lattice, pitch):
+    """Within two pitches of the origin, rim included: the square lattice's 13 points
+    (i² + j² ≤ 4) and the hexagonal lattice's 19 (the centre, 6 at p, 6 at √3p, 6 at 2p);
+    within one pitch, 5 and 7. Every point is at most the extent from the origin."""
+    counts = {hs.square_lattice: {2.0: 13, 1.0: 5}, hs.hex_lattice: {2.0: 19, 1.0: 7}}
+    for reach, count in counts[lattice].items():
+        x, y = lattice(pitch, reach * pitch)
+        assert x.size == count
+        assert np.hypot(x, y).max() == pytest.approx(reach * pitch, rel=1e-12)
+        assert len(set(zip(np.round(x / pitch, 9), np.round(y / pitch, 9), strict=True))) == x.size
