@@ -221,6 +221,21 @@ def test_a_release_that_overloads_its_neighbour_takes_it_along_by_hand():
     assert res.attached.dtype.kind == "i"
 
 
+def test_a_cascade_stops_at_a_fibril_the_backing_does_not_load_by_hand():
+    """The coupled pair of the test above, lowered by 0.5 µm (h = −0.55, −0.6 µm), beside a
+    third fibril on its own (h₃ = −0.1 µm, no coupling), F_r = 1 µN, pressed to 3 µN. By hand:
+    the third touches at d = 0.1, the first at 0.55 (the third carrying 0.45 µN), the second
+    where d − 0.6 − 0.5(d − 0.55) = 0, d = 0.65 (0.55 + 0.1 µN); all three carry
+    (d − 0.1) + (4/3)d − 0.7667 = 3 µN at d = 1.6571 µm. Pulling, the pair goes at
+    d = −0.85 µm as before (its second at −F_r, its first then at −1.4 µN alone), the third
+    holding d − 0.1 = −0.95 µN: 2.85 µN on the probe. The third alone lets go at d = −0.9 µm."""
+    res = hs.probe_test([-0.55, -0.6, -0.1], [[1, 0.5, 0], [0.5, 1, 0], [0, 0, 1]], 1.0, 3.0)
+    assert res.pull_off == pytest.approx(2.85, rel=1e-12)
+    np.testing.assert_allclose(res.depth, [0.55, 0.65, 11.6 / 7, -0.85, -0.9, -0.9], rtol=1e-12)
+    np.testing.assert_allclose(res.force, [0.45, 0.65, 3.0, -2.85, -1.0, 0.0], rtol=1e-12)
+    np.testing.assert_array_equal(res.attached, [1, 2, 3, 3, 1, 0])
+
+
 @pytest.mark.parametrize("release_force", [0.5, 3.0])
 def test_one_fibril_pulls_off_at_its_release_force(release_force):
     """A single fibril (k = 2 µN/µm) holds the probe until its own release force; pressed
