@@ -37,6 +37,7 @@ def _step_with_end_load(s, dt, P):
     s.step(dt, 0.0, fy, tq)
 
 
+@pytest.mark.slow
 def test_cantilever_end_deflection_euler_bernoulli():
     """δ = P·L³/(3EI) (Timoshenko & Gere 1972 §7.3) within 1 % once the strip has settled: the
     10-link chain's discretisation error, O(1/N²), measured +0.45 %."""
@@ -101,6 +102,7 @@ def _peak_pull(params):
     return m, h
 
 
+@pytest.mark.slow
 def test_stiff_elastic_backing_matches_rigid_plate():
     """A very stiff strip on a stiff handle carries the rigid plate's peak pull-off (1 %)."""
     _, rigid = _peak_pull(STUBBY)
@@ -177,6 +179,7 @@ def test_backing_kind_chooses_the_backing():
         STUBBY.replace(backing={"leader_arm": 10.0})
 
 
+@pytest.mark.slow
 def test_peel_detachment_front_starts_at_the_pulled_edge_and_moves():
     """A soft strip pulled at its +x end lets go edge first: the front (outermost attached
     seta) starts at the pulled edge and runs across the pad, and the pad carries far less than
@@ -210,6 +213,7 @@ def test_peel_detachment_front_starts_at_the_pulled_edge_and_moves():
     assert ny[-1, -1] - ny[0, -1] > 1.0  # the end was lifted
 
 
+@pytest.mark.slow
 def test_peel_pull_off_falls_as_the_backing_softens():
     """Aligned and pulled at its +x end (8 setae, β = (λ/L_pad)⁴ from 31 down to 0.03):
     pull-off/(N·Fc) falls as the strip softens (load concentrates at the pulled edge; Hui et

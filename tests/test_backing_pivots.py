@@ -65,7 +65,9 @@ def test_pivots_do_no_work_on_a_ringing_free_chain():
 
 
 @pytest.mark.skipif(compiled() is None, reason="numba not installed")
-@pytest.mark.parametrize("n, clamp", [(300, False), (7, True), (2, False), (1, True)])
+@pytest.mark.parametrize(
+    "n, clamp", [pytest.param(300, False, marks=pytest.mark.slow), (7, True), (2, False), (1, True)]
+)
 def test_compiled_loop_equals_numpy_path(n, clamp):
     """The block-Thomas loop and LAPACK's banded Cholesky give the same forces (1e-10 of the
     largest) on a bent, moving chain, with and without the clamp."""

@@ -68,6 +68,7 @@ def peeled(tmp_path_factory):
     return m, h, h.save(tmp_path_factory.mktemp("runs") / "peel")
 
 
+@pytest.mark.slow
 def test_strip_records_are_history_columns_and_arrays(peeled):
     m, h, _ = peeled
     n_nodes = m.backing.strip.n + 1
@@ -87,6 +88,7 @@ def test_strip_records_are_history_columns_and_arrays(peeled):
     assert history.invariant_violations(h) == []
 
 
+@pytest.mark.slow
 def test_saved_elastic_run_loads_from_its_directory_alone(peeled):
     _, h, run_dir = peeled
     loaded = history.load(run_dir)
@@ -103,6 +105,7 @@ def test_saved_elastic_run_loads_from_its_directory_alone(peeled):
     assert history.invariant_violations(loaded) == []
 
 
+@pytest.mark.slow
 def test_a_strip_column_edited_on_disk_is_refused(peeled, tmp_path):
     """The backing's columns are part of the run's identity: an edited value does not load."""
     _, h, _ = peeled
@@ -117,6 +120,7 @@ def test_a_strip_column_edited_on_disk_is_refused(peeled, tmp_path):
         history.load(tmp_path)
 
 
+@pytest.mark.slow
 def test_loaded_elastic_run_is_drawn_with_its_strip(peeled, tmp_path):
     """Rendered from the loaded run: the strip is drawn through the nodes recorded at that
     record, the front marker sits on it at the recorded front's abscissa, and the animation

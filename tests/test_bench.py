@@ -4,10 +4,12 @@ claims."""
 import re
 
 import numpy as np
+import pytest
 
 from gecko_agents import bench
 
 
+@pytest.mark.slow
 def test_quick_bench_prints_the_ratio_last(capsys):
     out = bench.main(["--quick"])
     lines = capsys.readouterr().out.strip().splitlines()

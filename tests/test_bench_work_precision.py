@@ -4,7 +4,11 @@ ratio at ≤ 0.5 % error."""
 import math
 import re
 
+import pytest
+
 from gecko_agents import bench
+
+pytestmark = pytest.mark.slow  # it runs the benchmark's cases
 
 
 def test_work_precision_rows_and_last_line(capsys):

@@ -30,6 +30,7 @@ def recovery():
     return truth, data, cal.fit(data, FREE, base=BASE, n_starts=2, **FAST)
 
 
+@pytest.mark.slow
 def test_synthetic_recovery_within_two_standard_errors(recovery):
     truth, _, r = recovery
     # The starts were the corners of the bounds, 2 % inside them (σ's bounds span a factor
@@ -46,6 +47,7 @@ def test_synthetic_recovery_within_two_standard_errors(recovery):
     assert 2 * r.cost < 6 * max(PRELOADS.size - 2, 1)
 
 
+@pytest.mark.slow
 def test_forward_model_is_smooth_in_the_parameters():
     # The quantile grid with its moving contact front and refined peak: the pull-off changes
     # by a smooth amount for small steps of w and σ (no block redrawn, no step-sized jumps).
@@ -59,6 +61,7 @@ def test_forward_model_is_smooth_in_the_parameters():
             assert np.max(np.abs(y[:, k] - quad)) < 3e-3 * y[:, k].mean(), (name, k, y[:, k])
 
 
+@pytest.mark.slow
 def test_save_writes_record_and_plots(recovery, tmp_path):
     _, data, r = recovery
     r.save(tmp_path)
@@ -70,6 +73,7 @@ def test_save_writes_record_and_plots(recovery, tmp_path):
     assert (tmp_path / "residuals.png").stat().st_size > 1000
 
 
+@pytest.mark.slow
 def test_unidentifiable_parameter_is_flagged():
     # The quasi-static model does not depend on the seta's density: a flat direction.
     data = _synthetic({"contact.w": 0.12}, 0.03, 2)
@@ -86,6 +90,7 @@ def test_unidentifiable_parameter_is_flagged():
     assert r.identifiable["contact.w"]
 
 
+@pytest.mark.slow
 def test_same_inputs_same_result():
     data = _synthetic({"contact.w": 0.1}, 0.03, 3)
     kw = dict(base=BASE, n_starts=1, max_nfev=3, **FAST)
@@ -164,6 +169,7 @@ def test_fewer_data_than_free_parameters_are_refused():
         cal.fit({"preload_uN": [40.0], "pull_off_uN": [50.0]}, FREE, base=BASE, **FAST)
 
 
+@pytest.mark.slow
 def test_zero_residual_dof_without_stated_errors_gives_no_standard_error():
     # One point, one free parameter: the fit is exact and no scatter measures the noise.
     d = cal.load_data({"preload_uN": [40.0], "pull_off_uN": [1.0]})
@@ -189,6 +195,7 @@ def test_zero_residual_dof_without_stated_errors_gives_no_standard_error():
     assert np.isfinite(r.stderr["contact.w"]) and r.stderr["contact.w"] > 0
 
 
+@pytest.mark.slow
 def test_a_fit_on_its_bound_is_not_identifiable_and_has_no_standard_error():
     # Pull-offs far above what w ≤ 0.06 J/m² can hold: the fit runs into the high bound.
     d = cal.load_data(_two_preloads(np.ones(3)))
@@ -199,6 +206,7 @@ def test_a_fit_on_its_bound_is_not_identifiable_and_has_no_standard_error():
     assert not r.identifiable["contact.w"] and np.isnan(r.stderr["contact.w"])
 
 
+@pytest.mark.slow
 def test_pull_offs_in_either_sign_convention_fit_alike_and_mixed_signs_are_refused():
     truth = {"contact.w": 0.12, "floor.sigma": 0.8}
     data = _synthetic(truth, 0.03, 1)

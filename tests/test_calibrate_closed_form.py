@@ -8,10 +8,12 @@ biased high by that much, and 0.2 % bounds it."""
 import math
 
 import numpy as np
+import pytest
 
 from gecko_agents import calibrate as cal
 from gecko_agents.params import PAPER_ARRAY
 
+pytestmark = pytest.mark.slow  # a fit over quasi-static runs; N·Fc itself: test_quasistatic.py
 N = 400
 BASE = PAPER_ARRAY.replace(
     **{"array.count": N, "seta.L": 5.0, "floor.sigma": 0.01, "friction.mu": 0.0}

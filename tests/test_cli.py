@@ -63,6 +63,7 @@ def test_help_with_example(command, capsys):
     assert "example" in out
 
 
+@pytest.mark.slow
 def test_help_in_a_subprocess_and_console_script():
     res = subprocess.run(
         [sys.executable, "-m", "gecko_agents.cli", "run", "--help"],
@@ -99,6 +100,7 @@ def test_params_table_has_units_and_equations(capsys):
 
 
 # run: examples, invariants, bit-identical re-run -----------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("path", RUN_EXAMPLES, ids=lambda p: p.stem)
 def test_example_run_quick(path, tmp_path):
     out = tmp_path / path.stem
@@ -119,6 +121,7 @@ def test_example_run_quick(path, tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == [path.stem]  # no staging dir left
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", SWEEP_EXAMPLES, ids=lambda p: p.stem)
 def test_example_sweep_quick(path, tmp_path, capsys):
     out = tmp_path / "sweep"
@@ -140,6 +143,7 @@ def test_examples_exist():
     assert len(RUN_EXAMPLES) >= 4 and len(SWEEP_EXAMPLES) >= 1
 
 
+@pytest.mark.slow
 def test_copied_run_file_reruns_bit_identically(tmp_path):
     src = tmp_path / "study.toml"
     src.write_text(GOOD + '[quick.params]\n"floor.sigma" = 0.0\n')

@@ -118,6 +118,7 @@ def test_hertz_law_has_no_adhesion():
     assert law.radius_scalar(-0.1, 0.0, 0.1, law.constants) == 0.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tip", ["sphere", "hertz"])
 def test_reference_callback_path_agrees_with_every_kernel(tip):
     # The per-contact pre_solve path against the batch paths, on the same run.

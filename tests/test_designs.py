@@ -54,6 +54,18 @@ def test_flat_punch_law_forms_agree_and_energy_is_the_force_integral():
     )
 
 
+def test_flat_punch_bonds_at_first_touch_with_its_whole_face():
+    """A flat face has no jump-in: it bonds where it touches (δ = 0) over its whole radius,
+    carrying no force there, and its zero-load stiffness is Sneddon's 2E*a."""
+    c = Contact(R=2.0)
+    law = FlatPunch(c)
+    assert law.attach_overlap == 0.0
+    assert law.jump_radius == law.a0 == 2.0
+    assert law.force_scalar(law.jump_radius, law.attach_overlap, law.constants) == 0.0
+    _, _, E = c.jkr_args()
+    assert law.zero_load_stiffness == pytest.approx(2.0 * E * 2.0, rel=1e-15)
+
+
 def test_tip_is_chosen_by_name_and_sphere_options_are_refused():
     assert isinstance(contact_law(PILLAR), FlatPunch)
     for key, value in (

@@ -220,6 +220,7 @@ def _live_and_loaded(case: str, path):
     return m, h, hist.load(h.save(path))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", list(SAVED_CASES))
 def test_a_loaded_run_is_diagnosed_as_the_live_one(case, tmp_path):
     """diagnose on the history read back from disk gives the live run's items, values and

@@ -22,6 +22,7 @@ PY_WARNING = re.compile(r"\.py:\d+: \w*Warning|warnings\.warn\(")
 # Warnings and the validity summary ----------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_the_main_job_prints_no_python_warning_and_ends_with_the_validity_summary(tmp_path):
     out = subprocess.run(
         [sys.executable, "-m", "gecko_agents", "reproduce", "--quick", "--no-progress",
@@ -237,6 +238,7 @@ def _pull_branch(h):
     return y[i0 : ipk + 1], f[i0 : ipk + 1]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", list(QS_CASES))
 def test_quasi_static_value_predicts_the_change_of_halving_the_speed(case):
     """q = ζ·Ky·v·T/(π·Fc) is the force the moving plate costs a held tip over Fc: halving

@@ -86,6 +86,7 @@ def explicit_reference():
     return {v: _pull(ROD, v)[:3] for v in (0.0025, 0.005, 0.01)}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("speed", [0.0025, 0.005, 0.01])
 def test_pull_off_and_release_within_half_a_percent(explicit_reference, speed):
     """Event location at the default implicit step: the snap-off (its force and where it
@@ -101,6 +102,7 @@ def test_pull_off_and_release_within_half_a_percent(explicit_reference, speed):
     assert h.meta["integrator"] == "implicit"
 
 
+@pytest.mark.slow
 def test_release_converges_at_first_order_as_dt_falls():
     """The implicit step's release displacement approaches a converged reference (the
     explicit step at dt0/4; at dt0/8 it moves by 0.00025 µm) as dt falls from dt0 to dt0/4,
@@ -360,6 +362,7 @@ def _facet_quasistatic(params, K, heights, slopes, plate_y):
     return total
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("factor", [None, 20.0])
 def test_rough_continuous_floor_matches_quasistatic_curve(factor):
     """A 6-seta press-pull on a continuous floor of sloped facets (the contact normals of
@@ -399,7 +402,10 @@ def test_rough_continuous_floor_matches_quasistatic_curve(factor):
     assert err[:turn].max() < p.contact.pull_off_force
 
 
-@pytest.mark.parametrize("slope", [-0.5, 0.5, 1.0])
+@pytest.mark.parametrize(
+    "slope",
+    [pytest.param(-0.5, marks=pytest.mark.slow), 0.5, pytest.param(1.0, marks=pytest.mark.slow)],
+)
 def test_steep_facet_with_friction_matches_the_explicit_step(slope):
     """One seta on a facet of slope −0.5, 0.5 or 1 (45°) with friction (μ = 0.5: the tip
     sticks, so the normal and the stick stiffness enter the implicit Jacobian in the facet's
@@ -423,6 +429,7 @@ def test_steep_facet_with_friction_matches_the_explicit_step(slope):
     assert abs(y - y_ref) <= 0.005 * (y_ref - deepest), (y, y_ref, deepest)
 
 
+@pytest.mark.slow
 def test_drag_over_a_rough_continuous_floor_matches_the_explicit_step():
     """Ten setae pressed to 3 µN on a self-affine floor (σ = 0.3 µm, cutoffs 2 and 20 µm,
     μ = 0: the tips slide over its slopes), dragged 10 µm and pulled off, recorded every
@@ -447,6 +454,7 @@ def test_drag_over_a_rough_continuous_floor_matches_the_explicit_step():
     assert abs(pull[1] - pull[0]) <= 0.005 * pull[0], pull
 
 
+@pytest.mark.slow
 def test_gripping_dragged_spatula_pulls_off_as_the_explicit_step():
     """The spatula seta (μ = 10) pressed to 0.2 µN, dragged 8 µm and pulled off at 90° at
     0.005 µm/µs, recorded every step: at its default step (``implicit_time_step``: 19
@@ -503,6 +511,7 @@ def test_spatula_jacobian_is_the_derivative_of_its_force(dx, delta, s0, xa, mu):
     assert_allclose([[kxx, kxy], [kxy, kyy]], -np.column_stack([jx, jy]), rtol=1e-6, atol=1e-7)
 
 
+@pytest.mark.slow
 def test_spatula_books_close_at_the_default_step_with_the_papers_friction_law():
     """A spatula seta (Table 1, rod) pressed to 1 µN, dragged 0.5 µm and pulled at 90° with the
     paper's friction law, whose pad slides at no pull (cap μ·max(P, 0) = 0 on the pad): at
@@ -541,6 +550,7 @@ def test_sliding_pad_has_no_tangential_stiffness_in_the_jacobian():
     assert held > 0.0  # the front held: the film's own K/s0 along its chord
 
 
+@pytest.mark.slow
 def test_sliding_pad_pulls_off_as_the_explicit_step():
     """A spatula seta at the paper's μ = 0.2 pushed 8 µm over its pad (it slides) and pulled
     at 60°: at the default implicit step its pull-off is 0.5938 against the explicit step's

@@ -11,7 +11,11 @@ from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.model.step_loop import BLOCK
 from gecko_agents.params import PAPER_ARRAY
 
-pytestmark = pytest.mark.skipif(not numba_available(), reason="numba (optional extra 'fast')")
+# Threaded runs and the blocked loop over whole histories: the slow tier.
+pytestmark = [
+    pytest.mark.skipif(not numba_available(), reason="numba (optional extra 'fast')"),
+    pytest.mark.slow,
+]
 
 # Several blocks of setae on a rough floor, dragged so that tips stick, slide and let go in
 # every block.

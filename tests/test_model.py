@@ -189,6 +189,7 @@ def test_same_seed_same_history_and_seed_matters():
     ) != len(c)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kernel", ["numpy", "python"])
 def test_reference_callback_path_gives_the_same_history(kernel):
     p = STUBBY.replace(**{"array.count": 3})
@@ -216,6 +217,7 @@ def _same_history(a, b, rtol=1e-9):
     assert_allclose(a.detachments["overlap_um"], b.detachments["overlap_um"], rtol=1e-9)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kernel", ["python", "numba"])
 @pytest.mark.parametrize("mechanics", ["linear", "rod"])
 def test_kernels_give_the_same_history(kernel, mechanics):
@@ -379,6 +381,7 @@ def test_sliding_dissipates_the_coulomb_work(kernel):
     assert dissipated == pytest.approx(coulomb, rel=2e-3)
 
 
+@pytest.mark.slow
 def test_sliding_linear_patch_balances_energy_within_one_percent():
     # The reproduction of the over-counted sliding dissipation: a linear 20-seta patch whose
     # tips slide, pressed 3 µm and pulled at 0.1 µm/µs (it was off by 4.5 %).

@@ -219,3 +219,85 @@ def test_elastica_is_refused_where_it_is_not_modelled():
         Model(p, n_sim=1, seed=0, numerics=Numerics(kernel="python"))
     with pytest.raises(ValueError, match=r"links = 2 is outside the allowed range \[14, 200\]"):
         p.replace(**{"seta.links": 2})
+
+
+def test_chain_of_params_carries_their_imperfection():
+    """:meth:`Elastica.of` builds the chain the parameters name: its crooked rest shape (tip
+    offset ≈ imperfection·L) is the one built by hand from the same values."""
+    p = PAPER_ARRAY.replace(**{"seta.imperfection": 0.02})
+    s = p.seta
+    hand = Elastica(2, s.L, s.r, p.contact.E1, s.theta, s.links, 0.02)
+    np.testing.assert_allclose(Elastica.of(p, 2).rest_end(), hand.rest_end(), rtol=1e-15)
+
+
+def _bent_chains(n):
+    el = Elastica(n, 30.0, 2.0, E1, math.pi / 2, imperfection=1e-3)
+    d = el.rest_end() + np.array([[0.8, 1.5], [-0.4, 0.6], [0.2, -0.9]])[:n]
+    return el, d
+
+
+def test_each_chain_has_its_own_energy_and_force():
+    """Three setae bent three ways: each carries the force and energy of a chain solved
+    alone (the solve is per seta; 1e-9 allows Newton's tolerance)."""
+    el, d = _bent_chains(3)
+    F, U = el.solve(d, [True, False, True])
+    assert F.shape == (3, 2) and U.shape == (3,)
+    for i, held in enumerate((True, False, True)):
+        one, _ = _bent_chains(1)
+        F1, U1 = one.solve(d[i : i + 1], held)
+        np.testing.assert_allclose(F[i], F1[0], rtol=1e-9, atol=1e-12)
+        assert U[i] == pytest.approx(U1[0], rel=1e-9)
+
+
+def test_nodes_are_the_solved_chain():
+    """The joints drawn are the chain solved: from the root, n links of ℓ + s/n (the axial
+    stretch s spread over the links), ending at the tip the solve put there (1e-9 µm:
+    Newton's tolerance)."""
+    el, d = _bent_chains(3)
+    el.solve(d, False)
+    root = np.array([[1.0, 2.0], [-3.0, 0.5], [0.0, 0.0]])
+    nodes = el.nodes(root)
+    assert nodes.shape == (3, el.n + 1, 2)
+    np.testing.assert_allclose(nodes[:, 0], root, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(nodes[:, -1] - root, d, rtol=0, atol=1e-9)
+    links = np.linalg.norm(np.diff(nodes, axis=1), axis=2)
+    expected = np.broadcast_to((el.ell + el.stretch / el.n)[:, None], links.shape)
+    np.testing.assert_allclose(links, expected, rtol=1e-12)
+
+
+def test_peek_answers_as_a_solve_and_leaves_the_chain_as_it_was():
+    """A peek at other positions returns what a solve there returns and restores the chain
+    (angles, stretch, multipliers, held tips, clamps); at the last solve's own positions it
+    returns that solve's answer."""
+    el, d = _bent_chains(2)
+    F0, U0 = el.solve(d, [True, False])
+    kept = (el.phi.copy(), el.stretch.copy(), el.lam.copy(), el.held.copy(), el.clamp.copy())
+    d2 = d + np.array([[0.05, -0.1], [0.1, 0.02]])
+    Fp, Up = el.peek(d2)
+    for before, now in zip(kept, (el.phi, el.stretch, el.lam, el.held, el.clamp), strict=True):
+        np.testing.assert_array_equal(before, now)
+    twin, _ = _bent_chains(2)
+    twin.solve(d, [True, False])
+    Fs, Us = twin.solve(d2, [True, False])
+    np.testing.assert_allclose(Fp, Fs, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(Up, Us, rtol=1e-9)
+    F1, U1 = el.peek(d.copy())
+    np.testing.assert_array_equal(F1, F0)
+    np.testing.assert_array_equal(U1, U0)
+
+
+def test_a_released_tip_lets_go_of_its_clamp_energy():
+    """Tips held and then let go at the same positions: the solve books as released the held
+    chain's energy over the free chain's relaxed at the same end (the massless chain's jump),
+    for the released tip only; nothing for a tip that stays held or was never held."""
+    el, d = _bent_chains(3)
+    el.solve(np.tile(el.rest_end(), (3, 1)), [True, True, False])  # the faces bond at rest
+    _, U_held = el.solve(d, [True, True, False])
+    free, _ = _bent_chains(3)
+    free.solve(d, [False, False, False])
+    _, U_free = free.solve(d, [False, False, False])
+    el.solve(d, [False, True, False])
+    assert el.released > 0
+    assert el.released == pytest.approx(U_held[0] - U_free[0], rel=1e-6)
+    el.solve(d, [False, True, False])
+    assert el.released == 0.0

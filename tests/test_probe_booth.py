@@ -201,3 +201,153 @@ def test_a_compliant_backing_attaches_more_pillars_in_both_models():
     assert booth["row_attached_rigid"] == 7
     assert engine["attached_max"] == booth["row_attached_halfspace"] == 9
     assert engine["pull_off_uN"] == pytest.approx(booth["row_halfspace_uN"], rel=0.03)
+
+
+def test_a_release_that_overloads_its_neighbour_takes_it_along_by_hand():
+    """Two fibrils, tips at h = (−0.05, −0.1) µm, coupled through the backing:
+    C = [[1, 0.5], [0.5, 1]] µm/µN, F_r = 1 µN, pressed to 1 µN. By hand, with
+    C⁻¹ = (4/3)[[1, −0.5], [−0.5, 1]]: pressing, the second tip reaches the probe where
+    d − 0.1 − 0.5·(d − 0.05) = 0, d = 0.15 µm (the first carrying 0.1 µN); both then carry
+    (4/3)d − 0.1 = 1 µN at d = 0.825 µm. Pulling, f = ((2/3)d, (2/3)d − 0.1): the second lets
+    go at f₂ = −F_r, d = −1.35 µm, the pair holding 1.9 µN; alone, the first then carries
+    (d − 0.05)/1 = −1.4 µN < −F_r and goes at the same depth. The path records each event."""
+    res = hs.probe_test([-0.05, -0.1], [[1.0, 0.5], [0.5, 1.0]], 1.0, 1.0)
+    assert res.pull_off == pytest.approx(1.9, rel=1e-12)
+    assert res.depth_max == pytest.approx(0.825, rel=1e-12)
+    assert res.attached_max == 2
+    np.testing.assert_allclose(res.depth, [0.15, 0.825, -1.35, -1.35], rtol=1e-12)
+    np.testing.assert_allclose(res.force, [0.1, 1.0, -1.9, 0.0], rtol=1e-12, atol=1e-15)
+    np.testing.assert_array_equal(res.attached, [1, 2, 2, 0])
+    assert res.attached.dtype.kind == "i"
+
+
+def test_a_cascade_stops_at_a_fibril_the_backing_does_not_load_by_hand():
+    """The coupled pair of the test above, lowered by 0.5 µm (h = −0.55, −0.6 µm), beside a
+    third fibril on its own (h₃ = −0.1 µm, no coupling), F_r = 1 µN, pressed to 3 µN. By hand:
+    the third touches at d = 0.1, the first at 0.55 (the third carrying 0.45 µN), the second
+    where d − 0.6 − 0.5(d − 0.55) = 0, d = 0.65 (0.55 + 0.1 µN); all three carry
+    (d − 0.1) + (4/3)d − 0.7667 = 3 µN at d = 1.6571 µm. Pulling, the pair goes at
+    d = −0.85 µm as before (its second at −F_r, its first then at −1.4 µN alone), the third
+    holding d − 0.1 = −0.95 µN: 2.85 µN on the probe. The third alone lets go at d = −0.9 µm."""
+    res = hs.probe_test([-0.55, -0.6, -0.1], [[1, 0.5, 0], [0.5, 1, 0], [0, 0, 1]], 1.0, 3.0)
+    assert res.pull_off == pytest.approx(2.85, rel=1e-12)
+    np.testing.assert_allclose(res.depth, [0.55, 0.65, 11.6 / 7, -0.85, -0.9, -0.9], rtol=1e-12)
+    np.testing.assert_allclose(res.force, [0.45, 0.65, 3.0, -2.85, -1.0, 0.0], rtol=1e-12)
+    np.testing.assert_array_equal(res.attached, [1, 2, 3, 3, 1, 0])
+
+
+@pytest.mark.parametrize("release_force", [0.5, 3.0])
+def test_one_fibril_pulls_off_at_its_release_force(release_force):
+    """A single fibril (k = 2 µN/µm) holds the probe until its own release force; pressed
+    too little to touch (its tip below the deepest press), it holds nothing."""
+    assert hs.probe_test([0.0], [[0.5]], release_force, 1.0).pull_off == pytest.approx(
+        release_force, rel=1e-12
+    )
+    assert fibril_probe.probe_pull_off([0.0], 2.0, release_force, 1.0) == pytest.approx(
+        release_force, rel=1e-12
+    )
+    assert fibril_probe.probe_pull_off([-3.0], 2.0, release_force, 1.0) == 0.0
+
+
+def test_weights_count_fibrils_as_repeats():
+    """A weight w_i is w_i identical fibrils: integer weights give the closed forms of the
+    heights repeated w_i times (depth for a preload, force while retracting, pull-off)."""
+    h, w = np.array([0.0, -0.2, -0.5, -0.9]), np.array([2.0, 1.0, 3.0, 1.0])
+    rep = np.repeat(h, w.astype(int))
+    for preload in (0.3, 2.0, 9.0):
+        d = fibril_probe.depth_for_preload(preload, h, K, weights=w)
+        assert d == pytest.approx(fibril_probe.depth_for_preload(preload, rep, K), rel=1e-12)
+        for at in (d, 0.5 * d, -0.3):
+            assert fibril_probe.probe_force(at, h, K, d, weights=w) == pytest.approx(
+                fibril_probe.probe_force(at, rep, K, d), rel=1e-12, abs=1e-15
+            )
+        assert fibril_probe.probe_pull_off(h, K, F_R, d, weights=w) == pytest.approx(
+            fibril_probe.probe_pull_off(rep, K, F_R, d), rel=1e-12
+        )
+
+
+def test_ring_weights_fill_the_disc():
+    """Rings of width Δr at their mid radii (i + ½)Δr hold 2πr·n·Δr fibrils each, and m of
+    them the disc's n·π(mΔr)² exactly (the midpoint rule is exact for 2πr)."""
+    n, dr, m = 0.07, 1.3, 12
+    r = (np.arange(m) + 0.5) * dr
+    wts = fibril_probe.ring_weights(r, n, dr)
+    np.testing.assert_allclose(wts, 2.0 * np.pi * r * n * dr, rtol=1e-15)
+    assert wts.sum() == pytest.approx(n * np.pi * (m * dr) ** 2, rel=1e-12)
+    assert fibril_probe.ring_weights([-2.0], n, dr)[0] == pytest.approx(2 * np.pi * 2.0 * n * dr)
+
+
+def test_effective_work_and_fibril_compliance_by_hand():
+    """W_eff = n·F_r²/(2k): 0.2·3²/(2·0.5) = 1.8 µN/µm; a fibril's axial compliance
+    L/(πc²E): 20/(π·1.5²·2) µm/µN."""
+    assert hs.effective_work_of_adhesion(0.2, 0.5, 3.0) == pytest.approx(1.8, rel=1e-12)
+    assert hs.fibril_compliance(20.0, 1.5, 2.0) == pytest.approx(
+        20.0 / (math.pi * 1.5**2 * 2.0), rel=1e-12
+    )
+
+
+@pytest.mark.parametrize(
+    ("call", "name"),  # the message starts with the name
+    [
+        (lambda: hs.hex_lattice(0.0, 10.0), "pitch = "),
+        (lambda: hs.hex_lattice(1.0, -1.0), "extent = "),
+        (lambda: hs.square_lattice(-1.0, 10.0), "pitch = "),
+        (lambda: hs.square_lattice(1.0, 0.0), "extent = "),
+        (lambda: hs.parabolic_heights([0.0], [0.0], 0.0), "probe_radius = "),
+        (lambda: hs.fibril_compliance(0.0, 1.0, 1.0), "length = "),
+        (lambda: hs.fibril_compliance(1.0, np.inf, 1.0), "radius = "),
+        (lambda: hs.fibril_compliance(1.0, 1.0, -2.0), "modulus = "),
+        (lambda: hs.halfspace_compliance([0.0], [0.0], 0.0, 1.0, 0.3), "radius = "),
+        (lambda: hs.halfspace_compliance([0.0], [0.0], 1.0, np.nan, 0.3), "modulus = "),
+        (lambda: hs.probe_test([0.0], [[1.0]], 0.0, 1.0), "release_force = "),
+        (lambda: hs.probe_test([0.0], [[1.0]], 1.0, -1.0), "preload = "),
+        (lambda: hs.probe_test([[0.0, -0.1]], np.eye(2), 1.0, 1.0), "heights must"),
+        (lambda: hs.probe_test([0.0, -0.1], [[1.0, 0.0], [0.0, 0.0]], 1.0, 1.0), "compliance must"),
+        (
+            lambda: hs.probe_test([0.0, -0.1], [[1, 0.5], [0.5 + 5e-9, 1]], 1.0, 1.0),
+            "compliance must",
+        ),
+    ],
+)
+def test_each_bad_value_is_refused_naming_it(call, name):
+    with pytest.raises(ValueError, match="^" + name):
+        call()
+
+
+def test_the_limits_of_the_backing_are_accepted():
+    """ν = 0 and ν = 0.5 (incompressible) are allowed, and fibrils just touching (roots 2c
+    apart) do not overlap."""
+    for nu in (0.0, 0.5):
+        C = hs.halfspace_compliance([0.0, 5.0], [0.0, 0.0], 1.0, 1.0, nu)
+        assert C[0, 1] == pytest.approx((1 - nu * nu) / (np.pi * 5.0), rel=1e-15)
+    C = hs.halfspace_compliance([0.0, 2.0], [0.0, 0.0], 1.0, 1.0, 0.3)
+    assert C[0, 1] == pytest.approx(0.91 / (2 * np.pi), rel=1e-15)
+
+
+def test_fibril_closed_forms_by_hand():
+    """Fibrils at h = (0, −0.2, −0.5, −0.9) µm with weights (2, 1, 3, 1), k = K:
+    - pressed to P = 0.7K the first two carry it, K(2d + (d − 0.2)) = P: d = 0.3 µm;
+    - retracting from d_max = 0.6 µm (three attached) to d = 0.1 µm the probe feels
+      K(2·0.1 + (0.1 − 0.2) + 3(0.1 − 0.5)) = −1.1K;
+    - the pull-off is the largest of the tensions just before each height lets go:
+      6F_r − 1.3K (all three), 3F_r − 0.4K, 2F_r: here 6F_r − 1.3K."""
+    h, w = np.array([0.0, -0.2, -0.5, -0.9]), np.array([2.0, 1.0, 3.0, 1.0])
+    assert fibril_probe.depth_for_preload(0.7 * K, h, K, weights=w) == pytest.approx(0.3)
+    assert fibril_probe.probe_force(0.1, h, K, 0.6, weights=w) == pytest.approx(-1.1 * K)
+    assert fibril_probe.probe_pull_off(h, K, F_R, 0.6, weights=w) == pytest.approx(
+        6 * F_R - 1.3 * K, rel=1e-12
+    )
+
+
+@pytest.mark.parametrize("lattice", [hs.square_lattice, hs.hex_lattice])
+@pytest.mark.parametrize("pitch", [0.5, 2.0])
+def test_small_patches_counted_by_hand(lattice, pitch):
+    """Within two pitches of the origin, rim included: the square lattice's 13 points
+    (i² + j² ≤ 4) and the hexagonal lattice's 19 (the centre, 6 at p, 6 at √3p, 6 at 2p);
+    within one pitch, 5 and 7. Every point is at most the extent from the origin."""
+    counts = {hs.square_lattice: {2.0: 13, 1.0: 5}, hs.hex_lattice: {2.0: 19, 1.0: 7}}
+    for reach, count in counts[lattice].items():
+        x, y = lattice(pitch, reach * pitch)
+        assert x.size == count
+        assert np.hypot(x, y).max() == pytest.approx(reach * pitch, rel=1e-12)
+        assert len(set(zip(np.round(x / pitch, 9), np.round(y / pitch, 9), strict=True))) == x.size

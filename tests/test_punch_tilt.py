@@ -166,6 +166,7 @@ def test_study_elastica_points_meet_the_closed_form_for_small_pushes():
     assert tilt[0] == punch.kendall_pull_off(a, w, E) and tilt[-1] == pytest.approx(0, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_edge_log_observes_without_changing_the_run():
     """The pillar-designs study's EdgeLog chain gives the plain elastica's history bit for bit,
     and what it logs while the punch is pulled is the closed form's moment share."""

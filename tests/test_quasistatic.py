@@ -142,6 +142,7 @@ def test_friction_invariants_on_every_step(law):
     assert np.all(-r.force_normal <= r.n_attached * FC * (1 + 1e-9))
 
 
+@pytest.mark.slow
 def test_representative_blocks_converge_to_brute_force():
     h = np.random.default_rng(11).standard_normal(10_000)
     brute = qs.press_pull(PAPER_ARRAY, h, 1.0)
@@ -179,6 +180,7 @@ def test_representative_blocks_converge_to_brute_force():
     np.testing.assert_array_equal(sample, np.sort(np.random.default_rng(0).standard_normal(1000)))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control", ["displacement", "force"])
 def test_split_blocks_match_every_seta_under_both_controls(control):
     """press_pull / preload_pull on 40 blocks with the sample = the same on all 2000 setae."""
@@ -215,6 +217,7 @@ def test_sample_refuses_blocks_that_do_not_match_it():
         qs.solve(PAPER_ARRAY, hr, Z, weights=w, sample=sample, record_setae=True)
 
 
+@pytest.mark.slow
 def test_preload_is_hit_and_pull_off_saturates():
     h = np.random.default_rng(4).standard_normal(300)
     pulls = []

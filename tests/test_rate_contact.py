@@ -83,6 +83,7 @@ def _press_then_pull(params, speed):
         return Model(params).run(prot, progress=False)
 
 
+@pytest.mark.slow
 def test_pull_off_rises_with_speed_and_tends_to_the_elastic_value():
     # n = 1: G/w − 1 = |ȧ|/v*, so over 1.7 decades of pull speed the excess grows ~50-fold
     # while the seta stays quasi-static (the elastic pull-off moves < 0.3 % over these speeds).

@@ -129,6 +129,7 @@ def _start_sweep(tmp_path, argv):
     pytest.fail(f"the sweep did not start its workers: {proc.communicate()}")
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
 @pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGTERM, signal.SIGINT])
 def test_sweep_workers_die_with_the_sweep(tmp_path, sig):
@@ -148,6 +149,7 @@ def test_sweep_workers_die_with_the_sweep(tmp_path, sig):
         assert (tmp_path / "out" / "sweep.csv").is_file()
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
 def test_sweep_command_stops_cleanly_on_sigterm(tmp_path):
     spec = tmp_path / "slow.toml"
@@ -215,6 +217,7 @@ def test_a_costly_run_warns_before_it_starts(monkeypatch):
 # Defect 6: scenario --out ----------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("out", ["", "FILE", "FILE/sub", "/proc/gecko_agents_no/such"])
 def test_scenario_out_must_be_a_writable_folder(tmp_path, out):
     (tmp_path / "FILE").write_text("not a folder")
@@ -233,6 +236,7 @@ def test_scenario_out_must_be_a_writable_folder(tmp_path, out):
 # Defect 8: python -m gecko_agents sweep --help ----------------------------------------------------
 
 
+@pytest.mark.slow
 def test_sweep_module_help_prints_usage():
     res = subprocess.run(
         [sys.executable, "-m", "gecko_agents", "sweep", "--help"],

@@ -121,6 +121,7 @@ def _is(colour, hex_code, tol=40):
     return np.all(np.abs(colour - target) <= tol)
 
 
+@pytest.mark.slow
 def test_gif_has_one_frame_per_record_at_the_promised_size(gif):
     with Image.open(gif) as im:
         assert im.n_frames == N_REC
@@ -324,6 +325,7 @@ def test_render_imports_no_pymunk_and_no_pyplot():
     assert not {m for m in imported if m.removeprefix("gecko_agents.") in engine}
 
 
+@pytest.mark.slow
 def test_missing_and_corrupt_runs(tmp_path, capsys):
     assert render.main([str(tmp_path / "nope")]) == 2
     err = capsys.readouterr().err
@@ -512,6 +514,7 @@ def test_film_and_pad_are_drawn_from_the_recorded_front():
     assert plain.films is None and plain.pads is None
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("bad", [["--frames", "0"], ["--fps", "0"], ["--window", "0"]])
 def test_a_bad_animation_argument_is_refused_before_the_figure_is_rewritten(tmp_path, bad):
     h = Model(PAPER_TABLE1, n_sim=1, seed=1).run(protocol.press_pull(0.3, speed=0.05),

@@ -5,10 +5,13 @@ tests/test_render.py)."""
 import warnings
 
 import numpy as np
+import pytest
 
 from gecko_agents import history, protocol, render
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY
+
+pytestmark = pytest.mark.slow  # a strip run, saved, loaded and drawn
 
 
 def test_elastic_backing_of_a_saved_run_is_drawn_through_its_recorded_nodes(tmp_path):

@@ -116,6 +116,7 @@ def test_preload_points_are_importable_by_name():
         assert points.POINT_FUNCTIONS[name] is fn  # the name sweep files use (gecko-agents sweep)
 
 
+@pytest.mark.slow
 def test_quasistatic_preload_point_blocks_of_one_are_brute_force(tmp_path):
     from gecko_agents import quasistatic
     from gecko_agents.params import PAPER_ARRAY

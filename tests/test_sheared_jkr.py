@@ -258,6 +258,7 @@ def test_without_friction_it_is_the_jkr_sphere():
     )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kernel", ["python", "numba"])
 def test_kernels_agree(kernel):
     """Three setae dragged both ways and pulled: the per-seta loop (compiled or interpreted)
@@ -305,3 +306,16 @@ def test_refused_where_it_is_not_modelled():
 def test_law_is_chosen_by_the_coupling():
     assert type(contact_law(SHEARED)) is ShearedJKRSphere
     assert type(contact_law(PAPER_ARRAY)) is JKRSphere
+
+
+def test_normal_stiffness_is_the_jkr_branch_slope():
+    """The implicit step's normal stiffness of the sheared tip is dP/dδ of the unsheared
+    JKR branch (eq 7 over eq 10, differentiated in a): checked against central differences
+    of P(a) and δ(a) at three radii."""
+    law = contact_law(SHEARED)
+    a = np.array([0.8, 1.0, 2.5]) * float(jkr.zero_load_contact_radius(R, W, E))
+    h = 1e-6 * a
+    dP = jkr.force_from_radius(a + h, R, W, E) - jkr.force_from_radius(a - h, R, W, E)
+    dd = jkr.overlap_from_radius(a + h, R, W, E) - jkr.overlap_from_radius(a - h, R, W, E)
+    delta = jkr.overlap_from_radius(a, R, W, E)
+    np.testing.assert_allclose(law.stiffness(a, delta), dP / dd, rtol=1e-6)

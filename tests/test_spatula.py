@@ -164,6 +164,7 @@ def _pull_off(drag, kernel="numba", mu=10.0, speed=protocol.DEFAULT_SPEED, dampi
     return pull_off(h).adhesion, h
 
 
+@pytest.mark.slow
 def test_kernels_agree_on_a_drag_and_pull():
     """Numba loop and numpy path give the same history to rounding (a fast plate: the kernels
     are compared, not the physics)."""
@@ -183,6 +184,7 @@ def test_gripping_drag_holds_at_least_twice_the_releasing_one():
     assert along >= 2.0 * against
 
 
+@pytest.mark.slow
 def test_pull_off_converges_as_the_plate_slows():
     """A quasi-static pull-off must not depend on the plate speed. The film's contact dashpot
     adds a force ∝ v to its final peel, so the releasing pull-off converges to first order:
@@ -340,6 +342,7 @@ def test_tip_friction_counted_once():
     assert _friction_cap(law.R - 0.2, law.ell0, k) == 0.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kernel", ["python", "numba"])
 def test_kernels_agree_on_a_pressed_drag(kernel):
     """Spatula setae pressed hard and dragged both ways (tip bodies stick, slide and pads peel),
@@ -422,3 +425,30 @@ def test_film_front_and_pad_length_are_recorded_for_film_tips_only(tmp_path):
             protocol.press_pull(0.5, speed=0.05), progress=False
         )
     assert not any(f in hs.setae for f in hist.FILM_FIELDS)
+
+
+def test_film_and_tip_body_stiffnesses_by_hand():
+    """A film 0.5 µm thick (not the default 1 µm, where E_f·h·b and E_f·b/h agree): its axial
+    stiffness·length K = E_f·h·b = 1.413·0.5·3 = 2.1195 µN, stiffest hanging straight down
+    (s0 = h): K/h = E_f·b = 4.239 µN/µm, the zero-load stiffness and, with the tip body's stick
+    spring, the stiffest tangential spring; the normal stiffness off the floor is that film's.
+    The tip body is a Hertz sphere: P_c = (4/3)E*√R·δ^(3/2) and its energy
+    U = ∫P_c dδ = (8/15)E*√R·δ^(5/2)."""
+    from gecko_agents.contact.spatula import K_FILM, K_HERTZ_P, K_HERTZ_U
+
+    p = PAPER_ARRAY.replace(**{"tip": "spatula", "spatula.h": 0.5})
+    law = contact_law(p)
+    assert law.K == pytest.approx(2.1195, rel=1e-12)
+    assert law.constants[K_FILM] == pytest.approx(2.1195, rel=1e-12)
+    assert law.zero_load_stiffness == pytest.approx(4.239, rel=1e-12)
+    assert law.tangential_stiffness == pytest.approx(4.239 + law.tip_stiffness, rel=1e-12)
+    assert law.stiffness(0.0, -0.2) == pytest.approx(4.239, rel=1e-12)
+    R, _, E = p.contact.jkr_args()
+    assert law.constants[K_HERTZ_P] == pytest.approx(4.0 / 3.0 * E * math.sqrt(R), rel=1e-12)
+    assert law.constants[K_HERTZ_U] == pytest.approx(0.4 * law.constants[K_HERTZ_P], rel=1e-12)
+    load = 2.0  # the stability bound: Hertz's dP/dδ = 2E*a at a = (3RP/(4E*))^(1/3)
+    assert law.stiffest(load) == pytest.approx(2 * E * (0.75 * R * load / E) ** (1 / 3), rel=1e-12)
+    delta = 0.3  # the body pressed in: 2E*√(Rδ), Hertz's dP/dδ, in parallel with the film
+    assert law.stiffness(0.0, delta) == pytest.approx(
+        2.0 * E * math.sqrt(R * delta) + 4.239, rel=1e-12
+    )

@@ -59,6 +59,7 @@ def _assert_same(h1, h2):
     assert h1.meta["implicit_dissipated_pJ"] == h2.meta["implicit_dissipated_pJ"]
 
 
+@pytest.mark.slow
 @needs_numba
 @pytest.mark.parametrize(
     "mechanics, mu, tip",

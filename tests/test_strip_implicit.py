@@ -50,6 +50,7 @@ def _tilted(integrator, params=TILTED):
                 record_every=1)  # fmt: skip
 
 
+@pytest.mark.slow
 def test_stiff_strip_pulls_off_at_the_implicit_step_as_at_the_explicit_one():
     """The stiff strip on its stiff handle (tests/test_backing.py's rigid-plate limit) at the
     implicit default step (implicit_time_step's, 20 explicit steps; measured at 10): peak
@@ -79,6 +80,7 @@ def test_stiff_strip_pulls_off_at_the_implicit_step_as_at_the_explicit_one():
     assert np.max(np.diff(implicit["time_us"])) > 4.9 * m_e.dt
 
 
+@pytest.mark.slow
 def test_energy_books_close_recorded_every_step():
     """plate work = elastic + kinetic + dissipated with the strip sub-cycled, recorded every
     step: the stiff strip's books close to 0.79 % of the run's energy (explicit: 0.30 %), a
@@ -92,6 +94,7 @@ def test_energy_books_close_recorded_every_step():
     assert history.energy_balance_error(tilted) < 0.01
 
 
+@pytest.mark.slow
 def test_tilted_strip_is_stable_and_meets_the_explicit_pull_off():
     """The tilted soft strip on the compliant mount: the setae's pull-off / (N·Fc) 0.9454 at
     the implicit step against the explicit step's 0.9405 (+0.51 %; with event location near the
@@ -128,6 +131,7 @@ ELASTIC = PAPER_ARRAY.replace(
 )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "over, digest",
     [({"backing.E_b": 1.413, "backing.drive": "peel_end"}, "89e1a94dbdcc83a8"),

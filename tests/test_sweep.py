@@ -319,6 +319,7 @@ def test_point_file_contents(tmp_path):
     assert record["error"] is None and record["traceback"] is None
 
 
+@pytest.mark.slow
 def test_interrupted_sweep_resumes_without_recomputing(tmp_path):
     out, counter = tmp_path / "out", tmp_path / "calls.txt"
     # "interrupted": only part of the grid has run ...
@@ -364,6 +365,7 @@ def test_interrupted_sweep_resumes_without_recomputing(tmp_path):
     assert (out / "sweep.csv").read_text() == table
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_gives_the_same_table_as_processes(tmp_path):
     counter = tmp_path / "calls.txt"
     rows = _sweep(tmp_path / "processes", counter, n_workers=2)
@@ -398,6 +400,7 @@ def test_fn_axis_validation():
 # the module's command line and the point names sweep files use ---------------------------------
 
 
+@pytest.mark.slow
 def test_the_sweep_command_lives_above_the_engine(capsys):
     assert cli.main(["sweep", "--help"]) == 0
     assert "gecko-agents sweep" in capsys.readouterr().out
@@ -436,6 +439,7 @@ def test_sweep_seeds_outside_the_package_seed_range_are_refused(seed):
     assert len(sweep.expand_grid(PAPER_TABLE1, {}, [0, 2**63 - 1])) == 2
 
 
+@pytest.mark.slow
 def test_map_local_keeps_order_relays_warnings_and_raises():
     """Two spawned workers give the tasks' results in the tasks' order (as one process does),
     raise a worker's warning again here, and raise a task's exception here."""

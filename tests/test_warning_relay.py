@@ -20,6 +20,7 @@ def warning_point(params, seed):
     return {"R_um": params.contact.R}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("n_workers", [1, 2])
 def test_worker_warnings_are_raised_again_in_the_sweep_process(tmp_path, n_workers):
     with warnings.catch_warnings(record=True) as caught:
@@ -86,6 +87,7 @@ def test_the_sweep_command_reports_its_points_warnings_by_verbosity(
     assert len(lines) == n_lines
 
 
+@pytest.mark.slow
 def test_run_warnings_point_at_the_line_that_ran_the_model():
     """A validity warning and the linear-beam warning are about the user's call: they carry
     this file and line, not a line inside the package (whatever the call depth there)."""

@@ -118,6 +118,7 @@ def test_bad_detection_is_refused_naming_it(kw, match):
         Model(p, **kw)
 
 
+@pytest.mark.slow
 def test_threads_give_the_same_history():
     """threads > 1 runs the numba loop's blocks on numba's threads: press, drag (tips slide)
     and pull-off are the same bit for bit as on one thread."""
