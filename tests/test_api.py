@@ -53,9 +53,9 @@ def _pull(**kw):
 
 
 def test_the_older_keywords_warn_and_give_the_same_history_as_numerics():
-    new = _pull(numerics=ga.Numerics(integrator="explicit", record_every=7))
+    new = _pull(numerics=ga.Numerics(integrator="implicit", record_every=7))
     with pytest.warns(DeprecationWarning, match=r"numerics=Numerics\(integrator=…, record_every"):
-        old = _pull(integrator="explicit", record_every=7)
+        old = _pull(integrator="implicit", record_every=7)
     for column in new.columns:
         np.testing.assert_array_equal(old[column], new[column])
     assert old.meta["numerics"] == new.meta["numerics"]

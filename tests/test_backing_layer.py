@@ -113,7 +113,7 @@ def test_rod_setae_on_a_layer():
     assert 0.5 < -float(np.min(h["plate_force_y_uN"])) / (m.n * m.Fc) < 1.0
 
 
-@pytest.mark.parametrize("t", [10.0, 1000.0])
+@pytest.mark.parametrize("t", [10.0, pytest.param(1000.0, marks=pytest.mark.slow)])
 def test_pillar_row_is_the_quasi_static_layer_model(t):
     """Flat-punch pillars on a layer, pressed to 12 µN and pulled at 0.04 µm/µs: the
     engine's pull-off is the event-driven quasi-static model's with the same layer

@@ -70,6 +70,7 @@ def _run(params, eps):
     return m, h
 
 
+@pytest.mark.slow
 def test_round_edged_punch_loses_its_adhesion_after_buckling_and_a_mushroom_keeps_it():
     """A 15 µm punch pillar (L/2r = 5) pressed 20 % of its length, past buckling: its face's
     edge reaches K/K_c = 1.16 by the tilted-punch criterion, opens while pressed and does not

@@ -176,6 +176,7 @@ class Row:
     act: object
     expected: object
     names: tuple[str, ...]
+    slow: bool = False  # a run of several pillars: the slow tier
 
 
 ROWS = [
@@ -421,7 +422,7 @@ ROWS += [
         ("history.csv", "no saved run")),
     Row("run --out a dangling symlink", _dangling_out, 2, ("symbolic link", "gone")),
     # 2. A probe narrower than the array or the punch face.
-    Row("probe of 3 um under 5 pillars", lambda p: _probe_pillars(3.0), 1, ()),
+    Row("probe of 3 um under 5 pillars", lambda p: _probe_pillars(3.0), 1, (), slow=True),
     Row("punch face wider than the probe",
         lambda p: _raised(lambda: PAPER_ARRAY.replace(
             tip="flat_punch", mechanics="rod", contact={"R": 1.5},
@@ -478,7 +479,7 @@ ROWS += [
     Row("probe_test with a full disk", _study_that_cannot_write, OSError, ("File too large",)),
     # 10. Pillars that buckle into each other.
     Row("pillars at pitch 3.2 pressed to 3 uN", _crowded_pillars, False,
-        ("pass through each other",)),
+        ("pass through each other",), slow=True),
     # 12. A hold lasts its duration.
     Row("Hold 2 us", lambda p: _hold_lasts(2.0), 0.0, ()),
     Row("Hold 0.01 us", lambda p: _hold_lasts(0.01), 0.0, ()),
@@ -493,7 +494,9 @@ ROWS += [
 ]  # fmt: skip
 
 
-@pytest.mark.parametrize("row", ROWS, ids=[r.id for r in ROWS])
+@pytest.mark.parametrize(
+    "row", [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS]
+)
 def test_probe(row, tmp_path, capsys, monkeypatch):
     outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))
     assert outcome == row.expected, message

@@ -184,6 +184,7 @@ def test_splitting_stops_paying_below_the_flaw_tolerant_radius():
     assert np.allclose(flange, 1e3 * fraction * ps.BETA**2, rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_splitting_model_points_meet_the_closed_form():
     from gecko_agents.studies import pillar_designs as pd
     from gecko_agents.studies import pillar_splitting as ps
