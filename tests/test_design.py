@@ -60,7 +60,7 @@ def E_star():
     [
         ("preload_kPa = 10.0", "preload_kPa = -1.0", ("[test] preload_kPa", "-1.0", "[0.001")),
         ("pillars = 10", "pillars = 1", ("[test] pillars", "1", "[2, 2000]")),
-        ('tip = "flat_punch"', 'tip = "mushroom"', ("[space] tip", "mushroom", "flat_punch")),
+        ('tip = "flat_punch"', 'tip = "suction"', ("[space] tip", "suction", "flat_punch")),
         ("radius_um = [1.0, 5.0]", "radius_um = [5.0, 1.0]", ("[space] radius_um", "low")),
         ("lean_deg = 90.0", "lean_deg = 95.0", ("[space] lean_deg", "95", "[10, 90]")),
         ("fill_fraction = 0.2", "spacing_um = 4.0\nfill_fraction = 0.2", ("spacing_um",)),
@@ -414,3 +414,27 @@ def test_with_an_interface_strength_the_best_punch_is_flaw_tolerant(tmp_path):
 def test_the_interface_strength_defaults_to_none(tmp_path):
     spec = load_design(design(tmp_path))
     assert spec.material["sigma0_MPa"] == math.inf
+
+
+@needs_optuna
+def test_a_mushroom_with_an_intact_rim_grows_its_flange_to_the_gap_the_process_allows(tmp_path):
+    """A sharp 45° rim is not singular (the wedge's eigenproblem), so with no defect the
+    flange lets go uniformly at σ₀: F = σ₀·π(βr)², and per area σ₀·π(βr)²/s² grows with the
+    flange ratio β until the flanges come within the smallest gap, β_max = (s − g)/(2r)."""
+    sigma0, r, f, gap = 0.3, 2.0, 0.2, 1.0
+    s = r * math.sqrt(math.pi / f)
+    beta_max = (s - gap) / (2 * r)
+    assert 1.0 < beta_max < 3.0
+    text = (
+        BASE.replace("[material]", f"[material]\nsigma0_MPa = {sigma0}")
+        .replace(
+            'tip = "flat_punch"', 'tip = "mushroom"\nmushroom_rim = "sharp"\nrim_angle_deg = 45.0'
+        )
+        .replace("radius_um = [1.0, 5.0]", f"radius_um = {r}\nflange_ratio = [1.0, 3.0]")
+    ) + f"\n[constraints]\nmin_gap_um = {gap}\n"
+    best = best_trial(load_design(design(tmp_path, text)), tmp_path)
+    beta = best.params["flange_ratio"]
+    assert 0.97 * beta_max <= beta <= beta_max
+    assert best.values[0] == pytest.approx(
+        sigma0 * math.pi * (beta * r) ** 2 / s**2 / KPA, rel=1e-6
+    )

@@ -208,7 +208,7 @@ def _space(ctx: Ctx, t: dict) -> tuple[dict, dict, dict]:
     ctx.keys("[space]", t, {*KNOBS, *CATEGORIES})
     fixed, ranges, choices = {}, {}, {}
     for cat, allowed in CATEGORIES.items():
-        value = t.get(cat, allowed[0] if cat == "backing" else None)
+        value = t.get(cat, allowed[0] if cat != "tip" else None)
         if value is None:
             raise ctx.error("[space]", f"missing key {cat!r} (one or a list of {allowed})")
         names = [value] if isinstance(value, str) else value
@@ -297,11 +297,15 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
             )
     base = base_params(spec)
     corners = [[(k, v) for v in spec.ranges[k]] for k in spec.ranges]
-    for tip, backing in itertools.product(spec.choices["tip"], spec.choices["backing"]):
+    sigma0 = spec.material["sigma0_MPa"]
+    for tip, backing, rim in itertools.product(
+        spec.choices["tip"], spec.choices["backing"], spec.choices["mushroom_rim"]
+    ):
         for corner in itertools.islice(itertools.product(*corners), 256):
             values = {**spec.fixed, **dict(corner), "tip": tip, "backing": backing}
+            values["mushroom_rim"] = rim
             try:
-                p = base.replace(**overrides_of(values))
+                p = base.replace(**overrides_of(values, sigma0))
             except (ValueError, TypeError) as err:
                 shown = ", ".join(f"{k} = {v:g}" for k, v in corner) or "the fixed values"
                 raise ctx.error(

@@ -32,7 +32,6 @@ import numpy as np
 from gecko_agents import floor
 from gecko_agents.design.space import KPA, TIP_KINDS, measured_profile, overrides_of
 from gecko_agents.params import SetaArray
-from gecko_agents.params.tips import FLAT_FACE_TIPS
 from gecko_agents.physics import beam, fibril_probe
 
 __all__ = ["design_params", "row_heights", "evaluate", "euler_load", "measured_profile"]
@@ -44,10 +43,7 @@ def design_params(spec, values: dict, n: int | None = None) -> SetaArray:
     from gecko_agents.design.schema import base_params
 
     values = {**spec.fixed, **values}
-    over = overrides_of(values)
-    if over["tip"] in FLAT_FACE_TIPS:  # the interface strength acts on a flat face
-        over["contact.sigma0"] = spec.material["sigma0_MPa"]
-    p = base_params(spec).replace(**over)
+    p = base_params(spec).replace(**overrides_of(values, spec.material["sigma0_MPa"]))
     return p.replace(**{"array.count": int(n or spec.test["pillars"])})
 
 
@@ -126,8 +122,7 @@ def pull_off(p: SetaArray, heights: np.ndarray, preload: float) -> tuple[float, 
         return float(res.pull_off), float(np.max(res.per_seta["force"]))
     k = fibril_stiffness(p)
     d_max = fibril_probe.depth_for_preload(preload, h, k)
-    c = p.contact
-    F_r = kind.release_force(c.R, c.work_of_adhesion, c.E_star, c.sigma0)
+    F_r = kind.release_force(p)
     return fibril_probe.probe_pull_off(h, k, F_r, d_max), k * d_max
 
 
@@ -177,7 +172,7 @@ def evaluate(spec, values: dict) -> dict:
     metrics = {
         "pitch_um": s,
         "L_um": p.seta.L,
-        "gap_um": s - 2 * p.seta.r,
+        "gap_um": s - 2 * max(p.seta.r, p.contact.R),  # a flange wider than its stalk
         "fill_fraction": math.pi * p.seta.r**2 / s**2,
         "euler_load_uN": P_E,
         "preload_per_pillar_uN": preload / n,

@@ -14,7 +14,9 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from gecko_agents.params import SetaArray
 from gecko_agents.params.checks import MODULUS_RANGE, SURFACE_ENERGY_MAX
+from gecko_agents.params.tips import FLAT_FACE_TIPS
 from gecko_agents.physics import flaw_tolerance, punch
 
 __all__ = [
@@ -58,8 +60,7 @@ class TipKind:
     Attributes
     ----------
     tip : ``SetaArray.tip`` of the law (:data:`gecko_agents.params.TIPS`).
-    release_force : (tip radius a [µm], w [µN/µm], E* [MPa], σ₀ [MPa]) → the force [µN] at
-        which one tip
+    release_force : the design's parameter set → the force [µN] at which one tip
         lets go under a straight pull, from the law's closed form; None where the screen uses
         the quasi-static solver instead (the JKR sphere, whose release depends on the
         pillar's stiffness, :mod:`gecko_agents.quasistatic`).
@@ -73,11 +74,18 @@ class TipKind:
     """
 
     tip: str
-    release_force: Callable[[float, float, float], float] | None
+    release_force: Callable[[SetaArray], float] | None
     contact_stiffness: Callable[[float, float], float] | None
     euler_factor: float
     floors: tuple[str, ...]
     source: str
+
+
+def _law_pull_off(p) -> float:
+    """The pull-off force [µN] of the tip law of parameter set ``p`` (its contact law's)."""
+    from gecko_agents.contact import contact_law
+
+    return float(contact_law(p).pull_off_force)
 
 
 ALL_FLOORS = ("measured", "gaussian", "self_affine", "flat", "probe")
@@ -85,7 +93,11 @@ ALL_FLOORS = ("measured", "gaussian", "self_affine", "flat", "probe")
 TIP_KINDS: dict[str, TipKind] = {
     "flat_punch": TipKind(
         "flat_punch",
-        lambda a, w, E, s0: float(flaw_tolerance.punch_pull_off(a, w, E, s0)),
+        lambda p: float(
+            flaw_tolerance.punch_pull_off(
+                p.contact.R, p.contact.work_of_adhesion, p.contact.E_star, p.contact.sigma0
+            )
+        ),
         lambda a, E: float(punch.punch_stiffness(a, E)),
         4.0,
         ALL_FLOORS,
@@ -95,16 +107,23 @@ TIP_KINDS: dict[str, TipKind] = {
     "sphere": TipKind(
         "sphere", None, None, 2.046, ALL_FLOORS, "Johnson, Kendall & Roberts 1971, Proc R Soc A"
     ),
-    "hertz": TipKind(
-        "hertz", lambda a, w, E, s0: 0.0, None, 2.046, ALL_FLOORS, "Hertz 1882 (no adhesion)"
-    ),
+    "hertz": TipKind("hertz", lambda p: 0.0, None, 2.046, ALL_FLOORS, "Hertz 1882 (no adhesion)"),
     "spatula": TipKind(
         "spatula",
-        lambda a, w, E, s0: 2.0 * a * w,  # Kendall's 90° peel of a film as wide as the pillar
+        lambda p: 2.0 * p.contact.R * p.contact.work_of_adhesion,  # a film as wide as the pillar
         None,
         2.046,
         ("gaussian", "flat"),
         "Kendall 1975, J Phys D 8:1449 (90° peel, F = w·b, b = 2r)",
+    ),
+    "mushroom": TipKind(
+        "mushroom",
+        lambda p: _law_pull_off(p),
+        lambda a, E: float(punch.punch_stiffness(a, E)),
+        4.0,
+        ALL_FLOORS,
+        "the package's mushroom tip (rim and centre modes; Aksak, Şahin & Sitti 2014, Beilstein "
+        "J Nanotechnol 5:630): a flange of radius flange_ratio·r",
     ),
 }
 """Tip kind → :class:`TipKind`."""
@@ -176,6 +195,22 @@ KNOBS: dict[str, Knob] = {
         lambda v, d: {"array.pitch": v},
         "centre-to-centre spacing s",
     ),
+    "flange_ratio": Knob(
+        "flange_ratio",
+        "-",
+        (1.0, 5.0),
+        False,
+        lambda v, d: {"contact.R": v * d["radius_um"]} if d["tip"] == "mushroom" else {},
+        "flange radius over stalk radius of a mushroom tip (other tips: not used)",
+    ),
+    "rim_angle_deg": Knob(
+        "rim_angle_deg",
+        "°",
+        (1.0, 135.0),
+        False,
+        lambda v, d: {"mushroom.rim_angle_deg": v} if d["tip"] == "mushroom" else {},
+        "edge angle of a sharp mushroom rim (mushroom_rim = 'sharp'; at 45° or less not singular)",
+    ),
     "backing_thickness_um": Knob(
         "backing_thickness_um",
         "µm",
@@ -201,15 +236,21 @@ EXCLUSIVE_KNOBS = (("fill_fraction", "spacing_um"),)
 CATEGORIES: dict[str, tuple[str, ...]] = {
     "tip": tuple(TIP_KINDS),
     "backing": ("rigid", "elastic"),
+    "mushroom_rim": ("flawed", "sharp"),
 }
 """Categorical knobs in ``[space]``: a name or a list of names to choose from."""
 
 BACKING_KNOBS = ("backing_thickness_um", "backing_modulus_MPa")
 
 
-def overrides_of(values: dict) -> dict:
-    """The dotted :class:`~gecko_agents.params.SetaArray` overrides of one design."""
+def overrides_of(values: dict, sigma0: float = math.inf) -> dict:
+    """The dotted :class:`~gecko_agents.params.SetaArray` overrides of one design; the
+    interface strength ``sigma0`` [MPa] goes to a flat face's tip (it acts on no other)."""
     out = {"tip": values["tip"], "backing.kind": values.get("backing", "rigid")}
+    if values["tip"] in FLAT_FACE_TIPS:
+        out["contact.sigma0"] = sigma0
+    if values["tip"] == "mushroom":
+        out["mushroom.rim"] = values.get("mushroom_rim", "flawed")
     for key, knob in KNOBS.items():
         if key in values and not (key in BACKING_KNOBS and out["backing.kind"] == "rigid"):
             out |= knob.apply(values[key], values)
