@@ -213,8 +213,11 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
             m.advance(vp[0], vp[1])
             run.work += m.work_step
             run.dissipated += m.physics.diss
-            force = float(np.add.reduce(m.state.P))  # what the records may step over
-            run.force_lo, run.force_hi = min(run.force_lo, force), max(run.force_hi, force)
+            force = np.add.reduce(m.state.P)  # what the records may step over
+            if force < run.force_lo:
+                run.force_lo = float(force)
+            if force > run.force_hi:
+                run.force_hi = float(force)
             if m.physics.events:
                 run.release_travel = max(run.release_travel, math.hypot(*vp) * m.dt)
                 rec.note_detachments(m.time, m.plate_position, m.pop_releases())
