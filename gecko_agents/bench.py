@@ -47,7 +47,14 @@ import pymunk.batch as pb
 
 from gecko_agents import protocol
 from gecko_agents import quasistatic as qs
-from gecko_agents.model import Model, Numerics, numba_available
+from gecko_agents.bench_precision import (  # noqa: F401  (the work-precision benchmark's home)
+    WP_CASES,
+    _wp_error,
+    pull_off_and_release,
+    work_precision,
+    wp_measure,
+)
+from gecko_agents.model import Model, numba_available
 from gecko_agents.model.runner import run_protocol
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.protocol import DEFAULT_SPEED, Move
@@ -273,6 +280,11 @@ def _arguments(argv):
         help="steps and wall time against pull-off and release error, explicit and implicit",
     )
     ap.add_argument(
+        "--docs",
+        metavar="PATH",
+        help="with --work-precision: also write its table to PATH (Markdown)",
+    )
+    ap.add_argument(
         "--no-dask", action="store_true", help="skip the 1- vs 2-worker Dask sweep throughput"
     )
     args = ap.parse_args(argv)
@@ -359,194 +371,11 @@ def _dask_section(out: dict) -> None:
     )
 
 
-# ---------------------------------------------------------------------- work-precision
-WP_CASES = {
-    # name: (parameter overrides on PAPER_TABLE1, protocol factory, setae)
-    "linear sphere": (
-        {"seta.theta_deg": 60.0, "seta.r": 3.0},
-        lambda v: protocol.press_pull(0.1, v),
-        1,
-    ),
-    "rod sphere": ({"mechanics": "rod"}, lambda v: protocol.press_pull(0.1, v), 1),
-    "Hertz": (
-        {"seta.theta_deg": 60.0, "tip": "hertz"},
-        lambda v: protocol.preload_pull(0.1, v),
-        1,
-    ),
-    "crack kinetics": (
-        {"mechanics": "rod", "contact.crack_speed": 1.0},
-        lambda v: protocol.press_pull(0.1, v),
-        1,
-    ),
-    "spatula drag-pull": (
-        {"mechanics": "rod", "tip": "spatula"},
-        lambda v: protocol.drag_pull(1.0, 0.5, 90.0, v),
-        1,
-    ),
-    "Savkoor-Briggs": (
-        {"mechanics": "rod", "contact.shear_coupling": "savkoor_briggs"},
-        lambda v: protocol.drag_pull(1.0, 0.5, 90.0, v),
-        1,
-    ),
-    "elastic backing": (
-        {"mechanics": "rod", "backing.kind": "elastic", "array.count": 4},
-        lambda v: protocol.press_pull(0.1, v),
-        4,
-    ),
-}
-"""The work-precision benchmark's cases: a single seta of the paper's Table 1 on a flat floor
-(the linear seta at 60° and twice as thick, r = 3 µm, whose pull, Fc/Ky = 17 µm, is 60 times
-shorter than the paper's; the Hertz tip on the 60° linear seta pressed to 0.1 µN: a rod seta
-pressed 0.3 µm holds a hundredth of that and slides), or 4 setae on the elastic strip."""
-
-WP_REFERENCE_DIVISOR = 2.0
-"""The reference is the explicit step at half its default dt and the same plate speed (the
-issue asked for dt/4 at a quarter of the speed: 16 times the explicit run, 40 min for the
-linear seta's 0.5 million steps alone; the explicit row's error against it shows how far the
-explicit step itself is from converged, and a slower pull would add the rate dependence of
-the physics, which both integrators share, to every error)."""
-
-WP_FACTORS = (5.0, 10.0, 20.0, 50.0)
-"""Implicit steps tried, in units of the explicit default step (besides the implicit
-default)."""
-
-
-def wp_measure(case: str, integrator: str, dt_factor: float | None, speed: float) -> dict:
-    """One run of a work-precision case: steps, wall time [s], pull-off force [µN] (largest
-    adhesion, :func:`gecko_agents.analysis.pull.pull_off`) and release displacement [µm] (plate
-    travel from the start of the pull to the last tip's release), recorded every step.
-    ``dt_factor``: the step in explicit default steps (None: the integrator's default)."""
-    from gecko_agents.params import PAPER_TABLE1
-
-    over, proto, n = WP_CASES[case]
-    p = PAPER_TABLE1.replace(**over)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        dt = None
-        if dt_factor is not None:
-            dt = dt_factor * Model(p, n_sim=n, numerics=Numerics(integrator="explicit")).dt
-        m = Model(p, n_sim=n, numerics=Numerics(dt=dt, integrator=integrator, record_every=1))
-        t = time.perf_counter()
-        h = m.run(proto(speed), progress=False)
-        wall = time.perf_counter() - t
-        po, release = pull_off_and_release(h)
-    return {
-        "steps": int(h.meta["n_steps"]),
-        "wall_s": wall,
-        "pull_off": po,
-        "release": release,
-        "dt": m.dt,
-    }
-
-
-def pull_off_and_release(h) -> tuple[float, float]:
-    """Pull-off force [µN] (largest adhesion, ≥ 0) and release displacement [µm] (plate
-    travel to the last tip's release) of a history, both from the start of the pull: the
-    deepest plate position or, after a drag, the drag's end
-    (:func:`gecko_agents.analysis.pull.pull_start`). Not from the press's largest force
-    (``pull_start`` of a press-pull): that is the touch-down's overshoot where the step rings
-    (explicit) and the turning point where it does not (implicit)."""
-    from gecko_agents.analysis.pull import pull_start
-
-    k0 = max(pull_start(h), int(np.argmin(h["plate_y_um"])))
-    po = max(0.0, float(np.max(-h["force_normal_uN"][k0:])))
-    det = h.detachments
-    if not len(det["plate_y_um"]):
-        return po, math.nan
-    dx = det["plate_x_um"][-1] - h["plate_x_um"][k0]
-    return po, float(np.hypot(dx, det["plate_y_um"][-1] - h["plate_y_um"][k0]))
-
-
-def _wp_error(run: dict, ref: dict) -> float:
-    """Largest relative error of pull-off and release against the reference [-] (the pull-off
-    of a law without adhesion, 0, counts by its release alone)."""
-    err = abs(run["release"] - ref["release"]) / abs(ref["release"])
-    if ref["pull_off"] > 0:
-        err = max(err, abs(run["pull_off"] - ref["pull_off"]) / ref["pull_off"])
-    return err if math.isfinite(err) else math.inf
-
-
-def wp_case(case: str, factors, ref_div: float, speed: float) -> dict:
-    """A case's table: the reference (explicit, dt/``ref_div``), explicit at its default and
-    the implicit step at its default and at ``factors`` explicit steps; prints the rows and
-    returns {label: run dict with ``error``} and the steps ratio at ≤ 0.5 % error."""
-    ref = wp_measure(case, "explicit", 1.0 / ref_div, speed)
-    runs = {"explicit": wp_measure(case, "explicit", None, speed)}
-    runs["implicit (default)"] = wp_measure(case, "implicit", None, speed)
-    for f in factors:
-        try:
-            runs[f"implicit {f:g}×"] = wp_measure(case, "implicit", f, speed)
-        except Exception as err:  # an unstable or refused run is a row, not a crash
-            runs[f"implicit {f:g}×"] = {"steps": 0, "wall_s": math.nan, "failed": repr(err)}
-    print(
-        f"\n{case}: reference explicit dt/{ref_div:g}, {ref['steps']} steps, pull-off "
-        f"{ref['pull_off']:.6g} µN, release after {ref['release']:.6g} µm"
-    )
-    print(f"  {'integrator':<20} {'dt [µs]':>8} {'steps':>8} {'wall [s]':>9} {'error [%]':>10}")
-    for label, r in runs.items():
-        if "failed" in r:
-            print(f"  {label:<20} failed: {r['failed'][:60]}")
-            r["error"] = math.inf
-            continue
-        r["error"] = _wp_error(r, ref)
-        print(
-            f"  {label:<20} {r['dt']:8.3g} {r['steps']:8d} {r['wall_s']:9.3g} "
-            f"{100 * r['error']:10.3g}"
-        )
-    ok = [r["steps"] for k, r in runs.items() if k != "explicit" and r["error"] <= 0.005]
-    exp = runs["explicit"]
-    ratio = exp["steps"] / min(ok) if ok and exp["error"] <= 0.005 else math.nan
-    default = runs["implicit (default)"]
-    d_ratio = exp["steps"] / default["steps"] if default["error"] <= 0.005 else math.nan
-    print(
-        f"  steps explicit/implicit at ≤ 0.5 % error: best {ratio:.3g}, default {d_ratio:.3g}",
-        flush=True,
-    )
-    return {"runs": runs, "ref": ref, "ratio": ratio, "default_ratio": d_ratio}
-
-
-def _runs_implicit(case: str) -> bool:
-    """Whether the model's default integrator runs ``case`` of ``WP_CASES`` implicitly
-    (:func:`gecko_agents.model.implicit.check_integrator`)."""
-    from gecko_agents.model.implicit import check_integrator
-    from gecko_agents.params import PAPER_TABLE1
-
-    default = Numerics().integrator
-    params = PAPER_TABLE1.replace(**WP_CASES[case][0])
-    return check_integrator(default, "batch", params) == "implicit"
-
-
-def work_precision(
-    quick: bool = False, cases=None, speed: float = DEFAULT_SPEED, factors=None
-) -> dict:
-    """The work-precision benchmark (module docstring): every case of ``WP_CASES`` (or
-    ``cases``), each integrator, against the explicit reference at
-    1/``WP_REFERENCE_DIVISOR`` of its step (``quick``: the rod sphere alone, fewer
-    implicit steps), the plate at ``speed`` [µm/µs], the implicit step also at ``factors``
-    explicit steps (default ``WP_FACTORS``).
-    The last line: ``steps explicit/default at ≤ 0.5 % error: X.X``, the smallest over the
-    cases (the default integrator: :class:`gecko_agents.model.Model`'s)."""
-    cases = cases or (["rod sphere"] if quick else list(WP_CASES))
-    factors = factors or ((10.0, 50.0) if quick else WP_FACTORS)
-    out = {}
-    for case in cases:
-        out[case] = wp_case(case, factors, WP_REFERENCE_DIVISOR, speed)
-    worst = float(
-        np.min(
-            [np.nan_to_num(out[c]["default_ratio"]) if _runs_implicit(c) else 1.0 for c in cases]
-        )
-    )
-    best = float(np.min([np.nan_to_num(out[c]["ratio"]) for c in cases]))
-    print(f"\nsteps explicit/implicit (its best step) at ≤ 0.5 % error: {best:.1f}")
-    print(f"steps explicit/default at ≤ 0.5 % error: {worst:.1f}")
-    return out
-
-
 def main(argv=None) -> dict:
     """Run the benchmark and print its table; returns the numbers."""
     args = _arguments(argv)
     if args.work_precision:
-        return work_precision(args.quick)
+        return work_precision(args.quick, docs=args.docs)
     default = Model(PAPER_ARRAY, n_sim=max(args.sizes)).kernel
     kernels = ["numpy"] + (["numba"] if numba_available() else [])
     out = {

@@ -38,6 +38,9 @@ class Numerics:
     detection : ``"auto"``, ``"full"`` or ``"lazy"``: how pymunk finds contact candidates
         (the same history).
     threads : numba threads of the pad loop; None: from the model's size and the idle cores.
+    multirate : near an event, only the setae near it take the implicit step's short steps,
+        the rest the long one, where the setae are independent
+        (:mod:`gecko_agents.model.multirate`); False: the whole array takes them.
     """
 
     integrator: str = "auto"
@@ -48,6 +51,7 @@ class Numerics:
     contact: str = "batch"
     detection: str = "auto"
     threads: int | None = None
+    multirate: bool = True
 
     def replace(self, **changes) -> Numerics:
         """A copy with ``changes`` (field → value)."""

@@ -40,6 +40,7 @@ from gecko_agents.floor import Profile
 from gecko_agents.history import History
 from gecko_agents.model.implicit import ImplicitStep, check_integrator
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping, seta_mass
+from gecko_agents.model.multirate import Multirate, multirate_applies
 from gecko_agents.model.runner import SimulationUnstable, run_protocol
 from gecko_agents.model.setup import (
     KERNELS,
@@ -188,6 +189,7 @@ class Model(Stepping):
         self._work_step = 0.0
         self.reset_state_arrays()
         self.backing = backing(self)
+        self._multirate = Multirate(self) if multirate_applies(self) else None
 
     @classmethod
     def from_options(cls, params: SetaArray, **options) -> Model:

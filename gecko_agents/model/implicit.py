@@ -219,6 +219,7 @@ class ImplicitStep:
         self._pad = False  # the compiled pad kernels (implicit_kernel.pad_solver; not yet)
         # The run's energy scale so far [pJ] (note_energies; the runner resets it per run).
         self.energy_scale = 0.0
+        self.near = None  # the setae near an event at the last located step (substeps)
 
     def seta_stiffness(self, rx, ry):
         """The seta's stiffness K = −J_x (kxx, kxy, kyx, kyy) [µN/µm], scalars for the
@@ -435,10 +436,10 @@ class ImplicitStep:
         impulses F'·dt of the two steps, while every other book (springs at the new position,
         dampers, F' − F) takes both at the new step's dt; the difference
         ½v(n)·F'(n)·(dt_prev − dt) is booked as dissipated (0 at a constant step)."""
-        if dt == self._dt_prev:
+        if np.ndim(self._dt_prev) == 0 and dt == self._dt_prev:
             return 0.0
         J = self._J
-        Fdt = J * (dt / self._dt_prev)  # F'(n)·dt
+        Fdt = J * (dt / self._dt_prev)  # F'(n)·dt (per seta after a multirate step)
         out = -0.5 * float(np.add.reduce(vx * (J[0] - Fdt[0]) + vy * (J[1] - Fdt[1])))
         self.numerical_dissipated += out
         return out
@@ -531,6 +532,9 @@ class ImplicitStep:
                 near |= self._k_raw + 2.0 * dt * np.fmin(self._k_rate, 0.0) < 0.0
             if not near.any():
                 k = 1
+            self.near = near if k > 1 else None
+        else:
+            self.near = None
         self.set_dt(dt / k)
         self.n_located += k if k > 1 else 0
         return k

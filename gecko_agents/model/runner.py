@@ -114,6 +114,8 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         "stepped_force_normal_range_uN": [run.force_lo, run.force_hi] if run.n_steps else None,
         "release_step_travel_um": run.release_travel,
         "min_neighbour_distance_um": run.neighbours if math.isfinite(run.neighbours) else None,
+        "multirate_steps": 0 if m._multirate is None else m._multirate.n_steps,
+        "multirate_seta_substeps": 0 if m._multirate is None else m._multirate.seta_steps,
         **model_facts(m, segments),
     }
     if m.backing.info is not None:
@@ -207,21 +209,23 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
             left = seg.time_left(m, state)
             if left is not None and 0 < left < implicit.dt_base:
                 implicit.dt_base = left
-        # The implicit step takes k steps of dt/k near an event (ImplicitStep.substeps).
+        # The implicit step takes k steps of dt/k near an event (ImplicitStep.substeps),
+        # only the setae near it where they are independent (multirate).
         k = 1 if implicit is None else implicit.substeps(vp)
-        for _ in range(k):
-            m.advance(vp[0], vp[1])
-            run.work += m.work_step
-            run.dissipated += m.physics.diss
-            force = np.add.reduce(m.state.P)  # what the records may step over
-            if force < run.force_lo:
-                run.force_lo = float(force)
-            if force > run.force_hi:
-                run.force_hi = float(force)
-            if m.physics.events:
-                run.release_travel = max(run.release_travel, math.hypot(*vp) * m.dt)
-                rec.note_detachments(m.time, m.plate_position, m.pop_releases())
-            run.n_steps += 1
+        multi = m._multirate
+        near = None
+        if k > 1 and multi is not None and run.n_steps:
+            near = multi.near(implicit.near)
+        if near is not None:
+            implicit.set_dt(implicit.dt_base)  # the long step; the near setae take k
+            released = multi.advance(vp, near, k)
+            steps = 1
+        else:
+            released, steps = None, k
+        for _ in range(steps):
+            if released is None:
+                m.advance(vp[0], vp[1])
+            _account(m, run, vp, released)
             if interval is None:
                 due = run.n_steps % every == 0
             else:
@@ -244,6 +248,25 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
             implicit.set_dt(implicit.dt_base)
     if implicit is not None:  # a fast segment's shorter step ends with it
         implicit.set_dt(implicit.dt_full)
+
+
+def _account(m, run: _Run, vp, released) -> None:
+    """Book one step of the whole array: its work, dissipation and force extremes, and its
+    releases: ``released`` as :meth:`gecko_agents.model.multirate.Multirate.advance` gives
+    them (time, plate position, releases, step), or None for the model's own step."""
+    run.work += m.work_step
+    run.dissipated += m.physics.diss
+    force = np.add.reduce(m.state.P)  # what the records may step over
+    if force < run.force_lo:
+        run.force_lo = float(force)
+    if force > run.force_hi:
+        run.force_hi = float(force)
+    if released is None and m.physics.events:
+        released = [(m.time, m.plate_position, m.pop_releases(), m.dt)]
+    for t, plate, events, dt in released or ():
+        run.release_travel = max(run.release_travel, math.hypot(*vp) * dt)
+        run.recorder.note_detachments(t, plate, events)
+    run.n_steps += 1
 
 
 def _note_neighbours(m, run: _Run) -> None:
