@@ -36,7 +36,7 @@ def _force_near(monkeypatch, choose):
         return k
 
     monkeypatch.setattr(implicit_module.ImplicitStep, "substeps", forced)
-    monkeypatch.setattr(multirate_module.Multirate, "near", lambda self, near: near)
+    monkeypatch.setattr(multirate_module.Multirate, "near", lambda self, near, k: near)
 
 
 @pytest.mark.parametrize(
@@ -146,3 +146,32 @@ def test_multirate_applies_only_where_the_setae_are_independent(overrides, numer
 def test_multirate_must_be_a_bool():
     with pytest.raises(ValueError, match="multirate = 'yes'"):
         Model(PAPER_ARRAY, n_sim=2, numerics=Numerics(multirate="yes"))
+
+
+def test_run_files_switch_it(tmp_path):
+    """``[model] multirate`` reaches the model; a value that is not a boolean is refused when
+    the file loads, naming the key."""
+    from gecko_agents.runfiles import run as runfile
+
+    text = """preset = "PAPER_ARRAY"
+[params]
+mechanics = "rod"
+"floor.sigma" = 0.5
+[model]
+n_sim = 4
+multirate = {value}
+[protocol]
+preset = "press_pull"
+depth_um = 0.1
+"""
+    for value, on in (("false", False), ("true", True)):
+        path = tmp_path / f"{value}.toml"
+        path.write_text(text.format(value=value))
+        assert runfile.load_run(path).model["multirate"] is on
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            assert (runfile.load_run(path).build_model()._multirate is not None) is on
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.format(value='"yes"'))
+    with pytest.raises(runfile.RunFileError, match=r"\[model\] multirate"):
+        runfile.load_run(bad)

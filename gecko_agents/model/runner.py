@@ -215,7 +215,7 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
         multi = m._multirate
         near = None
         if k > 1 and multi is not None and run.n_steps:
-            near = multi.near(implicit.near)
+            near = multi.near(implicit.near, k)
         if near is not None:
             implicit.set_dt(implicit.dt_base)  # the long step; the near setae take k
             released = multi.advance(vp, near, k)

@@ -25,6 +25,8 @@ Run file
                                        # implicit step where verified, gecko_agents.model.implicit)
     event_dt_us = 0.5                  # the implicit step near events [µs] (default: one
                                        # explicit step; longer: fewer steps, later releases)
+    multirate = true                   # near events, only the setae near them step short
+                                       # (default: true, where the setae are independent)
 
     [[protocol]]                       # segments in order ...
     segment = "press_to"
@@ -138,6 +140,7 @@ _MODEL_KEYS = {
     "kernel": str,
     "integrator": str,
     "event_dt_us": float,
+    "multirate": bool,
 }
 _MODEL_ARGS = {"dt_us": "dt", "event_dt_us": "event_dt"}  # run-file key → Model keyword
 _MODEL_RANGES = {
@@ -161,8 +164,8 @@ class RunSpec:
     preset : preset name; ``overrides`` the ``[params]`` in effect (dotted name → value).
     params : the validated :class:`SetaArray`.
     model : keyword arguments of :class:`~gecko_agents.model.Model` (``n_sim``, ``seed``,
-        ``dt``, ``record_setae``, ``kernel``, ``integrator``, ``event_dt``; absent ones take the
-        model's defaults).
+        ``dt``, ``record_setae``, ``kernel``, ``integrator``, ``event_dt``, ``multirate``; absent
+        ones take the model's defaults).
     protocol : the protocol segments.
     description : the file's description (may be empty).
     resolved : the tables in effect (after ``--quick``), for metadata.json.
