@@ -54,13 +54,14 @@ def _force_near(monkeypatch, choose):
     ],
     ids=["rod", "linear", "spatula"],
 )
-def test_every_seta_near_is_the_whole_arrays_located_step(monkeypatch, overrides, proto):
+@pytest.mark.parametrize("kernel", ["auto", pytest.param("numpy", marks=pytest.mark.slow)])
+def test_every_seta_near_is_the_whole_arrays_located_step(monkeypatch, overrides, proto, kernel):
     """With every seta near, the multirate step (the whole array at dt, its near setae's
     share taken out and put back from their k steps alone) is the whole array's k located
     steps: every column and every release to rounding."""
-    _, whole = _run(overrides, 10, proto, multirate=False)
+    _, whole = _run(overrides, 10, proto, multirate=False, kernel=kernel)
     _force_near(monkeypatch, np.ones_like)
-    m, multi = _run(overrides, 10, proto)
+    m, multi = _run(overrides, 10, proto, kernel=kernel)
     assert multi.meta["multirate_steps"] > 10
     assert multi.meta["n_steps"] < whole.meta["n_steps"]  # a multirate step counts once
     for col in ("force_normal_uN", "force_tangential_uN", "plate_force_x_uN", "work_plate_pJ",

@@ -238,10 +238,10 @@ class Multirate:
         return sub
 
     def _gather(self, idx) -> dict:
-        """The state of setae ``idx`` at the start of the step."""
+        """The state of setae ``idx`` at the start of the step (their bodies' positions and
+        velocities, ``rows``, come after the whole array's step has read them)."""
         m = self.m
-        s, imp, w = m.state, m._implicit, m.world
-        raw = w.read_raw()
+        s, imp = m.state, m._implicit
         dt_prev = imp._dt_prev
         return {
             "block": s.block[:, idx],
@@ -250,7 +250,6 @@ class Multirate:
             "candidate": s.candidate[idx],
             "candidate_step": s.candidate_step[idx],
             "ext": s.external_force[idx],
-            "rows": raw[w.order[idx]].copy(),
             "plate": m.plate_position,
             "J": imp._J[:, idx],
             "dF": imp._dF[:, idx],
@@ -287,6 +286,7 @@ class Multirate:
         dt = m.dt
         saved = self._gather(idx)
         m.advance(*vp)
+        saved["rows"] = m.state.pv[:, idx].T.copy()  # as the step read them from pymunk
         far = [e for e in m.pop_releases() if not near[e[0]]]
         long = self._run(idx, saved, vp, dt, 1)
         short = self._run(idx, saved, vp, dt, k)
