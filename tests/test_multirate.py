@@ -59,9 +59,9 @@ def test_every_seta_near_is_the_whole_arrays_located_step(monkeypatch, overrides
     """With every seta near, the multirate step (the whole array at dt, its near setae's
     share taken out and put back from their k steps alone) is the whole array's k located
     steps: every column and every release to rounding."""
-    _, whole = _run(overrides, 10, proto, multirate=False, kernel=kernel)
+    _, whole = _run(overrides, 6, proto, multirate=False, kernel=kernel)
     _force_near(monkeypatch, np.ones_like)
-    m, multi = _run(overrides, 10, proto, kernel=kernel)
+    m, multi = _run(overrides, 6, proto, kernel=kernel)
     assert multi.meta["multirate_steps"] > 10
     assert multi.meta["n_steps"] < whole.meta["n_steps"]  # a multirate step counts once
     for col in ("force_normal_uN", "force_tangential_uN", "plate_force_x_uN", "work_plate_pJ",
@@ -104,6 +104,7 @@ def test_a_seta_stepped_near_keeps_its_own_history(monkeypatch):
     np.testing.assert_allclose(-pair["force_normal_uN"].min(), sum(po), rtol=1e-6)
 
 
+@pytest.mark.slow
 def test_a_rough_patch_closes_its_books_in_fewer_seta_steps():
     """40 rod setae on a rough floor: the multirate run pulls off within 0.1 % of the whole
     array's located steps, lets every seta go within an event step of plate travel of it,
