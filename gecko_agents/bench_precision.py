@@ -294,11 +294,14 @@ def write_page(out: dict, speed: float, path, worst: float) -> None:
     lines = [
         "# Work and precision, as measured",
         "",
-        "Written by `python -m gecko_agents.bench --work-precision --docs PATH`; every number",
-        f"on this page is that run's (plate speed {speed:g} µm/µs, {os.cpu_count()} cores,",
-        f"gecko_agents {versions().get('gecko_agents', '?')}). What the columns mean:",
-        "`gecko_agents.bench_precision`. Errors against the explicit step at dt/"
-        f"{WP_REFERENCE_DIVISOR:g}; work in seta-steps.",
+        "Written by `python -m gecko_agents.bench --work-precision --docs PATH`: every number",
+        f"comes from that one run (plate speed {speed:g} µm/µs, {os.cpu_count()} cores,",
+        f"gecko_agents {versions().get('gecko_agents', '?')}). Each case is run against the",
+        f"explicit step at dt/{WP_REFERENCE_DIVISOR:g}, recorded every step. *Error, every step*",
+        "reads the pull-off from the records after the pull's start; *error, default records*",
+        "reads the pull-off the run reports (`History.peak_pull_off`) at the default record",
+        "cadence; both read the release from the detachments and give the larger relative",
+        "error of the two. Work is counted in seta-steps (`gecko_agents.bench_precision`).",
         "",
         "| case | run | seta-steps | wall [s] | error, every step | error, default records "
         "| fewer seta-steps |",
