@@ -16,8 +16,10 @@ Run ``python -m gecko_agents.bench`` (``--quick`` for a seconds-long smoke run).
   numpy kernel and, when numba is installed, the numba one;
 * a scaling table (``--scaling``, default N = 10³, 10⁴, 10⁵): ms per step of the pressed
   array, the wall time of a full press-pull (the paper's array, rod setae, σ = 0.5 µm pad
-  floor, ``protocol.press_pull(1.0)``) — run for N ≤ ``--run-max`` and extrapolated above it
-  as (steps of the largest run) × (ms/step at N) — and the process's peak resident memory
+  floor, ``protocol.press_pull(1.0)``) — run for N ≤ ``--run-max`` (and again with the whole
+  array taking the located steps, ``multirate=False``, the baseline of the same run) and
+  extrapolated above it as (steps of the largest run) × (ms/step at N) — and the process's
+  peak resident memory
   after each size (``resource.getrusage``: pymunk's bodies live in C, which tracemalloc does
   not see);
 * the wall time of the quasi-static force–displacement curve of the paper's 10⁷-seta array
@@ -54,7 +56,7 @@ from gecko_agents.bench_precision import (  # noqa: F401  (the work-precision be
     work_precision,
     wp_measure,
 )
-from gecko_agents.model import Model, numba_available
+from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.model.runner import run_protocol
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.protocol import DEFAULT_SPEED, Move
@@ -172,14 +174,14 @@ def pymunk_rate(m: Model, steps: int) -> float:
     return m.n * steps / (time.perf_counter() - t)
 
 
-def press_pull_run(n: int, progress: bool = False) -> tuple[float, int]:
+def press_pull_run(n: int, progress: bool = False, multirate: bool = True) -> tuple[float, int]:
     """Wall time [s] and steps of a full press-pull of ``n`` setae: the paper's array with rod
     setae on a σ = 0.5 µm pad floor, ``protocol.press_pull(1.0)``, seed 1 (``progress``: show
-    the run's progress bar)."""
+    the run's progress bar; ``multirate``: :class:`Numerics`' multirate)."""
     p = PAPER_ARRAY.replace(**{"floor.sigma": 0.5, "mechanics": "rod"})
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(p, n_sim=int(n), seed=1)
+        m = Model(p, n_sim=int(n), seed=1, numerics=Numerics(multirate=multirate))
         h = m.run(protocol.press_pull(1.0), progress=progress)
     return h.meta["wall_time_s"], h.meta["n_steps"]
 
@@ -223,15 +225,21 @@ def quasistatic_time(
 def _scaling(sizes, run_max, steps, repeats) -> list[dict]:
     """The scaling table's rows (see the module docstring), printed as they come."""
     print("scaling (default kernel and detection; press-pull: rod setae, σ = 0.5 µm pads):")
-    print("       N   ms/step (pressed)   press-pull wall [s]   steps   peak RSS [MB]")
+    print(
+        "       N   ms/step (pressed)   press-pull wall [s]   steps   peak RSS [MB]   "
+        "whole array located: wall [s], steps"
+    )
     rows, run_steps = [], None
     for n in sorted(sizes):
         m = pressed_model(n)
         ms = min(n / agent_rate(m, steps) * 1e3 for _ in range(repeats))
         del m
+        whole = (math.nan, 0)
         if n <= run_max or run_steps is None:
             wall, run_steps = press_pull_run(n, progress=n >= 50_000)
             how = "run"
+            if n <= run_max:  # the baseline in the same run
+                whole = press_pull_run(n, multirate=False)
         else:
             wall, how = run_steps * ms * 1e-3, "extrapolated"
         row = {
@@ -241,11 +249,13 @@ def _scaling(sizes, run_max, steps, repeats) -> list[dict]:
             "steps": run_steps,
             "how": how,
             "peak_rss_mb": peak_memory_mb(),
+            "whole_array_s": whole[0],
+            "whole_array_steps": whole[1],
         }
         rows.append(row)
         print(
             f"{n:>8}   {ms:17.3g}   {wall:12.4g} ({how:>12})   {run_steps:>5}   "
-            f"{row['peak_rss_mb']:13.0f}"
+            f"{row['peak_rss_mb']:13.0f}   {whole[0]:10.4g}, {whole[1]}"
         )
     return rows
 

@@ -5,15 +5,16 @@ Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`).
 
 On a rigid backing the plate's motion is prescribed, so the setae are independent systems
 that share nothing but that motion: each one's step needs only its own state and the plate's.
-A step size can then differ between setae, the multirate idea of Gear & Wells (1984), "Multirate
-linear multistep methods", BIT 24, 484–502: a slow component keeps the long step while a fast one
-takes several short ones over the same interval. Here the fast components are the setae
+A step size can then differ between setae, the multirate idea of Gear & Wells (1984),
+"Multirate linear multistep methods", BIT 24(4), 484–502 (doi:10.1007/BF01934907): a slow
+component keeps the long step while a fast one takes several short ones over the same
+interval. Here the fast components are the setae
 :meth:`gecko_agents.model.implicit.ImplicitStep.substeps` finds near an event (a snap-off, a
 fold, a jump-in, a slip, a released tip's ringing): over one long step dt they take k steps of
-dt/k in a pymunk space of their own (:class:`SubWorld`), the same kernels, the same event
-location and the same energy books as the whole array takes them today; the others take one
-step of dt. Each seta's history is then the one it would have had if it were stepped alone,
-up to rounding, and an event is resolved as the implicit step's located steps resolve it.
+dt/k in a pymunk space of their own (:class:`SubWorld`), with the kernels, event location
+and energy books of the whole array's located steps; the others take one step of dt. Each
+seta's history is then the one it would have had if it were stepped alone, up to rounding,
+and an event is resolved as the implicit step's located steps resolve it.
 
 What the plate sees is summed over both: the force on it and its work (the trapezoid of each
 seta's pull over its own steps), the dissipation, the releases (each at its own short step's
@@ -46,8 +47,8 @@ __all__ = ["Multirate", "SubWorld", "multirate_applies"]
 
 SUB_COST = 2.0
 """What a seta-step of the near setae costs against one of the whole array's [-]: the sub-model
-is built twice per step and its steps carry their fixed cost over fewer setae (measured 1.7 on
-a 10⁴-seta rough press-pull, 0.47 against 0.28 µs)."""
+is built twice per step and its steps carry their fixed cost over fewer setae (measured on a
+10⁴-seta rough press-pull: documentation, explanation, "Performance")."""
 
 _FIELDS = pb.BodyFields.BODY_ID | pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
 _SET = pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
@@ -188,18 +189,19 @@ class Multirate:
         self.sub_world = SubWorld(model.world)
         self.n_steps = 0
         self.seta_steps = 0
-        self._last = None  # the setae of the last multirate step, and the time it ended [µs]
-        self._last_time = math.nan
+        self._last = None  # the setae whose contact changed in the last multirate step
+        self._last_time = math.nan  # and the time it ended [µs]
 
     def near(self, near: np.ndarray, k: int) -> np.ndarray | None:
         """The setae that take the k short steps of a located step whose ``near`` setae are
         these (bool (N,), :meth:`gecko_agents.model.implicit.ImplicitStep.substeps`): they and
-        the setae that took them in the step just before, so that an event's aftermath (a
-        released tip's ringing, a jumped-in one's settling) is stepped short as the whole
-        array's located steps step it (without, a 20-seta rough retraction at 5 explicit steps
-        near events booked 5.0 % off against their 1.9 %). None where the step is not
-        multirate: its m setae are computed k + 1 times besides the whole array's once, which
-        must cost less than the whole array's k steps, :data:`SUB_COST`·(k + 1)·m + N < k·N."""
+        the setae that attached or let go in the multirate step just before, so that an
+        event's aftermath (a released tip's ringing, a jumped-in one's settling) is stepped
+        short as the whole array's located steps step it (the energy books of
+        ``tests/test_event_location.py``'s retraction at 5 explicit steps near events close only
+        with it). None where the step is not multirate: its m setae are computed k + 1 times
+        besides the whole array's once, which must cost less than the whole array's k steps,
+        :data:`SUB_COST`·(k + 1)·m + N < k·N."""
         if self._last is not None and self.m.time == self._last_time:
             near = near | self._last
         count = int(np.count_nonzero(near))
@@ -285,6 +287,7 @@ class Multirate:
         idx = np.flatnonzero(near)
         dt = m.dt
         saved = self._gather(idx)
+        attached = m.state.attached.copy()
         m.advance(*vp)
         saved["rows"] = m.state.pv[:, idx].T.copy()  # as the step read them from pymunk
         far = [e for e in m.pop_releases() if not near[e[0]]]
@@ -302,7 +305,8 @@ class Multirate:
         m.reaction = (-m._on_plate_prev[0], -m._on_plate_prev[1])
         ph.events = []
         self.n_steps += 1
-        self._last, self._last_time = near, m.time
+        self._last = attached != m.state.attached  # the setae that attached or let go
+        self._last_time = m.time
         self.seta_steps += (k + 1) * idx.size  # the k short steps and the share taken out
         released = short["released"]
         if far:
