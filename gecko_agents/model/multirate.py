@@ -25,8 +25,8 @@ needs a mask (:meth:`Multirate.advance`).
 Where it does not apply, the whole array takes the located steps as before: a backing that
 couples the setae (an elastic strip or layer: their roots move with each other), a continuous
 floor (its contact pairs come from pymunk's detection in the array's space), the elastica,
-the callback contact path, the explicit step, and a step whose near setae would cost more
-stepped apart than the whole array's k short steps (:meth:`Multirate.near`).
+the callback contact path, the explicit step, and a step whose near setae would take more
+seta-steps apart than the whole array's k short steps (:meth:`Multirate.near`).
 """
 
 from __future__ import annotations
@@ -44,11 +44,6 @@ from gecko_agents.model.step_numpy import NumpyStep
 from gecko_agents.physics import beam
 
 __all__ = ["Multirate", "SubWorld", "multirate_applies"]
-
-SUB_COST = 2.0
-"""What a seta-step of the near setae costs against one of the whole array's [-]: the sub-model
-is built twice per step and its steps carry their fixed cost over fewer setae (measured on a
-10⁴-seta rough press-pull: documentation, explanation, "Performance")."""
 
 _FIELDS = pb.BodyFields.BODY_ID | pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
 _SET = pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
@@ -199,14 +194,13 @@ class Multirate:
         event's aftermath (a released tip's ringing, a jumped-in one's settling) is stepped
         short as the whole array's located steps step it (the energy books of
         ``tests/test_event_location.py``'s retraction at 5 explicit steps near events close only
-        with it). None where the step is not multirate: its m setae are computed k + 1 times
-        besides the whole array's once, which must cost less than the whole array's k steps,
-        :data:`SUB_COST`·(k + 1)·m + N < k·N."""
+        with it). None where the step is not multirate: its m setae take k + 1 steps of their
+        own besides the whole array's one, fewer seta-steps than the whole array's k steps
+        only while (k + 1)·m + N < k·N."""
         if self._last is not None and self.m.time == self._last_time:
             near = near | self._last
-        count = int(np.count_nonzero(near))
-        cost = SUB_COST * (k + 1) * count + near.size
-        return near if 0 < count and cost < k * near.size else None
+        count, n = int(np.count_nonzero(near)), near.size
+        return near if 0 < count and (k + 1) * count + n < k * n else None
 
     def _sub(self, idx, saved, dt, k):
         """A model of setae ``idx`` alone in the pool's space, from ``saved`` (their state at
