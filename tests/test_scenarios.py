@@ -169,3 +169,17 @@ def test_agent_preload_point_holds_its_share_of_the_preload():
     assert 0 < row["attached_fraction"] <= 1 and row["n_steps"] > 0
     with pytest.raises(ValueError, match="n_sim"):
         points.agent_preload_point(p, 3, preload_uN=200.0, n_sim=0)
+
+
+@pytest.mark.parametrize(
+    "value, message", [("0", "--workers 0 must be in"), ("x", "--workers 'x'")]
+)
+def test_sweep_workers_are_checked_before_anything_runs(tmp_path, capsys, value, message):
+    """``--workers`` of the preload scenarios is refused naming the option and its value."""
+    from gecko_agents.studies import fig11a_preload
+
+    with pytest.raises(SystemExit) as err:
+        fig11a_preload.main(["--quick", "--workers", value, "--out", str(tmp_path / "o")])
+    assert err.value.code == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()

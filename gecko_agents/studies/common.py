@@ -62,19 +62,28 @@ def writable_dir(value: str) -> Path:
     return output_dir_arg(value)
 
 
-def jobs_arg(value: str) -> int:
-    """``--jobs`` as argparse ``type=``: worker processes, an integer from 1 to this machine's
-    cores (more only queue for the same cores and multiply the memory)."""
-    cores = os.cpu_count() or 1
-    try:
-        jobs = int(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--jobs {value!r} is not an integer") from None
-    if not 1 <= jobs <= cores:
-        raise argparse.ArgumentTypeError(
-            f"--jobs {jobs} must be in [1, {cores}] (this machine's cores)"
-        )
-    return jobs
+def cores_arg(option: str):
+    """An argparse ``type=`` for ``option`` (``--jobs``, ``--workers``): worker processes, an
+    integer from 1 to this machine's cores (more only queue for the same cores and multiply
+    the memory)."""
+
+    def parse(value: str) -> int:
+        cores = os.cpu_count() or 1
+        try:
+            jobs = int(value)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{option} {value!r} is not an integer") from None
+        if not 1 <= jobs <= cores:
+            raise argparse.ArgumentTypeError(
+                f"{option} {jobs} must be in [1, {cores}] (this machine's cores)"
+            )
+        return jobs
+
+    return parse
+
+
+jobs_arg = cores_arg("--jobs")
+"""``--jobs`` as argparse ``type=`` (:func:`cores_arg`)."""
 
 
 def command_line(main):

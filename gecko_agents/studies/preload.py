@@ -24,6 +24,7 @@ from gecko_agents import sweep
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY, SetaArray
 from gecko_agents.protocol import Press, PullOff
+from gecko_agents.studies.common import cores_arg
 from gecko_agents.sweep.points import agent_preload_point, quasistatic_preload_point
 
 UN_PER_N = 1e6
@@ -175,7 +176,10 @@ def qs_kwargs(cfg: dict) -> dict:
 
 
 def n_workers(args) -> int | None:
-    """--quick without Dask runs its few short points in this process (no start-up cost)."""
+    """``--workers`` if given; else --quick without Dask runs its few short points in this
+    process (no start-up cost), and a full run one worker process per core."""
+    if args.workers is not None:
+        return args.workers
     return 1 if args.quick and args.dask is None else None
 
 
@@ -281,6 +285,12 @@ def add_args(parser) -> None:
         type=sweep.parse_dask_arg,
         default=None,
         help="run sweep points on Dask: 'local' or 'tcp://host:port' (default: local processes)",
+    )
+    parser.add_argument(
+        "--workers",
+        type=cores_arg("--workers"),
+        default=None,
+        help="local worker processes of the sweeps (default: one per core; 1: in this process)",
     )
     parser.add_argument(
         "--animate",

@@ -43,6 +43,10 @@ SCENARIOS = (
 BEYOND = ("calibrate_paper", "pull_speed", "frictional_adhesion", "pillar_designs", "probe_test")
 """Studies beyond the paper whose sections join the report with ``--beyond``."""
 LONGEST = ("fig10_array_pulloff", "fig11b_roughness", "calibrate_paper", "pull_speed")
+SWEEPING = ("fig11a_preload", "fig11b_roughness")
+"""Scenarios whose sweeps run on worker processes of their own (``--workers``): with several
+scenarios at once, each sweeps in its own process, since the scenarios already share the
+cores and nested pools would queue for them and pay their start-ups."""
 
 
 def conclusion_rows(quick: bool) -> list[dict]:
@@ -149,6 +153,7 @@ def run_scenarios(base: Path, args, log: WarningLog) -> dict:
         name: ["--out", str(base / name)]
         + (["--quick"] if args.quick else [])
         + (["--no-progress"] if args.no_progress or args.jobs > 1 else [])
+        + (["--workers", "1"] if args.jobs > 1 and name in SWEEPING else [])
         for name in names
     }
     done = {}
