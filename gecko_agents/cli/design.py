@@ -49,6 +49,12 @@ def add_design(p: argparse.ArgumentParser) -> None:
         "scheduler; its workers need the design extra and a --storage URL they reach)",
     )
     p.add_argument("--quick", action="store_true", help="the file's [quick] variant")
+    p.add_argument(
+        "--benchmark",
+        action="store_true",
+        help="time the screen on one worker and on --workers (default 2) sharing one SQLite "
+        "store, in temporary folders, and print the ratio; nothing is written",
+    )
 
 
 def cmd_design(args, extra) -> int:
@@ -64,6 +70,8 @@ def cmd_design(args, extra) -> int:
         require_optuna()
     except ImportError as err:
         raise UsageError(str(err)) from None
+    if args.benchmark:
+        return _benchmark(spec, args)
     out = args.out if args.out is not None else checked(Path("designs") / spec.path.stem)
     from gecko_agents.design.study import check_output
 
@@ -107,4 +115,24 @@ def cmd_design(args, extra) -> int:
             for k, v in b["design"].items()
         )
         print(f"best: {knobs}; engine {b['engine']['mean']:.4g} kPa")
+    return EXIT_OK
+
+
+def _benchmark(spec, args) -> int:
+    """``--benchmark``: the screen's wall time on one worker against several, in one run."""
+    from gecko_agents.design.benchmark import benchmark_workers
+
+    if args.storage or args.dask:
+        raise UsageError(
+            "--benchmark times local workers on a new SQLite store: no --storage/--dask"
+        )
+    workers = args.workers if args.workers > 1 else 2
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", category=UserWarning)  # Optuna's experimental notes
+        b = benchmark_workers(spec, trials=args.trials, pairs=2, workers=workers)
+    for one, many, r in zip(b["one_s"], b["many_s"], b["ratios"], strict=True):
+        print(
+            f"{b['trials']} trials: 1 worker {one:.1f} s, {workers} workers {many:.1f} s ({r:.2f}×)"
+        )
+    print(f"{workers} workers / 1 worker: {b['ratio']:.2f} (median of {len(b['ratios'])} pairs)")
     return EXIT_OK

@@ -2,11 +2,14 @@
 
 The search's workers share the study through its store (Optuna's database storage): each runs
 :func:`gecko_agents.design.search.run_search` until the store holds the study's trials, so
-any number of them, started anywhere the store is reachable, fill one study. The engine's
-confirmations, independent runs, are mapped over the same workers. Local workers are spawned
-processes; ``dask="local"`` starts a Dask LocalCluster and ``dask="tcp://host:port"`` uses a
-running scheduler whose workers have gecko_agents (and the design extra) installed and reach
-the store (a database URL; an SQLite file only on one machine's disk).
+any number of them, started anywhere the store is reachable, fill one study; worker k > 0
+draws with its own sampler seed (:func:`~gecko_agents.design.search.sampler_seed`). The
+engine's confirmations, independent runs, are mapped over the same workers. Local workers are
+the calling process and ``workers − 1`` spawned processes (:func:`with_local_worker`: the
+caller's imports and store are already open, and it works while the others start);
+``dask="local"`` starts a Dask LocalCluster and ``dask="tcp://host:port"`` uses a running
+scheduler whose workers have gecko_agents (and the design extra) installed and reach the store
+(a database URL; an SQLite file only on one machine's disk).
 """
 
 from __future__ import annotations
@@ -15,19 +18,19 @@ import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-__all__ = ["search_worker", "parallel_map"]
+__all__ = ["search_worker", "parallel_map", "with_local_worker"]
 
 
-def search_worker(spec, out: str, trials: int | None, storage: str | None) -> int:
-    """One worker of a shared study: screen until the store holds the study's trials; the
-    number of finished trials it then sees."""
+def search_worker(spec, out: str, trials: int | None, storage: str | None, worker: int = 0) -> int:
+    """Worker number ``worker`` of a shared study: screen until the store holds the study's
+    trials; the number of finished trials it then sees."""
     import warnings
 
     import gecko_agents.design.search as search
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", category=UserWarning)  # Optuna's experimental notes
-        study = search.run_search(spec, Path(out), trials=trials, storage=storage)
+        study = search.run_search(spec, Path(out), trials=trials, storage=storage, worker=worker)
     return len(search.completed(study))
 
 
@@ -42,6 +45,18 @@ def parallel_map(fn, args: list[tuple], workers: int, dask: str | None = None) -
     with ProcessPoolExecutor(max_workers=min(workers, len(args)), mp_context=ctx) as pool:
         futures = [pool.submit(fn, *a) for a in args]
         return [f.result() for f in futures]
+
+
+def with_local_worker(fn, args: list[tuple]) -> list:
+    """``[fn(*a) for a in args]`` at once: the first in the calling process, the others in
+    spawned processes; in the order of ``args``."""
+    if len(args) <= 1:
+        return [fn(*a) for a in args]
+    ctx = multiprocessing.get_context("spawn")  # no forked database connection or thread
+    with ProcessPoolExecutor(max_workers=len(args) - 1, mp_context=ctx) as pool:
+        futures = [pool.submit(fn, *a) for a in args[1:]]
+        mine = fn(*args[0])
+        return [mine, *(f.result() for f in futures)]
 
 
 def _dask_map(fn, args: list[tuple], workers: int, address: str) -> list:

@@ -15,6 +15,7 @@ import warnings
 from pathlib import Path
 
 from gecko_agents.design.confirm import DISAGREE
+from gecko_agents.design.search import feasible
 from gecko_agents.design.space import KNOBS, OBJECTIVES, TIP_KINDS
 
 __all__ = [
@@ -56,9 +57,9 @@ def trial_rows(spec, trials: list, confirmed: dict) -> list[dict]:
     for t in trials:
         a = t.user_attrs
         row = {"trial": t.number, **a.get("design", {})}
-        row |= {f"screen_{k}": v for k, v in a.get("screen", {}).items()}
+        row |= {f"screen_{k}": v for k, v in a.get("record", {}).get("screen", {}).items()}
         row |= {k: v for k, v in a.get("record", {}).get("metrics", {}).items()}
-        row["feasible"] = all(c <= 0 for c in a.get("constraint_values", [0.0]))
+        row["feasible"] = feasible(t)
         c = confirmed.get(t.number)
         row["engine_pull_off_per_area"] = c["mean"] if c else math.nan
         row["engine_spread"] = c["spread"] if c else math.nan
@@ -77,10 +78,6 @@ def write_csv(path: Path, rows: list[dict]) -> None:
     for r in rows:
         w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
     atomic_write_bytes(path, buf.getvalue().encode())
-
-
-def _feasible(t) -> bool:
-    return all(c <= 0 for c in t.user_attrs.get("constraint_values", [0.0]))
 
 
 def _label(name: str) -> str:
@@ -104,7 +101,7 @@ def draw_front(spec, trials: list, best: list, confirmed: dict, out: Path) -> No
             return [t.values[0] for t in ts], [t.values[1] for t in ts]
         return [t.number for t in ts], [t.values[0] for t in ts]
 
-    ok = [t for t in trials if _feasible(t)]
+    ok = [t for t in trials if feasible(t)]
     bad = [t for t in trials if t not in ok]
     with mpl.rc_context(render.STYLE_RC):
         fig = Figure(figsize=(6.0, 4.5), layout="constrained")
@@ -152,7 +149,7 @@ def draw_parameters(spec, trials: list, out: Path) -> None:
                 for g, group in enumerate(groups):
                     sel = [t for t in trials if tuple(t.params.get(c) for c in cats) == group]
                     for ok, face in ((True, f"C{g}"), (False, "none")):
-                        part = [t for t in sel if _feasible(t) is ok]
+                        part = [t for t in sel if feasible(t) is ok]
                         ax.plot(
                             [t.params[key] for t in part],
                             [t.values[i] for t in part],

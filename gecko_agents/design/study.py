@@ -13,7 +13,7 @@ import gecko_agents.design.parallel as parallel
 import gecko_agents.design.report as report
 import gecko_agents.design.search as search
 
-__all__ = ["run_design", "screen_flags", "check_output", "OUTPUT_FILES"]
+__all__ = ["run_design", "search_study", "screen_flags", "check_output", "OUTPUT_FILES"]
 
 OUTPUT_FILES = (
     "study.db",
@@ -66,7 +66,7 @@ def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, li
     for j, (t, design, eng) in enumerate(zip(chosen, designs, engine, strict=True), 1):
         label = f"design_{j}"
         confirmed[t.number] = eng
-        screened = t.user_attrs["screen"]
+        screened = t.user_attrs["record"]["screen"]
         ref = screened["pull_off_per_area"]
         ratio = ref / eng["mean"] if eng["mean"] > 0 else math.inf
         rows.append(
@@ -97,16 +97,18 @@ def _versions() -> dict:
     return {**versions(), "optuna": version("optuna"), "code_fingerprint": code_fingerprint()}
 
 
-def _search(spec, out: Path, trials, storage, workers: int, dask):
+def search_study(spec, out: Path, trials, storage, workers: int, dask):
     """The study filled to its trials, by this process or by ``workers`` workers sharing its
     store (a killed run's cut-off trials in a local file are marked failed once, first)."""
     if workers <= 1 and dask is None:
         return search.run_search(spec, out, trials=trials, storage=storage)
     search.open_study(spec, out, storage)
     url = storage or search.local_storage(out)
-    parallel.parallel_map(
-        parallel.search_worker, [(spec, str(out), trials, url)] * workers, workers, dask
-    )
+    args = [(spec, str(out), trials, url, k) for k in range(workers)]
+    if dask is None:  # this process is one of the workers
+        parallel.with_local_worker(parallel.search_worker, args)
+    else:
+        parallel.parallel_map(parallel.search_worker, args, workers, dask)
     return search.open_study(spec, out, url)
 
 
@@ -130,7 +132,7 @@ def run_design(
     check_output(out)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    study = _search(spec, out, trials, storage, workers, dask)
+    study = search_study(spec, out, trials, storage, workers, dask)
     done = search.completed(study)
     t_screen = time.perf_counter() - t0
     say(f"{len(done)} screening trials in the study ({t_screen:.1f} s)")
