@@ -1,15 +1,15 @@
 """Several workers on one design study: local worker processes or the package's Dask backend.
 
-The search's workers share the study through its store (Optuna's database storage): each runs
+Local workers are spawned processes that evaluate designs for the calling process, which alone
+asks the sampler and writes the store (:func:`search_batched`). Dask workers share the study
+through its store (Optuna's database storage): each runs
 :func:`gecko_agents.design.search.run_search` until the store holds the study's trials, so
 any number of them, started anywhere the store is reachable, fill one study; worker k > 0
-draws with its own sampler seed (:func:`~gecko_agents.design.search.sampler_seed`). The
-engine's confirmations, independent runs, are mapped over the same workers. Local workers are
-the calling process and ``workers − 1`` spawned processes (:func:`with_local_worker`: the
-caller's imports and store are already open, and it works while the others start);
+draws with its own sampler seed (:func:`~gecko_agents.design.search.sampler_seed`).
 ``dask="local"`` starts a Dask LocalCluster and ``dask="tcp://host:port"`` uses a running
 scheduler whose workers have gecko_agents (and the design extra) installed and reach the store
-(a database URL; an SQLite file only on one machine's disk).
+(a database URL; an SQLite file only on one machine's disk). The engine's confirmations,
+independent runs, are mapped over the same workers.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-__all__ = ["search_worker", "parallel_map", "with_local_worker"]
+__all__ = ["search_worker", "parallel_map", "search_batched"]
 
 
 def search_worker(spec, out: str, trials: int | None, storage: str | None, worker: int = 0) -> int:
@@ -47,16 +47,43 @@ def parallel_map(fn, args: list[tuple], workers: int, dask: str | None = None) -
         return [f.result() for f in futures]
 
 
-def with_local_worker(fn, args: list[tuple]) -> list:
-    """``[fn(*a) for a in args]`` at once: the first in the calling process, the others in
-    spawned processes; in the order of ``args``."""
-    if len(args) <= 1:
-        return [fn(*a) for a in args]
+def search_batched(spec, out: Path, trials: int | None, storage: str | None, workers: int):
+    """Fill the study with ``workers`` spawned processes evaluating designs while this one
+    keeps ``workers`` trials in flight (Optuna's ask-and-tell): it asks the sampler for a
+    design, hands it to a free process, and stores and tells each result as it comes back.
+    Only this process reads and writes the store, so the store's work is not repeated per
+    worker, and it overlaps the evaluations. Returns the study."""
+    import concurrent.futures as cf
+
+    import gecko_agents.design.search as search
+
+    optuna = search.require_optuna()
+    study = search.open_study(spec, out, storage)
+    target = spec.trials if trials is None else trials
+    left = target - len(search.completed(study))
+    code, own = search.provenance(), search.own_constraints(optuna)
     ctx = multiprocessing.get_context("spawn")  # no forked database connection or thread
-    with ProcessPoolExecutor(max_workers=len(args) - 1, mp_context=ctx) as pool:
-        futures = [pool.submit(fn, *a) for a in args[1:]]
-        mine = fn(*args[0])
-        return [mine, *(f.result() for f in futures)]
+    running: dict = {}
+    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+        while left > 0 or running:
+            while left > 0 and len(running) < workers:
+                trial = study.ask()
+                values = search.suggest(spec, trial)
+                running[pool.submit(search.evaluate, spec, values)] = (trial, values)
+                left -= 1
+            done, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
+            for f in done:
+                trial, values = running.pop(f)
+                try:
+                    res = f.result()
+                except search.CAUGHT as err:  # a design a model refuses: a failed trial
+                    trial.set_user_attr("error", f"{type(err).__name__}: {err}")
+                    study.tell(trial, state=optuna.trial.TrialState.FAIL)
+                    continue
+                study.tell(trial, search.record_trial(spec, trial, values, res, code, own))
+            if left > 0 and len(search.completed(study)) + len(running) >= target:
+                left = 0  # other workers on a shared store have filled it
+    return study
 
 
 def _dask_map(fn, args: list[tuple], workers: int, address: str) -> list:

@@ -227,7 +227,7 @@ def best_table(spec, rows: list[dict]) -> list[str]:
         ]
         if release:
             cells.append(
-                "screen only (rigid plate)" if e["release"] is None else _fmt(e["release"])
+                "screen only (level backing)" if e["release"] is None else _fmt(e["release"])
             )
         if several:
             cells.append("yes" if r.get("front") else "—")
@@ -275,6 +275,13 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
         lines.append(
             f"- {tip}: screen — {screen} ({kind.source}); engine — "
             "gecko_agents.model.Model, elastica pillars, the same floors"
+        )
+    if "layer" in spec.choices["backing"]:
+        lines.append(
+            "- backing layer: screen — the field model's fibrils, coupled through the layer's "
+            "compliance (gecko_agents.physics.layer_field; Bettscheider et al. 2021, J Mech "
+            "Phys Solids 104365), event to event; engine — rod pillars on "
+            "gecko_agents.backing.layer, the explicit step"
         )
     lines += ["", "## Validity items not met", ""]
     lines += [

@@ -86,7 +86,7 @@ def suggest(spec, trial) -> dict:
     return values
 
 
-def _own_constraints(optuna) -> bool:
+def own_constraints(optuna) -> bool:
     """Whether this Optuna stores constraints on the trial (``Trial.set_constraint``, 5.0 on);
     older ones take a ``constraints_func``."""
     return hasattr(optuna.trial.Trial, "set_constraint")
@@ -102,7 +102,7 @@ def sampler_seed(spec, worker: int = 0) -> int:
 
 
 def _sampler(spec, optuna, worker: int = 0):
-    kw = {} if _own_constraints(optuna) else {"constraints_func": _constraints_of}
+    kw = {} if own_constraints(optuna) else {"constraints_func": _constraints_of}
     seed = sampler_seed(spec, worker)
     if len(spec.objectives) == 1:
         return optuna.samplers.TPESampler(seed=seed, n_startup_trials=10, **kw)
@@ -159,7 +159,8 @@ def _storage(url: str, optuna):
     return rdb
 
 
-def _provenance() -> dict:
+def provenance() -> dict:
+    """The package's version and its code's fingerprint, recorded on every trial."""
     from gecko_agents import __version__
     from gecko_agents.provenance import code_fingerprint
 
@@ -176,11 +177,37 @@ def violation(constraints: list[float]) -> float:
     return float(broken) if broken > 0 else float(max(constraints))
 
 
+def record_trial(spec, trial, values: dict, res: dict, code: dict, own: bool) -> list[float]:
+    """Store one screened design on its trial (its constraint for the sampler, ``design`` and
+    ``record``); the objective values to tell Optuna, in the design file's order."""
+    cons = [float(res["constraints"][k]) for k in sorted(res["constraints"])] or [0.0]
+    if own:
+        trial.set_constraint("violation", violation(cons))
+    trial.set_user_attr("design", values)
+    seeds = [floor_seed(spec, i) for i in range(spec.test["floor_seeds"])]
+    trial.set_user_attr(
+        "record",
+        {
+            "screen": res["objectives"],
+            "constraint_values": cons,
+            "constraints": res["constraints"],
+            "metrics": res["metrics"],
+            "validity": res["validity"],
+            "floor_seeds": seeds,
+            "study_seed": spec.seed,
+            "design_sha256": spec.sha256,
+            "code_version": code["version"],
+            "code_fingerprint": code["fingerprint"],
+        },
+    )
+    return [res["objectives"][o] for o in spec.objectives]
+
+
 def objective_fn(spec):
     """The function Optuna calls: a design's screened objectives, its constraints and records
-    stored on the trial."""
-    code = _provenance()
-    own = _own_constraints(require_optuna())
+    stored on the trial (:func:`record_trial`)."""
+    code = provenance()
+    own = own_constraints(require_optuna())
 
     def objective(trial):
         values = suggest(spec, trial)
@@ -189,27 +216,7 @@ def objective_fn(spec):
         except CAUGHT as err:  # a design a model refuses: a failed trial, its reason kept
             trial.set_user_attr("error", f"{type(err).__name__}: {err}")
             raise
-        cons = [float(res["constraints"][k]) for k in sorted(res["constraints"])] or [0.0]
-        if own:
-            trial.set_constraint("violation", violation(cons))
-        trial.set_user_attr("design", values)
-        seeds = [floor_seed(spec, i) for i in range(spec.test["floor_seeds"])]
-        trial.set_user_attr(
-            "record",
-            {
-                "screen": res["objectives"],
-                "constraint_values": cons,
-                "constraints": res["constraints"],
-                "metrics": res["metrics"],
-                "validity": res["validity"],
-                "floor_seeds": seeds,
-                "study_seed": spec.seed,
-                "design_sha256": spec.sha256,
-                "code_version": code["version"],
-                "code_fingerprint": code["fingerprint"],
-            },
-        )
-        out = [res["objectives"][o] for o in spec.objectives]
+        out = record_trial(spec, trial, values, res, code, own)
         return out[0] if len(out) == 1 else out
 
     return objective

@@ -98,17 +98,18 @@ def _versions() -> dict:
 
 
 def search_study(spec, out: Path, trials, storage, workers: int, dask):
-    """The study filled to its trials, by this process or by ``workers`` workers sharing its
-    store (a killed run's cut-off trials in a local file are marked failed once, first)."""
+    """The study filled to its trials, by this process alone, by ``workers`` local processes
+    evaluating for it (:func:`~gecko_agents.design.parallel.search_batched`), or by as many
+    Dask workers sharing its store (a killed run's cut-off trials in a local file are marked
+    failed once, first)."""
     if workers <= 1 and dask is None:
         return search.run_search(spec, out, trials=trials, storage=storage)
+    if dask is None:
+        return parallel.search_batched(spec, out, trials, storage, workers)
     search.open_study(spec, out, storage)
     url = storage or search.local_storage(out)
     args = [(spec, str(out), trials, url, k) for k in range(workers)]
-    if dask is None:  # this process is one of the workers
-        parallel.with_local_worker(parallel.search_worker, args)
-    else:
-        parallel.parallel_map(parallel.search_worker, args, workers, dask)
+    parallel.parallel_map(parallel.search_worker, args, workers, dask)
     return search.open_study(spec, out, url)
 
 
