@@ -1,7 +1,7 @@
 """Several workers on one design study: local worker processes or the package's Dask backend.
 
-Local workers are spawned processes that evaluate designs for the calling process, which alone
-asks the sampler and writes the store (:func:`search_batched`). Dask workers share the study
+A study in a local SQLite file is run by one process, its evaluations spread over local worker
+processes (:mod:`gecko_agents.design.local`). Workers of a database URL or of Dask share the study
 through its store (Optuna's database storage): each runs
 :func:`gecko_agents.design.search.run_search` until the store holds the study's trials, so
 any number of them, started anywhere the store is reachable, fill one study; worker k > 0
@@ -18,7 +18,7 @@ import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-__all__ = ["search_worker", "parallel_map", "search_batched"]
+__all__ = ["search_worker", "parallel_map"]
 
 
 def search_worker(spec, out: str, trials: int | None, storage: str | None, worker: int = 0) -> int:
@@ -45,45 +45,6 @@ def parallel_map(fn, args: list[tuple], workers: int, dask: str | None = None) -
     with ProcessPoolExecutor(max_workers=min(workers, len(args)), mp_context=ctx) as pool:
         futures = [pool.submit(fn, *a) for a in args]
         return [f.result() for f in futures]
-
-
-def search_batched(spec, out: Path, trials: int | None, storage: str | None, workers: int):
-    """Fill the study with ``workers`` spawned processes evaluating designs while this one
-    keeps ``workers`` trials in flight (Optuna's ask-and-tell): it asks the sampler for a
-    design, hands it to a free process, and stores and tells each result as it comes back.
-    Only this process reads and writes the store, so the store's work is not repeated per
-    worker, and it overlaps the evaluations. Returns the study."""
-    import concurrent.futures as cf
-
-    import gecko_agents.design.search as search
-
-    optuna = search.require_optuna()
-    study = search.open_study(spec, out, storage)
-    target = spec.trials if trials is None else trials
-    left = target - len(search.completed(study))
-    code, own = search.provenance(), search.own_constraints(optuna)
-    ctx = multiprocessing.get_context("spawn")  # no forked database connection or thread
-    running: dict = {}
-    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
-        while left > 0 or running:
-            while left > 0 and len(running) < workers:
-                trial = study.ask()
-                values = search.suggest(spec, trial)
-                running[pool.submit(search.evaluate, spec, values)] = (trial, values)
-                left -= 1
-            done, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
-            for f in done:
-                trial, values = running.pop(f)
-                try:
-                    res = f.result()
-                except search.CAUGHT as err:  # a design a model refuses: a failed trial
-                    trial.set_user_attr("error", f"{type(err).__name__}: {err}")
-                    study.tell(trial, state=optuna.trial.TrialState.FAIL)
-                    continue
-                study.tell(trial, search.record_trial(spec, trial, values, res, code, own))
-            if left > 0 and len(search.completed(study)) + len(running) >= target:
-                left = 0  # other workers on a shared store have filled it
-    return study
 
 
 def _dask_map(fn, args: list[tuple], workers: int, address: str) -> list:

@@ -149,7 +149,7 @@ def draw_parameters(spec, trials: list, out: Path) -> None:
                 for g, group in enumerate(groups):
                     sel = [t for t in trials if tuple(t.params.get(c) for c in cats) == group]
                     for ok, face in ((True, f"C{g}"), (False, "none")):
-                        part = [t for t in sel if feasible(t) is ok]
+                        part = [t for t in sel if feasible(t) is ok and key in t.params]
                         ax.plot(
                             [t.params[key] for t in part],
                             [t.values[i] for t in part],

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from gecko_agents.design.screen import evaluate, floor_seed
-from gecko_agents.design.space import KNOBS
+from gecko_agents.design.space import BACKING_KNOBS, KNOBS
 
 __all__ = [
     "require_optuna",
@@ -75,11 +75,14 @@ def search_bounds(spec, key: str) -> tuple[float, float]:
 
 
 def suggest(spec, trial) -> dict:
-    """One design drawn by the study's sampler (knobs the design file fixes are not drawn)."""
+    """One design drawn by the study's sampler (knobs the design file fixes are not drawn,
+    nor a backing's knobs for a rigid backing, which has none)."""
     values = {}
     for cat, names in spec.choices.items():
         values[cat] = names[0] if len(names) == 1 else trial.suggest_categorical(cat, list(names))
     for key in KNOBS:
+        if key in BACKING_KNOBS and values.get("backing", "rigid") == "rigid":
+            continue
         if key in spec.ranges:
             lo, hi = search_bounds(spec, key)
             values[key] = trial.suggest_float(key, lo, hi, log=KNOBS[key].log)
@@ -101,7 +104,8 @@ def sampler_seed(spec, worker: int = 0) -> int:
     return int(np.random.SeedSequence([spec.seed, worker]).generate_state(1)[0])
 
 
-def _sampler(spec, optuna, worker: int = 0):
+def make_sampler(spec, optuna, worker: int = 0):
+    """The study's sampler (TPE for one objective, NSGA-II for several) in worker ``worker``."""
     kw = {} if own_constraints(optuna) else {"constraints_func": _constraints_of}
     seed = sampler_seed(spec, worker)
     if len(spec.objectives) == 1:
@@ -130,7 +134,7 @@ def open_study(spec, out: Path, storage: str | None = None, worker: int = 0):
     study = optuna.create_study(
         study_name=study_name(spec),
         storage=_storage(storage, optuna),
-        sampler=_sampler(spec, optuna, worker),
+        sampler=make_sampler(spec, optuna, worker),
         directions=spec.directions,
         load_if_exists=True,
     )

@@ -9,9 +9,11 @@ import time
 from pathlib import Path
 
 import gecko_agents.design.confirm as confirm
+import gecko_agents.design.local as local
 import gecko_agents.design.parallel as parallel
 import gecko_agents.design.report as report
 import gecko_agents.design.search as search
+import gecko_agents.design.showcase as showcase
 
 __all__ = ["run_design", "search_study", "screen_flags", "check_output", "OUTPUT_FILES"]
 
@@ -22,6 +24,7 @@ OUTPUT_FILES = (
     "report.md",
     "pareto_front.png",
     "objectives_vs_parameters.png",
+    "showcase.png",
     "runs",
 )
 """What a design search writes into its output folder (``runs`` a folder of run files)."""
@@ -98,14 +101,14 @@ def _versions() -> dict:
 
 
 def search_study(spec, out: Path, trials, storage, workers: int, dask):
-    """The study filled to its trials, by this process alone, by ``workers`` local processes
-    evaluating for it (:func:`~gecko_agents.design.parallel.search_batched`), or by as many
-    Dask workers sharing its store (a killed run's cut-off trials in a local file are marked
-    failed once, first)."""
+    """The study filled to its trials: in the output folder's SQLite file by this process,
+    its designs evaluated here or on ``workers`` local processes
+    (:func:`~gecko_agents.design.local.run_local`); at a database URL or on Dask by as many
+    workers sharing the store (:func:`~gecko_agents.design.parallel.search_worker`)."""
+    if storage is None and dask is None:
+        return local.run_local(spec, out, trials, workers)
     if workers <= 1 and dask is None:
         return search.run_search(spec, out, trials=trials, storage=storage)
-    if dask is None:
-        return parallel.search_batched(spec, out, trials, storage, workers)
     search.open_study(spec, out, storage)
     url = storage or search.local_storage(out)
     args = [(spec, str(out), trials, url, k) for k in range(workers)]
@@ -127,7 +130,8 @@ def run_design(
     ``storage`` already holds it; ``workers`` local processes, or as many Dask workers at
     ``dask``, share it and the confirmations), the engine's confirmation of the
     ``spec.confirm`` best designs (the Pareto front first), and ``trials.csv``,
-    ``best.json``, ``pareto_front.png``, ``objectives_vs_parameters.png``, ``runs/*.toml``
+    ``best.json``, ``pareto_front.png``, ``objectives_vs_parameters.png``, ``showcase.png``
+    (:mod:`~gecko_agents.design.showcase`), ``runs/*.toml``
     and ``report.md``. Returns the summary written to ``best.json``."""
     out = Path(out)
     check_output(out)
@@ -147,6 +151,7 @@ def run_design(
     report.write_csv(out / "trials.csv", report.trial_rows(spec, done, confirmed))
     report.draw_front(spec, done, front, confirmed, out)
     report.draw_parameters(spec, done, out)
+    showcase.draw_showcase(spec, done, front, rows, out)
     flags = screen_flags(done)
     fails = [t.user_attrs.get("error", "cut off") for t in search.failed(study)]
     if fails:
