@@ -150,3 +150,25 @@ def test_the_worker_benchmark_times_one_against_two_workers_on_new_stores(tmp_pa
     with pytest.raises(ValueError, match="workers = 1"):
         benchmark_workers(spec, workers=1)
     assert math.isfinite(b["ratio"])
+
+
+def test_the_showcase_bound_is_the_flat_floor_screen_at_the_gap_and_peaks_at_one_and_a_half_gaps(
+    tmp_path,
+):
+    """Flat punches on a flat floor and a rigid backing share the load equally, so the screen
+    at pitch 2a + g is the bound F(a)/(2a + g)² exactly; without σ₀, F ∝ a^{3/2} and
+    a^{3/2}/(2a + g)² peaks at a = 1.5·g."""
+    from gecko_agents.design.showcase import gap_bound
+
+    text = BASE.replace("fill_fraction = 0.2", "spacing_um = [2.0, 50.0]")
+    spec = load_design(design(tmp_path, text))
+    g, a = 2.0, 3.0
+    v = {"tip": "flat_punch", "backing": "rigid", "radius_um": a, "spacing_um": 2 * a + g}
+    c = screen.design_params(spec, v).contact
+    bound = float(gap_bound(a, g, c.work_of_adhesion, c.E_star))
+    assert screen.evaluate(spec, v)["objectives"]["pull_off_per_area"] == pytest.approx(
+        bound, rel=1e-12
+    )
+    r = np.linspace(0.5, 10.0, 19001)
+    peak = r[np.argmax(gap_bound(r, g, c.work_of_adhesion, c.E_star))]
+    assert peak == pytest.approx(1.5 * g, abs=1e-3)
