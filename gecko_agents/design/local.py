@@ -9,8 +9,10 @@ little. Here the sampler's study lives in memory (Optuna's ``InMemoryStorage``, 
 sampler and seed, so the same study as the database's), the file receives each finished
 trial whole (``Study.add_trial``: one transaction) and holds only finished trials, so a kill
 loses only the designs being evaluated; a resumed study first loads the file's trials into
-memory. With ``workers`` > 1 spawned processes evaluate the designs while this one keeps as
-many in flight (Optuna's ask-and-tell), drawing, storing and telling as results come back.
+memory. With ``workers`` > 1, ``workers − 1`` spawned processes evaluate designs while this
+one keeps them busy (Optuna's ask-and-tell), drawing, storing and telling as results come back,
+and evaluates a design itself whenever they are busy: it works while they start, and no core
+waits on it.
 
 A local file belongs to one process (:func:`gecko_agents.design.search.open_study`); a study
 shared by several processes or machines goes through a database URL and
@@ -68,27 +70,49 @@ def run_local(spec, out: Path, trials: int | None = None, workers: int = 1):
 
 
 def _batched(spec, mem, store, n: int, workers: int, optuna) -> None:
-    """``n`` trials of ``mem``, ``workers`` evaluated at a time on spawned processes, each
-    stored in ``store`` as it finishes."""
+    """``n`` trials of ``mem`` on this process and ``workers − 1`` spawned ones, each stored
+    in ``store`` as it finishes: the spawned ones kept busy, this one evaluating a design
+    whenever they are (so it works while they start, and no core waits on it)."""
     code, own = search.provenance(), search.own_constraints(optuna)
     ctx = multiprocessing.get_context("spawn")  # no forked database connection or thread
+
+    def draw():
+        trial = mem.ask()
+        return trial, search.suggest(spec, trial)
+
+    def finish(trial, values, result) -> None:
+        if isinstance(result, search.CAUGHT):  # a design a model refuses: a failed trial
+            trial.set_user_attr("error", f"{type(result).__name__}: {result}")
+            frozen = mem.tell(trial, state=optuna.trial.TrialState.FAIL)
+        else:
+            frozen = mem.tell(trial, search.record_trial(spec, trial, values, result, code, own))
+        store.add_trial(frozen)
+
     running: dict = {}
-    with cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+    with cf.ProcessPoolExecutor(max_workers=workers - 1, mp_context=ctx) as pool:
         while n > 0 or running:
-            while n > 0 and len(running) < workers:
-                trial = mem.ask()
-                values = search.suggest(spec, trial)
+            while n > 0 and len(running) < workers - 1:
+                trial, values = draw()
                 running[pool.submit(search.evaluate, spec, values)] = (trial, values)
                 n -= 1
-            done, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
+            if n > 0:
+                trial, values = draw()
+                n -= 1
+                finish(trial, values, _evaluate(spec, values))
+                done = [f for f in running if f.done()]
+            else:
+                done = cf.wait(running, return_when=cf.FIRST_COMPLETED).done
             for f in done:
                 trial, values = running.pop(f)
-                try:
-                    res = f.result()
-                except search.CAUGHT as err:  # a design a model refuses: a failed trial
-                    trial.set_user_attr("error", f"{type(err).__name__}: {err}")
-                    frozen = mem.tell(trial, state=optuna.trial.TrialState.FAIL)
-                else:
-                    out = search.record_trial(spec, trial, values, res, code, own)
-                    frozen = mem.tell(trial, out)
-                store.add_trial(frozen)
+                err = f.exception()
+                if err is not None and not isinstance(err, search.CAUGHT):
+                    raise err
+                finish(trial, values, err if err is not None else f.result())
+
+
+def _evaluate(spec, values):
+    """The screen of one design, or the error a model refused it with."""
+    try:
+        return search.evaluate(spec, values)
+    except search.CAUGHT as err:
+        return err
