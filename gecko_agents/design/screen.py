@@ -50,6 +50,8 @@ __all__ = [
     "layer_compliance",
     "field_fibril",
     "layer_pull_off",
+    "fibril_stiffness",
+    "full_contact_force",
 ]
 
 
