@@ -146,6 +146,7 @@ def test_the_worker_benchmark_times_one_against_two_workers_on_new_stores(tmp_pa
     b = benchmark_workers(spec, trials=6, pairs=1)
     assert b["trials"] == 6 and b["workers"] == 2
     assert b["ratio"] == pytest.approx(b["many_s"][0] / b["one_s"][0])
+    assert len(b["machine"]) == len(b["cpu_ratios"]) == 1 and b["cpu_ratios"][0] > 0
     assert not list(tmp_path.glob("**/study.db"))  # nothing left behind
     with pytest.raises(ValueError, match="workers = 1"):
         benchmark_workers(spec, workers=1)

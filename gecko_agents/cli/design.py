@@ -130,10 +130,12 @@ def _benchmark(spec, args) -> int:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", category=UserWarning)  # Optuna's experimental notes
         b = benchmark_workers(spec, trials=args.trials, pairs=2, workers=workers)
-    for one, many, r, m in zip(b["one_s"], b["many_s"], b["ratios"], b["machine"], strict=True):
+    rows = zip(b["one_s"], b["many_s"], b["ratios"], b["machine"], b["cpu_ratios"], strict=True)
+    for one, many, r, m, c in rows:
         print(
             f"{b['trials']} trials: 1 worker {one:.1f} s, {workers} workers {many:.1f} s "
-            f"({r:.2f}×; two CPU-bound processes took {m:.2f}× one's time then)"
+            f"({r:.2f}×; two CPU-bound processes took {m:.2f}× one's time then; the busiest "
+            f"process's CPU time {c:.2f}×)"
         )
     print(f"{workers} workers / 1 worker: {b['ratio']:.2f} (median of {len(b['ratios'])} pairs)")
     return EXIT_OK

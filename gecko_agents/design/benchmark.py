@@ -8,11 +8,14 @@ workers, then 2 then 1, …) so that a machine whose load drifts during the run 
 the ratio of each pair is reported, not only their median, since the other jobs of a shared
 machine set how much of a second core a second worker gets. Before each pair the same fixed
 amount of pure-Python work is timed on one process and on two at once (:func:`machine_ratio`):
-1 where two cores are free, 2 where only one is, the best two workers could do then.
+1 where two cores are free, 2 where only one is, the best two workers could do then; and the
+CPU time of the busiest process is taken beside the wall time, which a shared machine's other
+jobs do not change.
 """
 
 from __future__ import annotations
 
+import resource
 import statistics
 import tempfile
 import time
@@ -46,16 +49,26 @@ def machine_ratio(n: int = 20_000_000) -> float:
     return times[1] / times[0]
 
 
-def _screen_time(spec, trials: int, workers: int) -> tuple[float, int]:
-    """(wall time [s], finished trials) of one screen of ``trials`` trials on ``workers``
-    workers into a new store."""
-    from gecko_agents.design import search, study
+def _cpu() -> tuple[float, float]:
+    """CPU time [s] (user + system) of this process and of its finished children."""
+    me, kids = (resource.getrusage(w) for w in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+    return me.ru_utime + me.ru_stime, kids.ru_utime + kids.ru_stime
+
+
+def _screen_time(spec, trials: int, workers: int) -> tuple[float, float]:
+    """(wall time [s], CPU time of the busiest process [s]) of one screen of ``trials`` trials
+    on ``workers`` workers into a new store; the spawned workers' CPU time shared equally
+    between them (they take designs as they come free)."""
+    from gecko_agents.design import study
 
     with tempfile.TemporaryDirectory(prefix="gecko_design_bench_") as tmp:
+        me0, kids0 = _cpu()
         t0 = time.perf_counter()
-        s = study.search_study(spec, Path(tmp), trials, None, workers, None)
+        study.search_study(spec, Path(tmp), trials, None, workers, None)
         wall = time.perf_counter() - t0
-        return wall, len(search.completed(s))
+        me1, kids1 = _cpu()
+    spawned = (kids1 - kids0) / (workers - 1) if workers > 1 else 0.0
+    return wall, max(me1 - me0, spawned)
 
 
 def benchmark_workers(spec, trials: int | None = None, pairs: int = 1, workers: int = 2) -> dict:
@@ -67,27 +80,33 @@ def benchmark_workers(spec, trials: int | None = None, pairs: int = 1, workers: 
     dict
         ``"one_s"``, ``"many_s"``: the wall times [s] of each pair (lists), ``"ratios"``:
         many/one of each pair, ``"ratio"``: their median, ``"machine"``: :func:`machine_ratio`
-        before each pair, ``"trials"``, ``"workers"``.
+        before each pair, ``"cpu_ratios"``: the CPU time of the busiest process with many
+        workers over that of the one worker, each pair (the wall-time ratio where every worker
+        has a core of its own; a busy machine's scheduling does not change it), ``"trials"``,
+        ``"workers"``.
     """
     if pairs < 1:
         raise ValueError(f"pairs = {pairs!r} must be ≥ 1")
     if workers < 2:
         raise ValueError(f"workers = {workers!r} must be ≥ 2 (compared with one)")
     n = spec.trials if trials is None else int(trials)
-    one, many, machine = [], [], []
+    one, many, machine, cpu = [], [], [], {1: [], workers: []}
     for k in range(pairs):
         machine.append(machine_ratio())
         order = (1, workers) if k % 2 == 0 else (workers, 1)
         for w in order:
-            wall, _ = _screen_time(spec, n, w)
+            wall, busiest = _screen_time(spec, n, w)
             (one if w == 1 else many).append(wall)
+            cpu[w].append(busiest)
     ratios = [m / o for m, o in zip(many, one, strict=True)]
+    cpu_ratios = [m / o for m, o in zip(cpu[workers], cpu[1], strict=True)]
     return {
         "one_s": one,
         "many_s": many,
         "ratios": ratios,
         "ratio": statistics.median(ratios),
         "machine": machine,
+        "cpu_ratios": cpu_ratios,
         "trials": n,
         "workers": workers,
     }
