@@ -264,6 +264,13 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
         f"{_fmt(r['engine']['mean'])} kPa (ratio {_fmt(r['ratio'])})"
         for r in disagree
     ] or [f"- none beyond ±{DISAGREE:.0%}"]
+    n, m = spec.test["pillars"], spec.test["engine_pillars"]
+    if "layer" in spec.choices["backing"] and n != m:
+        lines.append(
+            f"- on a backing layer the load sharing depends on the row's length: the screen's "
+            f"row has {n} pillars, the engine's {m} (set test.engine_pillars = test.pillars "
+            "to compare like with like)"
+        )
     lines += ["", "## Models", ""]
     for tip in spec.choices["tip"]:
         kind = TIP_KINDS[tip]
