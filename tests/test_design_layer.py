@@ -173,3 +173,40 @@ def test_the_showcase_bound_is_the_flat_floor_screen_at_the_gap_and_peaks_at_one
     r = np.linspace(0.5, 10.0, 19001)
     peak = r[np.argmax(gap_bound(r, g, c.work_of_adhesion, c.E_star))]
     assert peak == pytest.approx(1.5 * g, abs=1e-3)
+
+
+@needs_optuna
+@pytest.mark.parametrize("workers", [1, 2])
+def test_a_local_study_stores_every_finished_trial_and_resumes_from_them(
+    tmp_path, monkeypatch, workers
+):
+    """The local study (sampled in memory, each finished trial written to the file) keeps a
+    refused design as a failed trial with its reason, and a second run continues from the
+    file's trials; one worker's study is the database storage's, draw for draw."""
+    from gecko_agents.design import local
+
+    spec = load_design(design(tmp_path, BASE))
+    real = search.evaluate
+
+    def refuse_large(s, values):
+        if values["radius_um"] > 4.0:
+            raise ValueError("radius_um: refused for the test")
+        return real(s, values)
+
+    monkeypatch.setattr(search, "evaluate", refuse_large)  # this process's, not a spawned one's
+    out = tmp_path / "local"
+    store = local.run_local(spec, out, trials=12, workers=workers)
+    fails = search.failed(store)
+    assert len(search.completed(store)) + len(fails) == 12
+    assert all("refused for the test" in t.user_attrs["error"] for t in fails)
+    if workers == 1:
+        assert fails  # the seed draws radii above 4 µm among its first 12
+        rdb = search.completed(search.run_search(spec, tmp_path / "rdb", trials=12))
+        assert [t.params for t in search.completed(store)] == [
+            t.params for t in rdb if t.params["radius_um"] <= 4.0
+        ]
+    kept = {t.number: t.params for t in search.completed(store)}
+    again = local.run_local(spec, out, trials=len(kept) + 3, workers=workers)
+    assert {t.number: t.params for t in search.completed(again)}.items() >= kept.items()
+    n_again = len(search.completed(again)) + len(search.failed(again))
+    assert n_again == len(kept) + len(fails) + 3  # three more trials, a refused one failing

@@ -93,7 +93,7 @@ def _batched(spec, mem, store, n: int, workers: int, optuna) -> None:
         while n > 0 or running:
             while n > 0 and len(running) < workers - 1:
                 trial, values = draw()
-                running[pool.submit(search.evaluate, spec, values)] = (trial, values)
+                running[pool.submit(_evaluate, spec, values)] = (trial, values)
                 n -= 1
             if n > 0:
                 trial, values = draw()
@@ -104,14 +104,12 @@ def _batched(spec, mem, store, n: int, workers: int, optuna) -> None:
                 done = cf.wait(running, return_when=cf.FIRST_COMPLETED).done
             for f in done:
                 trial, values = running.pop(f)
-                err = f.exception()
-                if err is not None and not isinstance(err, search.CAUGHT):
-                    raise err
-                finish(trial, values, err if err is not None else f.result())
+                finish(trial, values, f.result())
 
 
 def _evaluate(spec, values):
-    """The screen of one design, or the error a model refused it with."""
+    """The screen of one design, or the error a model refused it with (returned, so a worker
+    process hands it back like a result)."""
     try:
         return search.evaluate(spec, values)
     except search.CAUGHT as err:
