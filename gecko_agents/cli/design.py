@@ -134,8 +134,8 @@ def _benchmark(spec, args) -> int:
     for one, many, r, m, c in rows:
         print(
             f"{b['trials']} trials: 1 worker {one:.1f} s, {workers} workers {many:.1f} s "
-            f"({r:.2f}×; two CPU-bound processes took {m:.2f}× one's time then; the busiest "
-            f"process's CPU time {c:.2f}×)"
+            f"({r:.2f}×; two CPU-bound processes took {m:.2f}× one's time then; CPU time "
+            f"per worker {c:.2f}×)"
         )
     print(f"{workers} workers / 1 worker: {b['ratio']:.2f} (median of {len(b['ratios'])} pairs)")
     return EXIT_OK

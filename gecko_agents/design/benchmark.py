@@ -3,14 +3,17 @@ two sharing one store, in the same run (``gecko-agents design FILE --benchmark``
 
 Each timed screen is what a user waits for: a new SQLite store in a temporary folder, the
 workers started and run until the store holds the trials
-(:func:`gecko_agents.design.study.search_study`). The pairs alternate their order (1 then 2
+(:func:`gecko_agents.design.local.run_local`). Its designs are drawn by Optuna's random
+sampler with the study's seed, so both screens evaluate the same designs (a JKR sphere costs
+a hundred flat punches; a study's own sampler, steered by the results, draws a different mix
+with two workers). The pairs alternate their order (1 then 2
 workers, then 2 then 1, …) so that a machine whose load drifts during the run hits both alike;
 the ratio of each pair is reported, not only their median, since the other jobs of a shared
 machine set how much of a second core a second worker gets. Before each pair the same fixed
 amount of pure-Python work is timed on one process and on two at once (:func:`machine_ratio`):
 1 where two cores are free, 2 where only one is, the best two workers could do then; and the
-CPU time of the busiest process is taken beside the wall time, which a shared machine's other
-jobs do not change.
+CPU time of all the processes is taken beside the wall time: shared over the workers, it is
+the wall time they would take with a core each.
 """
 
 from __future__ import annotations
@@ -56,19 +59,20 @@ def _cpu() -> tuple[float, float]:
 
 
 def _screen_time(spec, trials: int, workers: int) -> tuple[float, float]:
-    """(wall time [s], CPU time of the busiest process [s]) of one screen of ``trials`` trials
-    on ``workers`` workers into a new store; the spawned workers' CPU time shared equally
-    between them (they take designs as they come free)."""
-    from gecko_agents.design import study
+    """(wall time [s], CPU time of all its processes [s]) of one screen of ``trials`` trials
+    on ``workers`` workers into a new store, the designs drawn by Optuna's random sampler with
+    the study's seed: the same designs, whatever the order results come back in."""
+    from gecko_agents.design import local, search
 
+    optuna = search.require_optuna()
     with tempfile.TemporaryDirectory(prefix="gecko_design_bench_") as tmp:
         me0, kids0 = _cpu()
         t0 = time.perf_counter()
-        study.search_study(spec, Path(tmp), trials, None, workers, None)
+        sampler = optuna.samplers.RandomSampler(seed=spec.seed)
+        local.run_local(spec, Path(tmp), trials, workers, sampler=sampler)
         wall = time.perf_counter() - t0
         me1, kids1 = _cpu()
-    spawned = (kids1 - kids0) / (workers - 1) if workers > 1 else 0.0
-    return wall, max(me1 - me0, spawned)
+    return wall, (me1 - me0) + (kids1 - kids0)
 
 
 def benchmark_workers(spec, trials: int | None = None, pairs: int = 1, workers: int = 2) -> dict:
@@ -80,10 +84,10 @@ def benchmark_workers(spec, trials: int | None = None, pairs: int = 1, workers: 
     dict
         ``"one_s"``, ``"many_s"``: the wall times [s] of each pair (lists), ``"ratios"``:
         many/one of each pair, ``"ratio"``: their median, ``"machine"``: :func:`machine_ratio`
-        before each pair, ``"cpu_ratios"``: the CPU time of the busiest process with many
-        workers over that of the one worker, each pair (the wall-time ratio where every worker
-        has a core of its own; a busy machine's scheduling does not change it), ``"trials"``,
-        ``"workers"``.
+        before each pair, ``"cpu_ratios"``: the CPU time of all processes with many workers,
+        shared over them, over the one worker's, each pair (the wall-time ratio where every
+        worker has a core of its own and the designs split evenly: what the work costs, which
+        a busy machine changes little), ``"trials"``, ``"workers"``.
     """
     if pairs < 1:
         raise ValueError(f"pairs = {pairs!r} must be ≥ 1")
@@ -95,11 +99,11 @@ def benchmark_workers(spec, trials: int | None = None, pairs: int = 1, workers: 
         machine.append(machine_ratio())
         order = (1, workers) if k % 2 == 0 else (workers, 1)
         for w in order:
-            wall, busiest = _screen_time(spec, n, w)
+            wall, total = _screen_time(spec, n, w)
             (one if w == 1 else many).append(wall)
-            cpu[w].append(busiest)
+            cpu[w].append(total)
     ratios = [m / o for m, o in zip(many, one, strict=True)]
-    cpu_ratios = [m / o for m, o in zip(cpu[workers], cpu[1], strict=True)]
+    cpu_ratios = [m / workers / o for m, o in zip(cpu[workers], cpu[1], strict=True)]
     return {
         "one_s": one,
         "many_s": many,

@@ -30,25 +30,28 @@ import gecko_agents.design.search as search
 __all__ = ["run_local", "memory_study"]
 
 
-def memory_study(spec, store):
-    """An in-memory study with the sampler of ``spec`` holding the finished trials of
-    ``store`` (complete and failed), in their order."""
+def memory_study(spec, store, sampler=None):
+    """An in-memory study with the sampler of ``spec`` (or ``sampler``) holding the finished
+    trials of ``store`` (complete and failed), in their order."""
     optuna = search.require_optuna()
     mem = optuna.create_study(
-        sampler=search.make_sampler(spec, optuna), directions=spec.directions, study_name="memory"
+        sampler=sampler or search.make_sampler(spec, optuna),
+        directions=spec.directions,
+        study_name="memory",
     )
     done = (optuna.trial.TrialState.COMPLETE, optuna.trial.TrialState.FAIL)
     mem.add_trials(store.get_trials(deepcopy=False, states=done))
     return mem
 
 
-def run_local(spec, out: Path, trials: int | None = None, workers: int = 1):
+def run_local(spec, out: Path, trials: int | None = None, workers: int = 1, sampler=None):
     """Run the study of ``spec`` in ``out/study.db`` until it holds ``trials`` (default
-    ``spec.trials``) finished trials, evaluating on this process (``workers`` = 1) or on
-    ``workers`` spawned processes. Returns the stored study."""
+    ``spec.trials``) finished trials, evaluating on this process (``workers`` = 1) or on it
+    and ``workers − 1`` spawned processes; ``sampler``, an Optuna sampler in place of the
+    design file's (the worker benchmark's). Returns the stored study."""
     optuna = search.require_optuna()
     store = search.open_study(spec, out)
-    mem = memory_study(spec, store)
+    mem = memory_study(spec, store, sampler)
     left = (spec.trials if trials is None else trials) - len(search.completed(store))
     if left <= 0:
         return store
