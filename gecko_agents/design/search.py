@@ -6,8 +6,9 @@ when a search runs (``pip install 'gecko_agents[design]'``). One objective is se
 its tree-structured Parzen estimator (TPE; Bergstra et al. 2011, NeurIPS), several with NSGA-II
 (Deb et al. 2002, IEEE Trans Evol Comput 6:182); both take the constraints (≤ 0 feasible). The
 trials are stored in an SQLite file in the output folder by default, so a killed study resumes
-with every finished trial kept; a database URL (``--storage``) lets several workers share one
-study. Every trial records its design (user attribute ``design``) and, in one more (``record``),
+with every finished trial kept (the study in it sampled in memory by one process,
+:mod:`gecko_agents.design.local`); a database URL (``--storage``) lets several workers share
+one study. Every trial records its design (user attribute ``design``) and, in one more (``record``),
 its screened objectives, constraint values, metrics and validity items, its floor seeds, the
 design file's digest and the code's version and fingerprint: two writes to the store, since
 each write and each re-read of a running trial by another worker costs milliseconds of the
@@ -31,6 +32,13 @@ __all__ = [
     "run_search",
     "suggest",
     "sampler_seed",
+    "make_sampler",
+    "violation",
+    "record_trial",
+    "objective_fn",
+    "provenance",
+    "feasible",
+    "constraint_list",
     "STUDY_DB",
 ]
 
