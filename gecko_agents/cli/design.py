@@ -38,7 +38,8 @@ def add_design(p: argparse.ArgumentParser) -> None:
         "--workers",
         type=int,
         default=1,
-        help="worker processes sharing the study and the confirmations (default 1)",
+        help="processes evaluating the designs (this one and N - 1 spawned) and the "
+        "confirmations (default 1)",
     )
     p.add_argument(
         "--dask",
