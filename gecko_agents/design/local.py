@@ -27,7 +27,12 @@ from pathlib import Path
 
 import gecko_agents.design.search as search
 
-__all__ = ["run_local", "memory_study"]
+__all__ = ["run_local", "memory_study", "QUEUED"]
+
+QUEUED = 2
+"""Designs kept in hand for each spawned worker: one evaluating, one waiting, so a worker that
+finishes a quick design need not wait for this process to finish a slow one before it gets the
+next (a JKR sphere takes a hundred times a flat punch)."""
 
 
 def memory_study(spec, store, sampler=None):
@@ -74,8 +79,9 @@ def run_local(spec, out: Path, trials: int | None = None, workers: int = 1, samp
 
 def _batched(spec, mem, store, n: int, workers: int, optuna) -> None:
     """``n`` trials of ``mem`` on this process and ``workers − 1`` spawned ones, each stored
-    in ``store`` as it finishes: the spawned ones kept busy, this one evaluating a design
-    whenever they are (so it works while they start, and no core waits on it)."""
+    in ``store`` as it finishes: the spawned ones kept busy (:data:`QUEUED` designs each), this
+    one evaluating a design whenever they are (so it works while they start, and no core waits
+    on it)."""
     code, own = search.provenance(), search.own_constraints(optuna)
     ctx = multiprocessing.get_context("spawn")  # no forked database connection or thread
 
@@ -94,7 +100,7 @@ def _batched(spec, mem, store, n: int, workers: int, optuna) -> None:
     running: dict = {}
     with cf.ProcessPoolExecutor(max_workers=workers - 1, mp_context=ctx) as pool:
         while n > 0 or running:
-            while n > 0 and len(running) < workers - 1:
+            while n > 0 and len(running) < QUEUED * (workers - 1):
                 trial, values = draw()
                 running[pool.submit(_evaluate, spec, values)] = (trial, values)
                 n -= 1
