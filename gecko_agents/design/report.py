@@ -196,6 +196,8 @@ def importances(study, spec) -> dict:
 
 
 def _fmt(v) -> str:
+    if v is None:  # a knob the design does not have (a rigid backing's thickness)
+        return "—"
     return f"{v:.4g}" if isinstance(v, float) else str(v)
 
 
