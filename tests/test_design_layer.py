@@ -210,3 +210,12 @@ def test_a_local_study_stores_every_finished_trial_and_resumes_from_them(
     assert {t.number: t.params for t in search.completed(again)}.items() >= kept.items()
     n_again = len(search.completed(again)) + len(search.failed(again))
     assert n_again == len(kept) + len(fails) + 3  # three more trials, a refused one failing
+
+
+def test_a_hand_started_worker_is_numbered_only_on_a_shared_store(tmp_path, capsys):
+    from gecko_agents.cli import main
+
+    path = design(tmp_path, BASE)
+    assert main(["design", str(path), "--worker", "1", "--out", str(tmp_path / "o")]) == 2
+    assert "--worker 1" in capsys.readouterr().err
+    assert main(["design", str(path), "--worker", "-1", "--out", str(tmp_path / "o")]) == 2

@@ -49,6 +49,14 @@ def add_design(p: argparse.ArgumentParser) -> None:
         help="'local' (a Dask cluster of --workers processes) or tcp://host:port (a running "
         "scheduler; its workers need the design extra and a --storage URL they reach)",
     )
+    p.add_argument(
+        "--worker",
+        type=int,
+        default=0,
+        metavar="K",
+        help="this command's number among commands sharing a --storage study by hand: each "
+        "draws designs with its own seed (0, the default, with the study's)",
+    )
     p.add_argument("--quick", action="store_true", help="the file's [quick] variant")
     p.add_argument(
         "--benchmark",
@@ -67,6 +75,8 @@ def cmd_design(args, extra) -> int:
         raise UsageError(f"--trials {args.trials} must be ≥ 1")
     if args.workers < 1:
         raise UsageError(f"--workers {args.workers} must be ≥ 1")
+    if args.worker < 0 or (args.worker and not args.storage):
+        raise UsageError(f"--worker {args.worker} must be ≥ 0, and > 0 only with --storage")
     try:
         require_optuna()
     except ImportError as err:
@@ -98,6 +108,7 @@ def cmd_design(args, extra) -> int:
                 storage=args.storage,
                 workers=args.workers,
                 dask=args.dask,
+                worker=args.worker,
             )
     except ImportError as err:  # --dask without the dask extra
         raise UsageError(str(err)) from None

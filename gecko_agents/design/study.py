@@ -100,15 +100,17 @@ def _versions() -> dict:
     return {**versions(), "optuna": version("optuna"), "code_fingerprint": code_fingerprint()}
 
 
-def search_study(spec, out: Path, trials, storage, workers: int, dask):
+def search_study(spec, out: Path, trials, storage, workers: int, dask, worker: int = 0):
     """The study filled to its trials: in the output folder's SQLite file by this process,
     its designs evaluated here or on ``workers`` local processes
     (:func:`~gecko_agents.design.local.run_local`); at a database URL or on Dask by as many
-    workers sharing the store (:func:`~gecko_agents.design.parallel.search_worker`)."""
+    workers sharing the store (:func:`~gecko_agents.design.parallel.search_worker`); this
+    process, alone on a database URL, is worker number ``worker`` of those sharing it
+    (:func:`~gecko_agents.design.search.sampler_seed`)."""
     if storage is None and dask is None:
         return local.run_local(spec, out, trials, workers)
     if workers <= 1 and dask is None:
-        return search.run_search(spec, out, trials=trials, storage=storage)
+        return search.run_search(spec, out, trials=trials, storage=storage, worker=worker)
     search.open_study(spec, out, storage)
     url = storage or search.local_storage(out)
     args = [(spec, str(out), trials, url, k) for k in range(workers)]
@@ -124,11 +126,13 @@ def run_design(
     storage: str | None = None,
     workers: int = 1,
     dask: str | None = None,
+    worker: int = 0,
     say=print,
 ) -> dict:
     """Run a checked design file's search into ``out``: the study (resumed if ``out`` or
     ``storage`` already holds it; ``workers`` local processes, or as many Dask workers at
-    ``dask``, share it and the confirmations), the engine's confirmation of the
+    ``dask``, share it and the confirmations; ``worker``: this process's number among those
+    sharing a ``storage`` URL by hand), the engine's confirmation of the
     ``spec.confirm`` best designs (the Pareto front first), and ``trials.csv``,
     ``best.json``, ``pareto_front.png``, ``objectives_vs_parameters.png``, ``showcase.png``
     (:mod:`~gecko_agents.design.showcase`), ``runs/*.toml``
@@ -137,7 +141,7 @@ def run_design(
     check_output(out)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    study = search_study(spec, out, trials, storage, workers, dask)
+    study = search_study(spec, out, trials, storage, workers, dask, worker)
     done = search.completed(study)
     t_screen = time.perf_counter() - t0
     say(f"{len(done)} screening trials in the study ({t_screen:.1f} s)")
