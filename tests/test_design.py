@@ -240,13 +240,18 @@ def test_ranking_keeps_each_feasible_design_once_and_puts_the_front_first(tmp_pa
     spec = load_design(
         design(tmp_path, BASE.replace('"pull_off_per_area"', '["pull_off_per_area", "spread"]'))
     )
-    ok = {"constraint_values": [-1.0]}
+    ok = {"record": {"constraint_values": [-1.0]}}
     trials = [
         T(number=0, params={"r": 1}, values=[10.0, 0.5], user_attrs=ok),
         T(number=1, params={"r": 2}, values=[8.0, 0.1], user_attrs=ok),
         T(number=2, params={"r": 3}, values=[7.0, 0.3], user_attrs=ok),  # dominated by 1
         T(number=3, params={"r": 1}, values=[10.0, 0.5], user_attrs=ok),  # drawn again
-        T(number=4, params={"r": 4}, values=[99.0, 0.0], user_attrs={"constraint_values": [0.2]}),
+        T(
+            number=4,
+            params={"r": 4},
+            values=[99.0, 0.0],
+            user_attrs={"record": {"constraint_values": [0.2]}},
+        ),
     ]
     assert [t.number for t in search.ranked(spec, trials)] == [0, 1, 2]
 

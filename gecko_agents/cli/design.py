@@ -38,7 +38,8 @@ def add_design(p: argparse.ArgumentParser) -> None:
         "--workers",
         type=int,
         default=1,
-        help="worker processes sharing the study and the confirmations (default 1)",
+        help="processes evaluating the designs (this one and N - 1 spawned) and the "
+        "confirmations (default 1)",
     )
     p.add_argument(
         "--dask",
@@ -48,7 +49,21 @@ def add_design(p: argparse.ArgumentParser) -> None:
         help="'local' (a Dask cluster of --workers processes) or tcp://host:port (a running "
         "scheduler; its workers need the design extra and a --storage URL they reach)",
     )
+    p.add_argument(
+        "--worker",
+        type=int,
+        default=0,
+        metavar="K",
+        help="this command's number among commands sharing a --storage study by hand: each "
+        "draws designs with its own seed (0, the default, with the study's)",
+    )
     p.add_argument("--quick", action="store_true", help="the file's [quick] variant")
+    p.add_argument(
+        "--benchmark",
+        action="store_true",
+        help="time the screen on one worker and on --workers (default 2) sharing one SQLite "
+        "store, in temporary folders, and print the ratio; nothing is written",
+    )
 
 
 def cmd_design(args, extra) -> int:
@@ -60,10 +75,14 @@ def cmd_design(args, extra) -> int:
         raise UsageError(f"--trials {args.trials} must be ≥ 1")
     if args.workers < 1:
         raise UsageError(f"--workers {args.workers} must be ≥ 1")
+    if args.worker < 0 or (args.worker and not args.storage):
+        raise UsageError(f"--worker {args.worker} must be ≥ 0, and > 0 only with --storage")
     try:
         require_optuna()
     except ImportError as err:
         raise UsageError(str(err)) from None
+    if args.benchmark:
+        return _benchmark(spec, args)
     out = args.out if args.out is not None else checked(Path("designs") / spec.path.stem)
     from gecko_agents.design.study import check_output
 
@@ -89,6 +108,7 @@ def cmd_design(args, extra) -> int:
                 storage=args.storage,
                 workers=args.workers,
                 dask=args.dask,
+                worker=args.worker,
             )
     except ImportError as err:  # --dask without the dask extra
         raise UsageError(str(err)) from None
@@ -107,4 +127,27 @@ def cmd_design(args, extra) -> int:
             for k, v in b["design"].items()
         )
         print(f"best: {knobs}; engine {b['engine']['mean']:.4g} kPa")
+    return EXIT_OK
+
+
+def _benchmark(spec, args) -> int:
+    """``--benchmark``: the screen's wall time on one worker against several, in one run."""
+    from gecko_agents.design.benchmark import benchmark_workers
+
+    if args.storage or args.dask:
+        raise UsageError(
+            "--benchmark times local workers on a new SQLite store: no --storage/--dask"
+        )
+    workers = args.workers if args.workers > 1 else 2
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", category=UserWarning)  # Optuna's experimental notes
+        b = benchmark_workers(spec, trials=args.trials, pairs=2, workers=workers)
+    rows = zip(b["one_s"], b["many_s"], b["ratios"], b["machine"], b["cpu_ratios"], strict=True)
+    for one, many, r, m, c in rows:
+        print(
+            f"{b['trials']} trials: 1 worker {one:.1f} s, {workers} workers {many:.1f} s "
+            f"({r:.2f}×; two CPU-bound processes took {m:.2f}× one's time then; CPU time "
+            f"per worker {c:.2f}×)"
+        )
+    print(f"{workers} workers / 1 worker: {b['ratio']:.2f} (median of {len(b['ratios'])} pairs)")
     return EXIT_OK

@@ -2,7 +2,8 @@
 
 ``gecko-agents design DESIGN.toml`` (or :func:`run_design` on :func:`load_design`) searches a
 space of pillar arrays with Optuna, screening each design with the package's fast models
-(:mod:`~gecko_agents.design.screen`: closed forms and the quasi-static solver), confirms the
+(:mod:`~gecko_agents.design.screen`: closed forms, the quasi-static solver and, on a backing
+layer, the field model), confirms the
 best ones with the time-stepped engine (:mod:`~gecko_agents.design.confirm`) and reports them
 (:mod:`~gecko_agents.design.report`). The tables of tip kinds, knobs, objectives and
 constraints are in :mod:`~gecko_agents.design.space`.
@@ -41,12 +42,12 @@ Design file
 
     [space]                        # each knob a number (fixed) or [low, high] (searched)
     tip = ["flat_punch", "sphere"] # of space.TIP_KINDS
-    backing = "rigid"              # rigid | elastic (or a list)
+    backing = "rigid"              # rigid | elastic | layer (or a list)
     radius_um = [1.0, 5.0]
     aspect_ratio = [1.0, 6.0]
     lean_deg = 90.0
     fill_fraction = [0.05, 0.4]    # or spacing_um
-    # backing_thickness_um, backing_modulus_MPa: with backing = "elastic"
+    # backing_thickness_um, backing_modulus_MPa: with backing = "elastic" or "layer"
 
     [constraints]                  # all optional
     min_radius_um = 1.0

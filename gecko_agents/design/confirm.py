@@ -1,13 +1,16 @@
 """Confirmation: the best designs of a screen run again in the time-stepped engine
-(:class:`gecko_agents.model.Model`, elastica pillars), and a run file for each.
+(:class:`gecko_agents.model.Model`, elastica pillars; rod pillars on a backing layer, which
+the engine couples with the explicit step, :mod:`gecko_agents.backing.layer`), and a run file
+for each.
 
 Each design is pressed to the test's preload (the pressure on the backing over the engine row's
 area, ``engine_pillars``·s²) and pulled straight off at the test's speed, once per engine seed
 (the first ``engine_seeds`` floor seeds of the screen, on the same floors). The confirmed
 pull-off per area is their mean, its spread their relative standard deviation; every validity
 item the engine judged is carried into the report. Backing tilts are confirmed on an elastic
-backing only (``Backing.misalignment_deg``); the engine's rigid plate is level, so there the
-spread is over floors only and the release force is the screen's alone.
+backing only (``Backing.misalignment_deg``); the engine's rigid plate and its backing layer
+are level, so there the spread is over floors only and the release force is the screen's
+alone.
 """
 
 from __future__ import annotations
@@ -63,8 +66,8 @@ def confirm_design(spec, values: dict) -> dict:
     """The engine's pull-off per area of one design over the engine seeds (and, on an elastic
     backing, the screen's tilts): ``mean`` and ``spread`` (std/mean), each run's value,
     ``release`` (the pull-off with the backing at ``test.release_tilt_deg``; None on a rigid
-    backing, which the engine keeps level), its wall time, and the validity items any run
-    found not met (name → the item of the last run that broke it)."""
+    plate or a backing layer, which the engine keeps level), its wall time, and the validity
+    items any run found not met (name → the item of the last run that broke it)."""
     import time
 
     from gecko_agents.design.screen import tilts

@@ -1,12 +1,15 @@
 """Several workers on one design study: local worker processes or the package's Dask backend.
 
-The search's workers share the study through its store (Optuna's database storage): each runs
+A study in a local SQLite file is run by one process, its evaluations spread over local worker
+processes (:mod:`gecko_agents.design.local`). Workers of a database URL or of Dask share the study
+through its store (Optuna's database storage): each runs
 :func:`gecko_agents.design.search.run_search` until the store holds the study's trials, so
-any number of them, started anywhere the store is reachable, fill one study. The engine's
-confirmations, independent runs, are mapped over the same workers. Local workers are spawned
-processes; ``dask="local"`` starts a Dask LocalCluster and ``dask="tcp://host:port"`` uses a
-running scheduler whose workers have gecko_agents (and the design extra) installed and reach
-the store (a database URL; an SQLite file only on one machine's disk).
+any number of them, started anywhere the store is reachable, fill one study; worker k > 0
+draws with its own sampler seed (:func:`~gecko_agents.design.search.sampler_seed`).
+``dask="local"`` starts a Dask LocalCluster and ``dask="tcp://host:port"`` uses a running
+scheduler whose workers have gecko_agents (and the design extra) installed and reach the store
+(a database URL; an SQLite file only on one machine's disk). The engine's confirmations,
+independent runs, are mapped over the same workers.
 """
 
 from __future__ import annotations
@@ -18,16 +21,16 @@ from pathlib import Path
 __all__ = ["search_worker", "parallel_map"]
 
 
-def search_worker(spec, out: str, trials: int | None, storage: str | None) -> int:
-    """One worker of a shared study: screen until the store holds the study's trials; the
-    number of finished trials it then sees."""
+def search_worker(spec, out: str, trials: int | None, storage: str | None, worker: int = 0) -> int:
+    """Worker number ``worker`` of a shared study: screen until the store holds the study's
+    trials; the number of finished trials it then sees."""
     import warnings
 
     import gecko_agents.design.search as search
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", category=UserWarning)  # Optuna's experimental notes
-        study = search.run_search(spec, Path(out), trials=trials, storage=storage)
+        study = search.run_search(spec, Path(out), trials=trials, storage=storage, worker=worker)
     return len(search.completed(study))
 
 

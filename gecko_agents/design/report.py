@@ -15,6 +15,7 @@ import warnings
 from pathlib import Path
 
 from gecko_agents.design.confirm import DISAGREE
+from gecko_agents.design.search import feasible
 from gecko_agents.design.space import KNOBS, OBJECTIVES, TIP_KINDS
 
 __all__ = [
@@ -56,9 +57,9 @@ def trial_rows(spec, trials: list, confirmed: dict) -> list[dict]:
     for t in trials:
         a = t.user_attrs
         row = {"trial": t.number, **a.get("design", {})}
-        row |= {f"screen_{k}": v for k, v in a.get("screen", {}).items()}
+        row |= {f"screen_{k}": v for k, v in a.get("record", {}).get("screen", {}).items()}
         row |= {k: v for k, v in a.get("record", {}).get("metrics", {}).items()}
-        row["feasible"] = all(c <= 0 for c in a.get("constraint_values", [0.0]))
+        row["feasible"] = feasible(t)
         c = confirmed.get(t.number)
         row["engine_pull_off_per_area"] = c["mean"] if c else math.nan
         row["engine_spread"] = c["spread"] if c else math.nan
@@ -77,10 +78,6 @@ def write_csv(path: Path, rows: list[dict]) -> None:
     for r in rows:
         w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
     atomic_write_bytes(path, buf.getvalue().encode())
-
-
-def _feasible(t) -> bool:
-    return all(c <= 0 for c in t.user_attrs.get("constraint_values", [0.0]))
 
 
 def _label(name: str) -> str:
@@ -104,7 +101,7 @@ def draw_front(spec, trials: list, best: list, confirmed: dict, out: Path) -> No
             return [t.values[0] for t in ts], [t.values[1] for t in ts]
         return [t.number for t in ts], [t.values[0] for t in ts]
 
-    ok = [t for t in trials if _feasible(t)]
+    ok = [t for t in trials if feasible(t)]
     bad = [t for t in trials if t not in ok]
     with mpl.rc_context(render.STYLE_RC):
         fig = Figure(figsize=(6.0, 4.5), layout="constrained")
@@ -152,7 +149,7 @@ def draw_parameters(spec, trials: list, out: Path) -> None:
                 for g, group in enumerate(groups):
                     sel = [t for t in trials if tuple(t.params.get(c) for c in cats) == group]
                     for ok, face in ((True, f"C{g}"), (False, "none")):
-                        part = [t for t in sel if _feasible(t) is ok]
+                        part = [t for t in sel if feasible(t) is ok and key in t.params]
                         ax.plot(
                             [t.params[key] for t in part],
                             [t.values[i] for t in part],
@@ -199,6 +196,8 @@ def importances(study, spec) -> dict:
 
 
 def _fmt(v) -> str:
+    if v is None:  # a knob the design does not have (a rigid backing's thickness)
+        return "—"
     return f"{v:.4g}" if isinstance(v, float) else str(v)
 
 
@@ -230,7 +229,7 @@ def best_table(spec, rows: list[dict]) -> list[str]:
         ]
         if release:
             cells.append(
-                "screen only (rigid plate)" if e["release"] is None else _fmt(e["release"])
+                "screen only (level backing)" if e["release"] is None else _fmt(e["release"])
             )
         if several:
             cells.append("yes" if r.get("front") else "—")
@@ -267,6 +266,13 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
         f"{_fmt(r['engine']['mean'])} kPa (ratio {_fmt(r['ratio'])})"
         for r in disagree
     ] or [f"- none beyond ±{DISAGREE:.0%}"]
+    n, m = spec.test["pillars"], spec.test["engine_pillars"]
+    if "layer" in spec.choices["backing"] and n != m:
+        lines.append(
+            f"- on a backing layer the load sharing depends on the row's length: the screen's "
+            f"row has {n} pillars, the engine's {m} (set test.engine_pillars = test.pillars "
+            "to compare like with like)"
+        )
     lines += ["", "## Models", ""]
     for tip in spec.choices["tip"]:
         kind = TIP_KINDS[tip]
@@ -278,6 +284,13 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
         lines.append(
             f"- {tip}: screen — {screen} ({kind.source}); engine — "
             "gecko_agents.model.Model, elastica pillars, the same floors"
+        )
+    if "layer" in spec.choices["backing"]:
+        lines.append(
+            "- backing layer: screen — the field model's fibrils, coupled through the layer's "
+            "compliance (gecko_agents.physics.layer_field; Bettscheider et al. 2021, J Mech "
+            "Phys Solids 104365), event to event; engine — rod pillars on "
+            "gecko_agents.backing.layer, the explicit step"
         )
     lines += ["", "## Validity items not met", ""]
     lines += [

@@ -249,7 +249,7 @@ def _space(ctx: Ctx, t: dict) -> tuple[dict, dict, dict]:
     if choices["backing"] == ("rigid",):
         for key in ("backing_thickness_um", "backing_modulus_MPa"):
             if key in fixed or key in ranges:
-                raise ctx.error(f"[space] {key}", "applies to backing = 'elastic'")
+                raise ctx.error(f"[space] {key}", "applies to backing = 'elastic' or 'layer'")
     return fixed, ranges, choices
 
 

@@ -16,7 +16,14 @@ Per tip kind (:data:`~gecko_agents.design.space.TIP_KINDS`):
   Noderer et al. 2007, Proc R Soc A, doi:10.1098/rspa.2007.1891);
 * the JKR sphere is the quasi-static solver on linear setae
   (:func:`gecko_agents.quasistatic.preload_pull`, the paper's eq 22–27), which finds each
-  tip's release at the fold of the spring–contact system.
+  tip's release at the fold of the spring–contact system;
+* on a backing layer (``backing = "layer"``) every tip is the field model's fibril
+  (:mod:`gecko_agents.physics.layer_field`: the pillar in series with the contact's
+  zero-load stiffness, letting go at the law's pull-off force; for the tips above, the same
+  stiffness and release force), the roots coupled through the layer's compliance as the
+  engine couples them (:func:`layer_compliance`, the engine's row in plane strain), pressed and
+  pulled from event to event (:func:`gecko_agents.physics.fibril_probe_halfspace.probe_test`,
+  exact for linear fibrils; with no compliance it is the rigid backing's closed form).
 
 Floor seeds and backing tilts (``test.misalignment_spread_deg``: −spread, 0, +spread; a tilt
 adds the ramp x·tan α to the heights) give the spread; ``test.release_tilt_deg`` gives the
@@ -32,9 +39,20 @@ import numpy as np
 from gecko_agents import floor
 from gecko_agents.design.space import KPA, TIP_KINDS, measured_profile, overrides_of
 from gecko_agents.params import SetaArray
-from gecko_agents.physics import beam, fibril_probe
+from gecko_agents.physics import beam, fibril_probe, fibril_probe_halfspace, layer
 
-__all__ = ["design_params", "row_heights", "evaluate", "euler_load", "measured_profile"]
+__all__ = [
+    "design_params",
+    "row_heights",
+    "evaluate",
+    "euler_load",
+    "measured_profile",
+    "layer_compliance",
+    "field_fibril",
+    "layer_pull_off",
+    "fibril_stiffness",
+    "full_contact_force",
+]
 
 
 def design_params(spec, values: dict, n: int | None = None) -> SetaArray:
@@ -109,9 +127,62 @@ def fibril_stiffness(p: SetaArray) -> float:
     return k
 
 
-def pull_off(p: SetaArray, heights: np.ndarray, preload: float) -> tuple[float, float]:
+def layer_compliance(p: SetaArray) -> np.ndarray | None:
+    """The backing layer's compliance between the row's roots [µm/µN] (n, n), None on any
+    other backing: the engine's (:mod:`gecko_agents.backing.layer`), a row standing for rows
+    one pitch apart with each root's force over a strip one pitch wide,
+    :func:`gecko_agents.physics.layer.row_compliance` of the layer t_b, E_b, ν_b."""
+    if p.backing.kind != "layer":
+        return None
+    s, b = p.array.pitch, p.backing
+    return layer.row_compliance(s * np.arange(p.array.count), b.t_b, b.E_b, b.nu_b, s, s)
+
+
+def field_fibril(p: SetaArray) -> tuple[float, float]:
+    """(stiffness k [µN/µm], release force F_r [µN]) of one pillar in the field model: the
+    screen's linear fibril where the tip law has a closed-form release (:func:`fibril_stiffness`,
+    :class:`~gecko_agents.design.space.TipKind`), else the field model's own
+    (:meth:`gecko_agents.physics.layer_field.LayerField.from_params`: Ky in series with the
+    law's zero-load contact stiffness, released at its pull-off force under fixed load, the
+    most a JKR tip on a spring holds)."""
+    kind = TIP_KINDS[p.tip]
+    if kind.release_force is not None:
+        return fibril_stiffness(p), float(kind.release_force(p))
+    from gecko_agents.contact import contact_law
+
+    law = contact_law(p)
+    return 1.0 / (1.0 / p.Ky + 1.0 / law.zero_load_stiffness), float(law.pull_off_force)
+
+
+def layer_pull_off(p: SetaArray, heights, preload: float, C) -> tuple[float, float]:
+    """(pull-off [µN], a bound on the largest force one pillar carries at the preload [µN])
+    of the row on a backing layer of compliance ``C`` [µm/µN] (:func:`layer_compliance`):
+    the field model's press to ``preload`` [µN] and pull, event to event. A root only sinks
+    under compressive loads, so the highest tip carries at most k·d_max."""
+    k, F_r = field_fibril(p)
+    h = np.asarray(heights, float) - np.max(heights)
+    res = fibril_probe_halfspace.probe_test(h, np.eye(h.size) / k + C, F_r, preload)
+    return float(res.pull_off), k * float(res.depth_max)
+
+
+def full_contact_force(p: SetaArray, heights, C=None) -> float:
+    """Force [µN] that brings every tip of the row onto the floor: pressed until the tip over
+    the lowest point touches, the others held, f = (I/k + C)⁻¹(h − min h) summed (Σ k·(h_i −
+    min h) on a rigid backing; on a layer a lower bound, should the layer lift the lowest
+    root further as the others load it)."""
+    k = field_fibril(p)[0] if C is not None else fibril_stiffness(p)
+    gap = np.asarray(heights, float) - np.min(heights)
+    if C is None:
+        return float(np.sum(gap)) * k
+    return float(np.sum(np.linalg.solve(np.eye(gap.size) / k + C, gap)))
+
+
+def pull_off(p: SetaArray, heights: np.ndarray, preload: float, C=None) -> tuple[float, float]:
     """(pull-off [µN], largest force one pillar carries at the preload [µN]) of the row over
-    ``heights`` pressed to ``preload`` [µN] and pulled straight off."""
+    ``heights`` pressed to ``preload`` [µN] and pulled straight off; on a backing layer of
+    compliance ``C`` by :func:`layer_pull_off`."""
+    if C is not None:
+        return layer_pull_off(p, heights, preload, C)
     kind = TIP_KINDS[p.tip]
     h = heights - np.max(heights)
     if kind.release_force is None:  # the JKR sphere: the quasi-static solver
@@ -147,19 +218,19 @@ def evaluate(spec, values: dict) -> dict:
     area = n * s * s
     preload = spec.test["preload_kPa"] * KPA * area
     per_area, peak_pillar, full_touch = [], 0.0, 0.0
-    k = fibril_stiffness(p)  # the force that brings the lowest tip down: Σ k·(h_max − h_i)
+    C = layer_compliance(p)
     for i in range(spec.test["floor_seeds"]):
         h = row_heights(spec, p, i)
         for alpha in tilts(spec):
             ht = _tilted(h, s, alpha)
-            F, top = pull_off(p, ht, preload)
+            F, top = pull_off(p, ht, preload, C)
             per_area.append(F / area / KPA)
             peak_pillar = max(peak_pillar, top)
-            full_touch = max(full_touch, float(np.sum(np.max(ht) - ht)) * k / area / KPA)
+            full_touch = max(full_touch, full_contact_force(p, ht, C) / area / KPA)
     per_area = np.asarray(per_area)
     mean = float(np.mean(per_area))
     h0 = _tilted(row_heights(spec, p, 0), s, spec.test["release_tilt_deg"])
-    release = pull_off(p, h0, preload)[0] / area / KPA
+    release = pull_off(p, h0, preload, C)[0] / area / KPA
     kind = TIP_KINDS[p.tip]
     vertical = p.seta.theta_deg == 90.0
     P_E = euler_load(p, kind.euler_factor) if vertical else math.inf
@@ -231,8 +302,17 @@ def validity(spec, p: SetaArray, m: dict) -> list[dict]:
         {
             "name": "screen_rigid_backing",
             "ok": not elastic,
-            "meaning": "the screen shares the load over a rigid backing; an elastic backing is "
-            "judged by the engine's confirmation only",
+            "meaning": "the screen shares the load over a rigid backing or through a backing "
+            "layer (the field model); an elastic strip is judged by the engine's confirmation "
+            "only",
+        },
+        {
+            "name": "screen_field_release",
+            "ok": False
+            if p.backing.kind == "layer" and TIP_KINDS[p.tip].release_force is None
+            else None,
+            "meaning": "on a backing layer a JKR sphere lets go at its pull-off force under "
+            "fixed load (the field model's fibril), the most it holds on a spring",
         },
         {
             "name": "screen_small_lean",

@@ -6,9 +6,13 @@ when a search runs (``pip install 'gecko_agents[design]'``). One objective is se
 its tree-structured Parzen estimator (TPE; Bergstra et al. 2011, NeurIPS), several with NSGA-II
 (Deb et al. 2002, IEEE Trans Evol Comput 6:182); both take the constraints (≤ 0 feasible). The
 trials are stored in an SQLite file in the output folder by default, so a killed study resumes
-with every finished trial kept; a database URL (``--storage``) lets several workers share one
-study. Every trial records its design, its floor seeds, the design file's digest and the code's
-version and fingerprint.
+with every finished trial kept (the study in it sampled in memory by one process,
+:mod:`gecko_agents.design.local`); a database URL (``--storage``) lets several workers share
+one study. Every trial records its design (user attribute ``design``) and, in one more (``record``),
+its screened objectives, constraint values, metrics and validity items, its floor seeds, the
+design file's digest and the code's version and fingerprint: two writes to the store, since
+each write and each re-read of a running trial by another worker costs milliseconds of the
+storage's own work.
 """
 
 from __future__ import annotations
@@ -16,10 +20,27 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from gecko_agents.design.screen import evaluate, floor_seed
-from gecko_agents.design.space import KNOBS
+import numpy as np
 
-__all__ = ["require_optuna", "study_name", "open_study", "run_search", "suggest", "STUDY_DB"]
+from gecko_agents.design.screen import evaluate, floor_seed
+from gecko_agents.design.space import BACKING_KNOBS, KNOBS
+
+__all__ = [
+    "require_optuna",
+    "study_name",
+    "open_study",
+    "run_search",
+    "suggest",
+    "sampler_seed",
+    "make_sampler",
+    "violation",
+    "record_trial",
+    "objective_fn",
+    "provenance",
+    "feasible",
+    "constraint_list",
+    "STUDY_DB",
+]
 
 STUDY_DB = "study.db"
 """The default trial store's file name in the output folder."""
@@ -62,32 +83,46 @@ def search_bounds(spec, key: str) -> tuple[float, float]:
 
 
 def suggest(spec, trial) -> dict:
-    """One design drawn by the study's sampler (knobs the design file fixes are not drawn)."""
+    """One design drawn by the study's sampler (knobs the design file fixes are not drawn,
+    nor a backing's knobs for a rigid backing, which has none)."""
     values = {}
     for cat, names in spec.choices.items():
         values[cat] = names[0] if len(names) == 1 else trial.suggest_categorical(cat, list(names))
     for key in KNOBS:
+        if key in BACKING_KNOBS and values.get("backing", "rigid") == "rigid":
+            continue
         if key in spec.ranges:
             lo, hi = search_bounds(spec, key)
             values[key] = trial.suggest_float(key, lo, hi, log=KNOBS[key].log)
     return values
 
 
-def _own_constraints(optuna) -> bool:
+def own_constraints(optuna) -> bool:
     """Whether this Optuna stores constraints on the trial (``Trial.set_constraint``, 5.0 on);
     older ones take a ``constraints_func``."""
     return hasattr(optuna.trial.Trial, "set_constraint")
 
 
-def _sampler(spec, optuna):
-    kw = {} if _own_constraints(optuna) else {"constraints_func": _constraints_of}
+def sampler_seed(spec, worker: int = 0) -> int:
+    """The sampler's seed in worker ``worker`` of a study: the study's seed in the first (so
+    one worker's study is the same every time), a seed drawn from (seed, worker) in the
+    others, which would otherwise draw the first one's designs again."""
+    if worker == 0:
+        return spec.seed
+    return int(np.random.SeedSequence([spec.seed, worker]).generate_state(1)[0])
+
+
+def make_sampler(spec, optuna, worker: int = 0):
+    """The study's sampler (TPE for one objective, NSGA-II for several) in worker ``worker``."""
+    kw = {} if own_constraints(optuna) else {"constraints_func": _constraints_of}
+    seed = sampler_seed(spec, worker)
     if len(spec.objectives) == 1:
-        return optuna.samplers.TPESampler(seed=spec.seed, n_startup_trials=10, **kw)
-    return optuna.samplers.NSGAIISampler(seed=spec.seed, population_size=20, **kw)
+        return optuna.samplers.TPESampler(seed=seed, n_startup_trials=10, **kw)
+    return optuna.samplers.NSGAIISampler(seed=seed, population_size=20, **kw)
 
 
 def _constraints_of(frozen) -> list[float]:
-    return list(frozen.user_attrs.get("constraint_values", [0.0]))
+    return constraint_list(frozen)
 
 
 def local_storage(out: Path) -> str:
@@ -95,9 +130,10 @@ def local_storage(out: Path) -> str:
     return f"sqlite:///{(Path(out) / STUDY_DB).resolve()}"
 
 
-def open_study(spec, out: Path, storage: str | None = None):
+def open_study(spec, out: Path, storage: str | None = None, worker: int = 0):
     """The study of ``spec`` in ``storage`` (default: ``out/study.db``), created or, if it
-    exists there, loaded with its trials."""
+    exists there, loaded with its trials; its sampler that of worker ``worker``
+    (:func:`sampler_seed`)."""
     optuna = require_optuna()
     local = storage is None
     if local:
@@ -106,7 +142,7 @@ def open_study(spec, out: Path, storage: str | None = None):
     study = optuna.create_study(
         study_name=study_name(spec),
         storage=_storage(storage, optuna),
-        sampler=_sampler(spec, optuna),
+        sampler=make_sampler(spec, optuna, worker),
         directions=spec.directions,
         load_if_exists=True,
     )
@@ -135,18 +171,55 @@ def _storage(url: str, optuna):
     return rdb
 
 
-def _provenance() -> dict:
+def provenance() -> dict:
+    """The package's version and its code's fingerprint, recorded on every trial."""
     from gecko_agents import __version__
     from gecko_agents.provenance import code_fingerprint
 
     return {"version": __version__, "fingerprint": code_fingerprint()}
 
 
+def violation(constraints: list[float]) -> float:
+    """One number for the sampler from a design's constraint values (≤ 0 kept): the sum of
+    the broken ones' values, or the largest value if none is broken. Optuna's TPE and NSGA-II
+    use of a trial's constraints only whether all are ≤ 0 and the sum of the positive ones
+    (``_get_infeasible_trial_score``, ``_evaluate_penalty``), which this keeps; one value is
+    one write to the store instead of two reads and a write per constraint."""
+    broken = sum(c for c in constraints if c > 0)
+    return float(broken) if broken > 0 else float(max(constraints))
+
+
+def record_trial(spec, trial, values: dict, res: dict, code: dict, own: bool) -> list[float]:
+    """Store one screened design on its trial (its constraint for the sampler, ``design`` and
+    ``record``); the objective values to tell Optuna, in the design file's order."""
+    cons = [float(res["constraints"][k]) for k in sorted(res["constraints"])] or [0.0]
+    if own:
+        trial.set_constraint("violation", violation(cons))
+    trial.set_user_attr("design", values)
+    seeds = [floor_seed(spec, i) for i in range(spec.test["floor_seeds"])]
+    trial.set_user_attr(
+        "record",
+        {
+            "screen": res["objectives"],
+            "constraint_values": cons,
+            "constraints": res["constraints"],
+            "metrics": res["metrics"],
+            "validity": res["validity"],
+            "floor_seeds": seeds,
+            "study_seed": spec.seed,
+            "design_sha256": spec.sha256,
+            "code_version": code["version"],
+            "code_fingerprint": code["fingerprint"],
+        },
+    )
+    return [res["objectives"][o] for o in spec.objectives]
+
+
 def objective_fn(spec):
     """The function Optuna calls: a design's screened objectives, its constraints and records
-    stored on the trial."""
-    code = _provenance()
-    own = _own_constraints(require_optuna())
+    stored on the trial (:func:`record_trial`)."""
+    code = provenance()
+    own = own_constraints(require_optuna())
 
     def objective(trial):
         values = suggest(spec, trial)
@@ -155,28 +228,7 @@ def objective_fn(spec):
         except CAUGHT as err:  # a design a model refuses: a failed trial, its reason kept
             trial.set_user_attr("error", f"{type(err).__name__}: {err}")
             raise
-        cons = [res["constraints"][k] for k in sorted(res["constraints"])] or [0.0]
-        trial.set_user_attr("constraint_values", [float(c) for c in cons])
-        if own:
-            for k in sorted(res["constraints"]):
-                trial.set_constraint(k, res["constraints"][k])
-        trial.set_user_attr("screen", res["objectives"])
-        trial.set_user_attr("design", values)
-        seeds = [floor_seed(spec, i) for i in range(spec.test["floor_seeds"])]
-        trial.set_user_attr(
-            "record",
-            {
-                "constraints": res["constraints"],
-                "metrics": res["metrics"],
-                "validity": res["validity"],
-                "floor_seeds": seeds,
-                "study_seed": spec.seed,
-                "design_sha256": spec.sha256,
-                "code_version": code["version"],
-                "code_fingerprint": code["fingerprint"],
-            },
-        )
-        out = [res["objectives"][o] for o in spec.objectives]
+        out = record_trial(spec, trial, values, res, code, own)
         return out[0] if len(out) == 1 else out
 
     return objective
@@ -194,13 +246,20 @@ def completed(study) -> list:
 
 
 def run_search(
-    spec, out: Path, *, trials: int | None = None, storage: str | None = None, progress=None
+    spec,
+    out: Path,
+    *,
+    trials: int | None = None,
+    storage: str | None = None,
+    progress=None,
+    worker: int = 0,
 ):
     """Run the study until it holds ``trials`` (default ``spec.trials``) finished trials,
-    counting those an earlier or a parallel worker finished. Returns the study."""
+    counting those an earlier or a parallel worker finished, as worker number ``worker`` of
+    those sharing it (0 when alone). Returns the study."""
     optuna = require_optuna()
     target = spec.trials if trials is None else trials
-    study = open_study(spec, out, storage)
+    study = open_study(spec, out, storage, worker)
     left = target - len(completed(study))
     if left > 0:
         stop = optuna.study.MaxTrialsCallback(target, states=(optuna.trial.TrialState.COMPLETE,))
@@ -215,8 +274,14 @@ def run_search(
     return study
 
 
+def constraint_list(trial) -> list[float]:
+    """A finished trial's constraint values, in the order of their keys (≤ 0 kept)."""
+    return list(trial.user_attrs.get("record", {}).get("constraint_values", [0.0]))
+
+
 def feasible(trial) -> bool:
-    return all(c <= 0 for c in trial.user_attrs.get("constraint_values", [0.0]))
+    """Whether a finished trial keeps every constraint."""
+    return all(c <= 0 for c in constraint_list(trial))
 
 
 def ranked(spec, trials: list) -> list:

@@ -217,7 +217,7 @@ KNOBS: dict[str, Knob] = {
         (1.0, 5000.0),
         True,
         lambda v, d: {"backing.t_b": v},
-        "thickness of the elastic backing strip (backing = 'elastic')",
+        "thickness of the elastic backing strip or layer (backing = 'elastic' or 'layer')",
     ),
     "backing_modulus_MPa": Knob(
         "backing_modulus_MPa",
@@ -225,7 +225,7 @@ KNOBS: dict[str, Knob] = {
         (0.01, 1e4),
         True,
         lambda v, d: {"backing.E_b": v},
-        "modulus of the elastic backing strip (backing = 'elastic')",
+        "modulus of the elastic backing strip or layer (backing = 'elastic' or 'layer')",
     ),
 }
 """Design-file key in ``[space]`` → :class:`Knob`."""
@@ -235,7 +235,7 @@ EXCLUSIVE_KNOBS = (("fill_fraction", "spacing_um"),)
 
 CATEGORIES: dict[str, tuple[str, ...]] = {
     "tip": tuple(TIP_KINDS),
-    "backing": ("rigid", "elastic"),
+    "backing": ("rigid", "elastic", "layer"),
     "mushroom_rim": ("flawed", "sharp"),
 }
 """Categorical knobs in ``[space]``: a name or a list of names to choose from."""
@@ -247,6 +247,8 @@ def overrides_of(values: dict, sigma0: float = math.inf) -> dict:
     """The dotted :class:`~gecko_agents.params.SetaArray` overrides of one design; the
     interface strength ``sigma0`` [MPa] goes to a flat face's tip (it acts on no other)."""
     out = {"tip": values["tip"], "backing.kind": values.get("backing", "rigid")}
+    if out["backing.kind"] == "layer":  # the engine's layer holds linear or rod pillars
+        out["mechanics"] = "rod"
     if values["tip"] in FLAT_FACE_TIPS:
         out["contact.sigma0"] = sigma0
     if values["tip"] == "mushroom":

@@ -9,11 +9,13 @@ import time
 from pathlib import Path
 
 import gecko_agents.design.confirm as confirm
+import gecko_agents.design.local as local
 import gecko_agents.design.parallel as parallel
 import gecko_agents.design.report as report
 import gecko_agents.design.search as search
+import gecko_agents.design.showcase as showcase
 
-__all__ = ["run_design", "screen_flags", "check_output", "OUTPUT_FILES"]
+__all__ = ["run_design", "search_study", "screen_flags", "check_output", "OUTPUT_FILES"]
 
 OUTPUT_FILES = (
     "study.db",
@@ -22,6 +24,7 @@ OUTPUT_FILES = (
     "report.md",
     "pareto_front.png",
     "objectives_vs_parameters.png",
+    "showcase.png",
     "runs",
 )
 """What a design search writes into its output folder (``runs`` a folder of run files)."""
@@ -66,7 +69,7 @@ def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, li
     for j, (t, design, eng) in enumerate(zip(chosen, designs, engine, strict=True), 1):
         label = f"design_{j}"
         confirmed[t.number] = eng
-        screened = t.user_attrs["screen"]
+        screened = t.user_attrs["record"]["screen"]
         ref = screened["pull_off_per_area"]
         ratio = ref / eng["mean"] if eng["mean"] > 0 else math.inf
         rows.append(
@@ -97,16 +100,21 @@ def _versions() -> dict:
     return {**versions(), "optuna": version("optuna"), "code_fingerprint": code_fingerprint()}
 
 
-def _search(spec, out: Path, trials, storage, workers: int, dask):
-    """The study filled to its trials, by this process or by ``workers`` workers sharing its
-    store (a killed run's cut-off trials in a local file are marked failed once, first)."""
+def search_study(spec, out: Path, trials, storage, workers: int, dask, worker: int = 0):
+    """The study filled to its trials: in the output folder's SQLite file by this process,
+    its designs evaluated here or on ``workers`` local processes
+    (:func:`~gecko_agents.design.local.run_local`); at a database URL or on Dask by as many
+    workers sharing the store (:func:`~gecko_agents.design.parallel.search_worker`); this
+    process, alone on a database URL, is worker number ``worker`` of those sharing it
+    (:func:`~gecko_agents.design.search.sampler_seed`)."""
+    if storage is None and dask is None:
+        return local.run_local(spec, out, trials, workers)
     if workers <= 1 and dask is None:
-        return search.run_search(spec, out, trials=trials, storage=storage)
+        return search.run_search(spec, out, trials=trials, storage=storage, worker=worker)
     search.open_study(spec, out, storage)
     url = storage or search.local_storage(out)
-    parallel.parallel_map(
-        parallel.search_worker, [(spec, str(out), trials, url)] * workers, workers, dask
-    )
+    args = [(spec, str(out), trials, url, k) for k in range(workers)]
+    parallel.parallel_map(parallel.search_worker, args, workers, dask)
     return search.open_study(spec, out, url)
 
 
@@ -118,19 +126,22 @@ def run_design(
     storage: str | None = None,
     workers: int = 1,
     dask: str | None = None,
+    worker: int = 0,
     say=print,
 ) -> dict:
     """Run a checked design file's search into ``out``: the study (resumed if ``out`` or
     ``storage`` already holds it; ``workers`` local processes, or as many Dask workers at
-    ``dask``, share it and the confirmations), the engine's confirmation of the
+    ``dask``, share it and the confirmations; ``worker``: this process's number among those
+    sharing a ``storage`` URL by hand), the engine's confirmation of the
     ``spec.confirm`` best designs (the Pareto front first), and ``trials.csv``,
-    ``best.json``, ``pareto_front.png``, ``objectives_vs_parameters.png``, ``runs/*.toml``
+    ``best.json``, ``pareto_front.png``, ``objectives_vs_parameters.png``, ``showcase.png``
+    (:mod:`~gecko_agents.design.showcase`), ``runs/*.toml``
     and ``report.md``. Returns the summary written to ``best.json``."""
     out = Path(out)
     check_output(out)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    study = _search(spec, out, trials, storage, workers, dask)
+    study = search_study(spec, out, trials, storage, workers, dask, worker)
     done = search.completed(study)
     t_screen = time.perf_counter() - t0
     say(f"{len(done)} screening trials in the study ({t_screen:.1f} s)")
@@ -144,6 +155,7 @@ def run_design(
     report.write_csv(out / "trials.csv", report.trial_rows(spec, done, confirmed))
     report.draw_front(spec, done, front, confirmed, out)
     report.draw_parameters(spec, done, out)
+    showcase.draw_showcase(spec, done, front, rows, out)
     flags = screen_flags(done)
     fails = [t.user_attrs.get("error", "cut off") for t in search.failed(study)]
     if fails:
