@@ -184,6 +184,8 @@ def test_bad_backing_is_refused():
         hs.halfspace_compliance([0.0, 5.0], [0.0, 0.0], 1.0, 1.0, 0.6)
     with pytest.raises(ValueError, match="overlap"):
         hs.halfspace_compliance([0.0, 1.0], [0.0, 0.0], 1.0, 1.0, 0.3)
+    with pytest.raises(ValueError, match="overlap"):  # radius 2 µm: roots 3 µm < 2c apart
+        hs.halfspace_compliance([0.0, 3.0], [0.0, 0.0], 2.0, 1.0, 0.3)
     with pytest.raises(ValueError, match="pitch"):
         hs.hex_lattice(0.0, 10.0)
 
@@ -351,3 +353,61 @@ def test_small_patches_counted_by_hand(lattice, pitch):
         assert x.size == count
         assert np.hypot(x, y).max() == pytest.approx(reach * pitch, rel=1e-12)
         assert len(set(zip(np.round(x / pitch, 9), np.round(y / pitch, 9), strict=True))) == x.size
+
+
+def test_a_fibril_the_probe_reaches_only_at_the_preload_has_not_bonded():
+    """Fibrils at h = (0, −0.5) µm, k = 2 µN/µm, pressed to P = 1 µN: the first alone carries
+    it at d = P/k = 0.5 µm, exactly where the probe reaches the second's tip, which carries
+    nothing there (u = d + h = 0) and so has not bonded: both models pull off at the first's
+    F_r = 2 µN (bonded, the second would add its tension: 2F_r − k·0.5 = 3 µN), and retracting
+    to d = −0.2 µm the probe feels the first alone, k·d = −0.4 µN."""
+    h, k, F_r, P = [0.0, -0.5], 2.0, 2.0, 1.0
+    d_max = fibril_probe.depth_for_preload(P, h, k)
+    assert d_max == 0.5
+    assert fibril_probe.probe_force(-0.2, h, k, d_max) == pytest.approx(-0.4, rel=1e-15)
+    assert fibril_probe.probe_pull_off(h, k, F_r, d_max) == pytest.approx(F_r, rel=1e-15)
+    res = hs.probe_test(h, np.eye(2) / k, F_r, P)
+    assert (res.depth_max, res.attached_max) == (0.5, 1)
+    assert res.pull_off == pytest.approx(F_r, rel=1e-15)
+
+
+@pytest.mark.parametrize("shift", [-0.3, 0.6])
+def test_only_the_relative_heights_matter(shift):
+    """The depth is counted from first touch, so heights all shifted by c (a probe measured
+    from another reference) give the same forces and attached counts, every depth shifted
+    by −c: the three-fibril cascade by hand above, shifted both ways."""
+    h, C = np.array([-0.55, -0.6, -0.1]), [[1, 0.5, 0], [0.5, 1, 0], [0, 0, 1]]
+    ref, moved = hs.probe_test(h, C, 1.0, 3.0), hs.probe_test(h + shift, C, 1.0, 3.0)
+    assert moved.pull_off == pytest.approx(ref.pull_off, rel=1e-12)
+    np.testing.assert_allclose(moved.depth, ref.depth - shift, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(moved.force, ref.force, rtol=1e-12, atol=1e-12)
+    np.testing.assert_array_equal(moved.attached, ref.attached)
+
+
+@pytest.mark.parametrize("scale", [1e-6, 1e6])
+def test_forces_scale_out_of_the_model(scale):
+    """A linear model with a fixed release force has no force scale of its own: forces (F_r,
+    the preload) times λ and the compliance over λ give the same depths and attached counts
+    and every force times λ (the three-fibril cascade by hand above at λ = 1e-6 and 1e6, where
+    a tolerance not proportional to F_r would release the third fibril with the pair)."""
+    h, C = [-0.55, -0.6, -0.1], np.array([[1, 0.5, 0], [0.5, 1, 0], [0, 0, 1]])
+    ref, scaled = hs.probe_test(h, C, 1.0, 3.0), hs.probe_test(h, C / scale, scale, 3.0 * scale)
+    assert scaled.pull_off == pytest.approx(scale * ref.pull_off, rel=1e-12)
+    np.testing.assert_allclose(scaled.depth, ref.depth, rtol=1e-12)
+    np.testing.assert_allclose(scaled.force, scale * ref.force, rtol=1e-12)
+    np.testing.assert_array_equal(scaled.attached, ref.attached)
+
+
+def test_rings_of_a_hexagonal_patch_touch_together_at_their_depth():
+    """On a rigid backing the probe reaches a fibril at r from its apex at d = r²/(2R_p); the
+    hexagonal lattice's rings (6 at p, 6 at √3p, 6 at 2p, 12 at √7p, 6 at 3p) touch each at
+    one depth, every fibril of the ring at once: the press has one event per ring, the
+    attached counts 1, 7, 13, 19, 31 before the preload's last event (37 attached)."""
+    p, R = 2.0, 50.0
+    x, y = hs.hex_lattice(p, 3.0 * p)
+    h = hs.parabolic_heights(x, y, R)
+    res = hs.probe_test(h, np.eye(x.size) / K, F_R, 1e3)
+    press = res.depth[: np.argmax(res.depth) + 1]
+    r2 = np.array([1.0, 3.0, 4.0, 7.0, 9.0]) * p * p
+    np.testing.assert_allclose(press[:-1], r2 / (2.0 * R), rtol=1e-12)
+    np.testing.assert_array_equal(res.attached[: press.size], [1, 7, 13, 19, 31, 37])
