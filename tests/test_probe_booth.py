@@ -342,12 +342,16 @@ def test_fibril_closed_forms_by_hand():
 
 
 @pytest.mark.parametrize("lattice", [hs.square_lattice, hs.hex_lattice])
-@pytest.mark.parametrize("pitch", [0.5, 2.0])
+@pytest.mark.parametrize("pitch", [0.25, 0.5, 2.0])
 def test_small_patches_counted_by_hand(lattice, pitch):
     """Within two pitches of the origin, rim included: the square lattice's 13 points
     (i² + j² ≤ 4) and the hexagonal lattice's 19 (the centre, 6 at p, 6 at √3p, 6 at 2p);
-    within one pitch, 5 and 7. Every point is at most the extent from the origin."""
-    counts = {hs.square_lattice: {2.0: 13, 1.0: 5}, hs.hex_lattice: {2.0: 19, 1.0: 7}}
+    within one pitch, 5 and 7; within three, 29 and 37 (12 at √7p, 6 at 3p). Every point is
+    at most the extent from the origin."""
+    counts = {
+        hs.square_lattice: {3.0: 29, 2.0: 13, 1.0: 5},
+        hs.hex_lattice: {3.0: 37, 2.0: 19, 1.0: 7},
+    }
     for reach, count in counts[lattice].items():
         x, y = lattice(pitch, reach * pitch)
         assert x.size == count
@@ -382,6 +386,10 @@ def test_only_the_relative_heights_matter(shift):
     np.testing.assert_allclose(moved.depth, ref.depth - shift, rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(moved.force, ref.force, rtol=1e-12, atol=1e-12)
     np.testing.assert_array_equal(moved.attached, ref.attached)
+    # three independent fibrils (k = 2 µN/µm): each lets go at its own depth −F_r/k − h
+    rigid = hs.probe_test([0.0 + shift, -0.2 + shift, -0.5 + shift], np.eye(3) / 2, 1.0, 3.0)
+    np.testing.assert_allclose(rigid.depth[-4:], np.array([0.0, -0.3, -0.5, -0.5]) - shift)
+    np.testing.assert_array_equal(rigid.attached[-4:], [3, 2, 1, 0])
 
 
 @pytest.mark.parametrize("scale", [1e-6, 1e6])
@@ -398,16 +406,37 @@ def test_forces_scale_out_of_the_model(scale):
     np.testing.assert_array_equal(scaled.attached, ref.attached)
 
 
-def test_rings_of_a_hexagonal_patch_touch_together_at_their_depth():
-    """On a rigid backing the probe reaches a fibril at r from its apex at d = r²/(2R_p); the
-    hexagonal lattice's rings (6 at p, 6 at √3p, 6 at 2p, 12 at √7p, 6 at 3p) touch each at
-    one depth, every fibril of the ring at once: the press has one event per ring, the
-    attached counts 1, 7, 13, 19, 31 before the preload's last event (37 attached)."""
-    p, R = 2.0, 50.0
+@pytest.mark.parametrize("scale", [1.0, 1e-6])
+def test_rings_of_a_hexagonal_patch_touch_and_let_go_together(scale):
+    """On a rigid backing the probe reaches a fibril at r from its apex at d = r²/(2R_p) and
+    it lets go at d = r²/(2R_p) − F_r/k; the hexagonal lattice's rings (6 at p, 6 at √3p, 6
+    at 2p, 12 at √7p, 6 at 3p) touch and let go each at one depth, every fibril of the ring
+    at once, outermost first on the pull: one event per ring, the attached counts 1, 7, 13,
+    19, 31 before the preload's event (37 attached) and 37, 31, 19, 13, 7, 1 as each ring
+    goes. Lengths (pitch, R_p, compliance) times 1e-6 scale every depth by 1e-6: the tolerance
+    that tells one ring from the next is the model's own length scale."""
+    p, R = 2.0 * scale, 50.0 * scale
     x, y = hs.hex_lattice(p, 3.0 * p)
     h = hs.parabolic_heights(x, y, R)
-    res = hs.probe_test(h, np.eye(x.size) / K, F_R, 1e3)
-    press = res.depth[: np.argmax(res.depth) + 1]
-    r2 = np.array([1.0, 3.0, 4.0, 7.0, 9.0]) * p * p
-    np.testing.assert_allclose(press[:-1], r2 / (2.0 * R), rtol=1e-12)
-    np.testing.assert_array_equal(res.attached[: press.size], [1, 7, 13, 19, 31, 37])
+    res = hs.probe_test(h, scale * np.eye(x.size) / K, F_R, 1e3)
+    top = np.argmax(res.depth)
+    ring = np.array([0.0, 1.0, 3.0, 4.0, 7.0, 9.0]) * p * p / (2.0 * R)
+    np.testing.assert_allclose(res.depth[:top], ring[1:], rtol=1e-12)
+    np.testing.assert_array_equal(res.attached[: top + 1], [1, 7, 13, 19, 31, 37])
+    pull = res.depth[top + 1 :]
+    np.testing.assert_allclose(pull[:-1], ring[::-1] - scale * F_R / K, rtol=1e-12)
+    np.testing.assert_array_equal(res.attached[top + 1 :], [37, 31, 19, 13, 7, 1, 0])
+
+
+def test_a_fibril_its_pressed_neighbours_sink_faster_than_the_probe_never_touches():
+    """Two fibrils at h = 0 that a backing couples (C₁₂ = 0.3 µm/µN) both to a third at
+    h = −0.01 µm (C₁₃ = C₂₃ = 0.7, a positive-definite C with unit diagonal): pressed at
+    depth d they carry f = d/1.3 each and lower the third's root by 2·0.7·d/1.3 > d, faster
+    than the probe descends, so the third never touches; pressed to 5 µN the pair sinks to
+    d = 3.25 µm and pulls off at 2F_r, both letting go at d = −1.3F_r."""
+    C = [[1.0, 0.3, 0.7], [0.3, 1.0, 0.7], [0.7, 0.7, 1.0]]
+    res = hs.probe_test([0.0, 0.0, -0.01], C, 1.0, 5.0)
+    assert res.attached_max == 2
+    assert res.depth_max == pytest.approx(3.25, rel=1e-12)
+    assert res.pull_off == pytest.approx(2.0, rel=1e-12)
+    np.testing.assert_allclose(res.depth, [3.25, -1.3, -1.3], rtol=1e-12)
