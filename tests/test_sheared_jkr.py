@@ -374,3 +374,16 @@ def test_a_tip_past_the_end_of_its_branch_lets_go_with_no_force():
     P, T, shift, a, xi, u, xa, U, de, slid = law.step_scalar(0.05, z, 0.9, 0.04, 0.3, 0.01, k)
     assert (P, T, shift, a, xi) == (0.0, 0.0, 0.0, 0.0, 0.0)
     assert (u, xa, U, de, slid) == (0.3, 0.01, 0.3, 0.0, 0.0)
+
+
+def test_a_tip_attaches_with_jkrs_radius_at_zero_overlap():
+    """The radius the kernels give a tip on attachment (δ = 0, no shear) is on JKR's branch
+    there: a²/R = √(2πwa/E*), a = (2πwR²/E*)^(1/3) (eq 10 at δ = 0, the closed form of
+    :func:`jkr.radius_from_overlap`), the radius the law's own step finds at (δ, ξ) = 0."""
+    law = contact_law(SHEARED)
+    a_jkr = float(jkr.radius_from_overlap(0.0, R, W, E))
+    assert law.jump_radius == pytest.approx(a_jkr, rel=1e-12)
+    assert law.jump_radius == pytest.approx((2 * math.pi * W * R * R / E) ** (1 / 3), rel=1e-12)
+    assert law.step_scalar(0.0, law.R, 1.0, 0.0, 0.0, 0.0, law.constants)[3] == pytest.approx(
+        law.jump_radius, rel=1e-12
+    )
