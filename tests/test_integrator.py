@@ -615,9 +615,37 @@ def test_a_pad_slides_in_the_jacobian_where_its_pull_passes_its_cap(interface):
             e = 1e-6
             T = [law.step_scalar(dx + q, law.R + zf, ell, p0, s0, dx + q, k)[1] for q in (e, -e)]
             assert T[0] == pytest.approx(cap, rel=1e-12) and T[1] == pytest.approx(cap, rel=1e-12)
+            # the state the slide left sits at the cap: still sliding
+            x_new = dx - out[2]
+            assert law.jacobian([x_new], [-zf], [s0], [x_new], [ell], [p0])[0][0] == 0.0
         else:
             assert [kxx, kxy] == held[:2] and kxx > 0.0
     if interface == "sliding":  # pushed over the pad: the same pull reversed slides
         dx = -_dx_for_pull(law, zf, s0, 1.1 * cap)
         assert law.step_scalar(dx, law.R + zf, ell, 1.2 * cap, s0, dx, k)[2] != 0.0
         assert law.jacobian([dx], [-zf], [s0], [dx], [ell], [1.2 * cap])[0][0] == 0.0
+
+
+@pytest.mark.parametrize("share", [0.9, 1.1])
+def test_the_pressed_body_sticks_in_the_jacobian_below_its_coulomb_cap(share):
+    """A spatula tip pressed δ = 0.1 µm (its film slack, μ = 0.2) with its body's stick
+    offset ξ at ``share`` of its Coulomb cap, k_t|ξ| = share·μ·P_c, P_c = (4/3)E*√R·δ^(3/2)
+    (Hertz): below the cap the body sticks and the Jacobian's kxx is its stick spring k_t,
+    −∂T/∂x by central differences of the law's force; above it the body slides at the cap
+    (∂T/∂x = 0) and so it does at the state the slide left (k_t|ξ| = μ·P_c): kxx = 0."""
+    from gecko_agents.contact import contact_law
+
+    law = contact_law(BONDED_SPATULA.replace(**{"friction.mu": 0.2}))
+    k, delta, s0, dx = law.constants, 0.1, 1.0, 0.3
+    R, _, E = law.R, law.w, law.E_star
+    cap = 0.2 * 4.0 / 3.0 * E * math.sqrt(R) * delta**1.5
+    xa = dx - share * cap / law.tip_stiffness
+    kxx = float(law.jacobian([dx], [delta], [s0], [xa])[0][0])
+    e = 1e-7  # µm, well inside the stick range (ξ = 0.1·cap/k_t from the cap)
+    T = [_film_force_on_tip(law, k, dx + q, delta, s0, xa)[0] for q in (e, -e)]
+    assert kxx == pytest.approx(-(T[0] - T[1]) / (2 * e), rel=1e-6, abs=1e-9)
+    assert kxx == (law.tip_stiffness if share < 1.0 else 0.0)
+    xa_after = law.step_scalar(dx, law.R - delta, law.ell0, 0.0, s0, xa, k)[6]
+    assert float(law.jacobian([dx], [delta], [s0], [xa_after])[0][0]) == (
+        law.tip_stiffness if share < 1.0 else 0.0
+    )
