@@ -68,5 +68,6 @@ def test_a_curved_shaft_is_never_as_stiff_as_a_straight_one_loaded_along_its_axi
      ((1.0, 1.0, 0.0, 0.0, 0.0), "EA"), ((1.0, 1.0, 1.0, 0.0, 7.0), "turn")],
 )  # fmt: skip
 def test_bad_input_is_refused_by_name(args, name):
-    with pytest.raises(ValueError, match=name):
+    """The message names the parameter and its value: ``name = value``."""
+    with pytest.raises(ValueError, match=f": {name} = "):
         curved_rod_compliance(*args)
