@@ -99,3 +99,33 @@ def test_incompressible_layer_is_taken_as_it_is():
     assert got.pull_off == pytest.approx(exact.pull_off, rel=1e-8)
     ev = got.release_event
     assert ev[4, 4] == ev.min() and ev[0, 4] > ev[4, 4] and ev[0, 0] > ev[4, 4]
+
+
+def test_from_params_puts_the_seta_and_its_contact_in_series():
+    """A fibre of the field is the seta's bending spring K_y (eq 20) in series with its tip's
+    zero-load contact stiffness k_c: 1/k = 1/K_y + 1/k_c, softer than either, and it lets go
+    at the tip law's pull-off force."""
+    from gecko_agents.contact import contact_law
+
+    law = contact_law(PAPER_ARRAY)
+    f = lf.LayerField.from_params(PAPER_ARRAY, 5)
+    assert 1.0 / f.stiffness == pytest.approx(
+        1.0 / PAPER_ARRAY.Ky + 1.0 / law.zero_load_stiffness, rel=1e-12
+    )
+    assert f.stiffness < min(PAPER_ARRAY.Ky, law.zero_load_stiffness)
+    assert f.release_force == law.pull_off_force
+
+
+def test_the_limits_of_the_probe_are_accepted():
+    """A flat probe tilted to ±10° (the range's ends) and a sphere of any radius > 0 (here
+    0.5 µm) are taken; ±10.5° and a radius of 0 are refused, naming the parameter."""
+    field = _field(10.0, 5)
+    for tilt in (-10.0, 10.0):
+        h = lf.probe_heights(field, math.inf, tilt)
+        assert h.max() == 0.0 and h.min() == pytest.approx(-math.tan(math.radians(10.0)) * 16.0)
+    assert lf.probe_heights(field, 0.5, 0.0).max() == 0.0
+    for tilt in (-10.5, 10.5):
+        with pytest.raises(ValueError, match=rf"^tilt_deg = {tilt}"):
+            lf.probe_heights(field, math.inf, tilt)
+    with pytest.raises(ValueError, match=r"^probe_radius = 0"):
+        lf.probe_heights(field, 0.0, 0.0)
