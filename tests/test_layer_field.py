@@ -129,3 +129,32 @@ def test_the_limits_of_the_probe_are_accepted():
             lf.probe_heights(field, math.inf, tilt)
     with pytest.raises(ValueError, match=r"^probe_radius = 0"):
         lf.probe_heights(field, 0.0, 0.0)
+
+
+def test_the_path_of_a_tilted_probe_is_the_event_driven_tests():
+    """A flat probe tilted 0.5° over a 5 × 5 field on a 10 µm layer (no symmetry across the
+    tilt): the press passes through the dense event-driven test's events (depth, force,
+    fibres attached), and every event of its pull is one of the field's, which also records
+    each step of a cascade at one depth. Each fibre's release depth is that of the event its
+    index points at, and the front of an event is the mean distance from the centre of the
+    fibres that let go there. The field is centred on 0, ``pitch`` apart."""
+    field = _field(10.0, 5)
+    x, y = field.positions()
+    np.testing.assert_allclose(x[:, 0], [-8.0, -4.0, 0.0, 4.0, 8.0], atol=1e-15)
+    np.testing.assert_array_equal(y, x.T)
+    h = lf.probe_heights(field, math.inf, 0.5)
+    C = layer.field_compliance(x.ravel(), y.ravel(), 10.0, E, NU, 1.5) + np.eye(x.size) / K
+    exact = halfspace.probe_test(h.ravel(), C, F_R, 20.0)
+    got = lf.press_pull(field, h, 20.0, resolution=1e-9)
+    top = int(np.argmax(exact.depth)) + 1
+    np.testing.assert_allclose(got.depth[:top], exact.depth[:top], rtol=1e-8)
+    np.testing.assert_allclose(got.force[:top], exact.force[:top], rtol=1e-8)
+    np.testing.assert_array_equal(got.attached[:top], exact.attached[:top])
+    for d, F, n in zip(exact.depth[top:], exact.force[top:], exact.attached[top:], strict=True):
+        i = np.flatnonzero(np.isclose(got.depth, d, rtol=1e-8) & (got.attached == n))
+        assert i.size and got.force[i[0]] == pytest.approx(F, rel=1e-8, abs=1e-9)
+    ev = got.release_event
+    np.testing.assert_array_equal(got.depth[ev], got.released_at)
+    r = np.hypot(x, y)
+    for j in range(top, got.depth.size - 1):
+        assert got.front[j] == pytest.approx(r[ev == j].mean(), rel=1e-12)
