@@ -440,3 +440,19 @@ def test_a_fibril_its_pressed_neighbours_sink_faster_than_the_probe_never_touche
     assert res.depth_max == pytest.approx(3.25, rel=1e-12)
     assert res.pull_off == pytest.approx(2.0, rel=1e-12)
     np.testing.assert_allclose(res.depth, [3.25, -1.3, -1.3], rtol=1e-12)
+
+
+def test_a_fibril_its_neighbours_press_into_tension_is_held_by_them():
+    """Three fibrils at h = 0 on the coupled backing above (C₁₂ = 0.3, C₁₃ = C₂₃ = 0.7):
+    C⁻¹1 = (15/16, 15/16, −5/16), so pressing the pair pulls the third into tension,
+    f₃ = −5d/16. Pressed to 1 µN (d = 0.64 µm, the third at −0.2 µN, below F_r = 1 µN), then
+    pulled, the third is pushed back as the pair stretches; the pair lets go at f = −F_r,
+    d = −16/15 µm, the probe holding (25/16)·(16/15) = 5/3 µN, and the third, alone at
+    f₃ = d < −F_r, follows at once."""
+    C = [[1.0, 0.3, 0.7], [0.3, 1.0, 0.7], [0.7, 0.7, 1.0]]
+    res = hs.probe_test([0.0, 0.0, 0.0], C, 1.0, 1.0)
+    assert res.attached_max == 3 and res.depth_max == pytest.approx(0.64, rel=1e-12)
+    assert res.pull_off == pytest.approx(5.0 / 3.0, rel=1e-12)
+    np.testing.assert_allclose(res.depth, [0.64, -16 / 15, -16 / 15], rtol=1e-12)
+    np.testing.assert_allclose(res.force, [1.0, -5.0 / 3.0, 0.0], rtol=1e-12, atol=1e-15)
+    np.testing.assert_array_equal(res.attached, [3, 3, 0])
