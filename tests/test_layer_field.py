@@ -158,3 +158,25 @@ def test_the_path_of_a_tilted_probe_is_the_event_driven_tests():
     r = np.hypot(x, y)
     for j in range(top, got.depth.size - 1):
         assert got.front[j] == pytest.approx(r[ev == j].mean(), rel=1e-12)
+
+
+@pytest.mark.parametrize(("shift", "scale"), [(0.6, 1.0), (-0.3, 1.0), (0.0, 1e-6), (0.0, 1e6)])
+def test_only_relative_heights_matter_and_forces_scale_out(shift, scale):
+    """A sphere (R_p = 30 µm) pressed to 0.5 µN into a 5 × 5 field on a 10 µm layer, its
+    fibres' tips all shifted by c, or every force scaled by λ (stiffness, layer modulus,
+    release force and preload: the compliances over λ): the same attached counts and depths
+    shifted by −c, every force times λ. Fibres the probe never reaches keep release depth
+    NaN and event −1."""
+    kw = {"n": 5, "pitch": 4.0, "radius": 1.5, "thickness": 10.0, "poisson": NU}
+    ref_field = lf.LayerField(stiffness=K, release_force=F_R, modulus=E, **kw)
+    field = lf.LayerField(stiffness=K * scale, release_force=F_R * scale, modulus=E * scale, **kw)
+    h = lf.probe_heights(ref_field, 30.0)
+    ref = lf.press_pull(ref_field, h, 0.5, resolution=1e-9)
+    got = lf.press_pull(field, h + shift, 0.5 * scale, resolution=1e-9)
+    assert got.pull_off == pytest.approx(scale * ref.pull_off, rel=1e-8)
+    np.testing.assert_allclose(got.depth, ref.depth - shift, rtol=1e-8, atol=1e-12)
+    np.testing.assert_allclose(got.force, scale * ref.force, rtol=1e-8, atol=1e-9 * scale)
+    np.testing.assert_array_equal(got.attached, ref.attached)
+    never = ref.release_event == -1
+    assert never.any() and np.isnan(ref.released_at[never]).all()
+    np.testing.assert_array_equal(got.release_event, ref.release_event)
