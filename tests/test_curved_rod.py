@@ -33,6 +33,23 @@ def test_quarter_circle_cantilever_by_castigliano():
     np.testing.assert_allclose(C, expected, rtol=1e-9)
 
 
+def test_stiff_in_bending_the_arc_keeps_only_its_axial_compliance():
+    """With EI → ∞ only the axial term ∫ t tᵀ ds/EA is left, t = (cos φ, sin φ) the tangent,
+    turning uniformly φ = φ₀ + κs (φ₀ = −θ − turn/2, κ = turn/L): by hand
+    ∫cos²φ ds = L/2 + Δsin2φ/(4κ), ∫sin²φ ds = L/2 − Δsin2φ/(4κ), ∫sinφ cosφ ds = −Δcos2φ/(4κ)
+    (Δ: tip value − root value), both turning ways."""
+    L, EA, theta = 10.0, 2.0, 0.5
+    for turn in (1.2, -0.7):
+        k, p0, p1 = turn / L, -theta - turn / 2, -theta + turn / 2
+        dsin, dcos = math.sin(2 * p1) - math.sin(2 * p0), math.cos(2 * p1) - math.cos(2 * p0)
+        C = np.array(
+            [[L / 2 + dsin / (4 * k), -dcos / (4 * k)], [-dcos / (4 * k), L / 2 - dsin / (4 * k)]]
+        )
+        np.testing.assert_allclose(
+            curved_rod_compliance(L, 1e30, EA, theta, turn), C / EA, rtol=1e-12, atol=1e-15
+        )
+
+
 def test_a_curved_shaft_is_never_as_stiff_as_a_straight_one_loaded_along_its_axis():
     L, EI, EA, theta = 63.0, 4000.0, 11000.0, math.radians(45.0)
     axial = np.array([math.cos(theta), -math.sin(theta)])
@@ -51,5 +68,6 @@ def test_a_curved_shaft_is_never_as_stiff_as_a_straight_one_loaded_along_its_axi
      ((1.0, 1.0, 0.0, 0.0, 0.0), "EA"), ((1.0, 1.0, 1.0, 0.0, 7.0), "turn")],
 )  # fmt: skip
 def test_bad_input_is_refused_by_name(args, name):
-    with pytest.raises(ValueError, match=name):
+    """The message names the parameter and its value: ``name = value``."""
+    with pytest.raises(ValueError, match=f": {name} = "):
         curved_rod_compliance(*args)

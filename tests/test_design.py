@@ -322,6 +322,7 @@ def test_a_local_dask_cluster_fills_and_confirms_one_study(tmp_path):
     assert (out / "runs" / "design_1.toml").is_file()
 
 
+@needs_optuna
 def test_a_search_refuses_a_folder_of_someone_elses_files(tmp_path, capsys):
     from gecko_agents.cli import main
 

@@ -490,6 +490,7 @@ def _film_force_on_tip(law, k, dx, delta, s0, xa):
         (0.4, -0.2, 0.44, 0.0, 10.0),  # lifted over its pad, taut at 153° (φ from the floor)
         (-1.2, 0.1, 1.0, -1.21, 10.0),  # pressed, the film taut along the floor, body sticks
         (0.3, 0.1, 1.0, 0.0, 0.0),  # pressed, the film slack, the body slides (no cap)
+        (0.2, -0.1, 0.5, 0.0, 10.0),  # lifted, the film slack: no force, no stiffness
     ],
 )
 def test_spatula_jacobian_is_the_derivative_of_its_force(dx, delta, s0, xa, mu):
@@ -570,3 +571,81 @@ def test_sliding_pad_pulls_off_as_the_explicit_step():
         pull.append(pull_off(h, fa.DRAG).adhesion)
     # Half a percent, the issue's bound for an event against the explicit reference.
     assert abs(pull[1] - pull[0]) <= 0.005 * pull[0], pull
+
+
+def _dx_for_pull(law, zf, s0, pull):
+    """Tip offset dx < 0 from the front (the tip behind it, the film taut at height zf) at
+    which the film's horizontal pull on the front, F·|dx|/s with F = K(s − s0)/s0, is
+    ``pull`` [µN] (brentq on the closed form)."""
+    from scipy.optimize import brentq
+
+    def H(dx):
+        s = math.hypot(dx, zf)
+        return law.K * (s - s0) / s0 * -dx / s - pull
+
+    return brentq(H, -20.0, -math.sqrt(s0 * s0 - zf * zf) - 1e-12, xtol=1e-15)
+
+
+@pytest.mark.parametrize("interface", ["bonded", "sliding"])
+def test_a_pad_slides_in_the_jacobian_where_its_pull_passes_its_cap(interface):
+    """Adhesive friction, μ = 0.5: the pad's cap is μ·2w·b (the whole pad attached), and a
+    film at 22° from the floor (z_f = 0.2 µm, s0 = 0.5 µm, far below the peel: g ≪ w) pulls
+    on the front with H = F·|dx|/s. Bonded, at 0.95 of the cap the law's step holds the
+    front and the Jacobian is the film's (the front held); at 1.05 the front slides and
+    holds the tip at the cap (∂T/∂x = 0, central differences) and the Jacobian's x row is
+    0. A sliding pad whose locked pre-tension P0 = 1.2·cap exceeds the pull holds it pulled
+    (H = 1.1·cap, between the cap and P0) and slides pushed over itself (−H past the cap)."""
+    from gecko_agents.contact import contact_law
+
+    law = contact_law(SPATULA.replace(**{"friction.mu": 0.5, "spatula.interface": interface}))
+    k, ell, zf, s0 = law.constants, law.ell0, 0.2, 0.5
+    cap = 0.5 * 2.0 * law.w * law.b
+    cases = [(0.95, 0.0, False), (1.05, 0.0, True)]
+    if interface == "sliding":  # (with P0 = 0 a pull stretches the pad: partial slip)
+        cases = [(1.1, 1.2 * cap, False)]
+    for share, p0, slides in cases:
+        dx = _dx_for_pull(law, zf, s0, share * cap)
+        out = law.step_scalar(dx, law.R + zf, ell, p0, s0, dx, k)
+        assert (out[2] != 0.0) == slides  # the front moved: the pad slid
+        kxx, kxy, kyy = (float(q[0]) for q in law.jacobian([dx], [-zf], [s0], [dx], [ell], [p0]))
+        held = [float(q[0]) for q in law.jacobian([dx], [-zf], [s0], [dx])]
+        assert kyy == held[2]
+        if slides:
+            assert kxx == kxy == 0.0
+            e = 1e-6
+            T = [law.step_scalar(dx + q, law.R + zf, ell, p0, s0, dx + q, k)[1] for q in (e, -e)]
+            assert T[0] == pytest.approx(cap, rel=1e-12) and T[1] == pytest.approx(cap, rel=1e-12)
+            # the state the slide left sits at the cap: still sliding
+            x_new = dx - out[2]
+            assert law.jacobian([x_new], [-zf], [s0], [x_new], [ell], [p0])[0][0] == 0.0
+        else:
+            assert [kxx, kxy] == held[:2] and kxx > 0.0
+    if interface == "sliding":  # pushed over the pad: the same pull reversed slides
+        dx = -_dx_for_pull(law, zf, s0, 1.1 * cap)
+        assert law.step_scalar(dx, law.R + zf, ell, 1.2 * cap, s0, dx, k)[2] != 0.0
+        assert law.jacobian([dx], [-zf], [s0], [dx], [ell], [1.2 * cap])[0][0] == 0.0
+
+
+@pytest.mark.parametrize("share", [0.9, 1.1])
+def test_the_pressed_body_sticks_in_the_jacobian_below_its_coulomb_cap(share):
+    """A spatula tip pressed δ = 0.1 µm (its film slack, μ = 0.2) with its body's stick
+    offset ξ at ``share`` of its Coulomb cap, k_t|ξ| = share·μ·P_c, P_c = (4/3)E*√R·δ^(3/2)
+    (Hertz): below the cap the body sticks and the Jacobian's kxx is its stick spring k_t,
+    −∂T/∂x by central differences of the law's force; above it the body slides at the cap
+    (∂T/∂x = 0) and so it does at the state the slide left (k_t|ξ| = μ·P_c): kxx = 0."""
+    from gecko_agents.contact import contact_law
+
+    law = contact_law(BONDED_SPATULA.replace(**{"friction.mu": 0.2}))
+    k, delta, s0, dx = law.constants, 0.1, 1.0, 0.3
+    R, _, E = law.R, law.w, law.E_star
+    cap = 0.2 * 4.0 / 3.0 * E * math.sqrt(R) * delta**1.5
+    xa = dx - share * cap / law.tip_stiffness
+    kxx = float(law.jacobian([dx], [delta], [s0], [xa])[0][0])
+    e = 1e-7  # µm, well inside the stick range (ξ = 0.1·cap/k_t from the cap)
+    T = [_film_force_on_tip(law, k, dx + q, delta, s0, xa)[0] for q in (e, -e)]
+    assert kxx == pytest.approx(-(T[0] - T[1]) / (2 * e), rel=1e-6, abs=1e-9)
+    assert kxx == (law.tip_stiffness if share < 1.0 else 0.0)
+    xa_after = law.step_scalar(dx, law.R - delta, law.ell0, 0.0, s0, xa, k)[6]
+    assert float(law.jacobian([dx], [delta], [s0], [xa_after])[0][0]) == (
+        law.tip_stiffness if share < 1.0 else 0.0
+    )

@@ -184,6 +184,8 @@ def test_bad_backing_is_refused():
         hs.halfspace_compliance([0.0, 5.0], [0.0, 0.0], 1.0, 1.0, 0.6)
     with pytest.raises(ValueError, match="overlap"):
         hs.halfspace_compliance([0.0, 1.0], [0.0, 0.0], 1.0, 1.0, 0.3)
+    with pytest.raises(ValueError, match="overlap"):  # radius 2 µm: roots 3 µm < 2c apart
+        hs.halfspace_compliance([0.0, 3.0], [0.0, 0.0], 2.0, 1.0, 0.3)
     with pytest.raises(ValueError, match="pitch"):
         hs.hex_lattice(0.0, 10.0)
 
@@ -340,14 +342,117 @@ def test_fibril_closed_forms_by_hand():
 
 
 @pytest.mark.parametrize("lattice", [hs.square_lattice, hs.hex_lattice])
-@pytest.mark.parametrize("pitch", [0.5, 2.0])
+@pytest.mark.parametrize("pitch", [0.25, 0.5, 2.0])
 def test_small_patches_counted_by_hand(lattice, pitch):
     """Within two pitches of the origin, rim included: the square lattice's 13 points
     (i² + j² ≤ 4) and the hexagonal lattice's 19 (the centre, 6 at p, 6 at √3p, 6 at 2p);
-    within one pitch, 5 and 7. Every point is at most the extent from the origin."""
-    counts = {hs.square_lattice: {2.0: 13, 1.0: 5}, hs.hex_lattice: {2.0: 19, 1.0: 7}}
+    within one pitch, 5 and 7; within three, 29 and 37 (12 at √7p, 6 at 3p). Every point is
+    at most the extent from the origin."""
+    counts = {
+        hs.square_lattice: {3.0: 29, 2.0: 13, 1.0: 5},
+        hs.hex_lattice: {3.0: 37, 2.0: 19, 1.0: 7},
+    }
     for reach, count in counts[lattice].items():
         x, y = lattice(pitch, reach * pitch)
         assert x.size == count
         assert np.hypot(x, y).max() == pytest.approx(reach * pitch, rel=1e-12)
         assert len(set(zip(np.round(x / pitch, 9), np.round(y / pitch, 9), strict=True))) == x.size
+
+
+def test_a_fibril_the_probe_reaches_only_at_the_preload_has_not_bonded():
+    """Fibrils at h = (0, −0.5) µm, k = 2 µN/µm, pressed to P = 1 µN: the first alone carries
+    it at d = P/k = 0.5 µm, exactly where the probe reaches the second's tip, which carries
+    nothing there (u = d + h = 0) and so has not bonded: both models pull off at the first's
+    F_r = 2 µN (bonded, the second would add its tension: 2F_r − k·0.5 = 3 µN), and retracting
+    to d = −0.2 µm the probe feels the first alone, k·d = −0.4 µN."""
+    h, k, F_r, P = [0.0, -0.5], 2.0, 2.0, 1.0
+    d_max = fibril_probe.depth_for_preload(P, h, k)
+    assert d_max == 0.5
+    assert fibril_probe.probe_force(-0.2, h, k, d_max) == pytest.approx(-0.4, rel=1e-15)
+    assert fibril_probe.probe_pull_off(h, k, F_r, d_max) == pytest.approx(F_r, rel=1e-15)
+    res = hs.probe_test(h, np.eye(2) / k, F_r, P)
+    assert (res.depth_max, res.attached_max) == (0.5, 1)
+    assert res.pull_off == pytest.approx(F_r, rel=1e-15)
+
+
+@pytest.mark.parametrize("shift", [-0.3, 0.6])
+def test_only_the_relative_heights_matter(shift):
+    """The depth is counted from first touch, so heights all shifted by c (a probe measured
+    from another reference) give the same forces and attached counts, every depth shifted
+    by −c: the three-fibril cascade by hand above, shifted both ways."""
+    h, C = np.array([-0.55, -0.6, -0.1]), [[1, 0.5, 0], [0.5, 1, 0], [0, 0, 1]]
+    ref, moved = hs.probe_test(h, C, 1.0, 3.0), hs.probe_test(h + shift, C, 1.0, 3.0)
+    assert moved.pull_off == pytest.approx(ref.pull_off, rel=1e-12)
+    np.testing.assert_allclose(moved.depth, ref.depth - shift, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(moved.force, ref.force, rtol=1e-12, atol=1e-12)
+    np.testing.assert_array_equal(moved.attached, ref.attached)
+    # three independent fibrils (k = 2 µN/µm): each lets go at its own depth −F_r/k − h
+    rigid = hs.probe_test([0.0 + shift, -0.2 + shift, -0.5 + shift], np.eye(3) / 2, 1.0, 3.0)
+    np.testing.assert_allclose(rigid.depth[-4:], np.array([0.0, -0.3, -0.5, -0.5]) - shift)
+    np.testing.assert_array_equal(rigid.attached[-4:], [3, 2, 1, 0])
+
+
+@pytest.mark.parametrize("scale", [1e-6, 1e6])
+def test_forces_scale_out_of_the_model(scale):
+    """A linear model with a fixed release force has no force scale of its own: forces (F_r,
+    the preload) times λ and the compliance over λ give the same depths and attached counts
+    and every force times λ (the three-fibril cascade by hand above at λ = 1e-6 and 1e6, where
+    a tolerance not proportional to F_r would release the third fibril with the pair)."""
+    h, C = [-0.55, -0.6, -0.1], np.array([[1, 0.5, 0], [0.5, 1, 0], [0, 0, 1]])
+    ref, scaled = hs.probe_test(h, C, 1.0, 3.0), hs.probe_test(h, C / scale, scale, 3.0 * scale)
+    assert scaled.pull_off == pytest.approx(scale * ref.pull_off, rel=1e-12)
+    np.testing.assert_allclose(scaled.depth, ref.depth, rtol=1e-12)
+    np.testing.assert_allclose(scaled.force, scale * ref.force, rtol=1e-12)
+    np.testing.assert_array_equal(scaled.attached, ref.attached)
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e-6])
+def test_rings_of_a_hexagonal_patch_touch_and_let_go_together(scale):
+    """On a rigid backing the probe reaches a fibril at r from its apex at d = r²/(2R_p) and
+    it lets go at d = r²/(2R_p) − F_r/k; the hexagonal lattice's rings (6 at p, 6 at √3p, 6
+    at 2p, 12 at √7p, 6 at 3p) touch and let go each at one depth, every fibril of the ring
+    at once, outermost first on the pull: one event per ring, the attached counts 1, 7, 13,
+    19, 31 before the preload's event (37 attached) and 37, 31, 19, 13, 7, 1 as each ring
+    goes. Lengths (pitch, R_p, compliance) times 1e-6 scale every depth by 1e-6: the tolerance
+    that tells one ring from the next is the model's own length scale."""
+    p, R = 2.0 * scale, 50.0 * scale
+    x, y = hs.hex_lattice(p, 3.0 * p)
+    h = hs.parabolic_heights(x, y, R)
+    res = hs.probe_test(h, scale * np.eye(x.size) / K, F_R, 1e3)
+    top = np.argmax(res.depth)
+    ring = np.array([0.0, 1.0, 3.0, 4.0, 7.0, 9.0]) * p * p / (2.0 * R)
+    np.testing.assert_allclose(res.depth[:top], ring[1:], rtol=1e-12)
+    np.testing.assert_array_equal(res.attached[: top + 1], [1, 7, 13, 19, 31, 37])
+    pull = res.depth[top + 1 :]
+    np.testing.assert_allclose(pull[:-1], ring[::-1] - scale * F_R / K, rtol=1e-12)
+    np.testing.assert_array_equal(res.attached[top + 1 :], [37, 31, 19, 13, 7, 1, 0])
+
+
+def test_a_fibril_its_pressed_neighbours_sink_faster_than_the_probe_never_touches():
+    """Two fibrils at h = 0 that a backing couples (C₁₂ = 0.3 µm/µN) both to a third at
+    h = −0.01 µm (C₁₃ = C₂₃ = 0.7, a positive-definite C with unit diagonal): pressed at
+    depth d they carry f = d/1.3 each and lower the third's root by 2·0.7·d/1.3 > d, faster
+    than the probe descends, so the third never touches; pressed to 5 µN the pair sinks to
+    d = 3.25 µm and pulls off at 2F_r, both letting go at d = −1.3F_r."""
+    C = [[1.0, 0.3, 0.7], [0.3, 1.0, 0.7], [0.7, 0.7, 1.0]]
+    res = hs.probe_test([0.0, 0.0, -0.01], C, 1.0, 5.0)
+    assert res.attached_max == 2
+    assert res.depth_max == pytest.approx(3.25, rel=1e-12)
+    assert res.pull_off == pytest.approx(2.0, rel=1e-12)
+    np.testing.assert_allclose(res.depth, [3.25, -1.3, -1.3], rtol=1e-12)
+
+
+def test_a_fibril_its_neighbours_press_into_tension_is_held_by_them():
+    """Three fibrils at h = 0 on the coupled backing above (C₁₂ = 0.3, C₁₃ = C₂₃ = 0.7):
+    C⁻¹1 = (15/16, 15/16, −5/16), so pressing the pair pulls the third into tension,
+    f₃ = −5d/16. Pressed to 1 µN (d = 0.64 µm, the third at −0.2 µN, below F_r = 1 µN), then
+    pulled, the third is pushed back as the pair stretches; the pair lets go at f = −F_r,
+    d = −16/15 µm, the probe holding (25/16)·(16/15) = 5/3 µN, and the third, alone at
+    f₃ = d < −F_r, follows at once."""
+    C = [[1.0, 0.3, 0.7], [0.3, 1.0, 0.7], [0.7, 0.7, 1.0]]
+    res = hs.probe_test([0.0, 0.0, 0.0], C, 1.0, 1.0)
+    assert res.attached_max == 3 and res.depth_max == pytest.approx(0.64, rel=1e-12)
+    assert res.pull_off == pytest.approx(5.0 / 3.0, rel=1e-12)
+    np.testing.assert_allclose(res.depth, [0.64, -16 / 15, -16 / 15], rtol=1e-12)
+    np.testing.assert_allclose(res.force, [1.0, -5.0 / 3.0, 0.0], rtol=1e-12, atol=1e-15)
+    np.testing.assert_array_equal(res.attached, [3, 3, 0])

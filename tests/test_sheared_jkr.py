@@ -319,3 +319,71 @@ def test_normal_stiffness_is_the_jkr_branch_slope():
     dd = jkr.overlap_from_radius(a + h, R, W, E) - jkr.overlap_from_radius(a - h, R, W, E)
     delta = jkr.overlap_from_radius(a, R, W, E)
     np.testing.assert_allclose(law.stiffness(a, delta), dP / dd, rtol=1e-6)
+
+
+@pytest.mark.parametrize(("lift", "move"), [(0.1, -0.001), (0.1, 0.01), (0.3, 0.01)])
+def test_a_lifted_contact_slides_back_within_its_cap(lift, move):
+    """μ = 0.2: a tip dragged at δ = 0.1 µm until it slides (its shear at the cap μ|P + 2Fc|),
+    then lifted by ``lift`` and moved by ``move`` along the drag: the lifted contact carries
+    less shear than before, so it slips back to where it holds. The slip relieves the trial
+    shear (|ξ| ≤ the trial's), the force is Coulomb's at the new load (|T| = μ|P + 2Fc|), the
+    radius is on the branch at the new (δ, ξ) (Savkoor & Briggs, closed form) and the slip
+    dissipates work (≥ 0)."""
+    law = contact_law(SHEARED)
+    k = law.constants
+    delta = 0.1
+    _, _, _, a, xi, u, xa, *_ = law.step_scalar(0.0, law.R - delta, law.jump_radius, 0, 0, 0, k)
+    x, slid = 0.0, 0.0
+    while slid == 0.0:  # drag until the contact slides
+        x += 1e-3
+        _, _, _, a, xi, u, xa, _, _, slid = law.step_scalar(x, law.R - delta, a, xi, u, xa, k)
+    x += move
+    trial = abs(x - xa)
+    P, T, _, a, xi, _, _, _, de, slid = law.step_scalar(x, law.R - delta + lift, a, xi, u, xa, k)
+    assert slid == 1.0 and a > 0.0
+    assert abs(xi) <= trial
+    assert -T == pytest.approx(0.2 * abs(P + 2 * law_fc()), rel=1e-6)
+    assert -T == pytest.approx(8 * G * a * xi, rel=1e-12)
+    delta_new = float(sj.overlap_from_radius(a, xi, R, W, E, G))
+    assert delta_new == pytest.approx(delta - lift, abs=1e-12)
+    assert de > 0.0
+
+
+def test_a_tensile_contact_slides_freely_under_the_papers_friction_law():
+    """The paper's cap μ·max(P, 0) is 0 under tension: a tip pulled to δ = 0.99δc (the end of
+    its branch near, its JKR radius ≈ 1.0 µm) and sheared slides back to ξ = 0 and keeps the
+    JKR contact at that δ (eq 10: radius, eq 8: force), carrying no shear."""
+    law = contact_law(SHEARED.replace(**{"friction.law": "paper"}))
+    k = law.constants
+    delta = 0.99 * law.detach_overlap
+    a_jkr = float(jkr.radius_from_overlap(delta, R, W, E))
+    for shear in (0.01, 0.1):
+        P, T, _, a, xi, *_, slid = law.step_scalar(shear, law.R - delta, a_jkr, 0.0, 0.0, 0.0, k)
+        assert slid == 1.0 and T == 0.0 and abs(xi) < 1e-15
+        assert a == pytest.approx(a_jkr, rel=1e-9)
+        assert P == pytest.approx(float(jkr.force_from_radius(a_jkr, R, W, E)), rel=1e-9)
+
+
+def test_a_tip_past_the_end_of_its_branch_lets_go_with_no_force():
+    """Pulled past JKR's snap-off overlap δc, no contact exists at any shear: the tip lets go,
+    carrying no force and moving no attachment point (a = 0); it hands back what its contact
+    stored when its force last acted, for the kernels to dissipate."""
+    law = contact_law(SHEARED)
+    k = law.constants
+    z = law.R - 1.1 * law.detach_overlap
+    P, T, shift, a, xi, u, xa, U, de, slid = law.step_scalar(0.05, z, 0.9, 0.04, 0.3, 0.01, k)
+    assert (P, T, shift, a, xi) == (0.0, 0.0, 0.0, 0.0, 0.0)
+    assert (u, xa, U, de, slid) == (0.3, 0.01, 0.3, 0.0, 0.0)
+
+
+def test_a_tip_attaches_with_jkrs_radius_at_zero_overlap():
+    """The radius the kernels give a tip on attachment (δ = 0, no shear) is on JKR's branch
+    there: a²/R = √(2πwa/E*), a = (2πwR²/E*)^(1/3) (eq 10 at δ = 0, the closed form of
+    :func:`jkr.radius_from_overlap`), the radius the law's own step finds at (δ, ξ) = 0."""
+    law = contact_law(SHEARED)
+    a_jkr = float(jkr.radius_from_overlap(0.0, R, W, E))
+    assert law.jump_radius == pytest.approx(a_jkr, rel=1e-12)
+    assert law.jump_radius == pytest.approx((2 * math.pi * W * R * R / E) ** (1 / 3), rel=1e-12)
+    assert law.step_scalar(0.0, law.R, 1.0, 0.0, 0.0, 0.0, law.constants)[3] == pytest.approx(
+        law.jump_radius, rel=1e-12
+    )

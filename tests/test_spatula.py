@@ -452,3 +452,14 @@ def test_film_and_tip_body_stiffnesses_by_hand():
     assert law.stiffness(0.0, delta) == pytest.approx(
         2.0 * E * math.sqrt(R * delta) + 4.239, rel=1e-12
     )
+
+
+def test_a_tip_pressed_over_its_front_with_no_stick_offset_carries_no_shear():
+    """A tip pressed δ = 0.1 µm right over its peel front (dx = 0: the film's end at the
+    front, its chord of zero length, slack) with its body at its stick anchor (ξ = 0) feels
+    no tangential force and only the body's Hertz compression (4/3)E*√R·δ^(3/2) normally."""
+    law = contact_law(SPATULA)
+    delta = 0.1
+    P, T = law.step_scalar(0.0, law.R - delta, law.ell0, 0.0, law.s_attach, 0.0, law.constants)[:2]
+    assert T == 0.0
+    assert P == pytest.approx(4.0 / 3.0 * law.E_star * math.sqrt(law.R) * delta**1.5, rel=1e-12)

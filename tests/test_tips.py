@@ -196,3 +196,21 @@ def test_splitting_model_points_meet_the_closed_form():
         ref = closed[r["design"]]["pull_off_per_area_kPa"]
         assert r["pull_off_per_area_kPa"] == pytest.approx(ref, rel=2e-3)
     assert [r["mode"] for r in model] == ["", "centre"]
+
+
+def test_a_sharp_rim_lets_go_by_its_own_angle_and_poisson_ratio():
+    """A sharp rim of 70° on a flange of ν = 0.3: its edge mode is the wedge's at that angle
+    and ν (the singularity, and so the edge strength, depend on both: here they differ from
+    the square, incompressible rim's), the centre mode σ₀πa_t² (no defect), and the tip lets
+    go by the weaker."""
+    p = PILLAR.replace(
+        **{"tip": "mushroom", "mushroom.rim": "sharp", "mushroom.rim_angle_deg": 70.0,
+           "contact.sigma0": 0.5, "contact.R": 2.0, "contact.nu1": 0.3}
+    )  # fmt: skip
+    law = contact_law(p)
+    E_star, w = p.contact.E_star, p.contact.work_of_adhesion
+    edge = mushroom.edge_pull_off(2.0, w, E_star, 0.5, "sharp", 70.0, 0.3)
+    assert edge != mushroom.edge_pull_off(2.0, w, E_star, 0.5, "sharp", 90.0, 0.5)
+    assert law.edge_force == edge
+    assert law.mode_forces == {"edge": edge, "centre": pytest.approx(math.pi * 4.0 * 0.5)}
+    assert law.pull_off_force == pytest.approx(min(edge, math.pi * 4.0 * 0.5), rel=1e-15)

@@ -1,0 +1,52 @@
+"""The elastica chain of a seta (gecko_agents.physics.elastica) by hand: its Timoshenko shear
+stiffness, its crooked rest shape, a face that bonds in the direction it touches in, and the
+refusal of a tip it cannot reach."""
+
+import math
+
+import numpy as np
+import pytest
+
+from gecko_agents.physics.elastica import Elastica, shear_coefficient
+
+L, R, E, THETA = 60.0, 1.5, 1.413, math.radians(60.0)  # µm, µm, MPa, rad
+
+
+def test_shear_stiffness_is_kappa_g_a():
+    """κ·G·A with G = E/(2(1 + ν)) (isotropic) and A = πr² (Timoshenko's shear stiffness)."""
+    for nu in (0.0, 0.3, 0.5):
+        e = Elastica(1, L, R, E, THETA, nu=nu)
+        G = E / (2.0 * (1.0 + nu))
+        assert e.kGA == pytest.approx(shear_coefficient(nu) * G * math.pi * R * R, rel=1e-15)
+
+
+def test_rest_shape_is_an_arc_whose_tip_is_offset_by_the_imperfection():
+    """The stress-free chain is an arc of curvature κ = 2·imperfection/L turning
+    counter-clockwise from −θ: its tip stands off the straight shaft by ½κL² = imperfection·L
+    to first order (here 1e-3·60 µm; the arc's own correction is O(κ²L²) relative)."""
+    for imperfection in (1e-3, 1e-2):
+        e = Elastica(1, L, R, E, THETA, imperfection=imperfection)
+        across = np.array([math.sin(THETA), math.cos(THETA)])  # +90° from (cos θ, −sin θ)
+        assert e.rest_end() @ across == pytest.approx(imperfection * L, rel=2 * imperfection)
+
+
+def test_a_face_bonds_in_the_direction_it_touches_in():
+    """A free chain bent a little, then held at the same end: the face bonds at the direction
+    its section has there, so bonding changes neither the force nor the energy (no jump) and
+    its clamp carries no moment."""
+    e = Elastica(1, L, R, E, THETA)
+    d = (e.rest_end() + [0.05, 0.05])[None]
+    F_free, U_free = e.solve(d, [False])
+    F_held, U_held = e.solve(d, [True])
+    np.testing.assert_allclose(F_held, F_free, rtol=1e-9)
+    assert U_held == pytest.approx(U_free, rel=1e-9)
+    assert abs(e.face_moment()[0]) < 1e-12
+
+
+def test_a_tip_the_chain_cannot_reach_is_refused_naming_its_seta():
+    """Seta 1's end moved 0.5 µm along and 1 µm across from rest in one solve (a step far
+    too long): its Newton solve finds no equilibrium, and the error names that seta."""
+    e = Elastica(2, L, R, E, THETA)
+    d = np.array([e.rest_end(), e.rest_end() + [0.5, 1.0]])
+    with pytest.raises(RuntimeError, match=r"setae \[1\] found no equilibrium"):
+        e.solve(d, [False, False])
