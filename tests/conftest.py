@@ -1,10 +1,16 @@
 """Every history an agent run produces in the test suite passes the force-history invariants
 (energy balance included), whatever the test itself asserts."""
 
-import pytest
+import os
 
-from gecko_agents import history
-from gecko_agents.model import Model
+# One OpenBLAS thread per test process: on a shared 2-core machine more threads spin waiting
+# for the cores (a wedge solve's expm took minutes instead of a second under load).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import pytest  # noqa: E402
+
+from gecko_agents import history  # noqa: E402
+from gecko_agents.model import Model  # noqa: E402
 
 _run = Model.run
 

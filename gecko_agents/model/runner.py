@@ -214,7 +214,7 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
         k = 1 if implicit is None else implicit.substeps(vp)
         multi = m._multirate
         near = None
-        if k > 1 and multi is not None and run.n_steps:
+        if k > 1 and multi is not None and run.n_steps and implicit.near is not None:
             near = multi.near(implicit.near, k)
         if near is not None:
             implicit.set_dt(implicit.dt_base)  # the long step; the near setae take k

@@ -10,6 +10,7 @@ in: every "ours" entry is formatted from a result of this run.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import time
 from pathlib import Path
@@ -42,7 +43,14 @@ SCENARIOS = (
 )
 BEYOND = ("calibrate_paper", "pull_speed", "frictional_adhesion", "pillar_designs", "probe_test")
 """Studies beyond the paper whose sections join the report with ``--beyond``."""
-LONGEST = ("fig10_array_pulloff", "fig11b_roughness", "calibrate_paper", "pull_speed")
+LONGEST = (
+    "fig11b_roughness",
+    "fig11a_preload",
+    "fig10_array_pulloff",
+    "calibrate_paper",
+    "pull_speed",
+)
+"""The scenarios started first, longest first, so that the short ones fill in around them."""
 SWEEPING = ("fig11a_preload", "fig11b_roughness")
 """Scenarios whose sweeps run on worker processes of their own (``--workers``): with several
 scenarios at once, each sweeps in its own process, since the scenarios already share the
@@ -145,7 +153,7 @@ def _add_jobs(parser) -> None:
 
 def run_scenarios(base: Path, args, log: WarningLog) -> dict:
     """Every scenario of :data:`SCENARIOS` (and :data:`BEYOND` with ``--beyond``),
-    ``args.jobs`` at a time (longest first, so the long fig10 overlaps the rest);
+    ``args.jobs`` at a time (:data:`LONGEST` first, so the long ones overlap the rest);
     {name: (result, wall time)} in that order. Each scenario's warnings go to ``log`` as one
     family."""
     names = SCENARIOS + (BEYOND if args.beyond else ())
@@ -167,9 +175,9 @@ def run_scenarios(base: Path, args, log: WarningLog) -> dict:
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    order = sorted(names, key=lambda n: n not in LONGEST)
+    order = sorted(names, key=lambda n: LONGEST.index(n) if n in LONGEST else len(LONGEST))
     ctx = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=args.jobs, mp_context=ctx) as pool:
+    with one_blas_thread(), ProcessPoolExecutor(max_workers=args.jobs, mp_context=ctx) as pool:
         futures = {pool.submit(run_scenario, n, subs[n], log.verbosity): n for n in order}
         for k, fut in enumerate(as_completed(futures), 1):
             name = futures[fut]
@@ -177,6 +185,20 @@ def run_scenarios(base: Path, args, log: WarningLog) -> dict:
             print(f"[{k}/{len(names)}] {name} done in {done[name][1]:.0f} s", flush=True)
             log.report(name, records)
     return {n: done[n] for n in names}
+
+
+@contextlib.contextmanager
+def one_blas_thread():
+    """Processes spawned inside start with one OpenBLAS thread (unless the user set
+    ``OPENBLAS_NUM_THREADS``): scenarios run side by side already share the cores, and more
+    BLAS threads only spin waiting for them."""
+    before = os.environ.get("OPENBLAS_NUM_THREADS")
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    try:
+        yield
+    finally:
+        if before is None:
+            os.environ.pop("OPENBLAS_NUM_THREADS", None)
 
 
 def saved_runs(base: Path) -> dict:
