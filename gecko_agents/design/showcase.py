@@ -93,6 +93,8 @@ def _scatter(ax, spec, groups: dict, x, y) -> None:
                     alpha=0.85,
                     label=f"{tip}, {backing} backing" if ok else None,
                 )
+    if any(not feasible(t) for ts in groups.values() for t in ts):
+        ax.plot([], [], "o", ms=4.5, color="0.65", mfc="none", label="a constraint broken")
 
 
 def _front_panel(ax, spec, groups, front: list, rows: list) -> None:
