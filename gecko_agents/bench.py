@@ -71,9 +71,6 @@ __all__ = [
     "peak_memory_mb",
     "quasistatic_time",
     "main",
-    "work_precision",
-    "wp_measure",
-    "pull_off_and_release",
 ]
 
 _READ = pb.BodyFields.BODY_ID | pb.BodyFields.POSITION | pb.BodyFields.VELOCITY

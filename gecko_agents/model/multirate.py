@@ -274,9 +274,10 @@ class Multirate:
 
     def advance(self, vp, near: np.ndarray, k: int) -> list:
         """One long step of the model's dt with the ``near`` setae (bool (N,)) taking k steps
-        of dt/k; leaves the model as :meth:`gecko_agents.model.Model.advance` does (reaction,
-        work, dissipation, state) and returns the releases as (time [µs], plate (x, y) [µm],
-        :meth:`gecko_agents.model.Model.pop_releases` list, step [µs]) per step they fell in."""
+        of dt/k; leaves the model as :meth:`gecko_agents.model.stepping.Stepping.advance`
+        does (reaction, work, dissipation, state) and returns the releases as (time [µs],
+        plate (x, y) [µm], :meth:`gecko_agents.model.Model.pop_releases` list, step [µs]) per
+        step they fell in."""
         m = self.m
         idx = np.flatnonzero(near)
         dt = m.dt
