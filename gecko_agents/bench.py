@@ -382,6 +382,8 @@ def main(argv=None) -> dict:
     """Run the benchmark and print its table; returns the numbers."""
     args = _arguments(argv)
     if args.work_precision:
+        if args.docs and not os.access(os.path.dirname(os.path.abspath(args.docs)), os.W_OK):
+            raise SystemExit(f"--docs {args.docs}: its folder does not exist or is not writable")
         return work_precision(args.quick, docs=args.docs)
     default = Model(PAPER_ARRAY, n_sim=max(args.sizes)).kernel
     kernels = ["numpy"] + (["numba"] if numba_available() else [])

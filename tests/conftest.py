@@ -3,8 +3,8 @@
 
 import os
 
-# One OpenBLAS thread per test process: on a shared 2-core machine more threads spin waiting
-# for the cores (a wedge solve's expm took minutes instead of a second under load).
+# One OpenBLAS thread per test process: on a shared 2-core machine more threads only spin
+# waiting for the cores (scipy's expm in the wedge solve, most of all).
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import pytest  # noqa: E402

@@ -40,3 +40,9 @@ def test_pressed_model_has_every_tip_attached_and_keeps_them():
     bench.agent_rate(m, 20)
     assert m.attached.all()
     assert np.isfinite(bench.pymunk_rate(bench.pressed_model(30, settle=5), 10))
+
+
+def test_work_precision_docs_path_is_checked_before_anything_runs(tmp_path):
+    """``--docs`` into a folder that does not exist stops before the first run, naming it."""
+    with pytest.raises(SystemExit, match="--docs .*does not exist or is not writable"):
+        bench.main(["--work-precision", "--quick", "--docs", str(tmp_path / "no" / "wp.md")])

@@ -41,7 +41,6 @@ import pymunk.batch as pb
 from gecko_agents.backing.rigid import RigidBacking
 from gecko_agents.model.state import FX, FY, SetaState
 from gecko_agents.model.step_numpy import NumpyStep
-from gecko_agents.physics import beam
 
 __all__ = ["Multirate", "SubWorld", "multirate_applies"]
 
@@ -258,18 +257,12 @@ class Multirate:
 
     def _on_plate(self, idx) -> tuple[float, float]:
         """The pull of setae ``idx`` on the plate at the last step [µN]: their springs at the
-        step's evaluation positions and their dampers, as the step summed them."""
+        step's evaluation positions (:meth:`gecko_agents.model.stepping.Stepping.spring_force`)
+        and their dampers, as the step summed them."""
         m = self.m
-        s, w = m.state, m.world
-        px, py = m._pnext
-        x, y = s.xy[0, idx] - px, s.xy[1, idx] - py
-        if m.params.mechanics == "linear":
-            u = np.column_stack([x - w.rest_dx[idx], y - w.rest_dy[idx]])
-            f = beam.linear_spring_force(u, m.K)[0]
-        else:
-            d = np.column_stack([x - w.root_dx[idx], y - w.root_dy[idx]])
-            f = beam.rod_spring_force(d, m.L, m.Ka, m.k_phi, m.theta)[0]
-        fd = s.F_damp_seta[:, idx]
+        root = m.backing.root_positions(m._pnext)[idx]
+        f = m.spring_force(m.state.xy[:, idx].T, root)[0]
+        fd = m.state.F_damp_seta[:, idx]
         return float(np.sum(f[:, 0] + fd[0])), float(np.sum(f[:, 1] + fd[1]))
 
     def advance(self, vp, near: np.ndarray, k: int) -> list:
