@@ -444,3 +444,44 @@ def test_a_mushroom_with_an_intact_rim_grows_its_flange_to_the_gap_the_process_a
     assert best.values[0] == pytest.approx(
         sigma0 * math.pi * (beta * r) ** 2 / s**2 / KPA, rel=1e-6
     )
+
+
+@pytest.mark.parametrize(
+    "tip, backing, dropped",
+    [
+        (
+            "flat_punch",
+            "rigid",
+            {
+                "flange_ratio",
+                "mushroom_rim",
+                "rim_angle_deg",
+                "backing_thickness_um",
+                "backing_modulus_MPa",
+            },
+        ),
+        ("mushroom", "layer", {"rim_angle_deg"}),
+        ("sphere", "layer", {"flange_ratio", "mushroom_rim", "rim_angle_deg"}),
+    ],
+)
+def test_a_design_lists_only_the_knobs_that_act_on_it(tip, backing, dropped):
+    """The report and the command line show a design's knobs that act on it: dropping the
+    others leaves the parameters the model is built from unchanged."""
+    from gecko_agents.design.space import in_use, overrides_of
+
+    values = {
+        "tip": tip,
+        "backing": backing,
+        "radius_um": 2.0,
+        "aspect_ratio": 3.0,
+        "fill_fraction": 0.2,
+        "flange_ratio": 1.5,
+        "mushroom_rim": "flawed",
+        "rim_angle_deg": 30.0,
+        "backing_thickness_um": 50.0,
+        "backing_modulus_MPa": 1.4,
+    }
+    kept = in_use(values)
+    assert set(values) - set(kept) == dropped
+    if tip != "mushroom":
+        assert overrides_of(kept) == overrides_of(values)

@@ -219,3 +219,42 @@ def test_a_hand_started_worker_is_numbered_only_on_a_shared_store(tmp_path, caps
     assert main(["design", str(path), "--worker", "1", "--out", str(tmp_path / "o")]) == 2
     assert "--worker 1" in capsys.readouterr().err
     assert main(["design", str(path), "--worker", "-1", "--out", str(tmp_path / "o")]) == 2
+
+
+def test_a_design_no_worker_has_begun_is_taken_back_the_last_handed_first():
+    """Designs handed to the workers but not begun are cancelled there and evaluated by the
+    drawing process; a design a worker has begun stays with it."""
+    import concurrent.futures as cf
+
+    from gecko_agents.design.local import _steal
+
+    begun, waiting_1, waiting_2 = cf.Future(), cf.Future(), cf.Future()
+    assert begun.set_running_or_notify_cancel()
+    running = {begun: "a", waiting_1: "b", waiting_2: "c"}
+    assert _steal(running) is waiting_2 and waiting_2.cancelled()
+    running.pop(waiting_2)
+    assert _steal(running) is waiting_1
+    running.pop(waiting_1)
+    assert _steal(running) is None and not begun.cancelled()
+
+
+@needs_optuna
+def test_two_workers_evaluate_every_drawn_design_once(tmp_path):
+    """With Optuna's random sampler the draws do not depend on the results, so two workers
+    (designs queued, the ones not begun taken back at the end) store the one worker's designs
+    and objectives, each once (numbered in the order they finish)."""
+    from gecko_agents.design import local
+
+    optuna = search.require_optuna()
+    spec = load_design(design(tmp_path, BASE))
+
+    def stored(workers):
+        sampler = optuna.samplers.RandomSampler(seed=spec.seed)
+        store = local.run_local(spec, tmp_path / f"w{workers}", 24, workers, sampler=sampler)
+        return sorted(
+            (tuple(sorted(t.params.items())), tuple(t.values)) for t in search.completed(store)
+        )
+
+    one, two = stored(1), stored(2)
+    assert len(one) == 24
+    assert two == one

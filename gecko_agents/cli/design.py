@@ -121,10 +121,12 @@ def cmd_design(args, extra) -> int:
         f"trials, {len(best)} designs confirmed"
     )
     if best:
+        from gecko_agents.design.space import in_use
+
         b = best[0]
         knobs = ", ".join(
             f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}"
-            for k, v in b["design"].items()
+            for k, v in in_use(b["design"]).items()
         )
         print(f"best: {knobs}; engine {b['engine']['mean']:.4g} kPa")
     return EXIT_OK

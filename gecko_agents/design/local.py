@@ -29,10 +29,12 @@ import gecko_agents.design.search as search
 
 __all__ = ["run_local", "memory_study", "QUEUED"]
 
-QUEUED = 2
-"""Designs kept in hand for each spawned worker: one evaluating, one waiting, so a worker that
-finishes a quick design need not wait for this process to finish a slow one before it gets the
-next (a JKR sphere takes a hundred times a flat punch)."""
+QUEUED = 8
+"""Designs kept in hand for each spawned worker. A JKR sphere takes a hundred times a flat
+punch, so a worker needs several designs in hand to stay busy while this process evaluates one
+sphere of its own and stores what came back; designs no worker has begun when the draws run
+out are taken back and evaluated here (:func:`_steal`), so a deep queue leaves no core idle at
+the end."""
 
 
 def memory_study(spec, store, sampler=None):
@@ -109,11 +111,24 @@ def _batched(spec, mem, store, n: int, workers: int, optuna) -> None:
                 n -= 1
                 finish(trial, values, _evaluate(spec, values))
                 done = [f for f in running if f.done()]
+            elif stolen := _steal(running):
+                trial, values = running.pop(stolen)
+                finish(trial, values, _evaluate(spec, values))
+                done = [f for f in running if f.done()]
             else:
                 done = cf.wait(running, return_when=cf.FIRST_COMPLETED).done
             for f in done:
                 trial, values = running.pop(f)
                 finish(trial, values, f.result())
+
+
+def _steal(running: dict):
+    """A design handed to the workers that none has begun (cancelled there, so this process
+    evaluates it), the last handed first; None if each has begun."""
+    for f in reversed(list(running)):
+        if f.cancel():
+            return f
+    return None
 
 
 def _evaluate(spec, values):

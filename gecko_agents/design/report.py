@@ -16,7 +16,7 @@ from pathlib import Path
 
 from gecko_agents.design.confirm import DISAGREE
 from gecko_agents.design.search import feasible
-from gecko_agents.design.space import KNOBS, OBJECTIVES, TIP_KINDS
+from gecko_agents.design.space import KNOBS, OBJECTIVES, TIP_KINDS, in_use
 
 __all__ = [
     "PUBLISHED",
@@ -221,7 +221,7 @@ def best_table(spec, rows: list[dict]) -> list[str]:
         e = r["engine"]
         cells = [
             r["label"],
-            *[_fmt(r["design"].get(k)) for k in knobs],
+            *[_fmt(in_use(r["design"]).get(k)) for k in knobs],
             *[_fmt(r["screen"][o]) for o in spec.objectives],
             _fmt(e["mean"]),
             _fmt(e["spread"]),

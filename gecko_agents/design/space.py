@@ -20,6 +20,7 @@ from gecko_agents.params.tips import FLAT_FACE_TIPS
 from gecko_agents.physics import flaw_tolerance, punch
 
 __all__ = [
+    "in_use",
     "KPA",
     "MATERIAL",
     "MATERIAL_DEFAULTS",
@@ -241,6 +242,22 @@ CATEGORIES: dict[str, tuple[str, ...]] = {
 """Categorical knobs in ``[space]``: a name or a list of names to choose from."""
 
 BACKING_KNOBS = ("backing_thickness_um", "backing_modulus_MPa")
+
+
+def in_use(values: dict) -> dict:
+    """The knobs of one design that act on it: a mushroom's flange ratio and rim only on a
+    mushroom tip (its rim angle only on a sharp rim), the backing's thickness and modulus only
+    off a rigid backing (as :func:`overrides_of` applies them)."""
+    mushroom = values.get("tip") == "mushroom"
+    sharp = mushroom and values.get("mushroom_rim", "flawed") == "sharp"
+    rigid = values.get("backing", "rigid") == "rigid"
+    unused = {
+        "flange_ratio": not mushroom,
+        "mushroom_rim": not mushroom,
+        "rim_angle_deg": not sharp,
+        **dict.fromkeys(BACKING_KNOBS, rigid),
+    }
+    return {k: v for k, v in values.items() if not unused.get(k, False)}
 
 
 def overrides_of(values: dict, sigma0: float = math.inf) -> dict:
