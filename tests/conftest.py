@@ -26,3 +26,15 @@ def _checked_run(self, *args, **kwargs):
 @pytest.fixture(autouse=True)
 def _invariants_on_every_history(monkeypatch):
     monkeypatch.setattr(Model, "run", _checked_run)
+
+
+def pytest_collection_modifyitems(config, items):
+    """``MUTATION_TESTS`` (paths or node-id prefixes, space-separated) keeps only those tests:
+    tools/mutation.sh scores a costly module by the fast tests written for it, a part of the
+    fast tier (what they kill, the whole tier kills)."""
+    only = os.environ.get("MUTATION_TESTS", "").split()
+    if not only:
+        return
+    kept = [item for item in items if item.nodeid.startswith(tuple(only))]
+    config.hook.pytest_deselected(items=[item for item in items if item not in kept])
+    items[:] = kept

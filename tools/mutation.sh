@@ -7,6 +7,9 @@
 #   tools/mutation.sh "gecko_agents.physics.punch*"    # only these (fnmatch on mutant names)
 #   tools/mutation.sh "gecko_agents.model.implicit.xǁImplicitStepǁcorrect*"   # one method
 #   mutmut results                                     # the survivors; `mutmut show <name>`
+#   MUTATION_TESTS="tests/test_implicit_jacobian.py" tools/mutation.sh "gecko_agents.model.implicit*"
+#       # score a costly module by the fast tests written for it (a part of the fast tier, so
+#       # a lower bound on the tier's score); delete ./mutants before changing the selection
 #
 # numba is disabled (NUMBA_DISABLE_JIT=1): mutmut swaps each function for a trampoline that
 # numba cannot compile, and the interpreted kernels run the same formulas. The one fast test
