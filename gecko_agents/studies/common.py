@@ -200,6 +200,55 @@ def jkr_curves(contact, n: int, P_max: float) -> dict:
     }
 
 
+def jkr_family(contacts, rows, labels_a, labels_b, n: int, P_max: float) -> tuple[list, list]:
+    """Curves of a family of JKR tips for :func:`gecko_agents.render.plot_force_curves`, one
+    colour each: panel (a) radius against force [µm, µN], panel (b) force against overlap
+    [µN, µm]; the reachable branch solid, the rest of eq 7/10 dotted and, in (b), the jump
+    D → E to zero force dashed at the displacement-controlled end (each row's
+    ``overlap_end_um``, ``force_end_uN``)."""
+    from gecko_agents.render import STYLE_RC
+
+    colours = STYLE_RC["axes.prop_cycle"].by_key()["color"][: len(rows)]
+    ca, cb = [], []
+    for contact, row, la, lb, col in zip(contacts, rows, labels_a, labels_b, colours, strict=True):
+        c = jkr_curves(contact, n, P_max)
+        ca += [
+            {"x": c["P_st"], "y": c["a_st"], "label": la, "style": {"color": col}},
+            {"x": c["P_un"], "y": c["a_un"], "style": {"color": col, "ls": ":"}},
+        ]
+        cb += [
+            {"x": c["d_st"], "y": c["P_st"], "label": lb, "style": {"color": col}},
+            {"x": c["d_un"], "y": c["P_un"], "style": {"color": col, "ls": ":"}},
+            {
+                "x": [row["overlap_end_um"]] * 2,
+                "y": [row["force_end_uN"], 0.0],
+                "style": {"color": col, "ls": "--", "lw": 1.0},
+            },
+        ]
+    return ca, cb
+
+
+def save_on_zero_axes(curves, points, labels, title: str, path: Path, head_room: float) -> Path:
+    """Write ``path``: the curves (:func:`gecko_agents.render.plot_force_curves`) with the axes
+    through zero drawn, the legend top left and ``head_room`` × the y span added above the
+    curves for it."""
+    import matplotlib as mpl
+
+    from gecko_agents.render import STYLE_RC, plot_force_curves, save_figure
+
+    xlabel, ylabel = labels
+    fig = plot_force_curves(curves, None, xlabel=xlabel, ylabel=ylabel, points=points, title=title)
+    ax = fig.axes[0]
+    with mpl.rc_context(STYLE_RC):
+        ax.axhline(0.0, color="#888888", lw=0.6, zorder=1)
+        ax.axvline(0.0, color="#888888", lw=0.6, zorder=1)
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(top=hi + head_room * (hi - lo))
+        ax.legend(loc="upper left", fontsize=8)
+    save_figure(fig, path)
+    return path
+
+
 def run_scenario(name: str, argv: list[str], verbosity: int = 1) -> tuple[dict, float, dict]:
     """Run scenario ``name``'s ``main(argv)`` (here or in a worker process: a module-level
     function, so it pickles by name); returns (its result, wall time [s], the warnings it

@@ -17,21 +17,20 @@ renders/fig6_modulus/ (or --out).
 
 from __future__ import annotations
 
-import matplotlib as mpl
 from scipy.optimize import brentq
 
 from gecko_agents.params import PAPER_FIG5_READING, PAPER_TABLE1
 from gecko_agents.physics import jkr
-from gecko_agents.render import STYLE_RC, plot_force_curves, save_figure
 from gecko_agents.studies.common import (
     GREY,
     claim,
     command_line,
-    jkr_curves,
+    jkr_family,
     num,
     output_dir,
     parse_args,
     rel_off,
+    save_on_zero_axes,
     write_json,
     write_table,
 )
@@ -81,27 +80,16 @@ def contact_numbers(contact) -> dict:
 
 
 def _curves(contacts: list, rows: list[dict], n: int, P_max: float) -> tuple[list, ...]:
-    """Curves and marked points of panels (a) and (b), per modulus: the reachable branch
-    (solid), the rest of eq 7/10 (dotted) and, in (b), the jump D → E (dashed)."""
-    colours = STYLE_RC["axes.prop_cycle"].by_key()["color"]
-    ca, cb, pa, pb = [], [], [], []
-    for contact, row, col in zip(contacts, rows, colours[: len(rows)], strict=True):
-        c = jkr_curves(contact, n, P_max)
-        label = f"E1 = {row['E1_MPa']:g} MPa (E* = {row['E_star_MPa']:.3g} MPa)"
-        ca += [
-            {"x": c["P_st"], "y": c["a_st"], "label": label, "style": {"color": col}},
-            {"x": c["P_un"], "y": c["a_un"], "style": {"color": col, "ls": ":"}},
-        ]
-        label_b = f"{label}: D at δc = {num(row['overlap_end_um'])} µm"
-        cb += [
-            {"x": c["d_st"], "y": c["P_st"], "label": label_b, "style": {"color": col}},
-            {"x": c["d_un"], "y": c["P_un"], "style": {"color": col, "ls": ":"}},
-            {
-                "x": [row["overlap_end_um"]] * 2,
-                "y": [row["force_end_uN"], 0.0],
-                "style": {"color": col, "ls": "--", "lw": 1.0},
-            },
-        ]
+    """Curves (:func:`~gecko_agents.studies.common.jkr_family`) and marked points of panels
+    (a) and (b), per modulus."""
+    labels = [f"E1 = {r['E1_MPa']:g} MPa (E* = {r['E_star_MPa']:.3g} MPa)" for r in rows]
+    ends = [
+        f"{lab}: D at δc = {num(r['overlap_end_um'])} µm"
+        for lab, r in zip(labels, rows, strict=True)
+    ]
+    ca, cb = jkr_family(contacts, rows, labels, ends, n, P_max)
+    pa, pb = [], []
+    for row in rows:
         pa += [
             (0.0, row["a_at_0_um"], f"a0 = {num(row['a_at_0_um'])} µm"),
             (-row["Fc_uN"], row["a_pull_off_um"], f"C: {num(row['a_pull_off_um'])} µm"),
@@ -143,23 +131,6 @@ def _add_paper_lines(ca: list, cb: list, f_lo: float, P_max: float) -> None:
     )
 
 
-def _save_panel(panel: str, curves: list, points: list, labels: tuple, title: str, out):
-    """Write fig6<panel>.png: the curves on zero axes; panel (a) with head room for the
-    legend above the curves."""
-    xlabel, ylabel = labels
-    fig = plot_force_curves(curves, None, xlabel=xlabel, ylabel=ylabel, points=points, title=title)
-    ax = fig.axes[0]
-    with mpl.rc_context(STYLE_RC):
-        ax.axhline(0.0, color="#888888", lw=0.6, zorder=1)
-        ax.axvline(0.0, color="#888888", lw=0.6, zorder=1)
-        if panel == "a":  # head room for the legend above the curves
-            ax.set_ylim(top=1.5 * ax.get_ylim()[1])
-        ax.legend(loc="upper left", fontsize=8)
-    path = out / f"fig6{panel}.png"
-    save_figure(fig, path)
-    return path
-
-
 def draw(contacts: list, rows: list[dict], n: int, out) -> list:
     """fig6a.png (radius vs force) and fig6b.png (force vs overlap)."""
     P_max = 2.0 * max(r["Fc_uN"] for r in rows)
@@ -167,21 +138,21 @@ def draw(contacts: list, rows: list[dict], n: int, out) -> list:
     _add_paper_lines(ca, cb, -max(r["Fc_uN"] for r in rows), P_max)
     sub = f"R = {contacts[0].R:g} µm, w = {rows[0]['w_J_m2']:.4f} J/m²"
     return [
-        _save_panel(
-            "a",
+        save_on_zero_axes(
             ca,
             pa,
             ("contact force P [µN]", "contact radius a [µm]"),
             f"Fig 6a: contact radius vs force, {sub}",
-            out,
+            out / "fig6a.png",
+            head_room=0.5,
         ),
-        _save_panel(
-            "b",
+        save_on_zero_axes(
             cb,
             pb,
             ("contact depth (overlap) δ [µm]", "contact force P [µN]"),
             f"Fig 6b: force vs contact depth, {sub}",
-            out,
+            out / "fig6b.png",
+            head_room=0.0,
         ),
     ]
 

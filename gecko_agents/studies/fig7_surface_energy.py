@@ -20,23 +20,22 @@ from __future__ import annotations
 
 import math
 
-import matplotlib as mpl
 import numpy as np
 from scipy.optimize import brentq
 
 from gecko_agents.params import PAPER_TABLE1
 from gecko_agents.physics import jkr
-from gecko_agents.render import STYLE_RC, plot_force_curves, save_figure
 from gecko_agents.studies.common import (
     GREY,
     PAPER_DELTA_S_COEF,
     claim,
     command_line,
-    jkr_curves,
+    jkr_family,
     num,
     output_dir,
     parse_args,
     rel_off,
+    save_on_zero_axes,
     write_json,
     write_table,
 )
@@ -79,38 +78,25 @@ def contact_numbers(contact) -> dict:
 
 
 def _curves(contacts: list, rows: list[dict], n: int) -> tuple[list, list, list, list]:
-    """Curves and marked points of panels (a) and (b), per γ1: the reachable branch (solid),
-    the rest of eq 7/10 (dotted) and, in (b), the jump D → E (dashed)."""
-    P_max = max(r["Fc_uN"] for r in rows)  # compression up to the largest Fc
-    colours = STYLE_RC["axes.prop_cycle"].by_key()["color"][: len(rows)]
-    ca, cb, pa, pb = [], [], [], []
-    for contact, row, col in zip(contacts, rows, colours, strict=True):
-        c = jkr_curves(contact, n, P_max)
-        label = f"γ1 = {1e3 * row['gamma1_J_m2']:g} mJ/m² (w = {1e3 * row['w_J_m2']:.0f} mJ/m²)"
-        ca += [
-            {
-                "x": c["P_st"],
-                "y": c["a_st"],
-                "label": f"{label}: −Fc = {num(-row['Fc_uN'])} µN",
-                "style": {"color": col},
-            },
-            {"x": c["P_un"], "y": c["a_un"], "style": {"color": col, "ls": ":"}},
-        ]
-        cb += [
-            {
-                "x": c["d_st"],
-                "y": c["P_st"],
-                "label": f"{label}: D at δc = {num(row['overlap_end_um'])} µm",
-                "style": {"color": col},
-            },
-            {"x": c["d_un"], "y": c["P_un"], "style": {"color": col, "ls": ":"}},
-            {
-                "x": [row["overlap_end_um"]] * 2,
-                "y": [row["force_end_uN"], 0.0],
-                "style": {"color": col, "ls": "--", "lw": 1.0},
-            },
-        ]
-        pa.append((-row["Fc_uN"], row["a_pull_off_um"], "C"))
+    """Curves (:func:`~gecko_agents.studies.common.jkr_family`, compression up to the largest
+    Fc) and marked points of panels (a) and (b), per γ1."""
+    names = [
+        f"γ1 = {1e3 * r['gamma1_J_m2']:g} mJ/m² (w = {1e3 * r['w_J_m2']:.0f} mJ/m²)" for r in rows
+    ]
+    ca, cb = jkr_family(
+        contacts,
+        rows,
+        [f"{lab}: −Fc = {num(-r['Fc_uN'])} µN" for lab, r in zip(names, rows, strict=True)],
+        [
+            f"{lab}: D at δc = {num(r['overlap_end_um'])} µm"
+            for lab, r in zip(names, rows, strict=True)
+        ],
+        n,
+        max(r["Fc_uN"] for r in rows),
+    )
+    pa = [(-r["Fc_uN"], r["a_pull_off_um"], "C") for r in rows]
+    pb = []
+    for row in rows:
         pb += [
             (row["overlap_pull_off_um"], -row["Fc_uN"], "C"),
             (row["overlap_end_um"], row["force_end_uN"], "D"),
@@ -157,22 +143,6 @@ def _add_paper_lines(ca: list, cb: list) -> None:
     cb.append(dict(note, label=note["label"] + "; dashed: jump D → E"))
 
 
-def _save_panel(panel: str, curves: list, points: list, labels: tuple, title: str, out):
-    """Write fig7<panel>.png: the curves on zero axes, with head room for the legend."""
-    xlabel, ylabel = labels
-    fig = plot_force_curves(curves, None, xlabel=xlabel, ylabel=ylabel, points=points, title=title)
-    ax = fig.axes[0]
-    with mpl.rc_context(STYLE_RC):
-        ax.axhline(0.0, color="#888888", lw=0.6, zorder=1)
-        ax.axvline(0.0, color="#888888", lw=0.6, zorder=1)
-        lo, hi = ax.get_ylim()
-        ax.set_ylim(top=hi + 0.5 * (hi - lo))  # head room for the legend
-        ax.legend(loc="upper left", fontsize=8)
-    path = out / f"fig7{panel}.png"
-    save_figure(fig, path)
-    return path
-
-
 def draw(contacts: list, rows: list[dict], n: int, out) -> list:
     """fig7a.png (radius vs force) and fig7b.png (force vs overlap)."""
     ca, cb, pa, pb = _curves(contacts, rows, n)
@@ -180,21 +150,21 @@ def draw(contacts: list, rows: list[dict], n: int, out) -> list:
     c0 = contacts[0]
     sub = f"R = {c0.R:g} µm, E1 = {c0.E1:g} MPa, γ2 = {1e3 * c0.gamma2:g} mJ/m², w = 2√(γ1γ2)"
     return [
-        _save_panel(
-            "a",
+        save_on_zero_axes(
             ca,
             pa,
             ("contact force P [µN]", "contact radius a [µm]"),
             f"Fig 7a: contact radius vs force\n{sub}",
-            out,
+            out / "fig7a.png",
+            head_room=0.5,
         ),
-        _save_panel(
-            "b",
+        save_on_zero_axes(
             cb,
             pb,
             ("contact depth (overlap) δ [µm]", "contact force P [µN]"),
             f"Fig 7b: force vs contact depth\n{sub}",
-            out,
+            out / "fig7b.png",
+            head_room=0.5,
         ),
     ]
 
