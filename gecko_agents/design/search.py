@@ -113,11 +113,14 @@ def sampler_seed(spec, worker: int = 0) -> int:
 
 
 def make_sampler(spec, optuna, worker: int = 0):
-    """The study's sampler (TPE for one objective, NSGA-II for several) in worker ``worker``."""
+    """The study's sampler (TPE for one objective, NSGA-II for several) in worker ``worker``.
+    TPE treats the designs still being evaluated as no better than the worst so far (its
+    constant liar), so workers holding several designs each do not all draw near one point;
+    with one worker none is pending when it draws, and the study is the same as without."""
     kw = {} if own_constraints(optuna) else {"constraints_func": _constraints_of}
     seed = sampler_seed(spec, worker)
     if len(spec.objectives) == 1:
-        return optuna.samplers.TPESampler(seed=seed, n_startup_trials=10, **kw)
+        return optuna.samplers.TPESampler(seed=seed, n_startup_trials=10, constant_liar=True, **kw)
     return optuna.samplers.NSGAIISampler(seed=seed, population_size=20, **kw)
 
 
