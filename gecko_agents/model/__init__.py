@@ -148,12 +148,19 @@ class Model(Stepping):
         self.law = law = contact_law(params)
         self._set_mechanics(params, law, damping)
         self.dt = time_step(
-            self.integrator, dt, self.omega_max, self.k_max, self.mass, law.rate_dependent,
+            self.integrator,
+            dt,
+            self.omega_max,
+            self.k_max,
+            self.mass,
+            law.rate_dependent,
             event_dt,
-        )  # fmt: skip
+        )
         if verbose:
-            print(f"gecko_agents: {self.integrator} step dt = {self.dt:.4g} µs (ω_max·dt = "
-                  f"{self.omega_max * self.dt:.2f}; explicit stable below 2)")  # fmt: skip
+            print(
+                f"gecko_agents: {self.integrator} step dt = {self.dt:.4g} µs (ω_max·dt = "
+                f"{self.omega_max * self.dt:.2f}; explicit stable below 2)"
+            )
         self.record_every = record_every or max(1, round(0.02 / DEFAULT_SPEED / self.dt))
         self.record_in_time = record_every is None  # the implicit step's default: every interval
         self.state = SetaState(self.n)
@@ -178,6 +185,12 @@ class Model(Stepping):
         self.kernel, self._loop, self.loop_threads = choose_kernel(
             kernel, self._fast_pads, self.n, type(self.law), threads
         )
+        self._start_books()
+        self.backing = backing(self)
+        self._multirate = Multirate(self) if multirate_applies(self) else None
+
+    def _start_books(self) -> None:
+        """The clock, the step's scratch arrays and the books a run starts from."""
         self.time = 0.0
         self._ran = False
         self._warned_linear = False
@@ -188,8 +201,6 @@ class Model(Stepping):
         self.reaction = (0.0, 0.0)
         self._work_step = 0.0
         self.reset_state_arrays()
-        self.backing = backing(self)
-        self._multirate = Multirate(self) if multirate_applies(self) else None
 
     @classmethod
     def from_options(cls, params: SetaArray, **options) -> Model:
@@ -244,12 +255,28 @@ class Model(Stepping):
     def _loop_constants(self) -> LoopConstants:
         p, K = self.params, self.K
         return LoopConstants(
-            dt=self.dt, rod=p.mechanics == "rod", k00=-K[0, 0], k01=-K[0, 1], k10=-K[1, 0],
-            k11=-K[1, 1], L=self.L, Ka=self.Ka, k_phi=self.k_phi, theta=self.theta,
-            c_seta=self.c_seta, R=p.contact.R, detach=self.law.detach_overlap, c_n=self.c_n,
-            c_t=self.c_t, k_t=self.k_t, mu=p.friction.mu, paper=p.friction.law == "paper",
-            Fc=self.Fc, hm=0.5 * self.dt / self.mass, release=self.law.release_radius,
-        )  # fmt: skip
+            dt=self.dt,
+            rod=p.mechanics == "rod",
+            k00=-K[0, 0],
+            k01=-K[0, 1],
+            k10=-K[1, 0],
+            k11=-K[1, 1],
+            L=self.L,
+            Ka=self.Ka,
+            k_phi=self.k_phi,
+            theta=self.theta,
+            c_seta=self.c_seta,
+            R=p.contact.R,
+            detach=self.law.detach_overlap,
+            c_n=self.c_n,
+            c_t=self.c_t,
+            k_t=self.k_t,
+            mu=p.friction.mu,
+            paper=p.friction.law == "paper",
+            Fc=self.Fc,
+            hm=0.5 * self.dt / self.mass,
+            release=self.law.release_radius,
+        )
 
     # ------------------------------------------------------------------ public state
     @property

@@ -158,10 +158,13 @@ class Scene:
         self.state = np.asarray(s["state"])[:, sel]
         # Film tips: peel front x and attached length ℓ [µm] (NaN while free), when recorded.
         self.film = (
-            (np.asarray(s["film_front_x_um"], dtype=float)[:, sel],
-             np.asarray(s["film_attached_um"], dtype=float)[:, sel])
-            if "film_front_x_um" in s else None
-        )  # fmt: skip
+            (
+                np.asarray(s["film_front_x_um"], dtype=float)[:, sel],
+                np.asarray(s["film_attached_um"], dtype=float)[:, sel],
+            )
+            if "film_front_x_um" in s
+            else None
+        )
         self.plate_x = np.asarray(history["plate_x_um"], dtype=float)
         self.plate_y = np.asarray(history["plate_y_um"], dtype=float)
         self.disp = pressing_displacement(history, self.plate_y)
@@ -232,28 +235,15 @@ class Scene:
         px_per_um = side.transData.transform((1.0, 0.0))[0] - side.transData.transform((0, 0))[0]
         pt_per_um = px_per_um * 72.0 / dpi
         lw = max(0.6, 2.0 * self.h.params.seta.r * pt_per_um)
-        if self.backing and self.backing.has_nodes:  # the strip instead of the rigid plate
-            # As thick as the drawn plate (a visual choice: the strip's own t_b would hide the
-            # setae, whose roots sit on its centre line).
-            width = max(1.5, self.plate_h * pt_per_um)
-            (self.strip,) = side.plot([], [], color="#444444", lw=width, zorder=3, gid="backing")
-            self.strip.set_solid_capstyle("butt")
-            body = self.strip
-        else:
-            side.add_patch(self.plate)
-            body = self.plate
-        if self.backing:
-            (self.front,) = side.plot(
-                [], [], ls="", marker="v", markersize=9, color=FRONT_COLOUR, mec="#222222",
-                zorder=6, gid="detachment front",
-            )  # fmt: skip
+        body = self._backing_artists(side, pt_per_um)
         self.rods = LineCollection([], colors="#5a5a5a", linewidths=lw, capstyle="butt", zorder=4)
         side.add_collection(self.rods)
         self.films = self.pads = None
         if self.film is not None:  # the free film (thin) and the attached pad (thick)
             self.films = LineCollection([], colors=FILM_COLOUR, linewidths=1.2, zorder=4.5)
-            self.pads = LineCollection([], colors=FILM_COLOUR, linewidths=3.0, zorder=4.5,
-                                       capstyle="butt")  # fmt: skip
+            self.pads = LineCollection(
+                [], colors=FILM_COLOUR, linewidths=3.0, zorder=4.5, capstyle="butt"
+            )
             side.add_collection(self.films)
             side.add_collection(self.pads)
         n = len(self.shown)
@@ -280,10 +270,45 @@ class Scene:
         )
         self.side, self.force_ax = side, force
         # What changes from frame to frame, in drawing (zorder) order; the rest is drawn once.
-        self.moving = [body, self.rods, self.films, self.pads, self.tips, self.front,
-                       self.marker, self.caption]  # fmt: skip
+        self.moving = [
+            body,
+            self.rods,
+            self.films,
+            self.pads,
+            self.tips,
+            self.front,
+            self.marker,
+            self.caption,
+        ]
         self.moving = [a for a in self.moving if a is not None]
         self.background = None
+
+    def _backing_artists(self, side, pt_per_um: float):
+        """The rigid plate or the elastic strip (and the detachment front's marker) in the
+        side view; returns the backing's moving artist."""
+        if self.backing and self.backing.has_nodes:  # the strip instead of the rigid plate
+            # As thick as the drawn plate (a visual choice: the strip's own t_b would hide the
+            # setae, whose roots sit on its centre line).
+            width = max(1.5, self.plate_h * pt_per_um)
+            (self.strip,) = side.plot([], [], color="#444444", lw=width, zorder=3, gid="backing")
+            self.strip.set_solid_capstyle("butt")
+            body = self.strip
+        else:
+            side.add_patch(self.plate)
+            body = self.plate
+        if self.backing:
+            (self.front,) = side.plot(
+                [],
+                [],
+                ls="",
+                marker="v",
+                markersize=9,
+                color=FRONT_COLOUR,
+                mec="#222222",
+                zorder=6,
+                gid="detachment front",
+            )
+        return body
 
     def _legend(self) -> None:
         """Tip states (and the detachment front of an elastic backing) below the side view."""
@@ -300,9 +325,17 @@ class Scene:
             handles.append(Line2D([], [], color=FILM_COLOUR, lw=2.0, label="film, pad"))
         if self.front is not None:
             handles.append(
-                Line2D([], [], ls="", marker="v", markersize=8, color=FRONT_COLOUR,
-                       mec="#222222", label="detachment front")
-            )  # fmt: skip
+                Line2D(
+                    [],
+                    [],
+                    ls="",
+                    marker="v",
+                    markersize=8,
+                    color=FRONT_COLOUR,
+                    mec="#222222",
+                    label="detachment front",
+                )
+            )
         self.fig.legend(
             handles=handles,
             loc="lower left",

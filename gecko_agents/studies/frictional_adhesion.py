@@ -85,10 +85,13 @@ from gecko_agents.sweep.workers import map_local
 
 def config(quick: bool) -> dict:
     if quick:
-        return {"angles": [90.0, 150.0], "tips": list(TIPS), "mus": [10.0],
-                "drags": [-DRAG, DRAG]}  # fmt: skip
-    return {"angles": [15.0, 30.0, 45.0, 60.0, 75.0, 90.0, 105.0, 120.0, 135.0, 150.0, 165.0],
-            "tips": list(TIPS), "mus": [0.2, 10.0], "drags": [-DRAG, DRAG]}  # fmt: skip
+        return {"angles": [90.0, 150.0], "tips": list(TIPS), "mus": [10.0], "drags": [-DRAG, DRAG]}
+    return {
+        "angles": [15.0, 30.0, 45.0, 60.0, 75.0, 90.0, 105.0, 120.0, 135.0, 150.0, 165.0],
+        "tips": list(TIPS),
+        "mus": [0.2, 10.0],
+        "drags": [-DRAG, DRAG],
+    }
 
 
 def run_point(
@@ -113,11 +116,17 @@ def run_point(
     h = model.run(prot, progress=False)
     release = release_point(h, drag)
     start, _ = drag_span(h, drag)
-    row = {"tip": tip, "mu": mu, "drag_um": drag, "pull_angle_deg": beta,
-           "adhesion_at_release_uN": release.adhesion, "shear_at_release_uN": release.shear,
-           "pull_off_uN": pull_off(h, drag).adhesion,
-           "pressed_to_uN": float(h["force_normal_uN"][: start + 1].max()),
-           "max_kinetic_to_elastic": h.meta.get("max_kinetic_to_elastic")}  # fmt: skip
+    row = {
+        "tip": tip,
+        "mu": mu,
+        "drag_um": drag,
+        "pull_angle_deg": beta,
+        "adhesion_at_release_uN": release.adhesion,
+        "shear_at_release_uN": release.shear,
+        "pull_off_uN": pull_off(h, drag).adhesion,
+        "pressed_to_uN": float(h["force_normal_uN"][: start + 1].max()),
+        "max_kinetic_to_elastic": h.meta.get("max_kinetic_to_elastic"),
+    }
     return row, h
 
 
@@ -137,8 +146,11 @@ def _convergence_cases(speeds) -> list[tuple]:
 
 def convergence_tasks(speeds=CONVERGENCE_SPEEDS) -> list[tuple]:
     """The runs of :func:`speed_convergence`: (function, arguments) pairs, both drags per case."""
-    return [(point_row, (tip, 10.0, d, 90.0, False, v, damping))
-            for tip, v, damping in _convergence_cases(speeds) for d in (-DRAG, DRAG)]  # fmt: skip
+    return [
+        (point_row, (tip, 10.0, d, 90.0, False, v, damping))
+        for tip, v, damping in _convergence_cases(speeds)
+        for d in (-DRAG, DRAG)
+    ]
 
 
 def speed_convergence(speeds=CONVERGENCE_SPEEDS, results=None) -> list[dict]:
@@ -155,15 +167,21 @@ def speed_convergence(speeds=CONVERGENCE_SPEEDS, results=None) -> list[dict]:
     for (tip, v, damping), grip, rel in zip(
         _convergence_cases(speeds), results[::2], results[1::2], strict=True
     ):
-        rows.append({
-            "tip": tip, "speed_um_per_us": v, "contact_damping": damping is DEFAULT_DAMPING,
-            "gripping_uN": grip["pull_off_uN"], "releasing_uN": rel["pull_off_uN"],
-            "gripping_over_releasing": gripping_over_releasing(grip["pull_off_uN"],
-                                                               rel["pull_off_uN"]),
-            "pressed_to_uN": grip["pressed_to_uN"],
-            "max_kinetic_to_elastic_gripping": grip["max_kinetic_to_elastic"],
-            "max_kinetic_to_elastic_releasing": rel["max_kinetic_to_elastic"],
-        })  # fmt: skip
+        rows.append(
+            {
+                "tip": tip,
+                "speed_um_per_us": v,
+                "contact_damping": damping is DEFAULT_DAMPING,
+                "gripping_uN": grip["pull_off_uN"],
+                "releasing_uN": rel["pull_off_uN"],
+                "gripping_over_releasing": gripping_over_releasing(
+                    grip["pull_off_uN"], rel["pull_off_uN"]
+                ),
+                "pressed_to_uN": grip["pressed_to_uN"],
+                "max_kinetic_to_elastic_gripping": grip["max_kinetic_to_elastic"],
+                "max_kinetic_to_elastic_releasing": rel["max_kinetic_to_elastic"],
+            }
+        )
     return rows
 
 
@@ -219,24 +237,38 @@ def patch_config(quick: bool) -> dict:
 def patch_point(tip: str, sigma: float, count: int, sign: int) -> dict:
     """A patch of ``count`` setae on a rough floor, pressed to ``count`` × the preload, dragged
     ``sign`` × DRAG (−1 gripping) and pulled at 90°: pull-off per seta [µN]."""
-    params = BASE.replace(**TIPS[tip][0], **{
-        "friction.mu": 10.0, "array.count": count, "floor.sigma": sigma,
-        "floor.correlation_length": 0.0,
-    })  # fmt: skip
+    params = BASE.replace(
+        **TIPS[tip][0],
+        **{
+            "friction.mu": 10.0,
+            "array.count": count,
+            "floor.sigma": sigma,
+            "floor.correlation_length": 0.0,
+        },
+    )
     drag = sign * DRAG
     prot = protocol.drag_pull(PRELOAD * count, drag, 90.0, speed=SPEED)
     h = Model(params, seed=1, numerics=Numerics(record_every=1)).run(prot, progress=False)
     held = pull_off(h, drag)
-    return {"tip": tip, "sigma_um": sigma, "count": count,
-            "direction": "gripping" if sign < 0 else "releasing", "drag_um": drag,
-            "attached_after_drag": int(h["n_attached"][drag_span(h, drag)[1]]),
-            "pull_off_per_seta_uN": held.adhesion / count}  # fmt: skip
+    return {
+        "tip": tip,
+        "sigma_um": sigma,
+        "count": count,
+        "direction": "gripping" if sign < 0 else "releasing",
+        "drag_um": drag,
+        "attached_after_drag": int(h["n_attached"][drag_span(h, drag)[1]]),
+        "pull_off_per_seta_uN": held.adhesion / count,
+    }
 
 
 def patch_tasks(pcfg: dict) -> list[tuple]:
     """The runs of the patch (:func:`patch_point`): (function, arguments) pairs."""
-    return [(patch_point, (tip, sigma, pcfg["count"], sign)) for tip in pcfg["tips"]
-            for sigma in pcfg["sigmas"] for sign in (-1, 1)]  # fmt: skip
+    return [
+        (patch_point, (tip, sigma, pcfg["count"], sign))
+        for tip in pcfg["tips"]
+        for sigma in pcfg["sigmas"]
+        for sign in (-1, 1)
+    ]
 
 
 def sweep_tasks(cfg: dict) -> list[tuple]:
@@ -267,13 +299,20 @@ def map_point(tip: str, mu: float, theta: float, factor: float, sign: int) -> di
     )
     held = pull_off(h, drag)
     adhesion, shear = held.adhesion, held.shear
-    return {"tip": tip, "mu": mu, "theta_deg": theta, "drag_over_lean": factor,
-            "direction": "gripping" if sign < 0 else "releasing", "drag_um": drag,
-            "let_go_in_drag_at_um": let_go_in_drag(h, drag),
-            "attached_after_drag": int(h["n_attached"][drag_span(h, drag)[1]]),
-            "lean_after_drag_deg": lean_after_drag(h, drag), "pull_off_uN": adhesion,
-            "shear_at_pull_off_uN": shear,
-            "peel_angle_at_pull_off_deg": force_angle(adhesion, shear)}  # fmt: skip
+    return {
+        "tip": tip,
+        "mu": mu,
+        "theta_deg": theta,
+        "drag_over_lean": factor,
+        "direction": "gripping" if sign < 0 else "releasing",
+        "drag_um": drag,
+        "let_go_in_drag_at_um": let_go_in_drag(h, drag),
+        "attached_after_drag": int(h["n_attached"][drag_span(h, drag)[1]]),
+        "lean_after_drag_deg": lean_after_drag(h, drag),
+        "pull_off_uN": adhesion,
+        "shear_at_pull_off_uN": shear,
+        "peel_angle_at_pull_off_deg": force_angle(adhesion, shear),
+    }
 
 
 def map_tasks(mcfg: dict) -> list[tuple]:
@@ -290,8 +329,10 @@ def anisotropy_map(mcfg: dict, results=None) -> list[dict]:
     rows = []
     for grip, rel in zip(results[::2], results[1::2], strict=True):
         ratio = gripping_over_releasing(grip["pull_off_uN"], rel["pull_off_uN"])
-        rows += [{**grip, "gripping_over_releasing": ratio},
-                 {**rel, "gripping_over_releasing": ratio}]  # fmt: skip
+        rows += [
+            {**grip, "gripping_over_releasing": ratio},
+            {**rel, "gripping_over_releasing": ratio},
+        ]
     return rows
 
 
@@ -328,8 +369,11 @@ def _below_map_cases(quick: bool) -> list[tuple]:
 
 def below_map_tasks(quick: bool) -> list[tuple]:
     """The runs of :func:`below_map`: (function, arguments), gripping then releasing."""
-    return [(map_point, ("spatula", mu, theta, 1.0, sign))
-            for mu, theta in _below_map_cases(quick) for sign in (-1, 1)]  # fmt: skip
+    return [
+        (map_point, ("spatula", mu, theta, 1.0, sign))
+        for mu, theta in _below_map_cases(quick)
+        for sign in (-1, 1)
+    ]
 
 
 def below_map(quick: bool, results=None) -> list[dict]:
@@ -343,11 +387,17 @@ def below_map(quick: bool, results=None) -> list[dict]:
         _below_map_cases(quick), results[::2], results[1::2], strict=True
     ):
         ratio = gripping_over_releasing(grip["pull_off_uN"], rel["pull_off_uN"])
-        rows.append({"mu": mu, "theta_deg": theta, "ratio": ratio,
-                     "lean_gripping_deg": grip["lean_after_drag_deg"],
-                     "lean_releasing_deg": rel["lean_after_drag_deg"],
-                     "gripping_uN": grip["pull_off_uN"],
-                     "releasing_uN": rel["pull_off_uN"]})  # fmt: skip
+        rows.append(
+            {
+                "mu": mu,
+                "theta_deg": theta,
+                "ratio": ratio,
+                "lean_gripping_deg": grip["lean_after_drag_deg"],
+                "lean_releasing_deg": rel["lean_after_drag_deg"],
+                "gripping_uN": grip["pull_off_uN"],
+                "releasing_uN": rel["pull_off_uN"],
+            }
+        )
     return rows
 
 
@@ -359,9 +409,11 @@ def _extra_args(p) -> None:
         "--map", action="store_true", help="with --quick: a small anisotropy map too (full: always)"
     )
     p.add_argument(
-        "--jobs", type=jobs_arg, default=min(2, os.cpu_count() or 1),
+        "--jobs",
+        type=jobs_arg,
+        default=min(2, os.cpu_count() or 1),
         help="runs at once in separate processes (default 2; 1 runs them in this process)",
-    )  # fmt: skip
+    )
     p.add_argument(
         "--convergence",
         action="store_true",
@@ -369,83 +421,125 @@ def _extra_args(p) -> None:
     )
 
 
-@command_line
-def main(argv=None) -> dict:
-    args = parse_args(
-        __doc__, argv,
-        extra=_extra_args,
-    )  # fmt: skip
-    if args.jobs < 1:
-        raise SystemExit(f"--jobs = {args.jobs} must be ≥ 1")
-    out = output_dir(NAME, args)
+def _plan(args, out) -> dict:
+    """The run's parts (the slowest first, so that the workers finish together), their
+    configurations, and the removal of an earlier run's optional files this run won't write."""
     with_map = args.map or not args.quick
     with_convergence = args.convergence or not args.quick
-    optional = {"anisotropy_map.csv": with_map, "anisotropy_map.png": with_map,
-                "below_map.csv": with_map, "speed_convergence.csv": with_convergence,
-                "spatula_peel.gif": args.animate}  # fmt: skip
+    optional = {
+        "anisotropy_map.csv": with_map,
+        "anisotropy_map.png": with_map,
+        "below_map.csv": with_map,
+        "speed_convergence.csv": with_convergence,
+        "spatula_peel.gif": args.animate,
+    }
     for name in (n for n, written in optional.items() if not written):
         (out / name).unlink(missing_ok=True)  # an earlier run's, which this report won't describe
     cfg = config(args.quick)
-    t0 = time.perf_counter()
     mcfg = map_config(args.quick) if with_map else None
     pcfg = patch_config(args.quick)
     speeds = CONVERGENCE_SPEEDS if not args.quick else CONVERGENCE_SPEEDS[::3]
     sections = {
-        # The slowest runs first, so that the workers finish together.
         "convergence": convergence_tasks(speeds) if with_convergence else [],
         "map": map_tasks(mcfg) if with_map else [],
         "patch": patch_tasks(pcfg),
         "sweep": sweep_tasks(cfg),
         "below": below_map_tasks(args.quick) if with_map else [],
     }
-    tasks = [task for part in sections.values() for task in part]
-    with tqdm(total=len(tasks), desc="load–drag–pull", disable=args.no_progress) as bar:
-        done = map_local(_run_task, tasks, args.jobs, bar.update)
-    results = {}
-    for name, part in sections.items():
-        results[name], done = done[: len(part)], done[len(part) :]
+    return {"cfg": cfg, "mcfg": mcfg, "pcfg": pcfg, "speeds": speeds, "sections": sections}
+
+
+def _tables(args, out, plan: dict, results: dict) -> dict:
+    """Write the tables, figures and report of the finished runs; their rows and summaries."""
+    cfg, mcfg = plan["cfg"], plan["mcfg"]
     rows = results["sweep"]
     write_table(out / "sweep.csv", rows)
     report.draw(rows, cfg, out)
     summary = summarise(rows, cfg)
-    map_rows, below_rows = [], []
-    if with_map:
+    map_rows, below_rows, conv_rows, conv = [], [], [], None
+    if results["map"]:
         map_rows = anisotropy_map(mcfg, results["map"])
         write_table(out / "anisotropy_map.csv", map_rows)
         report.draw_map(map_rows, mcfg, out)
         below_rows = below_map(args.quick, results["below"])
         write_table(out / "below_map.csv", below_rows)
-    conv_rows, conv = [], None
-    if with_convergence:
-        conv_rows = speed_convergence(speeds, results["convergence"])
+    if results["convergence"]:
+        conv_rows = speed_convergence(plan["speeds"], results["convergence"])
         write_table(out / "speed_convergence.csv", conv_rows)
         conv = convergence_summary(conv_rows)
     patch_rows = results["patch"]
     write_table(out / "patch.csv", patch_rows)
-    text = report.report_text(summary, args.quick, map_rows, below_rows, patch_rows,
-                              conv_rows, conv)  # fmt: skip
+    text = report.report_text(
+        summary, args.quick, map_rows, below_rows, patch_rows, conv_rows, conv
+    )
     atomic_write_bytes(out / "beyond_the_paper.md", text.encode())
+    return {
+        "summary": summary,
+        "map": map_rows,
+        "below": below_rows,
+        "conv_rows": conv_rows,
+        "conv": conv,
+    }
+
+
+@command_line
+def main(argv=None) -> dict:
+    args = parse_args(__doc__, argv, extra=_extra_args)
+    if args.jobs < 1:
+        raise SystemExit(f"--jobs = {args.jobs} must be ≥ 1")
+    out = output_dir(NAME, args)
+    t0 = time.perf_counter()
+    plan = _plan(args, out)
+    sections = plan["sections"]
+    tasks = [task for part in sections.values() for task in part]
+    with tqdm(total=len(tasks), desc="load–drag–pull", disable=args.no_progress) as bar:
+        done = map_local(_run_task, tasks, args.jobs, bar.update)
+    parts = {}
+    for name, part in sections.items():
+        parts[name], done = done[: len(part)], done[len(part) :]
+    t = _tables(args, out, plan, parts)
     if args.animate:
-        _, h = run_point("spatula", cfg["mus"][-1], -DRAG, 30.0, record=True)
+        _, h = run_point("spatula", plan["cfg"]["mus"][-1], -DRAG, 30.0, record=True)
         h.save(out / "animated_run")
         render.animate(h, out / "spatula_peel.gif")
-    results = {"summary": summary, "runtime_s": time.perf_counter() - t0, "jobs": args.jobs,
-               "speed_convergence": conv, "claims": []}  # fmt: skip
-    if map_rows:
-        ratios = [r["gripping_over_releasing"] for r in map_rows]
+    results = {
+        "summary": t["summary"],
+        "runtime_s": time.perf_counter() - t0,
+        "jobs": args.jobs,
+        "speed_convergence": t["conv"],
+        "claims": [],
+    }
+    if t["map"]:
+        ratios = [r["gripping_over_releasing"] for r in t["map"]]
         results["map_ratio_range"] = [float(np.nanmin(ratios)), float(np.nanmax(ratios))]
-    write_json(out / "metadata.json", {
-        "scenario": NAME, "quick": args.quick, "params": BASE.to_dict(), "config": cfg,
-        "preload_uN": PRELOAD, "drag_um": DRAG, "speed_um_per_us": SPEED, "seed": 1,
-        "map_config": mcfg, "patch_config": pcfg, "below_map": below_rows,
-        "speed_convergence": conv_rows,
-        "results": results,
-    })  # fmt: skip
-    print(f"{NAME}: " + "; ".join(
-        f"{k}: α* {v['critical_angle_deg']:.0f}°, grip/release ×"
-        f"{v['gripping_over_releasing_at_90deg']:.2f}" for k, v in summary.items())
-        + ("; map ratio ×{:.2f}–×{:.2f}".format(*results["map_ratio_range"]) if map_rows else "")
-        + f"; {results['runtime_s']:.0f} s → {out}")  # fmt: skip
+    write_json(
+        out / "metadata.json",
+        {
+            "scenario": NAME,
+            "quick": args.quick,
+            "params": BASE.to_dict(),
+            "config": plan["cfg"],
+            "preload_uN": PRELOAD,
+            "drag_um": DRAG,
+            "speed_um_per_us": SPEED,
+            "seed": 1,
+            "map_config": plan["mcfg"],
+            "patch_config": plan["pcfg"],
+            "below_map": t["below"],
+            "speed_convergence": t["conv_rows"],
+            "results": results,
+        },
+    )
+    print(
+        f"{NAME}: "
+        + "; ".join(
+            f"{k}: α* {v['critical_angle_deg']:.0f}°, grip/release ×"
+            f"{v['gripping_over_releasing_at_90deg']:.2f}"
+            for k, v in t["summary"].items()
+        )
+        + ("; map ratio ×{:.2f}–×{:.2f}".format(*results["map_ratio_range"]) if t["map"] else "")
+        + f"; {results['runtime_s']:.0f} s → {out}"
+    )
     return results
 
 

@@ -79,9 +79,15 @@ from gecko_agents.studies.common import (
 
 NAME = "probe_test"
 PILLARS = PAPER_ARRAY.replace(
-    **{"seta.theta_deg": 90.0, "tip": "flat_punch", "contact.R": 1.5, "floor.sigma": 0.0,
-       "floor.kind": "probe", "friction.mu": 0.5}
-)  # fmt: skip
+    **{
+        "seta.theta_deg": 90.0,
+        "tip": "flat_punch",
+        "contact.R": 1.5,
+        "floor.sigma": 0.0,
+        "floor.kind": "probe",
+        "friction.mu": 0.5,
+    }
+)
 CASES = {
     "flat punch, rigid backing": {},
     "JKR sphere tips": {"tip": "sphere"},
@@ -93,10 +99,22 @@ COLOURS = ("black", "#1f77b4", "#d62728")
 
 def config(quick: bool) -> dict:
     if quick:
-        return {"n": 5, "radii_um": [30.0], "preloads_uN": [0.1, 1.0], "cases": list(CASES)[:1],
-                "animate": False, "booth_saturation": False}  # fmt: skip
-    return {"n": 11, "radii_um": [30.0, 100.0], "preloads_uN": [0.05, 0.2, 0.5, 1.0, 3.0],
-            "cases": list(CASES), "animate": True, "booth_saturation": True}  # fmt: skip
+        return {
+            "n": 5,
+            "radii_um": [30.0],
+            "preloads_uN": [0.1, 1.0],
+            "cases": list(CASES)[:1],
+            "animate": False,
+            "booth_saturation": False,
+        }
+    return {
+        "n": 11,
+        "radii_um": [30.0, 100.0],
+        "preloads_uN": [0.05, 0.2, 0.5, 1.0, 3.0],
+        "cases": list(CASES),
+        "animate": True,
+        "booth_saturation": True,
+    }
 
 
 def fibril_stiffness(params) -> float:
@@ -142,9 +160,12 @@ def booth_point(radius: float, preload: float, n: int) -> dict:
         backing = halfspace.halfspace_compliance(x, y, p.seta.r, b.E_b, b.nu_b)
         rigid = halfspace.probe_test(h, fibrils, F_r, preload)
         soft = halfspace.probe_test(h, fibrils + backing, F_r, preload)
-        row |= {f"{name}_rigid_uN": rigid.pull_off, f"{name}_halfspace_uN": soft.pull_off,
-                f"{name}_attached_rigid": rigid.attached_max,
-                f"{name}_attached_halfspace": soft.attached_max}  # fmt: skip
+        row |= {
+            f"{name}_rigid_uN": rigid.pull_off,
+            f"{name}_halfspace_uN": soft.pull_off,
+            f"{name}_attached_rigid": rigid.attached_max,
+            f"{name}_attached_halfspace": soft.attached_max,
+        }
     row["continuum_saturation_uN"] = float(
         halfspace.saturation_pull_off_continuum(radius, 1.0 / pitch**2, k, F_r)
     )
@@ -175,14 +196,23 @@ def run_point(case: str, n: int, radius: float, preload: float, record: bool = F
     # letting go rings, and its ring-down pushes the plate.
     press = slice(0, pull_start(h) + 1)
     reached = float(np.max(h["plate_force_y_uN"][press]))
-    row = {"case": case, "n": n, "probe_radius_um": radius, "preload_uN": preload,
-           "preload_reached_uN": reached, "pull_off_uN": plate_pull_off(h),
-           "contact_pull_off_uN": pull_off(h).adhesion,
-           "attached_max": int(np.max(h["n_attached"]))}  # fmt: skip
+    row = {
+        "case": case,
+        "n": n,
+        "probe_radius_um": radius,
+        "preload_uN": preload,
+        "preload_reached_uN": reached,
+        "pull_off_uN": plate_pull_off(h),
+        "contact_pull_off_uN": pull_off(h).adhesion,
+        "attached_max": int(np.max(h["n_attached"])),
+    }
     if case == "flat punch, rigid backing":
         cf = closed_form(m, p, reached)
-        row |= {"closed_form_uN": cf["row"], "field_pull_off_uN": cf["field"],
-                "off_closed_form": row["pull_off_uN"] / cf["row"] - 1.0}  # fmt: skip
+        row |= {
+            "closed_form_uN": cf["row"],
+            "field_pull_off_uN": cf["field"],
+            "off_closed_form": row["pull_off_uN"] / cf["row"] - 1.0,
+        }
     return row, h
 
 
@@ -197,17 +227,31 @@ def draw(rows, cfg, out, booth=()) -> None:
         for ax, radius in zip(axes, radii, strict=True):
             for case, colour in zip(cfg["cases"], COLOURS, strict=False):
                 sel = [r for r in rows if r["case"] == case and r["probe_radius_um"] == radius]
-                ax.plot([r["preload_reached_uN"] for r in sel], [r["pull_off_uN"] for r in sel],
-                        "o-", color=colour, label=f"model: {case}")  # fmt: skip
+                ax.plot(
+                    [r["preload_reached_uN"] for r in sel],
+                    [r["pull_off_uN"] for r in sel],
+                    "o-",
+                    color=colour,
+                    label=f"model: {case}",
+                )
                 if "closed_form_uN" in sel[0]:
-                    ax.plot([r["preload_reached_uN"] for r in sel],
-                            [r["closed_form_uN"] for r in sel], "k--", lw=1,
-                            label="closed form: independent fibrils")  # fmt: skip
+                    ax.plot(
+                        [r["preload_reached_uN"] for r in sel],
+                        [r["closed_form_uN"] for r in sel],
+                        "k--",
+                        lw=1,
+                        label="closed form: independent fibrils",
+                    )
             sel = [r for r in booth if r["probe_radius_um"] == radius]
             sel = [r for r in sel if r["preload_uN"] <= max(cfg["preloads_uN"])]
             if sel:
-                ax.plot([r["preload_uN"] for r in sel], [r["row_halfspace_uN"] for r in sel],
-                        "k:", lw=1.2, label="Bettscheider et al.: row on a half-space")  # fmt: skip
+                ax.plot(
+                    [r["preload_uN"] for r in sel],
+                    [r["row_halfspace_uN"] for r in sel],
+                    "k:",
+                    lw=1.2,
+                    label="Bettscheider et al.: row on a half-space",
+                )
             ax.set_xscale("log")
             ax.set_xlabel("preload [µN]")
             ax.set_title(f"probe R_p = {radius:g} µm, {cfg['n']} pillars")
@@ -232,34 +276,63 @@ def main(argv=None) -> dict:
     write_table(out / "probe_booth.csv", booth)
     draw(rows, cfg, out, booth)
     if cfg["animate"]:
-        h = run_point(cfg["cases"][0], cfg["n"], max(cfg["radii_um"]),
-                      max(cfg["preloads_uN"]), record=True)[1]  # fmt: skip
+        h = run_point(
+            cfg["cases"][0], cfg["n"], max(cfg["radii_um"]), max(cfg["preloads_uN"]), record=True
+        )[1]
         render.animate(h, out / "detachment.gif", window=cfg["n"], frames=120)
     worst = max(abs(r["off_closed_form"]) for r in rows if "off_closed_form" in r)
-    results = {"largest_off_closed_form": worst, "runtime_s": time.perf_counter() - t0,
-               "booth": booth}  # fmt: skip
-    write_json(out / "metadata.json", {
-        "scenario": NAME, "quick": args.quick, "params": PILLARS.to_dict(), "cases": CASES,
-        "config": cfg, "speed_um_per_us": SPEED, "seed": SEED, "rows": rows, "results": results,
-    })  # fmt: skip
+    results = {
+        "largest_off_closed_form": worst,
+        "runtime_s": time.perf_counter() - t0,
+        "booth": booth,
+    }
+    write_json(
+        out / "metadata.json",
+        {
+            "scenario": NAME,
+            "quick": args.quick,
+            "params": PILLARS.to_dict(),
+            "cases": CASES,
+            "config": cfg,
+            "speed_um_per_us": SPEED,
+            "seed": SEED,
+            "rows": rows,
+            "results": results,
+        },
+    )
+    (out / "section.md").write_text(_section(cfg, worst, booth))
+    print(
+        f"{NAME}: model vs independent fibrils within {100 * worst:.2f} %; "
+        f"{results['runtime_s']:.0f} s → {out}"
+    )
+    return results
+
+
+def _section(cfg: dict, worst: float, booth: list[dict]) -> str:
+    """section.md: the closed-form agreement and the half-space's shift of the row's pull-off."""
     same = np.array([r["row_attached_halfspace"] == r["row_attached_rigid"] for r in booth])
     shifts = np.array([100 * (r["row_halfspace_uN"] / r["row_rigid_uN"] - 1.0) for r in booth])
     more = shifts[~same]
-    (out / "section.md").write_text("\n".join([
-        "## Beyond the paper: spherical-probe test", "",
+    tail = (
+        f", and by up to {more.max():+.1f} % where the backing's compliance lets the press "
+        f"reach more ({more.size} of {shifts.size} points)."
+        if more.size
+        else "."
+    )
+    lines = [
+        "## Beyond the paper: spherical-probe test",
+        "",
         f"{cfg['n']} vertical pillars with flat punches under a rigid probe "
-        "(`probe_test/probe_test.png`, table `probe_test.csv`): the time-stepped model against "
-        f"the closed form of independent fibrils, largest difference {100 * worst:.2f} % "
-        f"over {len(cfg['radii_um'])} probe radii and {len(cfg['preloads_uN'])} preloads.",
+        "(`probe_test/probe_test.png`, table `probe_test.csv`): the time-stepped model "
+        f"against the closed form of independent fibrils, largest difference "
+        f"{100 * worst:.2f} % over {len(cfg['radii_um'])} probe radii and "
+        f"{len(cfg['preloads_uN'])} preloads.",
         "Bettscheider et al.'s model (`probe_booth.csv`): on an elastic half-space the row's "
-        f"pull-off moves by {shifts[same].min():+.1f} to {shifts[same].max():+.1f} % where the "
-        "same pillars attach as on a rigid backing"
-        + (f", and by up to {more.max():+.1f} % where the backing's compliance lets the press "
-           f"reach more ({more.size} of {shifts.size} points)." if more.size else "."), "",
-    ]))  # fmt: skip
-    print(f"{NAME}: model vs independent fibrils within {100 * worst:.2f} %; "
-          f"{results['runtime_s']:.0f} s → {out}")  # fmt: skip
-    return results
+        f"pull-off moves by {shifts[same].min():+.1f} to {shifts[same].max():+.1f} % where "
+        "the same pillars attach as on a rigid backing" + tail,
+        "",
+    ]
+    return "\n".join(lines)
 
 
 if __name__ == "__main__":
