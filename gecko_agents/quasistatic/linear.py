@@ -109,6 +109,7 @@ def _slide_or_release(br: Branches, st: State, t0, jk, sig, stick_exists, out):
     demanded; where the slide branch has no equilibrium either, the tip lets go at its fold."""
     P, Ft, delta, released, rel_overlap = out
     args = (br.R, br.w, br.E_star)
+    was_sliding = st.state[jk] == SLIP  # the step before's state (the stick trial kept it)
     a_sl = np.full(jk.size, np.nan)
     fold = np.empty(jk.size)
     for s, name in ((1.0, "slip+"), (-1.0, "slip-")):
@@ -134,7 +135,8 @@ def _slide_or_release(br: Branches, st: State, t0, jk, sig, stick_exists, out):
         st.state[gone] = FREE
         st.u[gone] = 0.0
         released[gone] = True
-        # Release overlap: the fold of the branch that failed (stick if it never slid).
-        rel_a = np.where(stick_exists, fold, br.a_fold["stick"])[~ok]
+        # Release overlap: the fold of the branch the tip was on, the slide's if it slid in
+        # the step before or its stick held no longer; the stick's if it never slid.
+        rel_a = np.where(stick_exists | was_sliding, fold, br.a_fold["stick"])[~ok]
         rel_overlap[gone] = jkr.overlap_from_radius(rel_a, *args)
         delta[gone] = -t0[gone]
