@@ -52,6 +52,9 @@ def _rod_case(theta_deg):
     their rest axes (Δφ = 0) at lengths 0.9 L, 1.05 L and 1.3 L from roots at (rx, ry)."""
     m = _model(THREE.replace(**{"mechanics": "rod", "seta.theta_deg": theta_deg}))
     rx, ry = 0.7, 31.0
+    m.world.root_dy = np.array(
+        [0.5, -1.0, 2.0]
+    )  # roots off the plate's line (the rows of a 2-D array)
     ell = m.L * np.array([0.9, 1.05, 1.3])
     d = ell[None, :] * m.axis[:, None]  # (2, 3) root-to-tip
     m.state.xy[0] = rx + m.world.root_dx + d[0]
@@ -347,3 +350,94 @@ def test_the_energy_scale_is_the_largest_magnitude_seen():
     assert step.energy_scale == 4.0
     step.note_energies(dict.fromkeys(row, 0.0))
     assert step.energy_scale == 4.0
+
+
+def test_a_tangent_read_from_the_overlap_or_not_finite_is_taken_as_the_law_gives_it(
+    monkeypatch,
+):
+    """The normal stiffness is the law's dP/dδ at the tips' radius and overlap: for a law
+    whose tangent reads δ (Hertz's 2E*·√(Rδ), Johnson 1985 eq 4.23 differentiated) it is that
+    tangent at each tip's δ; where the law's tangent is not finite (the end of a branch) the
+    tip takes no normal stiffness and event location reads it as −∞ (past its pull-off)."""
+    m = _model()
+    step, s, law = m._implicit, m.state, m.law
+    R, E = law.R, law.E_star
+    monkeypatch.setattr(
+        law,
+        "stiffness",
+        lambda a, d: np.where(d > 0.05, 2 * E * np.sqrt(R * np.maximum(d, 0.0)), np.inf),
+    )
+    s.attached[:] = True
+    s.slip[:] = False
+    s.a[:] = 1.0  # the same radius: only δ tells the tips apart
+    s.delta[:] = [0.1, 0.2, 0.0]
+    kn = step.contact_stiffness()[0]
+    np.testing.assert_allclose(kn[:2], 2 * E * np.sqrt(R * np.array([0.1, 0.2])), rtol=1e-12)
+    assert kn[2] == 0.0 and step._k_raw[2] == -np.inf
+
+
+def test_a_film_tips_contact_stiffness_is_the_derivative_of_its_force():
+    """A spatula's film (the front held): the stick, normal and off-diagonal stiffnesses are
+    −∂(T, P)/∂(x, y) of the law's own force by central differences (1e-6 relative, as
+    tests/test_integrator.py's check of the law's Jacobian), lifted and pressed; the
+    tangential damper acts on every attached tip of a law that damps sliding, none on a
+    free one."""
+    from test_integrator import BONDED_SPATULA, _film_force_on_tip
+
+    p = BONDED_SPATULA.replace(**{"friction.mu": 10.0, "array.count": 3})
+    m = _model(p)
+    step, s, law = m._implicit, m.state, m.law
+    assert step.film and law.tangential and law.damp_sliding
+    cases = [(-0.5, -0.3, 0.57, 0.0), (0.4, -0.2, 0.44, 0.0), (-1.2, 0.1, 1.0, -1.21)]
+    s.attached[:] = True
+    for i, (dx, delta, s0, xa) in enumerate(cases):
+        s.anchor[0, i] = 3.0 * i - 1.0
+        s.anchor[1, i] = 0.5 * i  # the front's height is not read: the floor is a pad
+        s.xy[0, i] = s.anchor[0, i] + dx
+        s.xy[1, i] = 40.0 - i  # the tip's height is read through δ alone
+        s.delta[i], s.s0[i], s.xi[i] = delta, s0, xa
+    s.a[:] = law.ell0  # the whole pad bonded
+    s.p0[:] = 0.0
+    s.attached[2] = True
+    kn, kt, cn, ct = (x.copy() for x in step.contact_stiffness())
+    k, e = law.constants, 1e-6
+    for i, (dx, delta, s0, xa) in enumerate(cases):
+        jx = (_film_force_on_tip(law, k, dx + e, delta, s0, xa)
+              - _film_force_on_tip(law, k, dx - e, delta, s0, xa)) / (2 * e)  # fmt: skip
+        jy = (_film_force_on_tip(law, k, dx, delta - e, s0, xa)
+              - _film_force_on_tip(law, k, dx, delta + e, s0, xa)) / (2 * e)  # fmt: skip
+        np.testing.assert_allclose(
+            [[kt[i], step._kxy[i]], [step._kxy[i], kn[i]]],
+            -np.column_stack([jx, jy]),
+            rtol=1e-6,
+            atol=1e-7,
+        )
+    assert np.all(ct == m.c_t) and np.all(cn == m.c_n)
+    assert abs(step._kxy[0]) > 0.1 and kt[2] > 0.0 and kn[2] > 0.0
+    s.attached[1] = False
+    kn, kt, cn, ct = step.contact_stiffness()
+    assert kn[1] == kt[1] == ct[1] == cn[1] == step._kxy[1] == 0.0 and ct[0] == m.c_t
+
+
+@pytest.mark.parametrize("mechanics", ["rod", "linear"])
+def test_the_compiled_pad_step_gives_the_numpy_steps(mechanics):
+    """Three free setae under a plate moving up and sideways, twelve steps: the compiled pad
+    solve and books (kernel "numba") and the numpy reference (kernel "numpy") give the same
+    tip positions (bit for bit compiled; 1e-12 µm allowed for the interpreted loop) and the
+    same books."""
+    if pad_kernels() is None:
+        pytest.skip("numba not installed")
+    runs = []
+    for kernel in ("numpy", "numba"):
+        m = _model(THREE.replace(mechanics=mechanics), kernel=kernel)
+        for i, tip in enumerate(m.world.tips):
+            tip.velocity = (0.2 * (i - 1), -0.1 * i)
+        xs, diss = [], []
+        for k in range(12):
+            m.advance(0.02 if k < 6 else -0.01, 0.03)
+            xs.append([tuple(t.position) for t in m.world.tips])
+            diss.append(m.physics.diss)
+        runs.append((np.array(xs), np.array(diss), m._implicit._pad is not None))
+    assert not runs[0][2] and runs[1][2]
+    np.testing.assert_allclose(runs[1][0], runs[0][0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(runs[1][1], runs[0][1], rtol=1e-9, atol=1e-15)
