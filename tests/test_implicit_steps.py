@@ -128,6 +128,8 @@ def test_a_segment_and_a_bound_shorten_the_default_step_to_whole_event_steps():
     assert chosen.dt_base == chosen.dt_full == 1.0 and chosen.k_event == k_chosen
     step.limit_step(5.0)
     assert step.dt_full == full and step.k_event == 20
+    step.limit_step(full)  # a bound at the step itself changes nothing
+    assert step.dt_full == full and step.k_event == 20 and step.event_dt == ev
     step.limit_step(0.5)
     assert step.dt_full == pytest.approx(5 * ev, rel=1e-12) and step.k_event == 5
     assert step.dt_base == step.dt_full and m.dt == step.dt_full and step._dt_prev == m.dt
@@ -165,14 +167,17 @@ def test_which_tips_are_near_an_event():
     zero = np.zeros(3)
     assert _near(m, zero, zero, free, np.nan) == (1, pytest.approx([False] * 3))
     assert step.near is None and step.n_located == 0
-    k, near = _near(m, [0.0109, 0.0, 0.0], [0.0045, 0.0, 0.0], att, [0.1, np.nan, np.nan])
+    k, near = _near(m, [0.0101, 0.0, 0.0], zero, att, [0.1, np.nan, np.nan])
     assert k == 20 and list(near) == [True, False, False] and step.n_located == 20
+    assert _near(m, [0.0, 0.0, 0.0], [-0.0101, 0, 0], att, [0.1, np.nan, np.nan])[0] == 20
+    assert step.n_located == 40  # every located step counted
     assert _near(m, [0.0099, 0, 0], zero, att, [0.1, np.nan, np.nan])[0] == 1
     # Free and fast: near while their kinetic energy counts.
     ke = 0.5 * m.mass * 0.02**2
-    assert list(_near(m, [0, 0.02, 0], zero, free, np.nan)[1]) == [False, True, False]
-    assert _near(m, [0, 0.02, 0], zero, free, np.nan, scale=0.9 * ke / FREE_RINGING_SHARE)[0] > 1
-    assert _near(m, [0, 0.02, 0], zero, free, np.nan, scale=1.1 * ke / FREE_RINGING_SHARE)[0] == 1
+    vx, vy = [0, 0.012, 0], [0, 0.016, 0]  # 0.02 µm/µs
+    assert list(_near(m, vx, vy, free, np.nan)[1]) == [False, True, False]
+    assert _near(m, vx, vy, free, np.nan, scale=0.9 * ke / FREE_RINGING_SHARE)[0] > 1
+    assert _near(m, vx, vy, free, np.nan, scale=1.1 * ke / FREE_RINGING_SHARE)[0] == 1
     # Within two steps (2·dt·|v_n| = 0.0198 µm at 0.005 µm/µs) of snap-off or jump-in.
     vy = np.array([-0.005, -0.005, 0.005])
     d_in = [off + 0.019, -0.019, -0.001]  # the third moves away from the floor
@@ -186,17 +191,35 @@ def test_which_tips_are_near_an_event():
     assert _near(m, zero, zero, att, [0.1, np.nan, np.nan], **ks)[0] == 20
     ks = dict(k_raw=[1.0, np.nan, np.nan], k_rate=[-0.99 / (2 * dt), 0.0, 0.0])
     assert _near(m, zero, zero, att, [0.1, np.nan, np.nan], **ks)[0] == 1
-    # A continuous floor: the attached tip's normal (1, 0) meets its x velocity; a free tip's
-    # jump-in reads its y velocity.
-    normal = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 1.0]])
-    vx, vy = [-0.005, 0.0, 0.005], [0.0, 0.0, -0.005]
+    # A continuous floor: the attached tip's speed along its normal (0.6, 0.8) (0.005 µm/µs
+    # here); a free tip's jump-in reads its y velocity.
+    normal = np.array([[0.6, 0.0, 0.0], [0.8, 1.0, 1.0]])
+    vx, vy = [-0.005 / 0.6, 0.0, 0.005], [0.0, 0.0, -0.005]
     near = _near(m, vx, vy, att, [off + 0.019, np.nan, -0.019], normal=normal)[1]
     assert list(near) == [True, False, True]
-    assert _near(m, vy, vx, att, [off + 0.019, np.nan, -0.019], normal=normal)[0] == 1
+    # n·v = 0.6·v_x + 0.8·v_y = 0 along the facet: not near, though v_y alone would reach.
+    vx, vy = [-0.004, 0.0, 0.0], [0.003, 0.0, 0.0]
+    assert _near(m, vx, vy, att, [off + 0.01, np.nan, -0.5], normal=normal)[0] == 1
+    assert _near(m, vx, [-0.003, 0, 0], att, [off + 0.01, np.nan, -0.5], normal=normal)[0] == 20
     step.normal = None
 
 
-def _sticking(m, P, Ft, kt, fx, fy=None):
+def test_two_event_steps_are_located_and_one_is_not():
+    """A step of two event steps (dt = 1 µs, events at 0.5 µs) splits near an event and not
+    away from one; a step no longer than its event step is never split."""
+    m = _model(dt=1.0, event_dt=0.5)
+    step = m._implicit
+    att, zero = [True, False, False], np.zeros(3)
+    assert _near(m, zero, zero, att, [0.1, np.nan, np.nan]) == (1, pytest.approx([False] * 3))
+    k, near = _near(m, [0.02, 0.0, 0.0], zero, att, [0.1, np.nan, np.nan])
+    assert k == 2 and list(near) == [True, False, False] and step.n_located == 2
+    one = _model(dt=0.5, event_dt=1.0)
+    assert one._implicit.k_event == 1
+    assert _near(one, [0.02, 0.0, 0.0], zero, att, [0.1, np.nan, np.nan])[0] == 1
+    assert one._implicit.near is None and one._implicit.n_located == 0
+
+
+def _sticking(m, P, Ft, kt, fx, fy=None, v0=(0.0, 0.0)):
     """Three attached tips at rest with normal force ``P`` and tangential force ``Ft`` [µN],
     explicit forces F = (Ft, P); returns the F that ``_stick_past_cap`` returns for the
     implicit forces (``fx``, ``fy``) [µN], with the stick springs ``kt`` and dampers
@@ -204,7 +227,7 @@ def _sticking(m, P, Ft, kt, fx, fy=None):
     s = m.state
     if m._implicit._pad is False:  # the numpy test (the model's first step would set it)
         m._implicit._pad = None
-    s.pv[2:] = 0.0
+    s.pv[2], s.pv[3] = v0
     s.attached[:] = True
     s.slip[:] = np.asarray(kt) == 0.0
     s.P[:], s.Ft[:] = P, Ft
@@ -246,6 +269,8 @@ def test_a_sticking_tip_past_its_cap_slides_at_the_cap(compiled):
     np.testing.assert_allclose(out[0], [-cap, 1.0, 1.0], rtol=1e-15)
     assert _sticking(m, 1.0, 1.0, [kt0, kt0, kt0], [-0.001, 0.001, 0.0])[0] is None
     assert _sticking(m, 1.0, 5.0, [0.0, 0.0, 0.0], [-0.1, -0.1, -0.1])[0] is None
+    soft = _sticking(m, 1.0, 1.0, [0.5, 0.0, 0.0], [-0.1, 0.0, 0.0])[0]  # the soft spring alone
+    assert soft is not None and soft[0, 0] == pytest.approx(cap, rel=1e-15)
 
 
 def test_in_tension_under_the_papers_cap_a_tip_holds_no_shear():
@@ -275,7 +300,8 @@ def test_on_a_continuous_floor_the_cap_acts_along_the_floors_tangent():
     fx = [-0.1 * t[0], -0.1 * n[0], 0.0]
     fy = [-0.1 * t[1], -0.1 * n[1], 0.0]
     s = m.state
-    out, kt, _ = _sticking(m, 1.0, 1.0, [kt0, kt0, kt0], fx, fy)
+    # Every tip also moves along n at 0.05 µm/µs (no tangential speed: v₀·t = 0).
+    out, kt, _ = _sticking(m, 1.0, 1.0, [kt0, kt0, kt0], fx, fy, v0=0.05 * n[:, None])
     F = np.array([[1.0] * 3, [1.0] * 3])  # as _sticking set it
     np.testing.assert_allclose(out[:, 0] - F[:, 0], (cap - 1.0) * t, rtol=1e-14)
     np.testing.assert_array_equal(out[:, 1:], F[:, 1:])
