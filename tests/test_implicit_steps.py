@@ -198,9 +198,9 @@ def test_which_tips_are_near_an_event():
     near = _near(m, vx, vy, att, [off + 0.019, np.nan, -0.019], normal=normal)[1]
     assert list(near) == [True, False, True]
     # n·v = 0.6·v_x + 0.8·v_y = 0 along the facet: not near, though v_y alone would reach.
-    vx, vy = [-0.004, 0.0, 0.0], [0.003, 0.0, 0.0]
-    assert _near(m, vx, vy, att, [off + 0.01, np.nan, -0.5], normal=normal)[0] == 1
-    assert _near(m, vx, [-0.003, 0, 0], att, [off + 0.01, np.nan, -0.5], normal=normal)[0] == 20
+    vx, vy = [-0.0064, 0.0, 0.0], [0.0048, 0.0, 0.0]
+    assert _near(m, vx, vy, att, [off + 0.004, np.nan, -0.5], normal=normal)[0] == 1
+    assert _near(m, vx, [-0.0048, 0, 0], att, [off + 0.004, np.nan, -0.5], normal=normal)[0] == 20
     step.normal = None
 
 
@@ -300,8 +300,9 @@ def test_on_a_continuous_floor_the_cap_acts_along_the_floors_tangent():
     fx = [-0.1 * t[0], -0.1 * n[0], 0.0]
     fy = [-0.1 * t[1], -0.1 * n[1], 0.0]
     s = m.state
-    # Every tip also moves along n at 0.05 µm/µs (no tangential speed: v₀·t = 0).
-    out, kt, _ = _sticking(m, 1.0, 1.0, [kt0, kt0, kt0], fx, fy, v0=0.05 * n[:, None])
+    # Every tip also moves along n at 0.2 µm/µs (no tangential speed: v₀·t = 0; read along
+    # another direction it would take the second tip past its cap).
+    out, kt, _ = _sticking(m, 1.0, 1.0, [kt0, kt0, kt0], fx, fy, v0=0.2 * n[:, None])
     F = np.array([[1.0] * 3, [1.0] * 3])  # as _sticking set it
     np.testing.assert_allclose(out[:, 0] - F[:, 0], (cap - 1.0) * t, rtol=1e-14)
     np.testing.assert_array_equal(out[:, 1:], F[:, 1:])
