@@ -287,11 +287,11 @@ def test_in_tension_under_the_papers_cap_a_tip_holds_no_shear():
 
 
 def test_on_a_continuous_floor_the_cap_acts_along_the_floors_tangent():
-    """On a facet tilted by 30° (n = (sin 30°, cos 30°), t = (n_y, −n_x)) a tip moved along
+    """On a facet tilted by 60° (n = (sin 60°, cos 60°), t = (n_y, −n_x)) a tip moved along
     −t slides at the cap along t: F' − F = (cap − F_t)·t; a tip moved as fast along n keeps
     sticking (its friction reads the tangent alone)."""
     m = _model()
-    a = math.radians(30.0)
+    a = math.radians(60.0)
     n = np.array([math.sin(a), math.cos(a)])
     t = np.array([n[1], -n[0]])
     m._implicit.normal = np.repeat(n[:, None], 3, axis=1)
