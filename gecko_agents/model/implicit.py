@@ -23,8 +23,9 @@ systems, Baraff & Witkin 1998, SIGGRAPH '98 "Large steps in cloth simulation", e
 with −J_x = K the sum of the seta's stiffness (the linear seta's K of eq 20–21; the rod's
 axial Ka·e eᵀ plus rotary kφ/ℓ²·e⊥e⊥ᵀ plus its tension's Ka(ℓ − L)/ℓ·e⊥e⊥ᵀ clamped ≥ 0), the
 contact's normal stiffness dP/dδ·n nᵀ (:meth:`gecko_agents.contact.ContactLaw.stiffness`,
-clamped to [0, the contact's stiffness at 5 Fc]: past the load-controlled pull-off it turns
-negative and at the end of the JKR branch infinite, where a linearisation would nearly make
+clamped to [0, :meth:`~gecko_agents.contact.ContactLaw.stiffest` at 5 Fc, the flat-punch
+bound 2E*a of the radius the branch reaches at that load]: past the load-controlled pull-off
+it turns negative and at the end of the JKR branch infinite, where a linearisation would nearly make
 the 2×2 singular or freeze the tip) and the stick spring k_t·t tᵀ while the tip sticks (the
 spatula: its film's full 2×2 tangent with the front held, its
 row along the floor 0 while the pad slides, the tip body's Hertz compression and stick
