@@ -8,6 +8,7 @@ from decimal import Decimal, localcontext
 
 import numpy as np
 import pytest
+from scipy import integrate
 
 from gecko_agents.physics import fibril_probe_halfspace as halfspace
 from gecko_agents.physics import layer
@@ -45,6 +46,8 @@ def test_layer_factor_is_its_closed_form_on_every_branch(nu):
     else:
         assert g[0] == pytest.approx(2.0 / 3.0 * 1e-12, rel=1e-7)
     assert layer.layer_factor(0.0, nu) == 0.0
+    # deep in the e^{−2s} branch: exactly the half-space's 1, with no overflow (no warning)
+    np.testing.assert_array_equal(layer.layer_factor(np.array([400.0, 1e4]), nu), 1.0)
 
 
 def test_moduli_at_the_ends_of_poisson():
@@ -76,16 +79,16 @@ def test_fourier_compliance_is_even_and_has_its_limits():
 
 def test_kernels_are_even_and_cut_off():
     """The line and point kernels depend on |d| and are exactly 0 beyond CUTOFF = 30
-    thicknesses (and not 0 just inside it); the point kernel at t = inf is the half-space's
-    Boussinesq 1/(πE*r) and the disc's 16/(3π²E*c) at r = 0."""
+    thicknesses (and not 0 up to it, 30t included); the point kernel at t = inf is the
+    half-space's Boussinesq 1/(πE*r) and the disc's 16/(3π²E*c) at r = 0."""
     t, w, c = 2.0, 4.0, 1.5
     d = np.array([0.0, 3.0, 29.9 * t, 30.0 * t, 30.1 * t, 100.0 * t])
     K = layer.line_kernel(d, t, E, NU, w)
     np.testing.assert_array_equal(layer.line_kernel(-d, t, E, NU, w), K)
-    assert np.all(K[:3] != 0.0) and np.all(K[4:] == 0.0)
+    assert np.all(K[:4] != 0.0) and np.all(K[4:] == 0.0)  # taken at CUTOFF·t, 0 beyond
     P = layer.point_kernel(d, t, E, NU, c)
     np.testing.assert_array_equal(layer.point_kernel(-d, t, E, NU, c), P)
-    assert np.all(P[:3] != 0.0) and np.all(P[4:] == 0.0)
+    assert np.all(P[:4] != 0.0) and np.all(P[4:] == 0.0)
     Es = E / (1 - NU * NU)
     r = np.array([0.0, 4.0, 1e3])
     hs = layer.point_kernel(r, math.inf, E, NU, c)
@@ -97,9 +100,9 @@ def test_row_and_field_compliance_are_the_kernels():
     """The row's C_ij = K(|x_i − x_j|)/b and the field's C_ij = C(|r_i − r_j|), symmetric,
     the roots in any order; the field's bases may touch (2c apart) but not overlap."""
     t, w, b = 5.0, 4.0, 3.0
-    x = np.array([0.0, 4.0, -8.0])
+    x = np.array([0.0, 2.5, -1.3])
     C = layer.row_compliance(x, t, E, NU, w, b)
-    K = layer.line_kernel(np.array([0.0, 4.0, 8.0, 12.0]), t, E, NU, w) / b
+    K = layer.line_kernel(np.array([0.0, 2.5, 1.3, 3.8]), t, E, NU, w) / b
     np.testing.assert_allclose(C, K[[[0, 1, 2], [1, 0, 3], [2, 3, 0]]], rtol=1e-15)
     xs, ys = np.array([0.0, 3.0, 0.0]), np.array([0.0, 0.0, -5.0])
     C = layer.field_compliance(xs, ys, t, E, NU, 1.5)
@@ -157,3 +160,31 @@ def test_plane_strain_and_the_base_need_finite_widths():
             layer.point_kernel(1.0, 5.0, E, NU, bad)
     assert layer.row_compliance([0.0, 4.0], 5.0, E, NU, 4.0, 1e-300)[0, 0] > 0.0
     assert layer.point_kernel(1.0, math.inf, E, NU, 1e-300) > 0.0
+
+
+def test_narrow_strips_against_quadrature():
+    """Strips narrower than 1 µm (w = 0.5 µm on a 2 µm layer, centres 0.3 and 0.7 µm apart:
+    the closed-form part's arguments d ± w below 1 µm) against
+    K(d) = (1/π)∫G·sinc²(qw/2)·cos(qd) dq by adaptive quadrature (QUADPACK's Fourier
+    integrals, good to ~1e-7 here; measured 1e-8)."""
+    t, w = 2.0, 0.5
+
+    def f(q):
+        return layer.fourier_compliance(q, t, E, NU) * np.sinc(q * w / 2 / np.pi) ** 2 / np.pi
+
+    for d in (0.3, 0.7):
+        brute = integrate.quad(f, 0, 200, weight="cos", wvar=d, limit=4000)[0]
+        brute += integrate.quad(f, 200, np.inf, weight="cos", wvar=d, limlst=400)[0]
+        assert layer.line_kernel(d, t, E, NU, w) == pytest.approx(brute, rel=1e-6)
+
+
+def test_integer_distances_are_distances():
+    """Centre distances given as integers (``pitch * np.arange(n)`` with an integer pitch)
+    give the kernels of the same distances as floats."""
+    d = 4 * np.arange(4)
+    np.testing.assert_array_equal(
+        layer.line_kernel(d, 5.0, E, NU, 4.0), layer.line_kernel(d.astype(float), 5.0, E, NU, 4.0)
+    )
+    np.testing.assert_array_equal(
+        layer.point_kernel(d, 5.0, E, NU, 1.5), layer.point_kernel(d.astype(float), 5.0, E, NU, 1.5)
+    )
