@@ -79,16 +79,19 @@ def test_fourier_compliance_is_even_and_has_its_limits():
 
 def test_kernels_are_even_and_cut_off():
     """The line and point kernels depend on |d| and are exactly 0 beyond CUTOFF = 30
-    thicknesses (and not 0 up to it, 30t included); the point kernel at t = inf is the
+    thicknesses (and not 0 up to it, 30t included, where it is below 1e-10 of its value at
+    0, :data:`~gecko_agents.physics.layer.CUTOFF`); the point kernel at t = inf is the
     half-space's Boussinesq 1/(πE*r) and the disc's 16/(3π²E*c) at r = 0."""
     t, w, c = 2.0, 4.0, 1.5
     d = np.array([0.0, 3.0, 29.9 * t, 30.0 * t, 30.1 * t, 100.0 * t])
     K = layer.line_kernel(d, t, E, NU, w)
     np.testing.assert_array_equal(layer.line_kernel(-d, t, E, NU, w), K)
     assert np.all(K[:4] != 0.0) and np.all(K[4:] == 0.0)  # taken at CUTOFF·t, 0 beyond
+    assert abs(K[3]) < 1e-10 * K[0]  # where the layer's kernel has died out (measured 1e-13)
     P = layer.point_kernel(d, t, E, NU, c)
     np.testing.assert_array_equal(layer.point_kernel(-d, t, E, NU, c), P)
     assert np.all(P[:4] != 0.0) and np.all(P[4:] == 0.0)
+    assert abs(P[3]) < 1e-10 * P[0]  # measured 7e-15
     Es = E / (1 - NU * NU)
     r = np.array([0.0, 4.0, 1e3])
     hs = layer.point_kernel(r, math.inf, E, NU, c)
