@@ -252,3 +252,24 @@ def test_every_fibre_lets_go_at_its_pull_off(t, tilt):
         assert np.all(f[~going] >= -F_R * (1 + 1e-7))
         assert got.force[j] == pytest.approx(f.sum(), rel=1e-7)
     assert got.pull_off == pytest.approx(-got.force.min(), rel=1e-15)
+
+
+def test_a_cascade_at_one_depth_takes_only_the_fibres_past_their_pull_off():
+    """A flat probe tilted 0.3° pulled off a 7 × 7 field on a 10 µm layer with a coarse
+    resolution, 1e-2 µm: an event at the depth of the one before it (a cascade step, the
+    field unstable after a release) lets go only fibres that the dense solve with the fibres
+    attached before it puts at −F_r or beyond; fibres within the resolution of their pull-off
+    but not past it wait for an event of their own. Tolerance 1e-7·F_r (the solves' rtol;
+    measured: each at least 2.5e-4·F_r past it)."""
+    field = _field(n=7)
+    h = lf.probe_heights(field, math.inf, 0.3)
+    x, y = field.positions()
+    C = layer.field_compliance(x.ravel(), y.ravel(), 10.0, E, NU, 1.5) + np.eye(49) / K
+    got = lf.press_pull(field, h, 30.0, resolution=1e-2)
+    ev, top = got.release_event.ravel(), int(np.argmax(got.depth)) + 1
+    steps = [j for j in range(top + 1, got.depth.size - 1) if got.depth[j] == got.depth[j - 1]]
+    assert steps  # the pull has cascades
+    for j in steps:
+        A = np.flatnonzero(ev >= j)
+        f = np.linalg.solve(C[np.ix_(A, A)], got.depth[j] + h.ravel()[A])
+        assert np.all(f[ev[A] == j] <= -F_R * (1 - 1e-7))
