@@ -401,3 +401,90 @@ def test_rod_seta_sits_in_equilibrium_at_every_step(mu, law, k_t):
     assert state[i] == STATE_FREE and state[i - 1] != STATE_FREE
     # The release overlap is the tip's last equilibrium's (one plate step before the fold).
     assert d_rel == r.per_seta["overlap"][i - 1, 0]
+
+
+@pytest.mark.parametrize(
+    ("law", "k_t"), [("adhesive", math.inf), ("paper", math.inf), ("adhesive", 0.3)]
+)
+def test_branch_tables_fold_where_the_plate_height_peaks(law, k_t):
+    """Each branch's fold a_fold is where its plate height Z(a) = −δ(a) − D(a) + const peaks
+    (eq 22–25; D from K·(x, D) = (F_t, P) with F_t = σ·cap(P) sliding, or the tip held by
+    k_t to its anchor when stuck), found on a dense grid; the table starts there, and
+    inverting it gives back the radius of any plate height below the fold."""
+    p = LIN.replace(**{"friction.law": law})
+    br = qs.Branches.from_params(p, tangential_stiffness=k_t)
+    R, w, E = p.contact.jkr_args()
+    K = _linear_K(p)
+    a = np.geomspace(jkr.snap_off_radius(R, w, E), jkr.zero_load_contact_radius(R, w, E), 400_001)
+    P = jkr.force_from_radius(a, R, w, E)
+    for name, sigma in (("stick", 0.0), ("slip+", 1.0), ("slip-", -1.0)):
+        if name == "stick":  # anchor at rest: k_t(0 − x) = F_t in series with the seta
+            Kt = K + np.diag([k_t, 0.0]) if not math.isinf(k_t) else None
+            D = P / K[1, 1] if Kt is None else np.linalg.solve(Kt, np.stack([0 * P, P]))[1]
+        else:
+            D = np.linalg.solve(K, np.stack([sigma * _cap(P, p), P]))[1]
+        G = -jkr.overlap_from_radius(a, R, w, E) - D
+        k = int(np.argmax(G))
+        assert 0 < k < a.size - 1
+        # The grid's spacing is 2.7e-6 of a: the fold within it.
+        assert_allclose(br.a_fold[name], a[k], rtol=1e-5)
+        # The paper's soft seta deflects ~250 µm there: G to rounding of that.
+        assert_allclose(br.G_grid[name][0], G[k], rtol=1e-11)
+        # Round trip below the fold: the radius of a plate height is given back.
+        pick = np.arange(k + 1000, a.size, 20_000)
+        assert_allclose(br.invert(name, G[pick]), a[pick], rtol=1e-10)
+        assert np.isnan(br.invert(name, G[k] + 1e-6))
+    with pytest.raises(ValueError, match="compressed beyond"):
+        br.invert("stick", br.G_grid["stick"][-1] - 1.0)
+
+
+def test_bad_branch_setups_are_refused():
+    with pytest.raises(ValueError, match="tangential_stiffness"):
+        qs.Branches.from_params(LIN, tangential_stiffness=0.0)
+    with pytest.raises(ValueError, match="stiffness_scale"):
+        qs.Branches.from_params(LIN, stiffness_scale=-1.0)
+    with pytest.raises(ValueError, match="lateral"):
+        qs.Branches.from_params(LIN, lateral="sideways")
+    for bad in ({"tangential_stiffness": -1.0}, {"stiffness_scale": 0.0}, {"lateral": "x"}):
+        with pytest.raises(ValueError, match=next(iter(bad))):
+            qs.RodSetup.from_params(ROD, **bad)
+    # μ·|K_xy/K_xx| ≥ 1: the sliding seta's normal stiffness Ky/(1 − qσμ) turns negative.
+    q = abs(_linear_K(LIN)[0, 1] / _linear_K(LIN)[0, 0])
+    qs.Branches.from_params(LIN.replace(**{"friction.mu": 0.99 / q}))
+    with pytest.raises(ValueError, match="self-locks"):
+        qs.Branches.from_params(LIN.replace(**{"friction.mu": 1.0 / q}))
+
+
+@pytest.mark.parametrize("lateral", ["coupled", "free"])
+def test_step_margins_agree_with_its_decisions(lateral):
+    """The decision margins :class:`Blocks` splits on: a tip sticks exactly where the stick
+    trial's cap − |F_t| ≥ 0 (within the cap's 1e-12 slack), slides the way its F_t points, and
+    lets go exactly where its branch's fold margin is negative."""
+    from gecko_agents.quasistatic import linear
+
+    p = LIN.replace(**{"friction.mu": 0.1})
+    br = qs.Branches.from_params(p, lateral, stiffness_scale=100.0)  # lets go within 5 µm
+    h = np.random.default_rng(9).normal(0.0, 0.3, 60)
+    st = qs_state.State(h.size)
+    Zt = _touchdown(p)
+    seen = {"stick": 0, "slip": 0, "release": 0}
+    for Z in Zt + np.concatenate([np.linspace(0.5, -1.0, 16), np.linspace(-1.0, 6.0, 71)[1:]]):
+        was = st.state.copy()
+        P, Ft, d, rel, _, mg = linear.step(br, st, Z, h, margins=True)
+        att = (was != STATE_FREE) | (d >= 0) | rel
+        assert np.all(np.isnan(mg["fold"][~att])) and np.all(np.isfinite(mg["fold"][att]))
+        assert np.array_equal(rel, att & (mg["fold"] < 0) & (st.state == STATE_FREE))
+        seen["release"] += rel.sum()
+        if lateral == "free":
+            assert np.all(np.isnan(mg["stick"]))
+            continue
+        stick = st.state == STATE_STICK
+        assert np.all(mg["stick"][stick] >= -1e-12 * np.abs(mg["ft"][stick]))
+        slid = att & ~stick & ~rel
+        assert np.all(mg["stick"][slid] < 0)
+        assert np.array_equal(np.sign(Ft[slid]), np.where(mg["ft"][slid] >= 0, 1.0, -1.0))
+        assert np.array_equal(st.sigma[slid], np.sign(Ft[slid]))
+        seen["stick"] += stick.sum()
+        seen["slip"] += slid.sum()
+    assert st.state.max() == STATE_FREE and seen["release"] == h.size
+    assert lateral == "free" or min(seen.values()) > 0
