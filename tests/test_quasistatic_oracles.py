@@ -376,6 +376,8 @@ def _check_rod_equilibria(p, r, h, k_t=math.inf, scale=STIFF):
     assert np.all(np.abs(Ft[stick]) <= cap[stick] + tol)
     assert_allclose(np.abs(Ft[slip]), cap[slip], rtol=0, atol=tol)
     assert np.all(P[~att] == 0) and np.all(Ft[~att] == 0) and np.all(u[~att] == 0)
+    # A free tip hangs at rest: its overlap is h + L sin θ + R − Z (eq 22).
+    assert_allclose(d[~att], (h + _touchdown(p) - Z)[~att], rtol=0, atol=1e-12)
     both = stick[1:] & stick[:-1]
     assert np.array_equal(u[1:][both], u[:-1][both])
     return state
