@@ -194,7 +194,17 @@ def _check_linear_equilibria(p, r, h, k_t=math.inf):
     # A tip that sticks from one step to the next keeps its anchor.
     both = stick[1:] & stick[:-1]
     assert np.array_equal(u[1:][both], u[:-1][both])
+    _check_friction_opposes_sliding(u, Ft, state, Fc)
     return state
+
+
+def _check_friction_opposes_sliding(u, Ft, state, Fc):
+    """Coulomb friction does negative work: where a tip slides from one step to the next, its
+    anchor u moves against the floor's tangential force F_t on it (Δu·F_t ≤ 0)."""
+    slid = (state[1:] == STATE_SLIP) & (state[:-1] != STATE_FREE)
+    work = np.diff(u)[slid] * Ft[1:][slid]
+    # Equilibria to ~1e-10·Fc: a tip sliding by a step's travel does work ≥ −1e-9·Fc·µm wrong.
+    assert slid.sum() > 5 and np.all(work <= 1e-9 * Fc)
 
 
 @pytest.mark.parametrize(
@@ -380,6 +390,7 @@ def _check_rod_equilibria(p, r, h, k_t=math.inf, scale=STIFF):
     assert_allclose(d[~att], (h + _touchdown(p) - Z)[~att], rtol=0, atol=1e-12)
     both = stick[1:] & stick[:-1]
     assert np.array_equal(u[1:][both], u[:-1][both])
+    _check_friction_opposes_sliding(u, Ft, state, Fc)
     return state
 
 
