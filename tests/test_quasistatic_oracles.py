@@ -480,13 +480,19 @@ def test_step_margins_agree_with_its_decisions(lateral):
     h = np.random.default_rng(9).normal(0.0, 0.3, 60)
     st = qs_state.State(h.size)
     Zt = _touchdown(p)
+    R, w, E = p.contact.jkr_args()
+    # Every fold lies between JKR's under displacement control (a_c) and load control (a_lc).
+    d_lo = jkr.snap_off_overlap(R, w, E)
+    d_hi = jkr.overlap_from_radius(0.25 ** (1 / 3) * jkr.zero_load_contact_radius(R, w, E), R, w, E)
     seen = {"stick": 0, "slip": 0, "release": 0}
-    for Z in Zt + np.concatenate([np.linspace(0.5, -1.0, 16), np.linspace(-1.0, 6.0, 71)[1:]]):
+    Zs = Zt + np.concatenate([np.linspace(0.5, -1.0, 16), np.linspace(-1.0, 6.0, 71)[1:]])
+    for Z in Zs:
         was = st.state.copy()
-        P, Ft, d, rel, _, mg = linear.step(br, st, Z, h, margins=True)
+        P, Ft, d, rel, rel_d, mg = linear.step(br, st, Z, h, margins=True)
         att = (was != STATE_FREE) | (d >= 0) | rel
         assert np.all(np.isnan(mg["fold"][~att])) and np.all(np.isfinite(mg["fold"][att]))
         assert np.array_equal(rel, att & (mg["fold"] < 0) & (st.state == STATE_FREE))
+        assert np.all((rel_d[rel] > d_lo) & (rel_d[rel] < d_hi))
         seen["release"] += rel.sum()
         if lateral == "free":
             assert np.all(np.isnan(mg["stick"]))
