@@ -104,10 +104,12 @@ def test_setae_at_one_plate_height_reach_one_equilibrium_from_any_start():
     starts_a = rs.a0 * np.array([0.8, 1.0, 1.3, 1.6])
     x, a, ok = req.rod_newton(rs, c, starts_x, starts_a, anchor=x0)
     x1, a1, ok1 = req.rod_newton(rs, np.array([c]), np.array([x0]), np.array([rs.a0]), [x0])
-    assert ok.all() and ok1.all()
+    # Starts in whole micrometres (integer arrays) iterate in floating point all the same.
+    xi, ai, oki = req.rod_newton(rs, c, np.array([2, 3]), np.array([3, 3]), anchor=x0)
+    assert ok.all() and ok1.all() and oki.all()
     # All within the residual tolerance of one root (measured spread < 1e-12 µm).
-    assert_allclose(x, x1[0], rtol=0, atol=1e-10)
-    assert_allclose(a, a1[0], rtol=0, atol=1e-10)
+    assert_allclose(np.r_[x, xi], x1[0], rtol=0, atol=1e-10)
+    assert_allclose(np.r_[a, ai], a1[0], rtol=0, atol=1e-10)
     # The stick spring pulls the tip back toward its anchor: F_t = −k_t(x − x0) balances F_x.
     y = c - jkr.overlap_from_radius(a1, rs.R, rs.w, rs.E_star)
     (Fx, _), _ = qs.rod_force(x1, y, rs.Ka, rs.k_phi, rs.L, rs.theta)
