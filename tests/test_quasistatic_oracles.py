@@ -311,6 +311,7 @@ def test_jump_in_attaches_exactly_the_free_tips_that_touch():
     rng = np.random.default_rng(4)
     st = qs_state.State(50)
     st.state[:] = rng.choice([STATE_FREE, STATE_STICK, STATE_SLIP], 50)
+    st.state[:3] = STATE_FREE  # free tips that just touch (h = 0 in eq 22): they attach
     st.sigma[:] = np.where(st.state == STATE_SLIP, rng.choice([-1.0, 1.0], 50), 0.0)
     st.u[:] = np.where(st.state != STATE_FREE, rng.normal(size=50), 0.0)
     before = st.copy()
@@ -330,7 +331,7 @@ def test_jump_in_attaches_exactly_the_free_tips_that_touch():
                 before.sigma[j],
                 before.u[j],
             )
-    assert jump[:3].sum() == was_free[:3].sum()
+    assert jump[:3].all()
     # The copy kept the state as it was: an independent copy.
     assert np.array_equal(before.state == STATE_FREE, was_free) and jump.any()
     assert not np.array_equal(before.state, st.state)
@@ -457,7 +458,7 @@ def test_bad_branch_setups_are_refused():
     with pytest.raises(ValueError, match="tangential_stiffness"):
         qs.Branches.from_params(LIN, tangential_stiffness=0.0)
     with pytest.raises(ValueError, match="stiffness_scale"):
-        qs.Branches.from_params(LIN, stiffness_scale=-1.0)
+        qs.Branches.from_params(LIN, stiffness_scale=0.0)
     with pytest.raises(ValueError, match="lateral"):
         qs.Branches.from_params(LIN, lateral="sideways")
     for bad in ({"tangential_stiffness": -1.0}, {"stiffness_scale": 0.0}, {"lateral": "x"}):
@@ -553,3 +554,46 @@ def test_rod_tip_free_sideways_slides_without_friction():
     assert np.all(r.force_tangential == 0.0)
     assert np.all(state[state != STATE_FREE] == STATE_SLIP) and np.any(state == STATE_SLIP)
     assert len(r.releases) == 1 and state[-1] == STATE_FREE
+
+
+def test_a_tip_free_sideways_holds_up_to_its_fold_and_lets_go_just_past_it():
+    """Pulled in small steps, a tip free sideways (eq 25) holds until the plate reaches its
+    fold, where the fold margin is zero, and lets go just past it with the fold's overlap:
+    the fold is the highest plate Z(a) = h + R + L sin θ − δ(a) − P(a)/Ky (eq 22–25), found
+    here by a bounded scalar maximisation."""
+    from scipy.optimize import minimize_scalar
+
+    from gecko_agents.quasistatic import linear
+
+    scale = 100.0
+    p = LIN
+    br = qs.Branches.from_params(p, "free", stiffness_scale=scale)
+    R, w, E = p.contact.jkr_args()
+    K = _linear_K(p, scale)
+    Ky = K[1, 1] - K[0, 1] ** 2 / K[0, 0]  # eq 20
+
+    def plate(a):
+        P = jkr.force_from_radius(a, R, w, E)
+        return _touchdown(p) - jkr.overlap_from_radius(a, R, w, E) - P / Ky
+
+    a_c, a_lc = jkr.snap_off_radius(R, w, E), 0.63 * jkr.zero_load_contact_radius(R, w, E)
+    best = minimize_scalar(
+        lambda a: -plate(a), bounds=(a_c, a_lc), method="bounded", options={"xatol": 1e-12}
+    )
+    a_f, Z_f = best.x, -best.fun
+    st, h = qs_state.State(1), np.zeros(1)
+    Zt = _touchdown(p)
+    for Z in np.concatenate([np.linspace(Zt + 0.2, Zt - 0.5, 8), np.linspace(Zt - 0.5, Z_f, 60)]):
+        if Z < Z_f - 1e-6:
+            linear.step(br, st, Z, h)
+    assert st.state[0] == STATE_SLIP
+    held = st.copy()
+    # Z_f is good to ~1e-15 µm (flat there); 1e-9 µm either side is ~1e5 ulp of Z ≈ 20 µm.
+    out = linear.step(br, st, Z_f - 1e-9, h, margins=True)
+    assert not out[3][0] and st.state[0] == STATE_SLIP
+    assert 0 < out[5]["fold"][0] < 2e-9
+    out = linear.step(br, held, Z_f + 1e-9, h, margins=True)
+    assert out[3][0] and held.state[0] == STATE_FREE
+    assert -2e-9 < out[5]["fold"][0] < 0
+    # The maximiser's radius is good to ~1e-8 relative (Z is flat there): δ to 4e-8.
+    assert_allclose(out[4][0], jkr.overlap_from_radius(a_f, R, w, E), rtol=1e-7)
