@@ -471,6 +471,27 @@ def test_bad_branch_setups_are_refused():
         qs.Branches.from_params(LIN.replace(**{"friction.mu": 1.0 / q}))
 
 
+def _branch_folds(p, lateral, scale):
+    """max over a of G(a) = −δ(a) − D(a) [µm] for each slide direction σ (0: free sideways),
+    D from K·(x, D) = (σ·cap(P), P) (eq 22–27), by a bounded scalar maximisation."""
+    from scipy.optimize import minimize_scalar
+
+    R, w, E = p.contact.jkr_args()
+    K = _linear_K(p, scale)
+    bounds = (jkr.snap_off_radius(R, w, E), jkr.zero_load_contact_radius(R, w, E))
+    out = {}
+    for sigma in (1.0, -1.0) if lateral == "coupled" else (0.0,):
+
+        def G(a, sigma=sigma):
+            P = jkr.force_from_radius(a, R, w, E)
+            D = np.linalg.solve(K, np.array([sigma * _cap(P, p), P]))[1]
+            return -jkr.overlap_from_radius(a, R, w, E) - D
+
+        best = minimize_scalar(lambda a: -G(a), bounds=bounds, method="bounded")
+        out[sigma] = -best.fun
+    return out
+
+
 @pytest.mark.parametrize("lateral", ["coupled", "free"])
 def test_step_margins_agree_with_its_decisions(lateral):
     """The decision margins :class:`Blocks` splits on: a tip sticks exactly where the stick
@@ -488,12 +509,21 @@ def test_step_margins_agree_with_its_decisions(lateral):
     d_lo = jkr.snap_off_overlap(R, w, E)
     d_hi = jkr.overlap_from_radius(0.25 ** (1 / 3) * jkr.zero_load_contact_radius(R, w, E), R, w, E)
     seen = {"stick": 0, "slip": 0, "release": 0}
+    g_fold = _branch_folds(p, lateral, 100.0)
     Zs = Zt + np.concatenate([np.linspace(0.5, -1.0, 16), np.linspace(-1.0, 6.0, 71)[1:]])
     for Z in Zs:
         was = st.state.copy()
         P, Ft, d, rel, rel_d, mg = linear.step(br, st, Z, h, margins=True)
         att = (was != STATE_FREE) | (d >= 0) | rel
         assert np.all(np.isnan(mg["fold"][~att])) and np.all(np.isfinite(mg["fold"][att]))
+        # The fold margin: the plate rise left before the branch the tip would slide on (in
+        # the direction its stick trial pushes) has no equilibrium.
+        if lateral == "coupled":
+            rise = np.where(mg["ft"] >= 0, g_fold[1.0], g_fold[-1.0])
+        else:
+            rise = g_fold[0.0]
+        # The tables' fold and the maximiser's agree to ~1e-12 µm (Z is flat there).
+        assert_allclose(mg["fold"][att], (rise - (Z - Zt - h))[att], rtol=0, atol=1e-9)
         assert np.array_equal(rel, att & (mg["fold"] < 0) & (st.state == STATE_FREE))
         assert np.all((rel_d[rel] > d_lo) & (rel_d[rel] < d_hi))
         seen["release"] += rel.sum()
