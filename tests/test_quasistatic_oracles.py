@@ -562,8 +562,10 @@ def test_soft_rod_swings_upright_and_stretches_before_it_lets_go(k_t):
     bound = L * (1 - math.sin(th)) + p.contact.pull_off_force / p.axial_stiffness
     bound += depth - jkr.overlap_from_radius(a_lc, R, w, E)
     rise = r.plate_y[i - 1] - r.plate_y.min()
-    # The rotary spring keeps the rod short of upright: measured 0.987 of the bound.
-    assert 0.95 * bound < rise <= bound
+    step = r.plate_y[i] - r.plate_y[i - 1]
+    # The rotary spring keeps the rod short of upright: measured 0.987 of the bound, sampled
+    # one retract step (0.14 µm here) before the fold.
+    assert 0.95 * bound - step < rise <= bound
 
 
 def test_rod_tip_free_sideways_slides_without_friction():
