@@ -1,6 +1,6 @@
-"""The quasi-static solver's equilibrium and release (eq 22–27 of the paper: Dynamic
+"""The quasi-static solver's equilibrium and release (eq 22–27 of Lin et al., Dynamic
 Simulation and Parameter Analysis of Contact Mechanics for Mimicking Geckos' Foot Setae
-Array, Materials 2022) against oracles built without it: the rod's equilibria found by a
+Array, Crystals 12:282, 2022) against oracles built without it: the rod's equilibria found by a
 bracketing root search on its own force law and JKR's eq 7 and 10, the friction cap of eq 27
 written out, equal load sharing on a flat floor, and the state's bookkeeping counted anew.
 
