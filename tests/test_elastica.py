@@ -50,3 +50,13 @@ def test_a_tip_the_chain_cannot_reach_is_refused_naming_its_seta():
     d = np.array([e.rest_end(), e.rest_end() + [0.5, 1.0]])
     with pytest.raises(RuntimeError, match=r"setae \[1\] found no equilibrium"):
         e.solve(d, [False, False])
+
+
+def test_the_shear_coefficient_of_a_circle_takes_cowpers_values():
+    """Cowper (1966, J Appl Mech 33:335) for a solid circle: 6/7 at ν = 0, 0.886 at ν = 0.3
+    (the value usually quoted for steel-like solids), 9/10 at ν = ½, rising with ν."""
+    assert shear_coefficient(0.0) == pytest.approx(6.0 / 7.0, rel=1e-15)
+    assert shear_coefficient(0.3) == pytest.approx(0.886, abs=5e-4)
+    assert shear_coefficient(0.5) == pytest.approx(0.9, rel=1e-15)
+    nu = np.linspace(0.0, 0.5, 11)
+    assert np.all(np.diff(shear_coefficient(nu)) > 0)
