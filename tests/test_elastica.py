@@ -52,6 +52,15 @@ def test_a_tip_the_chain_cannot_reach_is_refused_naming_its_seta():
         e.solve(d, [False, False])
 
 
+def test_a_column_pressed_nearly_flat_is_refused_as_crushed():
+    """A held end pressed to 0.2 L from its root in one solve has no equilibrium the chain
+    reaches; the refusal names the cause (a force preload above the Euler load crushes a
+    buckled pillar), not a time step."""
+    e = Elastica(1, L, R, E, THETA)
+    with pytest.raises(RuntimeError, match=r"end 0\.20 L from its root\): the column is pressed"):
+        e.solve(np.array([[0.0, 0.2 * L]]), [True])
+
+
 def test_the_shear_coefficient_of_a_circle_takes_cowpers_values():
     """Cowper (1966, J Appl Mech 33:335) for a solid circle: 6/7 at ν = 0, 0.886 at ν = 0.3
     (the value usually quoted for steel-like solids), 9/10 at ν = ½, rising with ν."""
