@@ -78,6 +78,20 @@ def test_a_held_face_moved_sideways_carries_the_guided_beams_moment():
     assert M[1] == 0.0
 
 
+def test_a_parameter_sets_chain_shears_with_its_own_poisson_ratio():
+    """Elastica.of takes every property of the set, ν1 included: its shear stiffness is the
+    chain's built from ν1 by hand, not the default ν's."""
+    from gecko_agents.params import PAPER_TABLE1
+
+    p = PAPER_TABLE1.replace(mechanics="elastica", **{"contact.nu1": 0.45})
+    s = p.seta
+    e = Elastica.of(p, 1)
+    same = Elastica(1, s.L, s.r, p.contact.E1, s.theta, s.links, s.imperfection, nu=0.45)
+    default = Elastica(1, s.L, s.r, p.contact.E1, s.theta, s.links, s.imperfection)
+    assert e.kGA == same.kGA != default.kGA
+    np.testing.assert_array_equal(e.Ks[1], same.Ks[1])
+
+
 def test_the_shear_coefficient_of_a_circle_takes_cowpers_values():
     """Cowper (1966, J Appl Mech 33:335) for a solid circle: 6/7 at ν = 0, 0.886 at ν = 0.3
     (the value usually quoted for steel-like solids), 9/10 at ν = ½, rising with ν."""
