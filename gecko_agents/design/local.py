@@ -33,7 +33,7 @@ QUEUED = 8
 """Designs kept in hand for each spawned worker. A JKR sphere takes a hundred times a flat
 punch, so a worker needs several designs in hand to stay busy while this process evaluates one
 sphere of its own and stores what came back; designs no worker has begun when the draws run
-out are taken back and evaluated here (:func:`_steal`), so a deep queue leaves no core idle at
+out are taken back and evaluated here, so a deep queue leaves no core idle at
 the end."""
 
 
