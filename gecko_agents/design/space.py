@@ -245,19 +245,23 @@ BACKING_KNOBS = ("backing_thickness_um", "backing_modulus_MPa")
 
 
 def in_use(values: dict) -> dict:
-    """The knobs of one design that act on it: a mushroom's flange ratio and rim only on a
-    mushroom tip (its rim angle only on a sharp rim), the backing's thickness and modulus only
-    off a rigid backing (as :func:`overrides_of` applies them)."""
+    """The knobs of one design that act on it: those whose :class:`Knob` sets a parameter for
+    this design and that :func:`overrides_of` applies (a backing's thickness and modulus only
+    off a rigid backing), a mushroom's rim only on a mushroom tip, and its rim angle only on a
+    sharp rim (a flawed rim lets go at its flaw, whatever its angle)."""
     mushroom = values.get("tip") == "mushroom"
-    sharp = mushroom and values.get("mushroom_rim", "flawed") == "sharp"
     rigid = values.get("backing", "rigid") == "rigid"
-    unused = {
-        "flange_ratio": not mushroom,
-        "mushroom_rim": not mushroom,
-        "rim_angle_deg": not sharp,
-        **dict.fromkeys(BACKING_KNOBS, rigid),
-    }
-    return {k: v for k, v in values.items() if not unused.get(k, False)}
+
+    def acts(key, value) -> bool:
+        if key == "mushroom_rim":
+            return mushroom
+        if key == "rim_angle_deg" and values.get("mushroom_rim", "flawed") != "sharp":
+            return False
+        if key in BACKING_KNOBS and rigid:
+            return False
+        return key not in KNOBS or bool(KNOBS[key].apply(value, values))
+
+    return {k: v for k, v in values.items() if acts(k, v)}
 
 
 def overrides_of(values: dict, sigma0: float = math.inf) -> dict:
