@@ -104,6 +104,17 @@ def test_compiled_solve_equals_the_full_batch_iteration_to_rounding(batches):
     assert dx < 1e-9 and da < 1e-9
 
 
+def test_the_per_seta_loop_interpreted_equals_the_full_batch_iteration(batches, monkeypatch):
+    """The loop numba compiles (:func:`newton_each`), run interpreted through ``rod_newton``:
+    the same equilibria as the full-batch iteration, so the compiled path is tested where
+    numba is switched off too."""
+    monkeypatch.setattr(req, "newton_loop", lambda: req.newton_each)
+    folds, dx, da = _compare(batches, compiled=True)
+    assert folds >= 5
+    # Scalar and vectorized numpy may round hypot/arctan2 apart in the last bit (see above).
+    assert dx < 1e-9 and da < 1e-9
+
+
 @pytest.mark.skipif(not HAVE_NUMBA, reason="numba is not installed")
 def test_compiled_and_vectorized_histories_agree():
     """A whole press-pull of 40 rod setae (stick and slide, releases at folds) with either

@@ -191,43 +191,44 @@ def newton_masked(mode, K, c, x, a, anchor, s, iters, a_min):
     return conv
 
 
+def newton_each(mode, K, c, x, a, anchor, s, iters, a_min):
+    """:func:`newton_masked` as one loop over the setae, the form numba compiles
+    (:func:`newton_loop`): each seta iterates until it converges or has taken ``iters`` steps,
+    with the same residual, step and test. Arguments as :func:`newton_masked`; ``x``, ``a``
+    are updated in place. Returns (converged, stable there: :func:`rod_stable`). Interpreted it
+    is far slower than :func:`newton_masked`; it is called so only to test the loop itself."""
+    conv = np.zeros(x.size, dtype=np.bool_)
+    stab = np.zeros(x.size, dtype=np.bool_)
+    tol = 1e-10 * K[8]
+    for i in range(x.size):
+        xi, ai = x[i], a[i]
+        for _ in range(iters):
+            r1, r2, j11, j12, j21, j22, P, Fx = rod_residual(mode, K, c[i], xi, ai, anchor[i], s[i])
+            scale = tol + 1e-12 * (np.abs(P) + np.abs(Fx))
+            if np.abs(r1) <= scale and np.abs(r2) <= scale:
+                conv[i] = True
+                break
+            xi, ai = newton_step(r1, r2, j11, j12, j21, j22, xi, ai, K[5])
+            ai = np.maximum(ai, a_min)
+        x[i], a[i] = xi, ai
+        if conv[i]:
+            stab[i] = rod_stable(mode, K, c[i], xi, ai, s[i])
+    return conv, stab
+
+
 @functools.cache
 def newton_loop():
-    """:func:`newton_masked` as one loop over the setae compiled by numba (None without numba):
-    each seta iterates until it converges or has taken ``iters`` steps, with the same
-    residual, step and test. Returns (converged, stable there: :func:`rod_stable`). None
-    also when numba's compilation is switched off (``NUMBA_DISABLE_JIT=1``)."""
+    """:func:`newton_each` compiled by numba, or None without numba or when numba's
+    compilation is switched off (``NUMBA_DISABLE_JIT=1``: interpreted, the loop would be far
+    slower than :func:`newton_masked`)."""
     try:
         import numba
     except ImportError:
         return None
-    if numba.config.DISABLE_JIT:  # interpreted, the loop would be far slower than numpy's
+    if numba.config.DISABLE_JIT:
         return None
     register_jitables()
-
-    @numba.njit(cache=True, error_model="numpy")
-    def loop(mode, K, c, x, a, anchor, s, iters, a_min):  # pragma: no cover (compiled)
-        conv = np.zeros(x.size, dtype=np.bool_)
-        stab = np.zeros(x.size, dtype=np.bool_)
-        tol = 1e-10 * K[8]
-        for i in range(x.size):
-            xi, ai = x[i], a[i]
-            for _ in range(iters):
-                r1, r2, j11, j12, j21, j22, P, Fx = rod_residual(
-                    mode, K, c[i], xi, ai, anchor[i], s[i]
-                )
-                scale = tol + 1e-12 * (np.abs(P) + np.abs(Fx))
-                if np.abs(r1) <= scale and np.abs(r2) <= scale:
-                    conv[i] = True
-                    break
-                xi, ai = newton_step(r1, r2, j11, j12, j21, j22, xi, ai, K[5])
-                ai = np.maximum(ai, a_min)
-            x[i], a[i] = xi, ai
-            if conv[i]:
-                stab[i] = rod_stable(mode, K, c[i], xi, ai, s[i])
-        return conv, stab
-
-    return loop
+    return numba.njit(cache=True, error_model="numpy")(newton_each)
 
 
 def _batch(v, shape) -> np.ndarray:
