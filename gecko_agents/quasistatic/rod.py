@@ -8,6 +8,7 @@ where the rod–contact equilibrium folds. Each plate position is one damped New
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -84,6 +85,8 @@ def rod_step(rs: RodSetup, st: RodState, Z: float, h: np.ndarray):
         trial.new_x[t[okk]], trial.new_a[t[okk]] = xk[okk], ak[okk]
         trial.state[t[okk]] = SLIP
         sig[t] = s
+        if rs.lateral == "coupled":
+            _rod_slip(rs, trial, t[~okk & trial.held[t]], sig)
     _rod_commit(rs, st, c, trial, sig, out)
     return out
 
@@ -97,6 +100,9 @@ class _RodTrial:
         self.idx, self.c, self.x, self.a, self.jump = idx, c, x, a, jump
         self.new_x, self.new_a = x.copy(), a.copy()
         self.state = np.full(idx.size, FREE, dtype=np.int8)
+        # The stick trial's equilibrium (x, a) at the anchor, and where it has one.
+        self.stick_x, self.stick_a = x.copy(), a.copy()
+        self.held = np.zeros(idx.size, dtype=bool)
 
 
 def _rod_stick(rs: RodSetup, st: RodState, tr: _RodTrial):
@@ -116,11 +122,56 @@ def _rod_stick(rs: RodSetup, st: RodState, tr: _RodTrial):
         )[0][0]
     else:
         Fts = -rs.k_t * (xs - anchor)
+    tr.stick_x, tr.stick_a, tr.held = xs, as_, ok
     stick_ok = ok & (np.abs(Fts) <= rs.cap(Ps) * (1 + 1e-12))
     tr.new_x[stick_ok], tr.new_a[stick_ok] = xs[stick_ok], as_[stick_ok]
     tr.state[stick_ok] = STICK
     sig = np.where(np.where(ok, Fts, st.ft[tr.idx]) >= 0, 1.0, -1.0)
     return ~stick_ok, sig
+
+
+SLIP_STEPS = 40
+"""Points of the search for the end of a slip, 0.05 L apart (a slip of up to 2 L)."""
+
+
+def _rod_slip(rs: RodSetup, tr: _RodTrial, t: np.ndarray, sig: np.ndarray) -> None:
+    """Where a tip's contact still holds at its anchor (the stick trial has a normal
+    equilibrium) but the rod's lateral force exceeds the friction cap and no sliding
+    equilibrium lies within ``tr.jump`` of the anchor, the lateral equilibrium has folded while
+    the normal one has not: the tip slips along the floor (friction at the cap, F_t = σ·cap(P))
+    to the first sliding equilibrium in its direction of motion −σ, and stays attached.
+
+    The slip is followed as a path: the tip is held at x = anchor − σ·k·0.05 L
+    (k = 1 … :data:`SLIP_STEPS`), its normal equilibrium a(x) continued from one point to
+    the next; the slip ends in the first interval where the rod's driving force −σ·F_x falls to
+    the cap, refined by the sliding solve. It is the quasi-static (overdamped) limit of a
+    frictional snap: the tip stops where the cap first holds it again. Where the normal
+    equilibrium folds on the way (the JKR branch ends), or the force never falls to the cap, the
+    tip lets go as before. Updates ``tr`` for the setae ``t`` (indices into ``tr``).
+    """
+    if t.size == 0:
+        return
+    held = dataclasses.replace(rs, k_t=math.inf)  # the tip held at each x of the path
+    args = (rs.R, rs.w, rs.E_star)
+    dx = -sig[t] * 0.05 * rs.L
+    a = tr.stick_a[t]
+    live = np.ones(t.size, dtype=bool)  # the normal equilibrium has held so far
+    for k in range(1, SLIP_STEPS + 1):
+        if not live.any():
+            return
+        xk = tr.stick_x[t] + k * dx
+        _, ak, ok = rod_newton(held, tr.c[t], xk, a, anchor=xk)
+        live &= ok
+        y = tr.c[t] - jkr.overlap_from_radius(ak, *args)
+        drive = -sig[t] * rod_force(xk, y, rs.Ka, rs.k_phi, rs.L, rs.theta)[0][0]
+        end = live & (drive <= rs.cap(jkr.force_from_radius(ak, *args)))
+        if end.any():
+            e = t[end]
+            xe, ae, oke = rod_newton(rs, tr.c[e], xk[end], ak[end], s=sig[e], max_jump=0.05 * rs.L)
+            tr.new_x[e[oke]], tr.new_a[e[oke]] = xe[oke], ae[oke]
+            tr.state[e[oke]] = SLIP
+            live &= ~end
+        a = np.where(ok, ak, a)
 
 
 def _rod_commit(rs: RodSetup, st: RodState, c, tr: _RodTrial, sig, out):
