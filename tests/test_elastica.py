@@ -1,6 +1,7 @@
 """The elastica chain of a seta (gecko_agents.physics.elastica) by hand: its Timoshenko shear
-stiffness, its crooked rest shape, a face that bonds in the direction it touches in, and the
-refusal of a tip it cannot reach."""
+stiffness, its crooked rest shape, a face that bonds in the direction it touches in, the
+refusal of a tip it cannot reach, and a chain swung far from straight: its stretch is its
+links' axial forces over their stiffness, its force the gradient of its energy."""
 
 import math
 
@@ -100,3 +101,52 @@ def test_the_shear_coefficient_of_a_circle_takes_cowpers_values():
     assert shear_coefficient(0.5) == pytest.approx(0.9, rel=1e-15)
     nu = np.linspace(0.0, 0.5, 11)
     assert np.all(np.diff(shear_coefficient(nu)) > 0)
+
+
+def _swung(held):
+    """A chain whose end is swung 60° about its root at its rest distance in 12 solves (each
+    a Newton solve from the last shape): the chain, its end d [µm] and the force λ [µN] the
+    tip applies to its end (−F)."""
+    e = Elastica(1, L, R, E, THETA)
+    rest = e.rest_end()
+    for a in np.linspace(0.0, math.radians(60.0), 13)[1:]:
+        turn = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+        d = turn @ rest
+        F, _ = e.solve(d[None], [held])
+    return e, d, -F[0]
+
+
+@pytest.mark.parametrize("held", [True, False], ids=["held face", "free tip"])
+def test_the_columns_stretch_is_its_links_axial_forces_over_their_stiffness(held):
+    """No load acts along the chain between its root and its end, so link k carries the end's
+    force projected on its centreline, N_k = λ·t_k, and stretches N_k·ℓ/(EA) = N_k/(n·Ka);
+    the column's stretch s (shared by its links, module docstring) is their sum. Stretching
+    the chain uniformly scales its end vector, so virtual work gives the same s from the ends
+    alone: Ka·s·(L + s) = λ·d. The end is swung 60° about the root: the links span 0.71 rad
+    (held face, its last two 0.39 rad apart) and 0.75 rad (free tip), and s is 2.7 % and
+    1.9 % of L. Tolerance 1e-10·|λ|/Ka: above the Newton solve's (1e-12), below any stretch
+    read off the wrong links' angles."""
+    e, d, lam = _swung(held)
+    t = np.stack([np.cos(e.phi[0]), np.sin(e.phi[0])], axis=1)
+    s, scale = e.stretch[0], np.hypot(*lam) / e.Ka
+    assert np.ptp(e.phi[0]) > 0.6  # links far from parallel
+    if held:
+        assert abs(e.phi[0, -1] - e.phi[0, -2]) > 0.3
+    assert s == pytest.approx((t @ lam).sum() / (e.n * e.Ka), abs=1e-10 * scale)
+    assert s == pytest.approx(lam @ d / (e.Ka * (L + s)), abs=1e-10 * scale)
+
+
+@pytest.mark.parametrize("held", [True, False], ids=["held face", "free tip"])
+def test_the_force_on_a_swung_chain_is_the_gradient_of_its_energy(held):
+    """The chain is conservative: the force λ its end takes is ∂U/∂d (Castigliano's first
+    theorem), here by central differences of h = 1e-3 µm on the chain swung 60°, whose stretch
+    (2–3 % of L) makes the links' lever arms ℓ + s/n differ from ℓ by as much. Tolerance
+    1e-6·|λ|: above the truncation (~h², 2.5e-8 measured) and the solver's end tolerance
+    (1e-12·L per energy, 6e-8 over 2h), below a lever arm or axial row read wrongly."""
+    e, d, lam = _swung(held)
+    h = 1e-3
+    grad = [
+        (e.peek((d + h * u)[None])[1][0] - e.peek((d - h * u)[None])[1][0]) / (2 * h)
+        for u in np.eye(2)
+    ]
+    np.testing.assert_allclose(grad, lam, rtol=0, atol=1e-6 * np.hypot(*lam))
