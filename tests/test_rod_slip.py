@@ -3,6 +3,7 @@ stays attached: it never lets go while its contact is compressed. The end of the
 checked against an independent path search (scipy's brentq on the normal equilibrium at each
 tip position and on the friction balance along the path)."""
 
+import importlib
 import math
 
 import numpy as np
@@ -126,3 +127,26 @@ def test_the_slip_matches_the_time_stepped_seta(monkeypatch):
     assert_allclose(f_qs, f_agent, rtol=0.03)
     # Measured: 3.441 and 3.437 µN (3.109 µN with the seta let go at each plate step).
     assert_allclose(q.pull_off, h.peak_pull_off, rtol=0.01)
+
+
+@pytest.mark.parametrize(
+    "L, theta, k_t, sigma",
+    [(5.0, 60.0, math.inf, 0.3), (5.0, 60.0, 0.3, 0.3), (10.0, 75.0, math.inf, 0.1)],
+)
+def test_every_rod_seta_lets_go_within_the_retract(L, theta, k_t, sigma):
+    """The retract travel bounds every release (rod swing, axial and stick-spring stretch):
+    the last seta lets go before its end, the steep seta after its slip too."""
+    p = STEEP.replace(
+        **{"seta.L": L, "seta.theta_deg": theta, "floor.sigma": sigma, "array.count": 30}
+    )
+    h = sigma * np.random.default_rng(1).standard_normal(30)
+    h[0] = 0.66 * L  # pressed past its lateral fold on the steep rod
+    r = qs.press_pull(p, h, 1.0, n_retract=400, tangential_stiffness=k_t)
+    assert r.n_attached[-1] == 0 and len(r.releases) >= 30
+
+
+def test_a_retract_too_short_for_every_release_is_refused(monkeypatch):
+    solve = importlib.import_module("gecko_agents.quasistatic.solve")
+    monkeypatch.setattr(solve, "travel_up", lambda *args: 1.0)
+    with pytest.raises(RuntimeError, match="still attached after the retract's 1 µm"):
+        qs.press_pull(STEEP, np.array([0.0, 0.5]), 1.0, n_retract=50)

@@ -165,7 +165,8 @@ def press_pull(
     mean plane (h = 0), so it does not depend on the highest asperity of a sample. The plate
     starts ``start_gap`` [µm] above the highest tip's touch-down and moves down to that depth
     in ``n_approach`` equal steps; it then retracts in ``n_retract`` equal
-    steps over :func:`retract_travel`, stopping early once every seta has let go. Equilibria
+    steps over :func:`retract_travel`, stopping early once every seta has let go (a seta still
+    attached at its end raises RuntimeError: the travel is a bound on every release). Equilibria
     are exact at every step; the step only sets how finely the curve and the release points
     are sampled (friction slides in one direction per leg, so the path is resolved exactly).
 
@@ -205,6 +206,12 @@ def press_pull(
         stop_when_free_after=n_approach,
         sample=sample,
     )
+    if res.n_attached[-1] > 0:  # the curve would end before its last release: refuse it
+        raise RuntimeError(
+            f"{res.n_attached[-1]:.6g} setae still attached after the retract's {up:.6g} µm "
+            "of travel, which bounds every seta's release: the pull-off curve is incomplete "
+            "(a defect of the travel bound for these parameters)"
+        )
     return res
 
 
