@@ -168,7 +168,9 @@ def press_pull(
     steps over :func:`retract_travel`, stopping early once every seta has let go (a seta still
     attached at its end raises RuntimeError: the travel is a bound on every release). Equilibria
     are exact at every step; the step only sets how finely the curve and the release points
-    are sampled (friction slides in one direction per leg, so the path is resolved exactly).
+    are sampled. A tip that slides one way per leg takes the same path at any step; one that
+    sticks and slips by turns (a stiff seta near its release) can change state between two
+    samples, so its path converges with the step (first order, as its release height).
 
     ``weights`` and ``sample``: see :func:`solve`. With a sample, the start height is set by
     the highest seta of the sample rather than the highest block mean.
