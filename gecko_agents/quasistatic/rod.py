@@ -86,7 +86,10 @@ def rod_step(rs: RodSetup, st: RodState, Z: float, h: np.ndarray):
         trial.state[t[okk]] = SLIP
         sig[t] = s
         if rs.lateral == "coupled":
-            _rod_slip(rs, trial, t[~okk & trial.held[t]], sig)
+            # Pressed: compressed at the last equilibrium, or a free tip would touch here.
+            pressed = jkr.force_from_radius(trial.a[t], rs.R, rs.w, rs.E_star) > 0
+            pressed |= trial.c[t] - y0 >= 0
+            _rod_slip(rs, trial, t[~okk & (trial.held[t] | pressed)], sig)
     _rod_commit(rs, st, c, trial, sig, out)
     return out
 
@@ -135,43 +138,68 @@ SLIP_STEPS = 40
 
 
 def _rod_slip(rs: RodSetup, tr: _RodTrial, t: np.ndarray, sig: np.ndarray) -> None:
-    """Where a tip's contact still holds at its anchor (the stick trial has a normal
-    equilibrium) but the rod's lateral force exceeds the friction cap and no sliding
-    equilibrium lies within ``tr.jump`` of the anchor, the lateral equilibrium has folded while
-    the normal one has not: the tip slips along the floor (friction at the cap, F_t = σ·cap(P))
-    to the first sliding equilibrium in its direction of motion −σ, and stays attached.
+    """A tip whose lateral equilibrium has folded while its normal one holds slips along the
+    floor (friction at the cap, F_t = σ·cap(P)) to the first sliding equilibrium in its
+    direction of motion −σ, and stays attached.
 
-    The slip is followed as a path: the tip is held at x = anchor − σ·k·0.05 L
-    (k = 1 … :data:`SLIP_STEPS`), its normal equilibrium a(x) continued from one point to
-    the next; the slip ends in the first interval where the rod's driving force −σ·F_x falls to
-    the cap, refined by the sliding solve. It is the quasi-static (overdamped) limit of a
-    frictional snap: the tip stops where the cap first holds it again. Where the normal
-    equilibrium folds on the way (the JKR branch ends), or the force never falls to the cap, the
-    tip lets go as before. Updates ``tr`` for the setae ``t`` (indices into ``tr``).
+    ``t`` (indices into ``tr``): the tips with neither a stick nor a sliding equilibrium within
+    ``tr.jump`` whose stick trial has a normal equilibrium (the slip starts there) or whose
+    contact was compressed at the last plate position (it starts at the last equilibrium). The
+    tip is held at x = start − σ·k·0.05 L (k = 1 … :data:`SLIP_STEPS`; −σ: the way the rod
+    pushes the tip at the start, written into ``sig`` for the tips that slip), its normal
+    equilibrium
+    a(x) continued from one point to the next; the slip ends in the first interval where the
+    rod's push −σ·F_x falls to the cap, found there by bisection to 2⁻⁴⁰ of the interval. It is
+    the quasi-static (overdamped) limit of a frictional snap: the tip stops where the cap first
+    holds it again, a stable sliding equilibrium (the push falls through the cap). Where the
+    normal equilibrium folds on the way (the JKR branch ends), or the push never falls to the
+    cap within 2 L, the tip lets go. Updates ``tr`` for the setae ``t``.
     """
     if t.size == 0:
         return
-    held = dataclasses.replace(rs, k_t=math.inf)  # the tip held at each x of the path
+    hold = dataclasses.replace(rs, k_t=math.inf)  # the tip held at each x of the path
     args = (rs.R, rs.w, rs.E_star)
-    dx = -sig[t] * 0.05 * rs.L
-    a = tr.stick_a[t]
-    live = np.ones(t.size, dtype=bool)  # the normal equilibrium has held so far
-    for k in range(1, SLIP_STEPS + 1):
-        if not live.any():
-            return
-        xk = tr.stick_x[t] + k * dx
-        _, ak, ok = rod_newton(held, tr.c[t], xk, a, anchor=xk)
-        live &= ok
-        y = tr.c[t] - jkr.overlap_from_radius(ak, *args)
-        drive = -sig[t] * rod_force(xk, y, rs.Ka, rs.k_phi, rs.L, rs.theta)[0][0]
-        end = live & (drive <= rs.cap(jkr.force_from_radius(ak, *args)))
-        if end.any():
-            e = t[end]
-            xe, ae, oke = rod_newton(rs, tr.c[e], xk[end], ak[end], s=sig[e], max_jump=0.05 * rs.L)
-            tr.new_x[e[oke]], tr.new_a[e[oke]] = xe[oke], ae[oke]
-            tr.state[e[oke]] = SLIP
-            live &= ~end
-        a = np.where(ok, ak, a)
+    c = tr.c[t]
+    start = np.where(tr.held[t], tr.stick_x[t], tr.x[t])
+    a = np.where(tr.held[t], tr.stick_a[t], tr.a[t])
+    # The tip moves the way the rod pushes it at the start; friction opposes it (σ).
+    y = c - jkr.overlap_from_radius(a, *args)
+    s = np.where(rod_force(start, y, rs.Ka, rs.k_phi, rs.L, rs.theta)[0][0] > 0, -1.0, 1.0)
+    step = -s * 0.05 * rs.L
+
+    def excess(k, x, a):
+        """The push beyond the cap [µN] of the tips k held at x, and their a and ok."""
+        _, ak, ok = rod_newton(hold, c[k], x, a, anchor=x)
+        y = c[k] - jkr.overlap_from_radius(ak, *args)
+        push = -s[k] * rod_force(x, y, rs.Ka, rs.k_phi, rs.L, rs.theta)[0][0]
+        return push - rs.cap(jkr.force_from_radius(ak, *args)), ak, ok
+
+    end = np.full(t.size, np.nan)  # the first sample past the end of the slip
+    going = np.ones(t.size, dtype=bool)  # no end found, normal equilibrium held so far
+    for n in range(1, SLIP_STEPS + 1):
+        k = np.flatnonzero(going)
+        if k.size == 0:
+            break
+        g, ak, ok = excess(k, start[k] + n * step[k], a[k])
+        a[k] = np.where(ok, ak, a[k])
+        going[k] = ok & (g > 0)
+        hit = k[ok & (g <= 0)]
+        end[hit] = start[hit] + n * step[hit]
+    k = np.flatnonzero(np.isfinite(end))
+    if k.size == 0:
+        return
+    lo, hi = end[k] - step[k], end[k]
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        g, ak, ok = excess(k, mid, a[k])
+        past = ~ok | (g <= 0)
+        hi, lo = np.where(past, mid, hi), np.where(past, lo, mid)
+        a[k] = np.where(ok, ak, a[k])
+    _, ak, ok = excess(k, hi, a[k])
+    m = t[k[ok]]
+    tr.new_x[m], tr.new_a[m] = hi[ok], ak[ok]
+    tr.state[m] = SLIP
+    sig[m] = s[k[ok]]
 
 
 def _rod_commit(rs: RodSetup, st: RodState, c, tr: _RodTrial, sig, out):

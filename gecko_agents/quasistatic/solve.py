@@ -170,7 +170,8 @@ def press_pull(
     are exact at every step; the step only sets how finely the curve and the release points
     are sampled. A tip that slides one way per leg takes the same path at any step; one that
     sticks and slips by turns (a stiff seta near its release) can change state between two
-    samples, so its path converges with the step (first order, as its release height).
+    samples, so its path converges with the step (first order, as its release height); so
+    does the position of a rod tip's slip, taken at the first step past its onset.
 
     ``weights`` and ``sample``: see :func:`solve`. With a sample, the start height is set by
     the highest seta of the sample rather than the highest block mean.
