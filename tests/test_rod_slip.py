@@ -188,3 +188,34 @@ def test_a_retract_too_short_for_every_release_is_refused(monkeypatch):
     monkeypatch.setattr(solve, "travel_up", lambda *args: 1.0)
     with pytest.raises(RuntimeError, match="still attached after the retract's 1 µm"):
         qs.press_pull(STEEP, np.array([0.0, 0.5]), 1.0, n_retract=50)
+
+
+def test_no_quasi_static_seta_lets_go_pressed():
+    """Over drawn arrays (rod and linear setae, rigid stick or a stick spring, both friction
+    laws, floors up to half a seta length rough): every seta lets go at most once, and in
+    tension (its release overlap below the zero-load overlap a0²/3R of JKR's stable branch)."""
+    rng = np.random.default_rng(7)
+    for _ in range(12):
+        sigma = float(rng.uniform(0.5, 5.0))
+        mechanics = str(rng.choice(["rod", "linear"]))
+        # A linear seta steeper than 70° self-locks under friction (refused).
+        steepest = 80.0 if mechanics == "rod" else 70.0
+        p = PAPER_ARRAY.replace(
+            **{
+                "mechanics": mechanics,
+                "seta.L": float(rng.uniform(5.0, 30.0)),
+                "seta.theta_deg": float(rng.uniform(20.0, steepest)),
+                "friction.mu": float(rng.uniform(0.0, 0.3)),
+                "friction.law": str(rng.choice(["adhesive", "paper"])),
+                "floor.sigma": sigma,
+                "array.count": 20,
+            }
+        )
+        k_t = float(rng.choice([math.inf, rng.uniform(0.5, 20.0)]))
+        h = sigma * rng.standard_normal(20)
+        r = qs.press_pull(p, h, sigma, n_retract=400, tangential_stiffness=k_t)
+        a0 = jkr.zero_load_contact_radius(*p.contact.jkr_args())
+        zero_load = a0**2 / (3 * p.contact.R)
+        seta = [j for _, j, _ in r.releases]
+        assert len(seta) == len(set(seta)), p
+        assert all(d < zero_load for _, _, d in r.releases), p
