@@ -47,13 +47,14 @@ def rod_step(rs: RodSetup, st: RodState, Z: float, h: np.ndarray):
     """Equilibrate every rod seta at plate height Z; update ``st`` in place.
 
     As :func:`~gecko_agents.quasistatic.linear.step`, with the large-rotation rod instead of the
-    linear
-    spring: a free tip jumps in where it touches (δ ≥ 0) and anchors there; an attached tip
-    first tries to stick at its anchor (F_t = −k_t(x − anchor), |F_t| ≤ cap), otherwise slides
-    with F_t = ±cap in the direction the stick trial demanded (return mapping, as the agent
-    model); where neither has a stable equilibrium, the spring–contact system has folded and
-    the tip lets go. The overlap recorded for a release is that of the tip's last equilibrium
-    (within one plate step of the fold). ``st.u`` is the anchor relative to the rest tip
+    linear spring: a free tip jumps in where it touches (δ ≥ 0) and anchors there; an attached
+    tip first tries to stick at its anchor (F_t = −k_t(x − anchor), |F_t| ≤ cap), otherwise
+    slides with F_t = ±cap in the direction the stick trial demanded (return mapping, as the
+    agent model). Where neither has a stable equilibrium within 0.1 L, a tip whose normal
+    equilibrium holds, or that is pressed, slips to the next sliding equilibrium
+    (:func:`_rod_slip`); otherwise the spring–contact system has folded and the tip lets go.
+    The overlap recorded for a release is that of the tip's last equilibrium (within one plate
+    step of the fold). ``st.u`` is the anchor relative to the rest tip
     abscissa [µm].
 
     Returns (P, F_t, δ, released mask, release overlaps), as
