@@ -52,7 +52,7 @@ def rod_step(rs: RodSetup, st: RodState, Z: float, h: np.ndarray):
     slides with F_t = ±cap in the direction the stick trial demanded (return mapping, as the
     agent model). Where neither has a stable equilibrium within 0.1 L, a tip whose normal
     equilibrium holds, or that is pressed, slips to the next sliding equilibrium
-    (:func:`_rod_slip`); otherwise the spring–contact system has folded and the tip lets go.
+    (``_rod_slip``); otherwise the spring–contact system has folded and the tip lets go.
     The overlap recorded for a release is that of the tip's last equilibrium (within one plate
     step of the fold). ``st.u`` is the anchor relative to the rest tip
     abscissa [µm].
