@@ -5,6 +5,7 @@ tip position and on the friction balance along the path)."""
 
 import importlib
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -12,6 +13,7 @@ from numpy.testing import assert_allclose
 from scipy.optimize import brentq
 
 from gecko_agents import quasistatic as qs
+from gecko_agents.diagnostics import ValidityWarning
 from gecko_agents.history import STATE_SLIP, STATE_STICK
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import jkr
@@ -213,9 +215,23 @@ def test_no_quasi_static_seta_lets_go_pressed():
         )
         k_t = float(rng.choice([math.inf, rng.uniform(0.5, 20.0)]))
         h = sigma * rng.standard_normal(20)
-        r = qs.press_pull(p, h, sigma, n_retract=400, tangential_stiffness=k_t)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", ValidityWarning)  # no release of a pressed seta
+            r = qs.press_pull(p, h, sigma, n_retract=400, tangential_stiffness=k_t)
         a0 = jkr.zero_load_contact_radius(*p.contact.jkr_args())
         zero_load = a0**2 / (3 * p.contact.R)
         seta = [j for _, j, _ in r.releases]
         assert len(seta) == len(set(seta)), p
         assert all(d < zero_load for _, _, d in r.releases), p
+
+
+def test_a_stick_spring_too_soft_to_hold_a_pressed_tip_is_reported():
+    """With k_t = 0.02 µN/µm (the contact's is ~7 µN/µm) the steep seta's stick trial has no
+    equilibrium while pressed: it is let go and touches again, step after step. The run says
+    so, counting those releases."""
+    with pytest.warns(ValidityWarning, match=r"(\d+) of \1 releases were of setae whose"):
+        r = qs.press_pull(
+            STEEP, np.array([0.0, 6.6]), 1.0, n_retract=600, tangential_stiffness=0.02
+        )
+    seta = [j for _, j, _ in r.releases]
+    assert len(seta) > len(set(seta))  # let go more than once: pressed again after letting go

@@ -50,8 +50,8 @@ def rod_step(rs: RodSetup, st: RodState, Z: float, h: np.ndarray):
     linear spring: a free tip jumps in where it touches (δ ≥ 0) and anchors there; an attached
     tip first tries to stick at its anchor (F_t = −k_t(x − anchor), |F_t| ≤ cap), otherwise
     slides with F_t = ±cap in the direction the stick trial demanded (return mapping, as the
-    agent model). Where neither has a stable equilibrium within 0.1 L, a tip whose normal
-    equilibrium holds, or that is pressed, slips to the next sliding equilibrium
+    agent model). Where neither has a stable equilibrium within 0.1 L but the stick trial has
+    a normal equilibrium, the tip slips to the next sliding equilibrium
     (``_rod_slip``); otherwise the spring–contact system has folded and the tip lets go.
     The overlap recorded for a release is that of the tip's last equilibrium (within one plate
     step of the fold). ``st.u`` is the anchor relative to the rest tip
@@ -87,10 +87,7 @@ def rod_step(rs: RodSetup, st: RodState, Z: float, h: np.ndarray):
         trial.state[t[okk]] = SLIP
         sig[t] = s
         if rs.lateral == "coupled":
-            # Pressed: compressed at the last equilibrium, or a free tip would touch here.
-            pressed = jkr.force_from_radius(trial.a[t], rs.R, rs.w, rs.E_star) > 0
-            pressed |= trial.c[t] - y0 >= 0
-            _rod_slip(rs, trial, t[~okk & (trial.held[t] | pressed)], sig)
+            _rod_slip(rs, trial, t[~okk & trial.held[t]], sig)
     _rod_commit(rs, st, c, trial, sig, out)
     return out
 
@@ -144,13 +141,11 @@ def _rod_slip(rs: RodSetup, tr: _RodTrial, t: np.ndarray, sig: np.ndarray) -> No
     direction of motion −σ, and stays attached.
 
     ``t`` (indices into ``tr``): the tips with neither a stick nor a sliding equilibrium within
-    ``tr.jump`` whose stick trial has a normal equilibrium (the slip starts there) or whose
-    contact was compressed at the last plate position (it starts at the last equilibrium). The
-    tip is held at x = start − σ·k·0.05 L (k = 1 … :data:`SLIP_STEPS`; −σ: the way the rod
-    pushes the tip at the start, written into ``sig`` for the tips that slip), its normal
-    equilibrium
-    a(x) continued from one point to the next; the slip ends in the first interval where the
-    rod's push −σ·F_x falls to the cap, found there by bisection to 2⁻⁴⁰ of the interval. It is
+    ``tr.jump`` whose stick trial has a normal equilibrium, where the slip starts; ``sig``: the
+    direction σ = ±1 of the friction force the stick trial demanded. The tip is held at
+    x = start − σ·k·0.05 L (k = 1 … :data:`SLIP_STEPS`), its normal equilibrium a(x)
+    continued from one point to the next; the slip ends in the first interval where the rod's
+    push −σ·F_x falls to the cap, found there by bisection to 2⁻⁴⁰ of the interval. It is
     the quasi-static (overdamped) limit of a frictional snap: the tip stops where the cap first
     holds it again, a stable sliding equilibrium (the push falls through the cap). Where the
     normal equilibrium folds on the way (the JKR branch ends), or the push never falls to the
@@ -160,12 +155,7 @@ def _rod_slip(rs: RodSetup, tr: _RodTrial, t: np.ndarray, sig: np.ndarray) -> No
         return
     hold = dataclasses.replace(rs, k_t=math.inf)  # the tip held at each x of the path
     args = (rs.R, rs.w, rs.E_star)
-    c = tr.c[t]
-    start = np.where(tr.held[t], tr.stick_x[t], tr.x[t])
-    a = np.where(tr.held[t], tr.stick_a[t], tr.a[t])
-    # The tip moves the way the rod pushes it at the start; friction opposes it (σ).
-    y = c - jkr.overlap_from_radius(a, *args)
-    s = np.where(rod_force(start, y, rs.Ka, rs.k_phi, rs.L, rs.theta)[0][0] > 0, -1.0, 1.0)
+    c, start, a, s = tr.c[t], tr.stick_x[t], tr.stick_a[t].copy(), sig[t]
     step = -s * 0.05 * rs.L
 
     def excess(k, x, a):
@@ -200,7 +190,6 @@ def _rod_slip(rs: RodSetup, tr: _RodTrial, t: np.ndarray, sig: np.ndarray) -> No
     m = t[k[ok]]
     tr.new_x[m], tr.new_a[m] = hi[ok], ak[ok]
     tr.state[m] = SLIP
-    sig[m] = s[k[ok]]
 
 
 def _rod_commit(rs: RodSetup, st: RodState, c, tr: _RodTrial, sig, out):

@@ -8,11 +8,15 @@ branches or the rod. :func:`press_pull` presses to a depth and retracts. Units: 
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
+from gecko_agents._stack import user_stacklevel
+from gecko_agents.diagnostics import ValidityWarning
 from gecko_agents.history import STATE_FREE as FREE
 from gecko_agents.params import SetaArray
+from gecko_agents.physics import jkr
 from gecko_agents.quasistatic.blocks import Blocks
 from gecko_agents.quasistatic.branches import Branches, retract_travel
 from gecko_agents.quasistatic.heights import plate_start_height
@@ -215,7 +219,36 @@ def press_pull(
             "of travel, which bounds every seta's release: the pull-off curve is incomplete "
             "(a defect of the travel bound for these parameters)"
         )
+    _warn_pressed_releases(params, res)
     return res
+
+
+def _warn_pressed_releases(params: SetaArray, res: QuasiStaticResult) -> None:
+    """Warn where a seta let go while its contact was compressed: its last overlap at or above
+    JKR's zero-load overlap δ0 = a0²/3R (eq 10 at P = 0), i.e. P ≥ 0 on the stable branch,
+    or it let go a second time (it touched again after letting go, so the plate was still
+    pressing it). A compressed contact cannot open; the solver found no equilibrium for the
+    seta there (a rod whose stick spring k_t is far softer than the contact's), and the curve
+    misses its force."""
+    a0 = jkr.zero_load_contact_radius(*params.contact.jkr_args())
+    zero_load = a0**2 / (3 * params.contact.R)
+    seen: set = set()
+    pressed = 0
+    for _, j, d in res.releases:
+        pressed += d >= zero_load or j in seen
+        seen.add(j)
+    if pressed:
+        warnings.warn(
+            ValidityWarning(
+                f"{pressed} of {len(res.releases)} releases were of setae whose contact was "
+                f"compressed (overlap at or above JKR's zero-load {zero_load:.3g} µm, or let go "
+                "again): no equilibrium "
+                "was found for them there, and their force is missing from the curve at those "
+                "steps (a stick spring far softer than the contact's: raise "
+                "tangential_stiffness)"
+            ),
+            stacklevel=user_stacklevel(),
+        )
 
 
 def single_seta(params: SetaArray, plate_y, height: float = 0.0, **kw) -> QuasiStaticResult:
