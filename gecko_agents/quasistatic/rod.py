@@ -78,7 +78,7 @@ def rod_step(rs: RodSetup, st: RodState, Z: float, h: np.ndarray):
         todo = np.ones(idx.size, dtype=bool)
         sig[:] = 1.0
     else:
-        todo, sig = _rod_stick(rs, st, trial)
+        todo, sig, stick = _rod_stick(rs, st, trial)
     if todo.any():
         t = np.flatnonzero(todo)
         s = sig[t] if rs.lateral == "coupled" else np.zeros(t.size)
@@ -87,7 +87,9 @@ def rod_step(rs: RodSetup, st: RodState, Z: float, h: np.ndarray):
         trial.state[t[okk]] = SLIP
         sig[t] = s
         if rs.lateral == "coupled":
-            _rod_slip(rs, trial, t[~okk & trial.held[t]], sig)
+            xs, as_, held = stick
+            slip = t[~okk & held[t]]
+            _rod_slip(rs, trial, slip, sig, xs[slip], as_[slip])
     _rod_commit(rs, st, c, trial, sig, out)
     return out
 
@@ -101,16 +103,14 @@ class _RodTrial:
         self.idx, self.c, self.x, self.a, self.jump = idx, c, x, a, jump
         self.new_x, self.new_a = x.copy(), a.copy()
         self.state = np.full(idx.size, FREE, dtype=np.int8)
-        # The stick trial's equilibrium (x, a) at the anchor, and where it has one.
-        self.stick_x, self.stick_a = x.copy(), a.copy()
-        self.held = np.zeros(idx.size, dtype=bool)
 
 
 def _rod_stick(rs: RodSetup, st: RodState, tr: _RodTrial):
     """Stick trial at each anchor; where it holds within the cap, the tip sticks.
 
-    Returns (the setae still to slide, their slide direction): the direction the spring
-    demands, or where the stick branch has folded that of the last tangential force.
+    Returns (the setae still to slide, their slide direction: the direction the spring
+    demands, or where the stick branch has folded that of the last tangential force, and the
+    stick trial's equilibria (x [µm], a [µm], where it has one)).
     """
     args = (rs.R, rs.w, rs.E_star)
     x0, _ = rs.rest
@@ -123,26 +123,26 @@ def _rod_stick(rs: RodSetup, st: RodState, tr: _RodTrial):
         )[0][0]
     else:
         Fts = -rs.k_t * (xs - anchor)
-    tr.stick_x, tr.stick_a, tr.held = xs, as_, ok
     stick_ok = ok & (np.abs(Fts) <= rs.cap(Ps) * (1 + 1e-12))
     tr.new_x[stick_ok], tr.new_a[stick_ok] = xs[stick_ok], as_[stick_ok]
     tr.state[stick_ok] = STICK
     sig = np.where(np.where(ok, Fts, st.ft[tr.idx]) >= 0, 1.0, -1.0)
-    return ~stick_ok, sig
+    return ~stick_ok, sig, (xs, as_, ok)
 
 
 SLIP_STEPS = 40
 """Points of the search for the end of a slip, 0.05 L apart (a slip of up to 2 L)."""
 
 
-def _rod_slip(rs: RodSetup, tr: _RodTrial, t: np.ndarray, sig: np.ndarray) -> None:
+def _rod_slip(rs: RodSetup, tr: _RodTrial, t: np.ndarray, sig, start, a) -> None:
     """A tip whose lateral equilibrium has folded while its normal one holds slips along the
     floor (friction at the cap, F_t = σ·cap(P)) to the first sliding equilibrium in its
     direction of motion −σ, and stays attached.
 
     ``t`` (indices into ``tr``): the tips with neither a stick nor a sliding equilibrium within
-    ``tr.jump`` whose stick trial has a normal equilibrium, where the slip starts; ``sig``: the
-    direction σ = ±1 of the friction force the stick trial demanded. The tip is held at
+    ``tr.jump`` whose stick trial has a normal equilibrium (x = ``start``, a = ``a`` [µm]),
+    where the slip starts; ``sig``: the direction σ = ±1 of the friction force the stick trial
+    demanded (indexed as ``tr``). The tip is held at
     x = start − σ·k·0.05 L (k = 1 … :data:`SLIP_STEPS`), its normal equilibrium a(x)
     continued from one point to the next; the slip ends in the first interval where the rod's
     push −σ·F_x falls to the cap, found there by bisection to 2⁻⁴⁰ of the interval. It is
@@ -155,7 +155,7 @@ def _rod_slip(rs: RodSetup, tr: _RodTrial, t: np.ndarray, sig: np.ndarray) -> No
         return
     hold = dataclasses.replace(rs, k_t=math.inf)  # the tip held at each x of the path
     args = (rs.R, rs.w, rs.E_star)
-    c, start, a, s = tr.c[t], tr.stick_x[t], tr.stick_a[t].copy(), sig[t]
+    c, s, a = tr.c[t], sig[t], a.copy()
     step = -s * 0.05 * rs.L
 
     def excess(k, x, a):
@@ -215,7 +215,7 @@ def _rod_commit(rs: RodSetup, st: RodState, c, tr: _RodTrial, sig, out):
     st.ft[idx] = Ft[idx]
     st.sigma[idx] = np.where(state == SLIP, sig, 0.0)
     # Anchor: a sliding tip's anchor trails it by cap/k_t (F_t = −k_t(x − anchor)).
-    trail = 0.0 if math.isinf(rs.k_t) else capj[slip] * sig[good][slip] / rs.k_t
+    trail = capj[slip] * sig[good][slip] / rs.k_t  # 0 for a rigid stick (k_t = ∞)
     st.u[j[slip]] = new_x[good][slip] + trail - x0
     gone = idx[~good]
     if gone.size:
@@ -233,7 +233,7 @@ def rod_retract_travel(params: SetaArray, rs: RodSetup, heights, Z_from: float) 
     Back past the start height, plus the swing of the rod to upright, L(1 − sin θ), its axial
     stretch under Fc and the stick spring's, and a margin of 20|δc|.
     """
-    stretch = rs.Fc / rs.Ka + (0.0 if math.isinf(rs.k_t) else rs.Fc / rs.k_t)
+    stretch = rs.Fc / rs.Ka + rs.Fc / rs.k_t  # no stick spring's stretch at k_t = ∞
     return (
         plate_start_height(params, heights, 0.0)
         - Z_from
