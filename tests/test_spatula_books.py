@@ -101,6 +101,25 @@ def test_a_step_that_stretches_slides_and_peels_dissipates_the_floor_and_coulomb
     assert de == pytest.approx(law.w * law.b * v + cap * slide, rel=1e-9)
 
 
+@pytest.mark.parametrize(
+    ("dx", "zf"), [(-1.6, 0.3), (-1.0, 1.5), (-0.5, 2.0)], ids=["slide", "peel", "steep peel"]
+)
+def test_the_forces_after_a_step_are_the_films_at_its_new_front(dx, zf):
+    """After a step that slides and peels, the tip (its body off the floor) carries only the
+    film's tension along the chord from its new front: Hooke's K(s − s0)/s0 over the chord
+    s = √((dx − shift)² + zf²), the tip fixed and the front moved by the returned shift, with
+    the returned free length s0."""
+    law = contact_law(SPATULA)
+    k, K, s0, ell = law.constants, law.K, law.h, law.ell0
+    P, T, shift, _, _, s0_new, _, _, _, _ = law.step_scalar(dx, law.R + zf, ell, 0.0, s0, dx, k)
+    x = dx - shift  # the tip's offset from the front where the step left it [µm]
+    chord = math.hypot(x, zf)
+    tension = K * (chord - s0_new) / s0_new if chord > s0_new else 0.0
+    assert tension > 0.0
+    assert T == pytest.approx(film_pull(x, zf, s0_new, K), rel=1e-12)
+    assert P == pytest.approx(-tension * zf / chord, rel=1e-12)
+
+
 def test_a_spatula_tip_attaches_where_its_body_touches_with_its_whole_pad():
     """The film hangs from the tip centre and turns under the body within its thickness
     (s0 = h): it reaches the floor when the body does, δ = R − z = 0, where the body's Hertz
