@@ -187,17 +187,24 @@ def _check_linear_equilibria(p, r, h, k_t=math.inf):
     assert_allclose(K[0, 0] * x[att] + K[0, 1] * D[att], Ft[att], rtol=0, atol=1e-9 * Fc)
     if not math.isinf(k_t):
         assert_allclose(k_t * (u - x)[att], Ft[att], rtol=0, atol=1e-9 * Fc)
+    _check_cap_and_free_tips(p, P, Ft, d, u, state, att, h, Z, Fc, rtol=1e-9, atol=1e-12)
+    return state
+
+
+def _check_cap_and_free_tips(p, P, Ft, d, u, state, att, h, Z, Fc, rtol, atol):
+    """At every step: a sticking tip within its friction cap, a sliding one at it (to rtol,
+    atol [µN]); a free tip carries nothing and hangs at rest, its overlap h + L sin θ + R − Z
+    (eq 22); a tip that sticks from one step to the next keeps its anchor; friction opposes
+    the slide."""
     cap = _cap(P, p)
     stick, slip = state == STATE_STICK, state == STATE_SLIP
-    assert np.all(np.abs(Ft[stick]) <= cap[stick] * (1 + 1e-9) + 1e-12)
-    assert_allclose(np.abs(Ft[slip]), cap[slip], rtol=1e-9, atol=1e-12)
+    assert np.all(np.abs(Ft[stick]) <= cap[stick] * (1 + rtol) + atol)
+    assert_allclose(np.abs(Ft[slip]), cap[slip], rtol=rtol, atol=atol)
     assert np.all(P[~att] == 0) and np.all(Ft[~att] == 0) and np.all(u[~att] == 0)
     assert_allclose(d[~att], (h + _touchdown(p) - Z)[~att], rtol=0, atol=1e-12)
-    # A tip that sticks from one step to the next keeps its anchor.
     both = stick[1:] & stick[:-1]
     assert np.array_equal(u[1:][both], u[:-1][both])
     _check_friction_opposes_sliding(u, Ft, state, Fc)
-    return state
 
 
 def _check_friction_opposes_sliding(u, Ft, state, Fc):
@@ -379,16 +386,7 @@ def _check_rod_equilibria(p, r, h, k_t=math.inf, scale=STIFF):
     (Fx, Fy), _ = qs.rod_force(x[att], y[att], rs.Ka, rs.k_phi, rs.L, rs.theta)
     assert_allclose(-Fx, Ft[att], rtol=0, atol=tol)
     assert_allclose(-Fy, P[att], rtol=0, atol=tol)
-    cap = _cap(P, p)
-    stick, slip = state == STATE_STICK, state == STATE_SLIP
-    assert np.all(np.abs(Ft[stick]) <= cap[stick] + tol)
-    assert_allclose(np.abs(Ft[slip]), cap[slip], rtol=0, atol=tol)
-    assert np.all(P[~att] == 0) and np.all(Ft[~att] == 0) and np.all(u[~att] == 0)
-    # A free tip hangs at rest: its overlap is h + L sin θ + R − Z (eq 22).
-    assert_allclose(d[~att], (h + _touchdown(p) - Z)[~att], rtol=0, atol=1e-12)
-    both = stick[1:] & stick[:-1]
-    assert np.array_equal(u[1:][both], u[:-1][both])
-    _check_friction_opposes_sliding(u, Ft, state, Fc)
+    _check_cap_and_free_tips(p, P, Ft, d, u, state, att, h, Z, Fc, rtol=0.0, atol=tol)
     return state
 
 

@@ -229,9 +229,10 @@ def test_a_stick_spring_too_soft_to_hold_a_pressed_tip_is_reported():
     """With k_t = 0.02 µN/µm (the contact's is ~7 µN/µm) the steep seta's stick trial has no
     equilibrium while pressed: it is let go and touches again, step after step. The run says
     so, counting those releases."""
-    with pytest.warns(ValidityWarning, match=r"(\d+) of \1 releases were of setae whose"):
+    with pytest.warns(ValidityWarning) as caught:
         r = qs.press_pull(
             STEEP, np.array([0.0, 6.6]), 1.0, n_retract=600, tangential_stiffness=0.02
         )
     seta = [j for _, j, _ in r.releases]
     assert len(seta) > len(set(seta))  # let go more than once: pressed again after letting go
+    assert sum(issubclass(w.category, ValidityWarning) for w in caught) == 1  # one per run
