@@ -156,21 +156,10 @@ class ElasticBacking:
 
     kind = "elastic"
     rigid = False
-
-    @staticmethod
-    def kernel(kernel: str, contact: str) -> str:
-        """The kernel the model runs: numpy (refuses the loops and the callback contact)."""
-        if kernel in ("numba", "python"):
-            raise ValueError(
-                f"kernel = {kernel!r}: the elastic backing (backing.kind = 'elastic') runs "
-                "with kernel='numpy'"
-            )
-        if contact != "batch":
-            raise ValueError(
-                f"contact = {contact!r}: the elastic backing (backing.kind = 'elastic') runs "
-                "with contact='batch'"
-            )
-        return "numpy"
+    implicit = True
+    loops = False
+    contacts = ("batch",)
+    mechanics = ("linear", "rod", "elastica")
 
     def __init__(self, model):
         bk = model.params.backing  # its leader_arm and peel_angle_deg, checked there
@@ -179,8 +168,8 @@ class ElasticBacking:
         self.physics, self.n, self._model = model.physics, model.n, model
         self.dt = strip_step(model)
         self._build_strip()
-        if model._implicit is not None:  # the tips follow the links a step behind
-            model._implicit.limit_step(COUPLING_OMEGA_DT / self.coupling_omega())
+        if model.implicit_step is not None:  # the tips follow the links a step behind
+            model.implicit_step.limit_step(COUPLING_OMEGA_DT / self.coupling_omega())
         self.setae_force = (0.0, 0.0)
         self._roots = (np.zeros(self.n), np.zeros(self.n))
         self._k, self._handle_force = 1, (0.0, 0.0)  # sub-steps of the step (roots)

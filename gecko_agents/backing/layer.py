@@ -115,21 +115,10 @@ class LayerBacking:
 
     kind = "layer"
     rigid = False
-
-    @staticmethod
-    def kernel(kernel: str, contact: str) -> str:
-        """The kernel the model runs: numpy (refuses the loops and the callback contact)."""
-        if kernel in ("numba", "python"):
-            raise ValueError(
-                f"kernel = {kernel!r}: the layer backing (backing.kind = 'layer') runs with "
-                "kernel='numpy'"
-            )
-        if contact != "batch":
-            raise ValueError(
-                f"contact = {contact!r}: the layer backing (backing.kind = 'layer') runs with "
-                "contact='batch'"
-            )
-        return "numpy"
+    implicit = False  # the module docstring says why
+    loops = False
+    contacts = ("batch",)
+    mechanics = ("linear", "rod")
 
     def __init__(self, model):
         p = model.params
@@ -137,17 +126,6 @@ class LayerBacking:
             raise ValueError(
                 f"Backing.leader_arm = {p.backing.leader_arm!r} µm needs kind = 'elastic' (the "
                 "layer backing, kind = 'layer', has no leader arm)"
-            )
-        if p.mechanics not in ("linear", "rod"):
-            raise ValueError(
-                f"mechanics = {p.mechanics!r}: the layer backing (backing.kind = 'layer') "
-                "runs with mechanics 'linear' or 'rod'"
-            )
-        if model.integrator != "explicit":
-            raise ValueError(
-                f"integrator = {model.integrator!r}: the layer backing (backing.kind = "
-                "'layer') runs with the explicit step (integrator 'explicit' or 'auto'; "
-                "gecko_agents.backing.layer says why)"
             )
         bk, pitch = p.backing, p.array.pitch
         self._model, self.world, self.state = model, model.world, model.state

@@ -31,7 +31,9 @@ class RigidBacking:
     :meth:`kinetic_energy` (the energy columns), :meth:`record` (what the
     :class:`~gecko_agents.model.recorder.Recorder` writes per record), :attr:`geometry` and
     :attr:`info` (static, for the History), :attr:`rigid` (the roots move with the plate: the
-    compiled pad loop and the skip of the free approach apply).
+    compiled pad loop and the skip of the free approach apply); and what it runs with, which
+    the build step (:func:`gecko_agents.model.build.build`) checks: :attr:`implicit`,
+    :attr:`loops`, :attr:`contacts`, :attr:`mechanics`.
 
     Parameters
     ----------
@@ -40,13 +42,16 @@ class RigidBacking:
 
     kind = "rigid"
     rigid = True
+    implicit = True
+    """The implicit step is verified with this backing (docs/physics.md, "Time stepping")."""
+    loops = True
+    """The pad loops (:mod:`gecko_agents.model.step_loop`) step the setae on it."""
+    contacts = ("batch", "callback")
+    """The contact paths it runs with."""
+    mechanics = ("linear", "rod", "elastica")
+    """The seta mechanics it holds."""
     info = None
     """Static figures for ``meta["backing"]`` (none for the rigid plate)."""
-
-    @staticmethod
-    def kernel(kernel: str, contact: str) -> str:
-        """The kernel the model runs with ``kernel`` and ``contact`` asked for: any."""
-        return kernel
 
     def __init__(self, model):
         self.world = model.world

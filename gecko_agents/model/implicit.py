@@ -70,8 +70,10 @@ import math
 
 import numpy as np
 
+from gecko_agents.backing import backing_class
 from gecko_agents.history import ENERGY_RTOL, ENERGY_SCALE_COLUMNS
 from gecko_agents.model.implicit_kernel import clip, pad_solver, past_cap, solve, step_books
+from gecko_agents.model.mechanics import MECHANICS, Mechanics
 from gecko_agents.physics.friction import friction_cap
 from gecko_agents.protocol import DEFAULT_SPEED
 
@@ -83,6 +85,7 @@ __all__ = [
     "FREE_RINGING_SHARE",
     "ImplicitStep",
     "check_integrator",
+    "choose_integrator",
     "implicit_time_step",
     "whole_event_steps",
 ]
@@ -118,20 +121,14 @@ snaps off in one step, for fewer steps on rough floors (the measured table: docu
 explanation, "Performance"; ``tests/test_event_location.py``)."""
 
 
-def check_integrator(integrator, contact: str, params=None) -> str:
-    """The integrator a model of ``params`` runs: ``integrator`` if it is one of
-    ``INTEGRATORS`` (the implicit step with ``contact = "batch"`` only: the callback path adds
-    contact forces after the step's). ``"auto"`` is the implicit step where it is verified,
-    the explicit one elsewhere:
-
-    - ``contact = "callback"``; ``mechanics = "elastica"`` (no Jacobian of the chain);
-      ``backing.kind = "layer"`` (:mod:`gecko_agents.backing.layer`).
-
-    Why the spatula and the elastic backing run implicitly, with what they were measured to
-    give against the explicit step: docs/physics.md, "Time stepping"."""
+def choose_integrator(integrator, contact: str, mechanics: Mechanics, backing) -> str:
+    """The integrator a run takes: ``integrator`` if it is one of
+    :data:`INTEGRATORS` and goes with the rest; ``"auto"`` is the
+    implicit step where it is verified (the batch contact path, a mechanics with its
+    Jacobian, a backing measured with it: docs/physics.md, "Time stepping"), the explicit one
+    elsewhere. The implicit step is refused, naming both choices, where it is not verified."""
+    verified = contact == "batch" and mechanics.jacobian and backing.implicit
     if integrator == "auto":
-        verified = contact == "batch" and (params is None or params.mechanics != "elastica")
-        verified = verified and (params is None or params.backing.kind != "layer")
         return "implicit" if verified else "explicit"
     if integrator not in INTEGRATORS:
         raise ValueError(f"integrator = {integrator!r} must be one of {INTEGRATORS}")
@@ -140,7 +137,27 @@ def check_integrator(integrator, contact: str, params=None) -> str:
             f"integrator = 'implicit' needs contact = 'batch', got {contact!r} (the callback "
             "path adds contact forces after the step's): use 'explicit' or 'auto'"
         )
+    if integrator == "implicit" and not mechanics.jacobian:
+        raise ValueError(
+            f"integrator = 'implicit' with mechanics = {mechanics.name!r}: the implicit step "
+            "has no Jacobian of the chain; mechanics = 'elastica' runs with integrator = "
+            "'explicit' (or 'auto')"
+        )
+    if integrator == "implicit" and not backing.implicit:
+        raise ValueError(
+            f"integrator = 'implicit' with backing.kind = {backing.kind!r}: the {backing.kind} "
+            "backing runs with the explicit step (integrator 'explicit' or 'auto'; "
+            f"gecko_agents.backing.{backing.kind} says why)"
+        )
     return integrator
+
+
+def check_integrator(integrator, contact: str, params=None) -> str:
+    """:func:`choose_integrator` for a model of ``params`` (None: linear setae on the rigid
+    plate)."""
+    mechanics = MECHANICS["linear" if params is None else params.mechanics]
+    backing = backing_class("rigid" if params is None else params.backing.kind)
+    return choose_integrator(integrator, contact, mechanics, backing)
 
 
 def whole_event_steps(bound: float, event: float) -> float:
@@ -411,7 +428,7 @@ class ImplicitStep:
         v0t = vx * tx + vy * ty
         v1t = v0t + (fx[i] * tx + fy[i] * ty) * h
         f = s.Ft[i] - m.dt * kt[i] * v1t - ct[i] * (v1t - v0t)
-        c = m._constants
+        c = m.constants
         cap = friction_cap(s.P[i], c.Fc, c.mu, c.paper)
         past = np.abs(f) > cap
         if not past.any():
@@ -566,7 +583,7 @@ class ImplicitStep:
             return
         m.state.F *= m.dt / dt
         m.dt = dt
-        m._constants = m.physics.c = m._constants._replace(dt=dt, hm=0.5 * dt / m.mass)
+        m.constants = m.physics.c = m.constants._replace(dt=dt, hm=0.5 * dt / m.mass)
 
     def book_releases(self, events) -> float:
         """Energy to book as dissipated for the tips that let go this step [pJ]: ``events``

@@ -242,5 +242,5 @@ def past_cap(kernels, m, fx, fy, kt, ct) -> bool:
     """The compiled :func:`pad_past_cap` of ``kernels`` (:func:`pad_solver`) for model ``m``,
     F' = (``fx``, ``fy``) [µN] and the stick spring ``kt`` [µN/µm] and damper ``ct``
     [µN·µs/µm]."""
-    s, c = m.state, m._constants
+    s, c = m.state, m.constants
     return kernels[1](s.pv, fx, fy, s.Ft, s.P, kt, ct, m.dt, m.mass, c.Fc, c.mu, c.paper)

@@ -49,20 +49,9 @@ _SET = pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
 
 
 def multirate_applies(model) -> bool:
-    """Whether ``model``'s located steps may be multirate: the implicit step on a pad floor
-    with the batch contact path, a rigid backing and linear or rod setae (module docstring
-    for why not elsewhere), and ``numerics.multirate``."""
-    if not isinstance(model.numerics.multirate, bool):
-        raise ValueError(f"multirate = {model.numerics.multirate!r} must be True or False")
-    return (
-        model.numerics.multirate
-        and model._implicit is not None
-        and model.backing.rigid
-        and model.world.pads
-        and model.contact_path == "batch"
-        and model.params.mechanics in ("linear", "rod")
-        and model.physics.opening is None
-    )
+    """Whether ``model``'s located steps are multirate (the build step decides:
+    :func:`gecko_agents.model.build.choose_multirate`)."""
+    return model.multirate is not None
 
 
 class SubWorld:
@@ -214,14 +203,14 @@ class Multirate:
         w.load(m.mass, idx, m.world, saved["rows"], s, saved["plate"])
         sub.world = w
         sub.n = idx.size
-        sub.physics = NumpyStep(sub._constants, m.law, s, w, m.K, m.params.friction)
+        sub.physics = NumpyStep(sub.constants, m.law, s, w, m.K, m.params.friction)
         sub.backing = RigidBacking(sub)
-        sub._lost_idx = np.zeros(idx.size, dtype=np.int64)
-        sub._gone_idx = np.zeros(idx.size, dtype=np.int64)
-        sub._res = np.zeros(7)
-        sub._on_plate_prev = saved["on_plate_prev"]
+        sub.lost_idx = np.zeros(idx.size, dtype=np.int64)
+        sub.gone_idx = np.zeros(idx.size, dtype=np.int64)
+        sub.loop_results = np.zeros(7)
+        sub.on_plate_prev = saved["on_plate_prev"]
         sub.time = saved["time"]
-        imp = sub._implicit = copy.copy(m._implicit)
+        imp = sub.implicit_step = copy.copy(m.implicit_step)
         imp.m = sub
         imp.numerical_dissipated = 0.0
         imp._pad = False
@@ -236,7 +225,7 @@ class Multirate:
         """The state of setae ``idx`` at the start of the step (their bodies' positions and
         velocities, ``rows``, come after the whole array's step has read them)."""
         m = self.m
-        s, imp = m.state, m._implicit
+        s, imp = m.state, m.implicit_step
         dt_prev = imp._dt_prev
         return {
             "block": s.block[:, idx],
@@ -260,7 +249,7 @@ class Multirate:
         step's evaluation positions (:meth:`gecko_agents.model.stepping.Stepping.spring_force`)
         and their dampers, as the step summed them."""
         m = self.m
-        root = m.backing.root_positions(m._pnext)[idx]
+        root = m.backing.root_positions(m.plate_next)[idx]
         f = m.spring_force(m.state.xy[:, idx].T, root)[0]
         fd = m.state.F_damp_seta[:, idx]
         return float(np.sum(f[:, 0] + fd[0])), float(np.sum(f[:, 1] + fd[1]))
@@ -282,15 +271,15 @@ class Multirate:
         long = self._run(idx, saved, vp, dt, 1)
         short = self._run(idx, saved, vp, dt, k)
         self._scatter(idx, short["sub"], k)
-        ph, imp = m.physics, m._implicit
+        ph, imp = m.physics, m.implicit_step
         ph.diss += short["diss"] - long["diss"]
         imp.numerical_dissipated += short["numerical"] - long["numerical"]
-        m._work_step += short["work"] - long["work"]
-        opx, opy = m._on_plate_prev
+        m.work_step += short["work"] - long["work"]
+        opx, opy = m.on_plate_prev
         lx, ly = long["last"]
         sx, sy = short["last"]
-        m._on_plate_prev = (opx - lx + sx, opy - ly + sy)
-        m.reaction = (-m._on_plate_prev[0], -m._on_plate_prev[1])
+        m.on_plate_prev = (opx - lx + sx, opy - ly + sy)
+        m.reaction = (-m.on_plate_prev[0], -m.on_plate_prev[1])
         ph.events = []
         self.n_steps += 1
         self._last = attached != m.state.attached  # the setae that attached or let go
@@ -315,13 +304,13 @@ class Multirate:
             if sub.physics.events:
                 ev = [(int(idx[i]), d, r, f) for i, d, r, f in sub.pop_releases()]
                 released.append((sub.time, sub.world.plate.position, ev, sub.dt))
-        if sub._warned_linear:
-            self.m._warned_linear = True
+        if sub.warned_linear:
+            self.m.warned_linear = True
         return {
             "work": work,
             "diss": diss,
-            "numerical": sub._implicit.numerical_dissipated,
-            "last": sub._on_plate_prev,
+            "numerical": sub.implicit_step.numerical_dissipated,
+            "last": sub.on_plate_prev,
             "released": [(t, (p.x, p.y), ev, h) for t, p, ev, h in released],
             "sub": sub,
         }
@@ -331,7 +320,7 @@ class Multirate:
         (their force as the model's step reads it, F'·(dt/k)/dt), flags, bodies and the
         implicit step's per-seta books, with their last step dt/k."""
         m = self.m
-        s, ss, imp, simp = m.state, sub.state, m._implicit, sub._implicit
+        s, ss, imp, simp = m.state, sub.state, m.implicit_step, sub.implicit_step
         block = ss.block.copy()
         block[FX] /= k  # the velocity change F·dt/m the recorder reads, at the model's dt
         block[FY] /= k
