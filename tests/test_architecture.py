@@ -211,3 +211,52 @@ def test_no_import_circles():
                 todo.extend(graph.get(m, ()))
     flagged = [c for c in circles if not any(c in pair for pair in allowed)]
     assert not flagged, f"modules on an import circle: {sorted(flagged)}"
+
+
+ENGINE = ("gecko_agents.model", "gecko_agents.backing", "gecko_agents.numerics",
+          "gecko_agents.protocol")  # fmt: skip
+NAMEDTUPLE_API = {"_replace", "_asdict", "_fields", "_make"}
+
+
+def _private_names_defined(tree: ast.Module) -> set[str]:
+    """Private names a module defines: its functions, classes and the attributes it assigns
+    (``x._name = …`` on any object)."""
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            names.add(node.name)
+        elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store):
+            names.add(node.attr)
+        elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            names.add(node.id)
+    return {n for n in names if n.startswith("_")}
+
+
+def _foreign_private_reads(tree: ast.Module) -> list[tuple[int, str]]:
+    """(line, name) of each ``x._name`` on an object other than ``self``/``cls`` whose name the
+    module does not define itself: another module's private attribute."""
+    own = _private_names_defined(tree) | NAMEDTUPLE_API
+    return [
+        (node.lineno, node.attr)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Attribute)
+        and node.attr.startswith("_")
+        and not node.attr.startswith("__")
+        and not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"))
+        and node.attr not in own
+    ]
+
+
+def test_the_private_read_check_sees_a_foreign_attribute():
+    tree = ast.parse("def f(m):\n    m._mine = 1\n    return m._mine + m._theirs + self._x\n")
+    assert _foreign_private_reads(tree) == [(3, "_theirs")]
+
+
+@pytest.mark.parametrize(
+    "name", sorted(n for n in MODULE_NAMES if n.startswith(ENGINE)), ids=lambda n: n
+)
+def test_the_engine_reads_no_other_modules_private_attributes(name):
+    """The engine's parts talk through public names: a model's parts, the steppers and the
+    backings read no private attribute defined in another module."""
+    found = _foreign_private_reads(_tree(MODULE_NAMES[name]))
+    assert not found, f"{name} reads private attributes of other modules: {found}"

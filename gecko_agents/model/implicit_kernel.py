@@ -206,10 +206,10 @@ def pad_solver(model, step):
     return pad_kernels() if applies else None
 
 
-def solve(kernels, step, kn, kt, cn, ct, roots, F):
+def solve(kernels, step, kn, kt, kxy, cn, ct, roots, F):
     """F' [µN] (two (N,) arrays) by the compiled :func:`pad_solve` of ``kernels``
-    (:func:`pad_solver`) for the implicit ``step``: the stiffnesses and dampers, ``roots`` and
-    ``F`` as ``ImplicitStep._solve``'s."""
+    (:func:`pad_solver`) for the implicit ``step``: the stiffnesses (``kxy`` a film tip's
+    off-diagonal one [µN/µm]) and dampers, ``roots`` and ``F`` as ``ImplicitStep._solve``'s."""
     m = step.m
     s, w = m.state, m.world
     rod = m.params.mechanics != "linear"
@@ -229,7 +229,7 @@ def solve(kernels, step, kn, kt, cn, ct, roots, F):
         cn,
         ct,
         step.film,
-        step._kxy,
+        kxy,
         m.c_seta,
         m.dt,
         m.mass,

@@ -210,23 +210,14 @@ class Multirate:
         sub.loop_results = np.zeros(7)
         sub.on_plate_prev = saved["on_plate_prev"]
         sub.time = saved["time"]
-        imp = sub.implicit_step = copy.copy(m.implicit_step)
-        imp.m = sub
-        imp.numerical_dissipated = 0.0
-        imp._pad = False
-        imp._J, imp._dF = saved["J"].copy(), saved["dF"].copy()
-        imp._k_raw, imp._k_rate = saved["k_raw"].copy(), saved["k_rate"].copy()
-        imp._dt_prev = saved["dt_prev"]
-        imp._kn, imp._kt, imp._kxy = (np.zeros(idx.size) for _ in range(3))
-        imp.set_dt(dt / k)
+        sub.implicit_step = m.implicit_step.for_setae(sub, saved["books"], dt / k)
         return sub
 
     def _gather(self, idx) -> dict:
         """The state of setae ``idx`` at the start of the step (their bodies' positions and
         velocities, ``rows``, come after the whole array's step has read them)."""
         m = self.m
-        s, imp = m.state, m.implicit_step
-        dt_prev = imp._dt_prev
+        s = m.state
         return {
             "block": s.block[:, idx],
             "attached": s.attached[idx],
@@ -235,11 +226,7 @@ class Multirate:
             "candidate_step": s.candidate_step[idx],
             "ext": s.external_force[idx],
             "plate": m.plate_position,
-            "J": imp._J[:, idx],
-            "dF": imp._dF[:, idx],
-            "k_raw": imp._k_raw[idx],
-            "k_rate": imp._k_rate[idx],
-            "dt_prev": dt_prev if np.ndim(dt_prev) == 0 else dt_prev[idx],
+            "books": m.implicit_step.books(idx),
             "on_plate_prev": self._on_plate(idx),
             "time": m.time,
         }
@@ -327,13 +314,9 @@ class Multirate:
         s.block[:, idx] = block
         for name in ("attached", "slip", "candidate", "candidate_step"):
             getattr(s, name)[idx] = getattr(ss, name)
-        imp._J[:, idx] = simp._J
-        imp._dF[:, idx] = simp._dF
-        imp._k_raw[idx] = simp._k_raw
-        imp._k_rate[idx] = simp._k_rate
         dt_prev = np.full(m.n, m.dt)
         dt_prev[idx] = sub.dt
-        imp._dt_prev = dt_prev
+        imp.take_books(idx, simp, dt_prev)
         w = m.world
         data = w.read_raw().copy()
         data[w.order[idx]] = sub.world.rows()
