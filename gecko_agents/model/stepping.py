@@ -14,6 +14,7 @@ import warnings
 import numpy as np
 
 from gecko_agents._stack import user_stacklevel
+from gecko_agents.model.step_loop import PadArrays, PlateStep
 from gecko_agents.physics import beam
 
 __all__ = ["Stepping"]
@@ -160,18 +161,10 @@ class Stepping:
         np.copyto(s.candidate_step, s.candidate)
         res = self.loop_results
         ext = s.external_force
-        self.loop(
+        arrays = PadArrays(
             data,
             w.order,
             w.out,
-            self.constants,
-            self.law.constants,
-            pnx,
-            pny,
-            vpx,
-            vpy,
-            max(math.hypot(vpx, vpy), 1e-4),
-            bool(ext.any()),
             w.h,
             s.candidate_step,
             s.attached,
@@ -185,6 +178,8 @@ class Stepping:
             self.gone_idx,
             res,
         )
+        plate = PlateStep(pnx, pny, vpx, vpy, max(math.hypot(vpx, vpy), 1e-4), bool(ext.any()))
+        self.loop(arrays, plate, self.constants, self.law.constants)
         if self.implicit_step is not None:
             ph.diss += self.implicit_step.correct((pnx, pny, vpx, vpy), rebook_damping=True)
             w.write_forces(s.F)
