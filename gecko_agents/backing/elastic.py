@@ -117,16 +117,17 @@ linear setae, 3 per link): stable at ω_c·dt = 1.49 (10 explicit steps), diverg
 and 2.98 (20); half the explicit bound ω·dt < 2 keeps a margin, as the explicit step's 0.75."""
 
 
-def strip_step(model) -> float:
-    """The strip's own step [µs] in ``model`` (a :class:`gecko_agents.model.Model`): the
-    model's dt with the explicit integrator (the strip steps with the tips); with the implicit
-    one, the explicit step the model would take (0.75/ω_max of the tips' stiffest spring,
-    the model's ``explicit_dt``), or the model's dt if shorter. The
-    links' inertia is scaled for this step (:class:`ElasticBacking`), and the strip sub-cycles
-    the tips' step in steps no longer than it (:meth:`ElasticBacking.roots`)."""
-    if model.integrator != "implicit":
-        return model.dt
-    return min(model.explicit_dt, model.dt)
+def strip_step(setup) -> float:
+    """The strip's own step [µs] in a run of ``setup`` (a
+    :class:`gecko_agents.model.build.Setup`, or a :class:`gecko_agents.model.Model`): the run's
+    dt with the explicit integrator (the strip steps with the tips); with the implicit one,
+    the explicit step the run would take (0.75/ω_max of the tips' stiffest spring,
+    ``explicit_dt``), or its dt if shorter. The links' inertia is scaled for this step
+    (:class:`ElasticBacking`), and the strip sub-cycles the tips' step in steps no longer than
+    it (:meth:`ElasticBacking.roots`)."""
+    if setup.integrator != "implicit":
+        return setup.dt
+    return min(setup.explicit_dt, setup.dt)
 
 
 class ElasticBacking:
@@ -139,14 +140,14 @@ class ElasticBacking:
 
     Parameters
     ----------
-    model : the :class:`gecko_agents.model.Model` being built (world, state, physics, dt).
-        Its ``params.backing.leader_arm`` [µm] > 0 (with ``drive = "peel_end"``) adds a
-        pre-peeled arm of that length beyond the pad's +x edge: links of the same strip with
-        no setae under them, laid out at ``params.backing.peel_angle_deg`` from the floor (+x,
-        the pulled side; 90 = straight up), stress-free in that shape (the kink's joint has
-        that rest angle); the handle holds the arm's end, so pulling the handle along the same
-        angle peels the pad at a steady angle (a handle pulled from the end of a flat strip
-        drags it instead).
+    setup, world, state, physics, spring_force : as
+        :class:`gecko_agents.backing.rigid.RigidBacking`'s. ``params.backing.leader_arm``
+        [µm] > 0 (with ``drive = "peel_end"``) adds a pre-peeled arm of that length beyond the
+        pad's +x edge: links of the same strip with no setae under them, laid out at
+        ``params.backing.peel_angle_deg`` from the floor (+x, the pulled side; 90 = straight
+        up), stress-free in that shape (the kink's joint has that rest angle); the handle
+        holds the arm's end, so pulling the handle along the same angle peels the pad at a
+        steady angle (a handle pulled from the end of a flat strip drags it instead).
 
     Attributes
     ----------
@@ -161,15 +162,15 @@ class ElasticBacking:
     contacts = ("batch",)
     mechanics = ("linear", "rod", "elastica")
 
-    def __init__(self, model):
-        bk = model.params.backing  # its leader_arm and peel_angle_deg, checked there
+    def __init__(self, setup, world, state, physics, spring_force):
+        bk = setup.params.backing  # its leader_arm and peel_angle_deg, checked there
         self.leader_arm, self.peel_angle_deg = float(bk.leader_arm), float(bk.peel_angle_deg)
-        self.params, self.world, self.state = model.params, model.world, model.state
-        self.physics, self.n, self._model = model.physics, model.n, model
-        self.dt = strip_step(model)
+        self.params, self.world, self.state = setup.params, world, state
+        self.physics, self.n, self.spring_force = physics, setup.n, spring_force
+        self.Ka = setup.seta.Ka
+        self.tips_implicit = setup.integrator == "implicit"  # the tips' step
+        self.dt = strip_step(setup)
         self._build_strip()
-        if model.implicit_step is not None:  # the tips follow the links a step behind
-            model.implicit_step.limit_step(COUPLING_OMEGA_DT / self.coupling_omega())
         self.setae_force = (0.0, 0.0)
         self._roots = (np.zeros(self.n), np.zeros(self.n))
         self._k, self._handle_force = 1, (0.0, 0.0)  # sub-steps of the step (roots)
@@ -294,19 +295,24 @@ class ElasticBacking:
         setae on it, Ka the seta's stiffest spring (its axial stiffness, eq 17; the seta's
         share of the model's ``k_max``) [µN/µm], m the link's mass as scaled [ng]."""
         n = int(np.bincount(self._r_link, minlength=self.strip.n).max())
-        return math.sqrt(n * self._model.Ka / self.strip.m)
+        return math.sqrt(n * self.Ka / self.strip.m)
 
-    def roots(self, hx, hy, vpx, vpy):
+    def step_limit(self) -> float | None:
+        """The longest step between events the implicit step may take [µs]: the tips follow
+        the links a step behind, so ω_c·dt ≤ :data:`COUPLING_OMEGA_DT`; None with the explicit
+        step (the strip steps with the tips)."""
+        return COUPLING_OMEGA_DT / self.coupling_omega() if self.tips_implicit else None
+
+    def roots(self, hx, hy, vpx, vpy, dt):
         """Where the roots' material points on the links will be at the end of the step and
         how fast they move, as per-seta "plates" for the seta springs (root minus the root
         offset, since :meth:`~gecko_agents.model.step_numpy.NumpyStep.spring_damp` adds it);
         the handle reaches (``hx``, ``hy``) [µm] at the step's end, moving at (``vpx``,
-        ``vpy``) [µm/µs]. Where the tips' step is longer than the strip's own (the implicit
-        step), the strip takes its sub-steps first (``_subcycle``) and the roots are
-        where they took it; else they are predicted, x + v·dt, where the strip's step after
-        the tips' (:meth:`advance`) takes them."""
+        ``vpy``) [µm/µs], the tips' step ``dt`` [µs]. Where the tips' step is longer than the
+        strip's own (the implicit step), the strip takes its sub-steps first (``_subcycle``)
+        and the roots are where they took it; else they are predicted, x + v·dt, where the
+        strip's step after the tips' (:meth:`advance`) takes them."""
         w, st = self.world, self.strip
-        dt = self._model.dt
         self._k = max(1, math.ceil(dt / self.dt - 1e-9))
         if self._k > 1:
             self._subcycle(dt, self._k, hx, hy, vpx, vpy)
@@ -335,7 +341,7 @@ class ElasticBacking:
             a = (j + 1) / k
             rx, ry, _, _, ox, oy = st.points(st.rows, link, self._r_s, h)
             tips = np.column_stack((x0 + a * (x1 - x0), y0 + a * (y1 - y0)))
-            F = self._model.spring_force(tips, np.column_stack((rx, ry)))[0]
+            F = self.spring_force(tips, np.column_stack((rx, ry)))[0]
             fs = (F[:, 0] + Fdx, F[:, 1] + Fdy)
             back = (k - 1 - j) * h  # the handle's time to the step's end [µs]
             self._handle_force = self._substep(

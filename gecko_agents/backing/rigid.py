@@ -37,7 +37,12 @@ class RigidBacking:
 
     Parameters
     ----------
-    model : the :class:`gecko_agents.model.Model` being built (its world is read).
+    setup : the run's :class:`gecko_agents.model.build.Setup` (its parameters, seta constants
+        and steps). world : the :class:`gecko_agents.model.world.World` (the handle, the
+        roots' offsets). state : the per-seta state. physics : the step's forces
+        (:class:`gecko_agents.model.step_numpy.NumpyStep`). spring_force : the setae's
+        springs, ``spring_force(tips, roots)`` → (forces (N, 2) [µN], energies [pJ], …)
+        (:meth:`gecko_agents.model.stepping.Stepping.spring_force`).
     """
 
     kind = "rigid"
@@ -53,14 +58,15 @@ class RigidBacking:
     info = None
     """Static figures for ``meta["backing"]`` (none for the rigid plate)."""
 
-    def __init__(self, model):
-        self.world = model.world
+    def __init__(self, setup, world, state, physics, spring_force):
+        self.world = world
         self.geometry = {}
         """Static arrays for ``History.geometry`` (none for the rigid plate)."""
 
-    def roots(self, hx: float, hy: float, vpx: float, vpy: float):
+    def roots(self, hx: float, hy: float, vpx: float, vpy: float, dt: float):
         """The plate the seta springs are measured from: the handle at (``hx``, ``hy``) [µm],
-        where the step evaluates forces, moving at (``vpx``, ``vpy``) [µm/µs]."""
+        where the step of ``dt`` [µs] evaluates forces, moving at (``vpx``, ``vpy``)
+        [µm/µs]."""
         return hx, hy, vpx, vpy
 
     def hold(self, state) -> None:
@@ -74,6 +80,11 @@ class RigidBacking:
     def root_positions(self, handle) -> np.ndarray:
         """Root positions (N, 2) [µm] with the handle at ``handle`` (x, y) [µm]."""
         return np.asarray(handle) + np.column_stack([self.world.root_dx, self.world.root_dy])
+
+    def step_limit(self) -> float | None:
+        """The longest step between events the backing allows the implicit step [µs] (None:
+        no bound of its own)."""
+        return None
 
     def energy(self) -> float:
         """Elastic energy of the backing [pJ]: none in a rigid plate."""

@@ -155,7 +155,10 @@ class Model(Stepping):
         self.fast_pads = setup.fast_pads
         self.kernel, self.loop, self.loop_threads = setup.kernel, setup.loop, setup.loop_threads
         self._start_books()
-        self.backing = setup.backing(self)
+        self.backing = setup.backing(setup, self.world, self.state, self.physics, self.spring_force)
+        limit = self.backing.step_limit()
+        if self.implicit_step is not None and limit is not None:
+            self.implicit_step.limit_step(limit)
         self.multirate = Multirate(self) if setup.multirate else None
 
     def _start_books(self) -> None:

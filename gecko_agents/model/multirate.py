@@ -204,7 +204,7 @@ class Multirate:
         sub.world = w
         sub.n = idx.size
         sub.physics = NumpyStep(sub.constants, m.law, s, w, m.K, m.params.friction)
-        sub.backing = RigidBacking(sub)
+        sub.backing = RigidBacking(m.setup, w, s, sub.physics, sub.spring_force)
         sub.lost_idx = np.zeros(idx.size, dtype=np.int64)
         sub.gone_idx = np.zeros(idx.size, dtype=np.int64)
         sub.loop_results = np.zeros(7)

@@ -121,7 +121,7 @@ class Stepping:
             x += s.pv[0]  # where pymunk will evaluate forces
             np.multiply(s.pv[3], dt, out=y)
             y += s.pv[1]
-            roots = bk.roots(pnx, pny, vpx, vpy)
+            roots = bk.roots(pnx, pny, vpx, vpy, dt)
             opx, opy = ph.spring_damp(*roots)
             bk.hold(s)
             if self.params.mechanics == "linear":
