@@ -354,16 +354,3 @@ class Model(Stepping):
         travel = self.world.skip_free_travel(vp, omega, self.dt, target)
         self.time += travel / math.hypot(*vp) if travel else 0.0
         return travel
-
-    def pop_releases(self) -> list:
-        """The tips that let go in the last step (``physics.events``), each as (seta, overlap
-        [µm], release overlap [µm], force [µN]): the release overlap is where the tip started
-        to run away from its equilibrium (its overlap at the step if it never did). Clears
-        those tips' release marks (``state.jump``), so each release is reported once."""
-        jump = self.state.jump
-        out = []
-        for i, d, force in self.physics.events:
-            j = jump[i]
-            out.append((i, d, d if np.isnan(j) else float(j), force))
-            jump[i] = np.nan
-        return out

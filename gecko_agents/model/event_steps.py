@@ -10,6 +10,7 @@ Units: µm, µN, µs, ng, pJ (:mod:`gecko_agents.params`).
 
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -63,7 +64,10 @@ class EventSteps:
     between events [µs], ``dt_base`` the segment's, ``k_event`` the located steps a step takes
     near an event, ``near`` the setae near one at the last located step, ``energy_scale`` the
     run's energy scale so far [pJ]. The step reads its model ``m`` (state, law, mass, dt), its
-    contact ``normal`` and the pull-off books ``_k_raw``, ``_k_rate`` of the implicit step."""
+    contact ``normal`` and the pull-off books ``_k_raw``, ``_k_rate`` of the implicit step.
+    A multirate located step (:mod:`gecko_agents.model.multirate`) steps the setae near an
+    event apart: :meth:`books`, :meth:`for_setae` and :meth:`take_books` split off their
+    per-seta books and join them back."""
 
     def limit_step(self, dt_max: float) -> None:
         """Shorten the default step between events to at most ``dt_max`` [µs], a whole number
@@ -187,3 +191,41 @@ class EventSteps:
         m.state.F *= m.dt / dt
         m.dt = dt
         m.constants = m.physics.c = m.constants._replace(dt=dt, hm=0.5 * dt / m.mass)
+
+    def books(self, idx) -> dict:
+        """The per-seta books of setae ``idx`` (copies): the last impulse ``J`` [µN·µs], its
+        F' − F ``dF`` [µN], dP/dδ ``k_raw`` [µN/µm] and its rate ``k_rate``, the last step
+        ``dt_prev`` [µs] (a number, or per seta after a multirate step)."""
+        dt_prev = self._dt_prev
+        return {
+            "J": self._J[:, idx].copy(),
+            "dF": self._dF[:, idx].copy(),
+            "k_raw": self._k_raw[idx].copy(),
+            "k_rate": self._k_rate[idx].copy(),
+            "dt_prev": dt_prev if np.ndim(dt_prev) == 0 else dt_prev[idx],
+        }
+
+    def for_setae(self, model, books: dict, dt: float) -> EventSteps:
+        """This step for ``model``, a model of some of the setae alone (a multirate step's,
+        :mod:`gecko_agents.model.multirate`), from their ``books`` (:meth:`books`), with the
+        numpy kernels and the step ``dt`` [µs]."""
+        step = copy.copy(self)
+        n = books["k_raw"].size
+        step.m = model
+        step.numerical_dissipated = 0.0
+        step._pad = False
+        step._J, step._dF = books["J"].copy(), books["dF"].copy()
+        step._k_raw, step._k_rate = books["k_raw"].copy(), books["k_rate"].copy()
+        step._dt_prev = books["dt_prev"]
+        step._kn, step._kt, step._kxy = (np.zeros(n) for _ in range(3))
+        step.set_dt(dt)
+        return step
+
+    def take_books(self, idx, other: EventSteps, dt_prev: np.ndarray) -> None:
+        """Take the books of setae ``idx`` from ``other`` (their step alone,
+        :meth:`for_setae`), with the last step of every seta ``dt_prev`` [µs]."""
+        self._J[:, idx] = other._J
+        self._dF[:, idx] = other._dF
+        self._k_raw[idx] = other._k_raw
+        self._k_rate[idx] = other._k_rate
+        self._dt_prev = dt_prev

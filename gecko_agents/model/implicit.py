@@ -66,7 +66,6 @@ location"; the step's accuracy: :data:`IMPLICIT_DT_FACTOR` and :data:`IMPLICIT_E
 
 from __future__ import annotations
 
-import copy
 import math
 
 import numpy as np
@@ -438,44 +437,6 @@ class ImplicitStep(EventSteps):
         out = -0.5 * float(np.add.reduce(vx * (J[0] - Fdt[0]) + vy * (J[1] - Fdt[1])))
         self.numerical_dissipated += out
         return out
-
-    def books(self, idx) -> dict:
-        """The per-seta books of setae ``idx`` (copies): the last impulse ``J`` [µN·µs], its
-        F' − F ``dF`` [µN], dP/dδ ``k_raw`` [µN/µm] and its rate ``k_rate``, the last step
-        ``dt_prev`` [µs] (a number, or per seta after a multirate step)."""
-        dt_prev = self._dt_prev
-        return {
-            "J": self._J[:, idx].copy(),
-            "dF": self._dF[:, idx].copy(),
-            "k_raw": self._k_raw[idx].copy(),
-            "k_rate": self._k_rate[idx].copy(),
-            "dt_prev": dt_prev if np.ndim(dt_prev) == 0 else dt_prev[idx],
-        }
-
-    def for_setae(self, model, books: dict, dt: float) -> ImplicitStep:
-        """This step for ``model``, a model of some of the setae alone (a multirate step's,
-        :mod:`gecko_agents.model.multirate`), from their ``books`` (:meth:`books`), with the
-        numpy kernels and the step ``dt`` [µs]."""
-        step = copy.copy(self)
-        n = books["k_raw"].size
-        step.m = model
-        step.numerical_dissipated = 0.0
-        step._pad = False
-        step._J, step._dF = books["J"].copy(), books["dF"].copy()
-        step._k_raw, step._k_rate = books["k_raw"].copy(), books["k_rate"].copy()
-        step._dt_prev = books["dt_prev"]
-        step._kn, step._kt, step._kxy = (np.zeros(n) for _ in range(3))
-        step.set_dt(dt)
-        return step
-
-    def take_books(self, idx, other: ImplicitStep, dt_prev: np.ndarray) -> None:
-        """Take the books of setae ``idx`` from ``other`` (their step alone,
-        :meth:`for_setae`), with the last step of every seta ``dt_prev`` [µs]."""
-        self._J[:, idx] = other._J
-        self._dF[:, idx] = other._dF
-        self._k_raw[idx] = other._k_raw
-        self._k_rate[idx] = other._k_rate
-        self._dt_prev = dt_prev
 
     def book_releases(self, events) -> float:
         """Energy to book as dissipated for the tips that let go this step [pJ]: ``events``

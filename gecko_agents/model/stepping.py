@@ -201,6 +201,19 @@ class Stepping:
         ph.any_contact_damping = True
         return float(res[0]), float(res[1])
 
+    def pop_releases(self) -> list:
+        """The tips that let go in the last step (``physics.events``), each as (seta, overlap
+        [µm], release overlap [µm], force [µN]): the release overlap is where the tip started
+        to run away from its equilibrium (its overlap at the step if it never did). Clears
+        those tips' release marks (``state.jump``), so each release is reported once."""
+        jump = self.state.jump
+        out = []
+        for i, d, force in self.physics.events:
+            j = jump[i]
+            out.append((i, d, d if np.isnan(j) else float(j), force))
+            jump[i] = np.nan
+        return out
+
     def _check_linear(self, max_u2):
         if max_u2 > (0.1 * self.L) ** 2 and not self.warned_linear:
             self.warned_linear = True
