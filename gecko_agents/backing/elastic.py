@@ -78,6 +78,7 @@ import math
 
 import numpy as np
 
+from gecko_agents.backing.handle import HandleSpring
 from gecko_agents.backing.strip import MIN_LINKS, OMEGA_DT, Strip, bending_length
 
 __all__ = [
@@ -128,6 +129,22 @@ def strip_step(setup) -> float:
     if setup.integrator != "implicit":
         return setup.dt
     return min(setup.explicit_dt, setup.dt)
+
+
+def start_turned(world, lift: float, alpha: float) -> None:
+    """A misaligned start: raise the handle of ``world`` by ``lift`` [µm] (the strip's lowest
+    edge starts where a level strip would) and put every tip at rest below its root on the
+    strip turned by ``alpha`` [rad] about the handle."""
+    w = world
+    pp = w.plate.position
+    w.plate.position = (pp.x, pp.y + lift)
+    w.plate_start = pp.y + lift
+    c, s = math.cos(alpha), math.sin(alpha)
+    dx = w.root_dx * (c - 1.0)
+    dy = w.root_dx * s + lift
+    for body, ddx, ddy in zip(w.tips, dx.tolist(), dy.tolist(), strict=True):
+        p = body.position
+        body.position = (p.x + ddx, p.y + ddy)
 
 
 class ElasticBacking:
@@ -197,7 +214,7 @@ class ElasticBacking:
         rho_A = bk.density * pitch * bk.t_b
         alpha = math.radians(bk.misalignment_deg)
         if alpha:
-            self._lift(0.5 * length * abs(math.sin(alpha)), alpha)
+            start_turned(self.world, 0.5 * length * abs(math.sin(alpha)), alpha)
         n_arm = math.ceil(self.leader_arm / ell - 1e-9)  # links of the leader arm
         strip = Strip(
             -0.5 * length,
@@ -211,7 +228,8 @@ class ElasticBacking:
         )
         if n_arm:
             strip.kink_up(n_links, math.radians(self.peel_angle_deg))
-        k_each = self._attach_handle(strip, n_links, n_arm, length, alpha)
+        self.handle = HandleSpring(strip, self.world, bk, n_links, n_arm, length, alpha)
+        k_each = self.handle.k
         # Rotary inertia first: the zig-zag mode is the links turning about their centres
         # (ω² = 4k_r/I), slowed to ω·dt = OMEGA_DT by the links' moment of inertia alone,
         # which leaves the bending waves longer than a link (ω² = EI·q⁴/ρA) at the true mass.
@@ -224,7 +242,7 @@ class ElasticBacking:
         strip.scale_inertia(mass=mass)
         m_eff *= mass
         # Damping ratio on the link end's effective mass (explicit: c·dt/m_eff = 2ζ·ω·dt).
-        self._c_h = 2.0 * bk.damping_ratio * math.sqrt(k_each * m_eff)
+        self.handle.c = 2.0 * bk.damping_ratio * math.sqrt(k_each * m_eff)
         self.strip = strip
         # Roots: link and abscissa from its centre on a straight strip.
         rx = w.root_dx
@@ -249,45 +267,6 @@ class ElasticBacking:
             "moment_scale": moment,
             "handle_stiffness_each_uN_per_um": k_each,
         }
-
-    def _attach_handle(self, strip, n_links, n_arm, length, alpha) -> float:
-        """The handle spring's points on the strip: k_h/n per link centre (uniform) or k_h on
-        the +x end (peel: of the arm, if any); returns the stiffness of each [µN/µm]."""
-        w, bk = self.world, self.params.backing
-        if bk.drive == "uniform":
-            self._h_link = np.arange(n_links)
-            self._h_s = np.zeros(n_links)
-            self._h_dx = strip.x_centre.copy()
-            k_each = bk.handle_stiffness / n_links
-        else:  # the +x end of the strip (of the arm, if any)
-            self._h_link = np.array([strip.n - 1])
-            self._h_s = np.array([0.5 * strip.ell])
-            self._h_dx = np.array([0.5 * length])
-            k_each = bk.handle_stiffness
-        self._h_dy = np.zeros_like(self._h_dx)
-        if n_arm:  # the arm's end, where kink_up laid it
-            ex, ey = strip.nodes()
-            self._h_dx[0], self._h_dy[0] = ex[-1] - w.plate.position.x, ey[-1] - w.plate.position.y
-        if alpha:  # the handle holds the strip turned: its attachment points turn with it
-            self._h_dx, self._h_dy = self._h_dx * math.cos(alpha), self._h_dx * math.sin(alpha)
-        self._k_h = k_each
-        self._E_handle = 0.0
-        return k_each
-
-    def _lift(self, lift, alpha):
-        """A misaligned start: raise the handle by ``lift`` [µm] (the strip's lowest edge
-        starts where a level strip would) and put every tip at rest below its root on the
-        strip turned by ``alpha`` [rad] about the handle."""
-        w = self.world
-        pp = w.plate.position
-        w.plate.position = (pp.x, pp.y + lift)
-        w.plate_start = pp.y + lift
-        c, s = math.cos(alpha), math.sin(alpha)
-        dx = w.root_dx * (c - 1.0)
-        dy = w.root_dx * s + lift
-        for body, ddx, ddy in zip(w.tips, dx.tolist(), dy.tolist(), strict=True):
-            p = body.position
-            body.position = (p.x + ddx, p.y + ddy)
 
     # ------------------------------------------------------------------ stepping
     def coupling_omega(self) -> float:
@@ -410,8 +389,8 @@ class ElasticBacking:
         Fdx, Fdy = s.F_damp_seta
         dfx, dfy = damp
         dtq = np.bincount(link, ox * Fdy - oy * Fdx, nl)
-        hl = self._h_link
-        Fhx, Fhy, Fcx, Fcy, qox, qoy = self._handle_forces(data, hx, hy, vpx, vpy, fx, fy, tq, dt)
+        hl = self.handle.link
+        Fhx, Fhy, Fcx, Fcy, qox, qoy = self.handle.forces(data, hx, hy, vpx, vpy, fx, fy, tq, dt)
         new = st.step(dt, fx, fy, tq)
         # Mid-step velocities of the links: what a force on a link works against.
         vmx, vmy = 0.5 * (data[:, 3] + new[:, 3]), 0.5 * (data[:, 4] + new[:, 4])
@@ -426,22 +405,6 @@ class ElasticBacking:
         handle_power = vpx * float(Fcx.sum()) + vpy * float(Fcy.sum())
         ph.diss += (handle_power - hl_power) * dt + st.dissipated
         return float(Fhx.sum()), float(Fhy.sum())
-
-    def _handle_forces(self, data, hx, hy, vpx, vpy, fx, fy, tq, dt):
-        """The handle spring k·(handle point − link point) + c·(v_handle − v_point) on the
-        links it holds, added to the links' forces ``fx``, ``fy`` and torques ``tq``; books its
-        energy ½k_h·|Δ|² at the end of the step ``dt`` [µs]. Returns its force, its damper's
-        share and the lever arms."""
-        hl = self._h_link
-        qx, qy, qvx, qvy, qox, qoy = self.strip.points(data, hl, self._h_s, dt)
-        ex, ey = hx + self._h_dx - qx, hy + self._h_dy - qy
-        self._E_handle = 0.5 * self._k_h * float(ex @ ex + ey @ ey)
-        Fcx, Fcy = self._c_h * (vpx - qvx), self._c_h * (vpy - qvy)
-        Fhx, Fhy = self._k_h * ex + Fcx, self._k_h * ey + Fcy
-        np.add.at(fx, hl, Fhx)
-        np.add.at(fy, hl, Fhy)
-        np.add.at(tq, hl, qox * Fhy - qoy * Fhx)
-        return Fhx, Fhy, Fcx, Fcy, qox, qoy
 
     # ------------------------------------------------------------------ state
     def front_x(self) -> float:
@@ -465,7 +428,7 @@ class ElasticBacking:
     def energy(self) -> float:
         """Elastic energy of the strip's joints and the handle spring [pJ] at the last step's
         evaluation positions."""
-        return self.strip.energy_bending + self._E_handle
+        return self.strip.energy_bending + self.handle.energy
 
     def kinetic_energy(self, tips: float) -> float:
         """Kinetic energy of the tips (``tips`` [pJ]) and of the strip's links [pJ] (both in
