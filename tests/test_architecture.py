@@ -186,7 +186,8 @@ MODULE_NAMES = {_module_name(p): p for p in MODULES}
 
 
 def test_backing_sits_below_the_model():
-    """A backing is built by the model and reads it; it never imports the model's modules."""
+    """A backing is built by the model from the setup and the parts it acts on; it never
+    imports the model's modules."""
     for name, path in MODULE_NAMES.items():
         if name.startswith("gecko_agents.backing"):
             up = {m for m in _package_imports(path) if m.startswith("gecko_agents.model")}
@@ -275,3 +276,32 @@ def test_the_architecture_page_names_the_tree():
         names += [f"`{p.stem}`" for p in (PKG / folder).glob("*.py") if not p.name.startswith("_")]
     missing = sorted(n for n in names if n not in text)
     assert not missing, f"{page.name} does not name {missing}"
+
+
+ENGINE_FOLDERS = ("model", "backing")
+ENGINE_FILES = ("numerics.py", "protocol.py", "history.py", "render/scene.py")
+
+
+@pytest.mark.parametrize(
+    "path",
+    [p for p in MODULES if p.relative_to(PKG).parts[0] in ENGINE_FOLDERS
+     or p.relative_to(PKG).as_posix() in ENGINE_FILES],
+    ids=lambda p: str(p.relative_to(PKG)),
+)  # fmt: skip
+def test_the_engines_rooms_hold_whole_in_view(path):
+    """The engine's classes and functions, docstrings included, stay a size a reader holds in
+    view: no class over 300 lines, no function over 80 (split by responsibility)."""
+    tree = ast.parse(path.read_text())
+    big = [
+        (node.name, n)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.ClassDef)
+        and (n := node.end_lineno - node.lineno + 1) > MAX_CLASS_CODE_LINES
+    ]
+    long = [
+        (node.name, n)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
+        and (n := node.end_lineno - node.lineno + 1) > MAX_FUNCTION_LINES
+    ]
+    assert not big and not long, f"{path}: classes {big}, functions {long} (lines)"

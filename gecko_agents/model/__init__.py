@@ -38,6 +38,7 @@ import numpy as np
 from gecko_agents.floor import Profile
 from gecko_agents.history import History
 from gecko_agents.model.build import SetaConstants, Setup, build, loop_constants
+from gecko_agents.model.free_travel import skip_free_travel
 from gecko_agents.model.implicit import ImplicitStep
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping, seta_mass
 from gecko_agents.model.multirate import Multirate
@@ -345,12 +346,12 @@ class Model(Stepping):
     def skip_free_travel(self, seg, state, vp) -> float:
         """Move plate and tips rigidly along ``vp`` (plate velocity [µm/µs]) towards where
         segment ``seg`` (its running ``state``) lets the first sensor reach the floor, while
-        nothing can touch (:meth:`gecko_agents.model.world.World.skip_free_travel`); returns
+        nothing can touch (:func:`gecko_agents.model.free_travel.skip_free_travel`); returns
         the travel [µm]: 0 while a tip is attached or with a backing that is not rigid."""
         if self.state.attached.any() or not self.backing.rigid:
             return 0.0
         target = seg.target(self, state)
         omega = math.sqrt(self.params.Ky / self.mass)
-        travel = self.world.skip_free_travel(vp, omega, self.dt, target)
+        travel = skip_free_travel(self.world, vp, omega, self.dt, target)
         self.time += travel / math.hypot(*vp) if travel else 0.0
         return travel
