@@ -13,12 +13,13 @@ neither pymunk nor numba)::
     same = ga.load("my_run")
 """
 
-from importlib import import_module
-from importlib.metadata import PackageNotFoundError, version
+from importlib import import_module as _import_module
+from importlib.metadata import PackageNotFoundError as _PackageNotFoundError
+from importlib.metadata import version as _version
 
 try:
-    __version__ = version("gecko_agents")
-except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = _version("gecko_agents")
+except _PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+unknown"
 
 # name -> (module, attribute or None for the module itself)
@@ -27,7 +28,7 @@ _LAZY = {
     "Numerics": ("gecko_agents.numerics", "Numerics"),
     "History": ("gecko_agents.history", "History"),
     "load": ("gecko_agents.history", "load"),
-    "load_run": ("gecko_agents.runfiles.run", "load_run"),
+    "read_run_file": ("gecko_agents.runfiles.run", "load_run"),
     "SetaArray": ("gecko_agents.params", "SetaArray"),
     "PAPER_TABLE1": ("gecko_agents.params", "PAPER_TABLE1"),
     "PAPER_ARRAY": ("gecko_agents.params", "PAPER_ARRAY"),
@@ -40,13 +41,28 @@ _LAZY = {
 
 __all__ = ["__version__", *_LAZY]
 
+# older name -> (its new name, why): still served, with a DeprecationWarning, until 0.3
+_RENAMED = {
+    "load_run": ("read_run_file", "it reads a run file (.toml); ga.load reads a saved run"),
+}
+
 
 def __getattr__(name: str):
+    if name in _RENAMED:
+        import warnings
+
+        new, why = _RENAMED[name]
+        warnings.warn(
+            f"gecko_agents.{name} is deprecated and goes in 0.3: use gecko_agents.{new} ({why})",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return __getattr__(new)
     try:
         module, attribute = _LAZY[name]
     except KeyError:
         raise AttributeError(f"module 'gecko_agents' has no attribute {name!r}") from None
-    value = import_module(module)
+    value = _import_module(module)
     if attribute is not None:
         value = getattr(value, attribute)
     globals()[name] = value
@@ -54,4 +70,5 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY))
+    """The public API only (not the helpers this module imports)."""
+    return sorted(__all__)

@@ -87,3 +87,20 @@ def test_from_options_takes_every_kind_of_option_without_a_warning(recwarn):
     m = ga.Model.from_options(P5, n_sim=1, seed=2, dt=0.05, integrator="explicit")
     assert (m.numerics.dt, m.numerics.integrator, m.seed) == (0.05, "explicit", 2)
     assert not [w for w in recwarn if issubclass(w.category, DeprecationWarning)]
+
+
+def test_dir_lists_the_public_api_only():
+    import gecko_agents as ga
+
+    assert dir(ga) == sorted(ga.__all__)
+    assert not {"import_module", "version", "PackageNotFoundError"} & set(dir(ga))
+
+
+def test_load_run_is_read_run_file_with_a_deprecation():
+    """``ga.load_run`` reads a run file, not a saved run (``ga.load``): it is
+    ``ga.read_run_file`` now, the older name served with a warning naming the new one."""
+    import gecko_agents as ga
+
+    with pytest.warns(DeprecationWarning, match="gecko_agents.read_run_file"):
+        older = ga.load_run
+    assert older is ga.read_run_file
