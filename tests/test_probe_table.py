@@ -11,6 +11,7 @@ tests/test_calibrate.py. The next probe round adds its rows here.
 """
 
 import json
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -511,3 +512,40 @@ def test_the_table_has_no_duplicate_probe():
 def test_a_meaningful_run_file_is_not_refused(tmp_path, capsys, monkeypatch):
     # The baseline the run-file rows edit: their refusals come from the edit, not the file.
     assert _run_file(Probe(tmp_path, capsys, monkeypatch), RUN_FILE)[0] == 0
+
+
+# Issue 54: the laws ---------------------------------------------------------------------------
+# Each row the issue's input; the laws' closed-form oracles are in the laws' own test files.
+
+
+def _sharp_obtuse_rim(probe: Probe):
+    """The issue's sharp 120° rim on a tip of ν = 0.1 (flange 20 µm on a 16 µm stalk,
+    σ₀ = 2 MPa): its rim is singular (λ = 0.8004 ± 0.1327i), so it lets go from the rim at
+    σ₀πa²·0.83·χ^(−(1 − Re λ)), not from the centre at σ₀πa² = 2513 µN."""
+    from gecko_agents.contact import contact_law
+    from gecko_agents.physics import flaw_tolerance as ft
+
+    p = STIFF.replace(
+        tip="mushroom", mechanics="rod", contact={"R": 20.0, "sigma0": 2.0, "nu1": 0.1},
+        seta={"r": 16.0}, mushroom={"rim": "sharp", "rim_angle_deg": 120.0},
+    )  # fmt: skip
+    law = contact_law(p)
+    chi = ft.flaw_parameter(20.0, 2.0, law.E_star, law.w)
+    rim = math.pi * 20.0**2 * 2.0 * 0.83 * chi ** -(1.0 - 0.8003909)
+    return (law.release_mode, round(law.pull_off_force / rim, 5)), str(law.mode_forces)
+
+
+ROWS_54_LAWS = [
+    Row("sharp 120 deg rim at nu 0.1", _sharp_obtuse_rim, ("edge", 1.0), ("edge", "centre")),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_LAWS],
+)
+def test_probe_issue_54_laws(row, tmp_path, capsys, monkeypatch):
+    outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))
+    assert outcome == row.expected, message
+    for name in row.names:
+        assert name in message, (name, message)

@@ -47,8 +47,9 @@ def edge_pull_off(a_t, w, E_star, sigma0, rim="flawed", rim_angle_deg=90.0, nu=0
 
     ``rim = "flawed"``: Kendall's edge crack capped at σ₀πa_t², the flat punch's law.
     ``rim = "sharp"``: σ₀πa_t²·min(1, 0.83·χ^(−(1 − λ))) with λ the bonded rim's
-    :func:`~gecko_agents.physics.wedge.singularity_exponent`; ``inf`` where the rim is not
-    singular (no edge mode) or σ₀ is unbounded.
+    :func:`~gecko_agents.physics.wedge.singularity_exponent` (the real part of a complex
+    root: an obtuse rim of a compressible tip); ``inf`` where the rim is not singular (no
+    edge mode) or σ₀ is unbounded.
 
     Parameters
     ----------
