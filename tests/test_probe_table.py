@@ -535,8 +535,22 @@ def _sharp_obtuse_rim(probe: Probe):
     return (law.release_mode, round(law.pull_off_force / rim, 5)), str(law.mode_forces)
 
 
+def _punch_at_a_cr(probe: Probe):
+    """A flat punch of radius a_cr = 8E*w/(πσ₀²) on an interface of σ₀ = 0.3 MPa: its
+    pull-off over σ₀πa² (the simple form's kink, 1) is the Dugdale punch's 0.8663."""
+    from gecko_agents.contact import contact_law
+    from gecko_agents.physics import flaw_tolerance as ft
+
+    c = STIFF.contact
+    a_cr = float(ft.flaw_tolerant_radius(0.3, c.E_star, c.work_of_adhesion))
+    p = STIFF.replace(tip="flat_punch", mechanics="rod", contact={"R": a_cr, "sigma0": 0.3})
+    law = contact_law(p)
+    return round(law.pull_off_force / (math.pi * a_cr**2 * 0.3), 4), f"a_cr = {a_cr} um"
+
+
 ROWS_54_LAWS = [
     Row("sharp 120 deg rim at nu 0.1", _sharp_obtuse_rim, ("edge", 1.0), ("edge", "centre")),
+    Row("punch of radius a_cr with sigma0 0.3", _punch_at_a_cr, 0.8663, ("a_cr",)),
 ]  # fmt: skip
 
 

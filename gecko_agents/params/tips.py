@@ -28,7 +28,8 @@ class Mushroom:
     Attributes
     ----------
     rim : how the flange's rim meets the floor. ``"flawed"`` (default): a step or rounding at
-        the rim restores an edge crack (Kendall's, capped at σ₀: the flat punch's law).
+        the rim restores an edge crack (Kendall's with a cohesive zone at σ₀: the flat punch's
+        law).
         ``"sharp"``: an intact corner of edge angle ``rim_angle_deg`` bonded to the floor,
         singular or not by the wedge's eigenproblem (:mod:`gecko_agents.physics.wedge`);
         needs a finite ``contact.sigma0``.

@@ -9,9 +9,9 @@ radius covers the backing alike. A flat punch's pull-off per area is then
 (πa²/pitch²)·σ, σ its pull-off stress:
 
 * without a strength limit (σ₀ = inf), Kendall's √(8E*w/(πa)): splitting always pays, as a^−1/2;
-* with a strength σ₀, min(Kendall's, σ₀)
-  (:func:`gecko_agents.physics.flaw_tolerance.punch_pull_off`): splitting pays down to the
-  flaw-tolerant radius a_cr = 8E*w/(πσ₀²) and not below;
+* with a strength σ₀, the Dugdale punch (:func:`gecko_agents.physics.flaw_tolerance.
+  punch_pull_off`), below min(Kendall's, σ₀): splitting pays down to about the flaw-tolerant
+  radius a_cr = 8E*w/(πσ₀²) and not below 0.540·a_cr, where the whole face holds σ₀;
 * a mushroom (flange 1.2 × its stalk, Aksak et al.'s optimum, sharp 45° rim, not singular)
   lets go from its centre at σ₀ over the flange with no defect, whatever its size; with a
   central defect a quarter of the flange's radius, by Griffith's penny crack, capped at σ₀.
