@@ -28,6 +28,7 @@ from gecko_agents.model import Model, Numerics
 from gecko_agents.model.cost import RunCostError
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 from gecko_agents.protocol import PressLimitError
+from gecko_agents.runfiles.schema import RunFileError
 
 ROOT = Path(__file__).resolve().parents[1]
 RUN_FILE = GOOD.replace("n_sim = 1", 'n_sim = 1\nkernel = "numpy"')  # no compilation to wait for
@@ -548,7 +549,65 @@ def _punch_at_a_cr(probe: Probe):
     return round(law.pull_off_force / (math.pi * a_cr**2 * 0.3), 4), f"a_cr = {a_cr} um"
 
 
+MUSHROOM_DESIGN = """
+seed = 0
+trials = 4
+confirm = 0
+objectives = "pull_off_per_area"
+[material]
+E_MPa = 1.413
+nu = 0.3
+w_J_per_m2 = 0.165
+sigma0_MPa = 0.5
+[surface]
+kind = "flat"
+[test]
+preload_kPa = 10.0
+floor_seeds = 1
+pillars = 10
+[space]
+tip = "mushroom"
+radius_um = 1.1
+aspect_ratio = 2.0
+lean_deg = 90.0
+flange_ratio = 5.0
+fill_fraction = [0.3, 0.7]
+"""
+
+
+def _load_design(path: str):
+    from gecko_agents.design import load_design
+
+    return load_design(Path(path))
+
+
+def _overlapping_flanges_screened(probe: Probe):
+    """The issue's design, flange ratio 5 at fill 0.69: flanges of 5.5 µm radius on a pitch
+    of 2.35 µm, in a space that also holds designs whose flanges fit (flange ratio from 1).
+    The screen holds it to nothing and it breaks the constraint faces_fit_pitch."""
+    from gecko_agents.design.screen import evaluate
+
+    text = MUSHROOM_DESIGN.replace("flange_ratio = 5.0", "flange_ratio = [1.0, 5.0]")
+    spec = _load_design(_write(probe, text, "d.toml"))
+    values = {**spec.fixed, "tip": "mushroom", "backing": "rigid", "mushroom_rim": "flawed"}
+    values |= {"fill_fraction": 0.69, "flange_ratio": 5.0}
+    res = evaluate(spec, values)
+    broken = sorted(k for k, v in res["constraints"].items() if v > 0)
+    return (res["objectives"]["pull_off_per_area"], broken), str(res["constraints"])
+
+
 ROWS_54_LAWS = [
+    Row("mushroom flange R 3 on pitch 4",
+        lambda p: _raised(lambda: Model(P41.replace(tip="mushroom", mechanics="elastica",
+                                                    seta={"r": 1.5, "theta_deg": 90.0},
+                                                    contact={"R": 3.0},
+                                                    array={"count": 5, "pitch": 4.0}), n_sim=5)),
+        ValueError, ("Contact.R = 3.0", "Seta.r = 1.5", "Array.pitch/2 = 2.0")),
+    Row("flange ratio 5 at fill 0.69 in a design", _overlapping_flanges_screened,
+        (0.0, ["faces_fit_pitch"]), ("faces_fit_pitch",)),
+    Row("design: flange ratio 5, fill 0.3 to 0.7",
+        lambda p: _raised(lambda: _load_design(_write(p, MUSHROOM_DESIGN, "d.toml"))),
+        RunFileError, ("flange_ratio in [5, 5]", "fill_fraction in [0.3, 0.7]", "d.toml")),
     Row("sharp 120 deg rim at nu 0.1", _sharp_obtuse_rim, ("edge", 1.0), ("edge", "centre")),
     Row("punch of radius a_cr with sigma0 0.3", _punch_at_a_cr, 0.8663, ("a_cr",)),
 ]  # fmt: skip

@@ -295,15 +295,21 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
                 f"[constraints] {key}",
                 f"{bound:g} leaves no design: [space] {knob} spans [{lo:g}, {hi:g}]",
             )
+    from gecko_agents.design.screen import face_overlap
+
     base = base_params(spec)
     corners = [[(k, v) for v in spec.ranges[k]] for k in spec.ranges]
     sigma0 = spec.material["sigma0_MPa"]
+    fits = 0  # corners whose faces fit the pitch (overlap is monotone: the least is a corner)
     for tip, backing, rim in itertools.product(
         spec.choices["tip"], spec.choices["backing"], spec.choices["mushroom_rim"]
     ):
         for corner in itertools.islice(itertools.product(*corners), 256):
             values = {**spec.fixed, **dict(corner), "tip": tip, "backing": backing}
             values["mushroom_rim"] = rim
+            if (face_overlap(spec, values) or 0.0) > 0:  # a broken constraint, not refused
+                continue
+            fits += 1
             try:
                 p = base.replace(**overrides_of(values, sigma0))
             except (ValueError, TypeError) as err:
@@ -313,6 +319,15 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
                     f"the design at {shown} (tip {tip!r}) is not a valid parameter set: {err}",
                 ) from None
             _check_scan(ctx, spec, p, corner)
+    if not fits:
+        knobs = ("radius_um", "flange_ratio", "fill_fraction", "spacing_um")
+        shown = ", ".join(f"{k} in [{span[k][0]:g}, {span[k][1]:g}]" for k in knobs if k in span)
+        raise ctx.error(
+            "[space]",
+            f"{shown} leaves no design whose flanges fit the pitch: flange_ratio·radius_um "
+            "must be at most half the pitch (pitch = radius_um·√(π/fill_fraction), or "
+            "spacing_um), else neighbouring flanges overlap",
+        )
 
 
 def _check_scan(ctx: Ctx, spec: DesignSpec, p: SetaArray, corner) -> None:

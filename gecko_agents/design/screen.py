@@ -213,6 +213,9 @@ def evaluate(spec, values: dict) -> dict:
     :data:`~gecko_agents.design.space.OBJECTIVES`), ``constraints`` (key → violation, ≤ 0
     where the design keeps the bound, as a fraction of it), ``metrics`` (what the report
     shows) and ``validity`` (the screen's assumptions, each judged for this design)."""
+    overlap = face_overlap(spec, values)
+    if overlap is not None and overlap > 0:
+        return _overlapping_faces(overlap)
     p = design_params(spec, values)
     n, s = p.array.count, p.array.pitch
     area = n * s * s
@@ -251,11 +254,53 @@ def evaluate(spec, values: dict) -> dict:
         "full_contact_kPa": full_touch,
         "pull_off_std_kPa": float(np.std(per_area)),
     }
+    constraints = constraint_values(spec, values, p, metrics)
+    if overlap is not None:
+        constraints[FACES_FIT] = overlap
     return {
         "objectives": objectives,
-        "constraints": constraint_values(spec, values, p, metrics),
+        "constraints": constraints,
         "metrics": metrics,
         "validity": validity(spec, p, metrics),
+    }
+
+
+FACES_FIT = "faces_fit_pitch"
+"""The constraint every design with a face wider than its stalk keeps: (2R − s)/s ≤ 0, its
+neighbouring faces (a mushroom's flanges) apart (the parameters refuse overlapping ones)."""
+
+
+def face_overlap(spec, values: dict) -> float | None:
+    """(2R − s)/s [-] of a design whose flat face (radius R) is wider than its stalk (r), s
+    the pitch: > 0 where neighbouring faces overlap; None for other designs."""
+    from gecko_agents.design.schema import base_params
+    from gecko_agents.params.tips import FLAT_FACE_TIPS
+
+    o = overrides_of({**spec.fixed, **values})
+    base = base_params(spec)
+    R = o.get("contact.R", base.contact.R)
+    r, s = o.get("seta.r", base.seta.r), o.get("array.pitch", base.array.pitch)
+    if o["tip"] not in FLAT_FACE_TIPS or R <= r:
+        return None
+    return (2.0 * R - s) / s
+
+
+def _overlapping_faces(overlap: float) -> dict:
+    """The screen of a design whose faces overlap: no array holds it, so it holds nothing
+    and breaks :data:`FACES_FIT` (its metrics not computed, NaN)."""
+    keys = ("pitch_um", "L_um", "gap_um", "fill_fraction", "euler_load_uN",
+            "preload_per_pillar_uN", "peak_pillar_force_uN", "full_contact_kPa",
+            "pull_off_std_kPa")  # fmt: skip
+    return {
+        "objectives": {
+            "pull_off_per_area": 0.0,
+            "worst_case": 0.0,
+            "spread": 1.0,
+            "release_force": 0.0,
+        },
+        "constraints": {FACES_FIT: overlap},
+        "metrics": dict.fromkeys(keys, math.nan),
+        "validity": [],
     }
 
 
