@@ -596,6 +596,14 @@ def _overlapping_flanges_screened(probe: Probe):
     return (res["objectives"]["pull_off_per_area"], broken), str(res["constraints"])
 
 
+def _detachment_force(probe: Probe, kw: dict):
+    """The one seta's recorded detachment force [µN, 4 digits] at a step ``kw``: JKR's at
+    its fold, −(5/9)·Fc = −1.7271 µN, whatever the step's overshoot (the run unchecked)."""
+    probe.monkeypatch.setattr(Model, "run", Model.run.__globals__.get("_run", Model.run))
+    h = Model(P41, seed=1, **kw).run(protocol.press_pull(0.5, speed=0.05), progress=False)
+    return round(float(h.detachments["force_uN"][0]), 4), str(h.detachments["overlap_um"])
+
+
 ROWS_54_LAWS = [
     Row("mushroom flange R 3 on pitch 4",
         lambda p: _raised(lambda: Model(P41.replace(tip="mushroom", mechanics="elastica",
@@ -610,6 +618,11 @@ ROWS_54_LAWS = [
         RunFileError, ("flange_ratio in [5, 5]", "fill_fraction in [0.3, 0.7]", "d.toml")),
     Row("sharp 120 deg rim at nu 0.1", _sharp_obtuse_rim, ("edge", 1.0), ("edge", "centre")),
     Row("punch of radius a_cr with sigma0 0.3", _punch_at_a_cr, 0.8663, ("a_cr",)),
+    Row("detachment force at the explicit step", lambda p: _detachment_force(p, {}),
+        -1.7271, ()),
+    Row("detachment force at implicit dt 30",
+        lambda p: _detachment_force(p, {"integrator": "implicit", "dt": 30.0,
+                                        "event_dt": 30.0}), -1.7271, ()),
 ]  # fmt: skip
 
 
