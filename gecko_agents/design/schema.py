@@ -23,6 +23,7 @@ from gecko_agents.design.space import (
     MATERIAL_DEFAULTS,
     OBJECTIVES,
     TIP_KINDS,
+    face_overlap,
     overrides_of,
 )
 from gecko_agents.params import PAPER_ARRAY, SetaArray
@@ -295,8 +296,6 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
                 f"[constraints] {key}",
                 f"{bound:g} leaves no design: [space] {knob} spans [{lo:g}, {hi:g}]",
             )
-    from gecko_agents.design.screen import face_overlap
-
     base = base_params(spec)
     corners = [[(k, v) for v in spec.ranges[k]] for k in spec.ranges]
     sigma0 = spec.material["sigma0_MPa"]
@@ -307,7 +306,7 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
         for corner in itertools.islice(itertools.product(*corners), 256):
             values = {**spec.fixed, **dict(corner), "tip": tip, "backing": backing}
             values["mushroom_rim"] = rim
-            if (face_overlap(spec, values) or 0.0) > 0:  # a broken constraint, not refused
+            if (face_overlap(values, base) or 0.0) > 0:  # a broken constraint, not refused
                 continue
             fits += 1
             try:

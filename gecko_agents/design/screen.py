@@ -37,7 +37,13 @@ import math
 import numpy as np
 
 from gecko_agents import floor
-from gecko_agents.design.space import KPA, TIP_KINDS, measured_profile, overrides_of
+from gecko_agents.design.space import (
+    KPA,
+    TIP_KINDS,
+    face_overlap,
+    measured_profile,
+    overrides_of,
+)
 from gecko_agents.params import SetaArray
 from gecko_agents.physics import beam, fibril_probe, fibril_probe_halfspace, layer
 
@@ -213,7 +219,9 @@ def evaluate(spec, values: dict) -> dict:
     :data:`~gecko_agents.design.space.OBJECTIVES`), ``constraints`` (key → violation, ≤ 0
     where the design keeps the bound, as a fraction of it), ``metrics`` (what the report
     shows) and ``validity`` (the screen's assumptions, each judged for this design)."""
-    overlap = face_overlap(spec, values)
+    from gecko_agents.design.schema import base_params
+
+    overlap = face_overlap({**spec.fixed, **values}, base_params(spec))
     if overlap is not None and overlap > 0:
         return _overlapping_faces(overlap)
     p = design_params(spec, values)
@@ -268,21 +276,6 @@ def evaluate(spec, values: dict) -> dict:
 FACES_FIT = "faces_fit_pitch"
 """The constraint every design with a face wider than its stalk keeps: (2R − s)/s ≤ 0, its
 neighbouring faces (a mushroom's flanges) apart (the parameters refuse overlapping ones)."""
-
-
-def face_overlap(spec, values: dict) -> float | None:
-    """(2R − s)/s [-] of a design whose flat face (radius R) is wider than its stalk (r), s
-    the pitch: > 0 where neighbouring faces overlap; None for other designs."""
-    from gecko_agents.design.schema import base_params
-    from gecko_agents.params.tips import FLAT_FACE_TIPS
-
-    o = overrides_of({**spec.fixed, **values})
-    base = base_params(spec)
-    R = o.get("contact.R", base.contact.R)
-    r, s = o.get("seta.r", base.seta.r), o.get("array.pitch", base.array.pitch)
-    if o["tip"] not in FLAT_FACE_TIPS or R <= r:
-        return None
-    return (2.0 * R - s) / s
 
 
 def _overlapping_faces(overlap: float) -> dict:
