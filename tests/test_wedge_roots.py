@@ -100,6 +100,17 @@ def test_obtuse_bonded_corner_of_a_compressible_tip_has_williams_complex_root(an
         assert (round(got.real, 4), round(got.imag, 4)) == (0.8004, 0.1327)
 
 
+@pytest.mark.parametrize("angle", [1.0, 5.0, 10.0, 30.0, 45.0])
+@pytest.mark.parametrize("nu", [0.0, 0.3, 0.5])
+def test_thin_bonded_corners_have_no_root_real_or_complex(angle, nu):
+    """Williams' clamped–free equation has no root, real or complex, with 0 < Re λ < 1 for
+    rims up to 45°, and the module finds none (a thin wedge's determinant is nearly constant
+    in λ: a secant step that stalls there is not a root)."""
+    alpha = math.radians(angle)
+    assert _bonded(alpha, nu) is None and _bonded_complex(alpha, nu) is None
+    assert corner_eigenvalue(angle, nu, "bonded") == complex(NOT_SINGULAR)
+
+
 @pytest.mark.parametrize("nu", [0.0, 0.1, 0.25, 0.3, 0.45])
 def test_bonded_half_plane_is_the_crack_on_a_rigid_floor(nu):
     """A 180° corner bonded to a rigid floor is an interface crack between the body and a
