@@ -46,11 +46,12 @@ from gecko_agents import render
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.provenance import versions
 from gecko_agents.studies.common import RENDERS, command_line, parse_args, write_json, write_table
-from gecko_agents.studies.validation_ours import CLOSED_FORM, OURS
-from gecko_agents.studies.validation_rows import KINDS, ROWS
+from gecko_agents.studies.validation_ours import CLOSED_FORM, OURS, QUICK_SIZED
+from gecko_agents.studies.validation_rows import KINDS, MAGNITUDE_KINDS, ROWS
 
 NAME = "literature_comparison"
 AGREES_SCATTER = "agrees (within their scatter)"
+AGREES_TOLERANCE = "agrees (within the stated tolerance)"
 AGREES_BAND = "agrees (within the stated factor)"
 TREND_AGREES = "trend agrees (sign and stated factor)"
 DISAGREES_MAGNITUDE = "disagrees (magnitude)"
@@ -58,6 +59,7 @@ DISAGREES_SIGN = "disagrees (sign)"
 NOT_COMPARABLE = "not comparable"
 VERDICTS = (
     AGREES_SCATTER,
+    AGREES_TOLERANCE,
     AGREES_BAND,
     TREND_AGREES,
     DISAGREES_MAGNITUDE,
@@ -65,7 +67,15 @@ VERDICTS = (
     NOT_COMPARABLE,
 )
 """The verdicts of a scored row."""
-UNSCORED = {"pending": "pending", "out of scope": "out of scope", "not read": "not scored"}
+AGREES = (AGREES_SCATTER, AGREES_TOLERANCE, AGREES_BAND)
+"""The verdicts of a magnitude that agrees."""
+UNSCORED = {
+    "pending": "pending",
+    "out of scope": "out of scope",
+    "not read": "not scored",
+    "calibration": "calibration point (not scored)",
+    "derived": "derived (not scored again)",
+}
 """The verdict of a row that is not scored, by its status."""
 TREND_RESOLUTION = 0.01
 """An effect within 1 % is no effect (a trend neither way): repeated pull-offs of the same pad
@@ -86,11 +96,31 @@ def effect(row: dict, value: float) -> float:
     raise ValueError(f"row {row['id']!r}: expect = {expect!r} must be '>1', '<1' or '>0'")
 
 
+def half_width(row: dict) -> float | None:
+    """The half-width of a tolerance row's band, in the quantity's unit: the tolerance times
+    their value, or for a bounded quantity (0 ≤ theirs ≤ 1, as Φ = σ_s/σ₀) times its distance
+    to the nearer bound, min(theirs, 1 − theirs): the band on Φ or on 1 − Φ, whichever is
+    the smaller number (a band on 0.97 itself would accept every Φ above 0.73)."""
+    if row["tolerance"] is None:
+        return None
+    theirs = row["theirs_value"]
+    scale = min(theirs, 1.0 - theirs) if row["bounded"] else abs(theirs)
+    return row["tolerance"] * scale
+
+
 def _magnitude(row: dict, value: float) -> tuple[str, str] | None:
-    """The agreeing verdict where ours' magnitude lies within the row's scatter or band."""
+    """The agreeing verdict where ours' magnitude lies within the row's scatter, tolerance or
+    (trend rows and self-consistency checks) factor band."""
     theirs, scatter, band = row["theirs_value"], row["scatter"], row["band"]
     if scatter is not None and abs(value - theirs) <= scatter:
         return AGREES_SCATTER, f"ours is within their ±{scatter:g} ({row['scatter_why']})"
+    hw = half_width(row)
+    if hw is not None and abs(value - theirs) <= hw:
+        on = "on the distance to the nearer bound" if row["bounded"] else "of theirs"
+        return AGREES_TOLERANCE, (
+            f"ours {value:.4g} is within ±{hw:.3g} of theirs {theirs:g} "
+            f"(±{100 * row['tolerance']:g} % {on}: {row['tolerance_why']})"
+        )
     if band is None:
         return None
     if row["compare"] == "value" and theirs / band <= value <= theirs * band:
@@ -112,7 +142,12 @@ def _outside(row: dict, value: float, sens: list[dict]) -> tuple[str, str]:
             f"inside the {min(ends):.3g}–{max(ends):.3g} ours spans over "
             "the parameters we could not read for their specimen"
         )
-    how = f"±{row['scatter']:g}" if row["scatter"] is not None else f"×{row['band']:g}"
+    if row["scatter"] is not None:
+        how = f"±{row['scatter']:g}"
+    elif row["tolerance"] is not None:
+        how = f"±{half_width(row):.3g} (±{100 * row['tolerance']:g} %)"
+    else:
+        how = f"×{row['band']:g}"
     if row["compare"] == "trend" and row["scatter"] is None:
         size = math.log(value) / math.log(theirs)
         return DISAGREES_MAGNITUDE, (
@@ -196,6 +231,7 @@ def evaluate(row: dict, quick: bool) -> dict:
     v, why = verdict(row, ours, sens)
     return {
         **row,
+        "quick_may_differ": quick and row["ours"] in QUICK_SIZED,
         "ours_value": None if ours is None else ours["value"],
         "ours_values": None if ours is None else ours.get("values", [ours["value"]]),
         "ours_text": "—" if ours is None else ours["text"],
@@ -204,6 +240,51 @@ def evaluate(row: dict, quick: bool) -> dict:
         "reason": f"{why}. {row['cause']}".strip(),
         "wall_time_s": time.perf_counter() - t0,
     }
+
+
+def is_magnitude(row: dict) -> bool:
+    """A magnitude row: an experiment's or another model's printed value compared with ours
+    (not a value read from words, such as 'preload-independent')."""
+    return row["compare"] == "value" and row["kind"] in MAGNITUDE_KINDS and not row["in_words"]
+
+
+def is_trend(row: dict) -> bool:
+    """A trend row, counted apart: a direction, or a value read from words."""
+    return row["compare"] == "trend" or (row["compare"] == "value" and row["in_words"])
+
+
+def headline(rows: list[dict]) -> dict:
+    """The report's headline: magnitude rows (:func:`is_magnitude`) scored, agreeing, and the
+    same counted by independent measurement (a paper's figure, table or abstract sentence,
+    the rows' ``measurement``: it agrees where all its scored rows do) and by paper; trend
+    rows are counted apart. Rows *not comparable* or not scored are left out of both."""
+    mag = [r for r in rows if is_magnitude(r) and r["verdict"] in VERDICTS]
+    mag = [r for r in mag if r["verdict"] != NOT_COMPARABLE]
+    groups: dict[str, list[dict]] = {}
+    for r in mag:
+        groups.setdefault(r["measurement"], []).append(r)
+    trend = [r for r in rows if is_trend(r) and r["verdict"] in VERDICTS]
+    return {
+        "magnitude_rows": len(mag),
+        "magnitude_agree": sum(r["verdict"] in AGREES for r in mag),
+        "measurements": len(groups),
+        "measurements_agree": sum(all(r["verdict"] in AGREES for r in g) for g in groups.values()),
+        "papers": len({r["source"] for r in mag}),
+        "not_comparable": sum(is_magnitude(r) and r["verdict"] == NOT_COMPARABLE for r in rows),
+        "trend_rows": len(trend),
+        "trend_agree": sum(r["verdict"] in (TREND_AGREES,) + AGREES for r in trend),
+        "quick_may_differ": sum(r["quick_may_differ"] for r in mag + trend),
+    }
+
+
+def headline_text(h: dict) -> str:
+    """:func:`headline` as one sentence."""
+    return (
+        f"Magnitude: {h['magnitude_agree']} of {h['magnitude_rows']} rows agree within their "
+        f"band ({h['measurements_agree']} of {h['measurements']} independent measurements, "
+        f"{h['papers']} papers; {h['not_comparable']} more not comparable). Trend, counted "
+        f"apart: {h['trend_agree']} of {h['trend_rows']} agree."
+    )
 
 
 def counts(rows: list[dict]) -> dict:
@@ -270,7 +351,7 @@ def _table(rows: list[dict]) -> list[str]:
             r["theirs"],
             params_cell(r),
             ours_cell(r),
-            r["verdict"],
+            r["verdict"] + (" †" if r.get("quick_may_differ") else ""),
             r["reason"],
         )
         lines.append(
@@ -279,10 +360,18 @@ def _table(rows: list[dict]) -> list[str]:
     return lines
 
 
-def summary(rows: list[dict]) -> list[str]:
-    """The verdict counts, one line per kind, and the scored total."""
-    c = counts(rows)
-    lines = ["## Verdicts", ""]
+def summary(rows: list[dict], quick: bool) -> list[str]:
+    """The headline, the verdict counts (one line per kind) and the scored total."""
+    c, h = counts(rows), headline(rows)
+    lines = ["## Headline", "", headline_text(h), ""]
+    if quick and h["quick_may_differ"]:
+        lines += [
+            f"Quick run: {h['quick_may_differ']} of these rows ran on smaller pads or fewer "
+            "pulls than the full run (marked † in the tables); their verdict may differ "
+            "there.",
+            "",
+        ]
+    lines += ["## Verdicts", ""]
     for kind in KINDS:
         parts = ", ".join(f"{v}: {n}" for v, n in c[kind].items()) or "none"
         lines.append(f"* {KIND_TITLES[kind]}: {parts}")
@@ -311,8 +400,14 @@ def markdown(rows: list[dict], quick: bool, total: float) -> str:
         "",
     ]
     if quick:
-        lines += ["**Quick run: small pads and few pulls; agent rows without sensitivity.**", ""]
-    lines += summary(rows)
+        lines += [
+            "**Run: quick** (small pads and few pulls; agent rows without sensitivity; a "
+            "verdict marked † may differ in the full run).",
+            "",
+        ]
+    else:
+        lines += ["**Run: full.**", ""]
+    lines += summary(rows, quick)
     for kind in KINDS:
         sel = [r for r in rows if r["kind"] == kind]
         if sel:
@@ -398,15 +493,19 @@ def main(argv=None) -> dict:
     ]
     write_table(out / f"{NAME}.csv", table)
     c = counts(rows)
+    h = headline(rows)
     write_json(
         out / "metadata.json",
-        {"scenario": "validation", "quick": args.quick, "verdicts": c, "runtime_s": total},
+        {
+            "scenario": "validation",
+            "quick": args.quick,
+            "headline": h,
+            "verdicts": c,
+            "runtime_s": total,
+        },
     )
-    scored = c["scored"]
-    print(
-        f"{NAME}: {sum(scored.values())} of {len(rows)} rows scored "
-        f"({', '.join(f'{n} {k}' for k, n in scored.items())}) in {total:.0f} s → {out}"
-    )
+    run = "quick run" if args.quick else "full run"
+    print(f"{NAME} ({run}): {headline_text(h)} {len(rows)} rows in {total:.0f} s → {out}")
     return {"rows": rows, "runtime_s": total}
 
 
