@@ -161,6 +161,12 @@ def test_trend_verdicts_need_the_sign_and_the_stated_size():
     assert val.verdict(words, {"value": 0.6}, [])[0] == val.TREND_AGREES  # a 40 % drop
     assert val.verdict(words, {"value": 0.8}, [])[0] == val.DISAGREES_MAGNITUDE
     assert val.verdict(words, {"value": 1.2}, [])[0] == val.DISAGREES_SIGN
+    # A size in words met only at an end of an unread parameter: not comparable.
+    spans = [{"status": "assumed", "ours_at_ends": [1.0, 0.0]}]
+    assert val.verdict(words, {"value": 1.0}, spans)[0] == val.NOT_COMPARABLE
+    assert val.verdict(words, {"value": 1.0}, [{**spans[0], "status": "cited"}])[0] == (
+        val.DISAGREES_MAGNITUDE
+    )
     slope = _row(compare="trend", expect=">0", theirs_value=None, min_effect=0.01)
     assert val.verdict(slope, {"value": 0.4}, [])[0] == val.TREND_AGREES
     with pytest.raises(ValueError, match="expect"):
@@ -368,7 +374,16 @@ def test_quick_report_rows_and_files(report):
             assert math.isfinite(r["ours_value"]), r["id"]
     meta = json.loads((out / "metadata.json").read_text())
     assert sum(meta["verdicts"]["scored"].values()) >= 20
-    assert meta["verdicts"]["scored"]["experiment"] >= 12
+    h = meta["headline"]
+    assert h == val.headline(list(rows.values()))
+    assert h["magnitude_rows"] + h["not_comparable"] >= 12 and h["papers"] >= 6
+    # Rows run smaller in --quick are marked, and only those.
+    assert {r["id"] for r in rows.values() if r["quick_may_differ"]} == {
+        r["id"] for r in ROWS if val.quick_may_differ(r)
+    }
+    assert {r["id"] for r in ROWS if r["ours"] in vo.QUICK_SIZED} <= {
+        r["id"] for r in ROWS if val.quick_may_differ(r)
+    }
     assert rows["autumn2006a_k_seta"]["ours_value"] == pytest.approx(lit.AUTUMN2006_SETA.Ky)
 
 
@@ -491,9 +506,16 @@ def test_del_campo_ratio_is_aksaks_eq3_with_the_packages_release_forces():
 
 
 @pytest.mark.slow
-def test_paretkar_row_presses_their_fibril_below_and_past_buckling():
+def test_paretkar_rows_tell_round_edges_from_end_flaps():
+    """Below buckling both faces hold Kendall's force; pressed by 70 % of L the face that opens
+    at its edge (round edge) holds nothing, the face kept bonded (end flaps) all of it."""
+    from gecko_agents.physics import punch
+    from gecko_agents.studies import pillar_designs as pd
     from gecko_agents.studies import validation_magnitudes as vm
 
-    below, past, P_E = vm.paretkar_pull_offs()
-    assert below > 0 and past >= 0
-    assert vm.paretkar_round_edges()["value"] == pytest.approx(past / below)
+    c = pd.params_for("flat_punch", 2.4, "flat").contact
+    F_K = float(punch.kendall_pull_off(vm.PARETKAR["r"], c.work_of_adhesion, c.E_star))
+    for edge in (True, False):
+        assert vm.paretkar_pull_off(edge, vm.PARETKAR["below"]) == pytest.approx(F_K, rel=0.01)
+    assert vm.paretkar_round_edges(press=0.7)["value"] == 0.0
+    assert vm.paretkar_end_flaps(press=0.7)["value"] == pytest.approx(1.0, abs=0.01)

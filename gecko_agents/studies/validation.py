@@ -11,22 +11,33 @@ ranges together; agent runs one parameter at a time, in the full run only, to ke
 short). Nothing is tuned to a row: a disagreement is a result, with its likely cause.
 
 Rows come in three kinds, counted apart: experiments, other models (simulations and published
-laws) and self-consistency checks (the package against its own closed form or run).
-Verdicts (:func:`verdict`), magnitudes first:
+laws) and self-consistency checks (the package against its own closed form or run). The
+headline (:func:`headline`) counts *magnitude rows* (:func:`is_magnitude`): a printed number
+of an experiment or another model against ours at the source's own geometry; direction checks
+and values read from words are *trend* rows (:func:`is_trend`), counted apart. Rows sharing an
+independent measurement (a table, a figure, an abstract sentence) count once beside the rows,
+and one model number never scores two rows (the loader refuses it). Verdicts
+(:func:`verdict`), magnitudes first:
 
 * *agrees (within their scatter)*: ours inside their value ± the scatter the row states;
-* *agrees (within the stated factor)*: ours within theirs/f to theirs·f, f the row's band;
+* *agrees (within the stated tolerance)*: ours within ± the tolerance (±25 % where the source
+  states no scatter) of theirs, or for a bounded quantity (Φ ≤ 1) of its distance to the
+  nearer bound (:func:`half_width`);
+* *agrees (within the stated factor)*: a self-consistency check within theirs/f to theirs·f;
 * *trend agrees (sign and stated factor)*: a direction first (ours on their side of 1, or of 0
   for a slope), then its size: the effect ln(ours) within 1/f to f times ln(theirs), or, where
   they state a direction in words only, at least the size their words state (``min_effect``);
 * *disagrees (sign)*: ours goes the other way; *disagrees (magnitude)*: the right way, or no
-  effect, but outside the scatter or the stated factor;
+  effect, but outside the scatter, tolerance or factor;
 * *not comparable*: outside, but their value lies inside the band ours spans over the
   parameters whose value for their specimen we could not read (assumed, or a published range).
 
 Rows that are not scored say why: *pending* (the physics they need is not in the package yet),
-*out of scope* (a mechanism the package does not model) or *not scored* (the number could not
-be read).
+*out of scope* (a mechanism the package does not model), *not scored* (the number could not
+be read), *calibration point* (an unreported parameter is calibrated on it) or *derived* (the
+model ties its number to another row's). The report states its run; a ``--quick`` verdict of a
+row whose run is smaller there (:data:`~gecko_agents.studies.validation_ours.QUICK_SIZED`) is
+marked †.
 
 Units: µm, µN, µs, MPa (= µN/µm²); stiffness µN/µm = N/m. ``python scenarios/validation.py
 [--quick] --out DIR`` writes ``DIR/literature_comparison.{md,json,png,csv}`` and
@@ -165,20 +176,43 @@ def verdict(row: dict, ours: dict | None, sens: list[dict]) -> tuple[str, str]:
         return UNSCORED["not read"], "ours could not be computed"
     value = ours["value"]
     if row["compare"] == "trend":
-        e = effect(row, value)
-        if e < -TREND_RESOLUTION:
-            return DISAGREES_SIGN, f"ours goes the other way (effect {e:+.3g})"
-        if e <= TREND_RESOLUTION:
-            return DISAGREES_MAGNITUDE, f"ours shows no effect ({e:+.3g}, within ±1 %)"
-        if row["theirs_value"] is None:
-            if e >= row["min_effect"]:
-                return TREND_AGREES, (
-                    f"the same way, effect {e:.3g} ≥ {row['min_effect']:g} ({row['band_why']})"
-                )
-            return DISAGREES_MAGNITUDE, (
-                f"the same way but effect {e:.3g} < {row['min_effect']:g} ({row['band_why']})"
+        v = _trend(row, value)
+        if v is not None and v[0] != TREND_AGREES and _words_met_at_an_end(row, sens):
+            return NOT_COMPARABLE, (
+                f"{v[1]}, but their stated size is met at an end of the range ours spans over "
+                "the parameters we could not read for their specimen"
             )
+        if v is not None:
+            return v
     return _magnitude(row, value) or _outside(row, value, sens)
+
+
+def _trend(row: dict, value: float) -> tuple[str, str] | None:
+    """The verdict of a trend row's direction, and of its size where stated in words (None:
+    a size stated as a number, judged by :func:`_magnitude`)."""
+    e = effect(row, value)
+    if e < -TREND_RESOLUTION:
+        return DISAGREES_SIGN, f"ours goes the other way (effect {e:+.3g})"
+    if e <= TREND_RESOLUTION:
+        return DISAGREES_MAGNITUDE, f"ours shows no effect ({e:+.3g}, within ±1 %)"
+    if row["theirs_value"] is not None:
+        return None
+    if e >= row["min_effect"]:
+        return TREND_AGREES, (
+            f"the same way, effect {e:.3g} ≥ {row['min_effect']:g} ({row['band_why']})"
+        )
+    return DISAGREES_MAGNITUDE, (
+        f"the same way but effect {e:.3g} < {row['min_effect']:g} ({row['band_why']})"
+    )
+
+
+def _words_met_at_an_end(row: dict, sens: list[dict]) -> bool:
+    """Whether a direction stated in words (``min_effect``) is met at an end of a parameter
+    whose value for their specimen we could not read."""
+    if row["min_effect"] is None:
+        return False
+    ends = [v for s in sens if s["status"] != "cited" for v in s["ours_at_ends"]]
+    return any(math.isfinite(v) and effect(row, v) >= row["min_effect"] for v in ends)
 
 
 def _ranged(row: dict) -> list[dict]:
@@ -221,6 +255,17 @@ def sensitivity(row: dict, quick: bool) -> list[dict]:
     return out
 
 
+def quick_may_differ(row: dict) -> bool:
+    """Whether the row's ``--quick`` verdict may differ from the full run's: its run is smaller
+    there (:data:`~gecko_agents.studies.validation_ours.QUICK_SIZED`), or it is an agent run
+    with a parameter range, whose ends (which can make it *not comparable*) only the full run
+    computes."""
+    if row["ours"] is None:
+        return False
+    ranged = any(p["status"] != "cited" for p in _ranged(row))
+    return row["ours"] in QUICK_SIZED or (ranged and row["ours"] not in CLOSED_FORM)
+
+
 def evaluate(row: dict, quick: bool) -> dict:
     """One row of the report: the row's data with ours (where it names a function, scored or
     not), its sensitivity and the verdict."""
@@ -231,7 +276,7 @@ def evaluate(row: dict, quick: bool) -> dict:
     v, why = verdict(row, ours, sens)
     return {
         **row,
-        "quick_may_differ": quick and row["ours"] in QUICK_SIZED,
+        "quick_may_differ": quick and quick_may_differ(row),
         "ours_value": None if ours is None else ours["value"],
         "ours_values": None if ours is None else ours.get("values", [ours["value"]]),
         "ours_text": "—" if ours is None else ours["text"],
@@ -264,6 +309,7 @@ def headline(rows: list[dict]) -> dict:
     for r in mag:
         groups.setdefault(r["measurement"], []).append(r)
     trend = [r for r in rows if is_trend(r) and r["verdict"] in VERDICTS]
+    trend = [r for r in trend if r["verdict"] != NOT_COMPARABLE]
     return {
         "magnitude_rows": len(mag),
         "magnitude_agree": sum(r["verdict"] in AGREES for r in mag),
@@ -360,18 +406,49 @@ def _table(rows: list[dict]) -> list[str]:
     return lines
 
 
+def _band_text(row: dict) -> str:
+    if row["scatter"] is not None:
+        return f"±{row['scatter']:g} ({row['scatter_why']})"
+    if row["tolerance"] is not None:
+        on = " of the distance to the nearer bound" if row["bounded"] else ""
+        return f"±{half_width(row):.3g} (±{100 * row['tolerance']:g} %{on})"
+    return "—"
+
+
+def _magnitude_table(rows: list[dict]) -> list[str]:
+    """The magnitude rows at a glance: their number, ours, the band and the verdict."""
+    lines = [
+        "| row | measurement | quantity | theirs | ours | band | verdict |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        if not is_magnitude(r) or r["ours_value"] is None:
+            continue
+        cells = (
+            r["id"],
+            r["measurement"],
+            r["quantity"],
+            f"{r['theirs_value']:g}",
+            f"{r['ours_value']:.4g}",
+            _band_text(r),
+            r["verdict"] + (" †" if r["quick_may_differ"] else ""),
+        )
+        lines.append("| " + " | ".join(str(c).replace("|", "\\|") for c in cells) + " |")
+    return lines + [""]
+
+
 def summary(rows: list[dict], quick: bool) -> list[str]:
     """The headline, the verdict counts (one line per kind) and the scored total."""
     c, h = counts(rows), headline(rows)
     lines = ["## Headline", "", headline_text(h), ""]
     if quick and h["quick_may_differ"]:
         lines += [
-            f"Quick run: {h['quick_may_differ']} of these rows ran on smaller pads or fewer "
-            "pulls than the full run (marked † in the tables); their verdict may differ "
-            "there.",
+            f"Quick run: {h['quick_may_differ']} of these rows ran smaller than in the full run, "
+            "or without the ends of their parameter ranges (marked † in the tables); their "
+            "verdict may differ there.",
             "",
         ]
-    lines += ["## Verdicts", ""]
+    lines += _magnitude_table(rows) + ["## Verdicts", ""]
     for kind in KINDS:
         parts = ", ".join(f"{v}: {n}" for v, n in c[kind].items()) or "none"
         lines.append(f"* {KIND_TITLES[kind]}: {parts}")
