@@ -398,12 +398,6 @@ def buckled_preload(quick: bool = True) -> dict:
     return _buckled(5.0, 1.5)
 
 
-def buckled_short_pillar(quick: bool = True) -> dict:
-    """:func:`buckled_ratio` of a pillar of L/2r = 2.4 (Paretkar et al.'s largest), pressed to
-    1.1 P_E."""
-    return _buckled(2.4, 1.1)
-
-
 TWO_HEIGHTS = {"n": 10, "step": 0.5, "low": 0.5, "high": 4.0, "speed": 0.02}
 """Yagüe Isla & Kroner's two pillar heights on the pillar-design study's pillars (L = 15 µm):
 10 pillars, every other one 0.5 µm shorter; preloads 0.5 µN (below the 1.7 µN that brings the
@@ -572,7 +566,6 @@ OURS = {
         greiner_radius,
         greiner_aspect,
         buckled_preload,
-        buckled_short_pillar,
         kendall_punch,
         two_heights,
     )

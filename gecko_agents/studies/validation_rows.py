@@ -2,9 +2,10 @@
 validation`), read from the data file :data:`gecko_agents.data.LITERATURE_ROWS` (TOML): one
 table per row with the source cited in full, the text we read (``quote``, word for word, with
 the address it came from in ``read_at``), their value as printed, how a magnitude agrees
-(their scatter, a stated factor band, or for a direction stated in words the smallest effect
-the words state), and the parameters our number uses, each cited or assumed with the reason
-and, where a number, its plausible range.
+(their scatter or a relative tolerance, on the nearer bound for a bounded quantity; a factor
+band for a trend or a self-consistency check; for a direction stated in words the smallest
+effect the words state), the independent measurement it comes from, and the parameters our
+number uses, each cited or assumed with the reason and, where a number, its plausible range.
 
 Nothing here is computed; the file's header comment describes each field. :func:`load_rows`
 resolves each row's source and shared parameters and fills the optional fields with ``None``,
