@@ -511,3 +511,246 @@ def test_the_table_has_no_duplicate_probe():
 def test_a_meaningful_run_file_is_not_refused(tmp_path, capsys, monkeypatch):
     # The baseline the run-file rows edit: their refusals come from the edit, not the file.
     assert _run_file(Probe(tmp_path, capsys, monkeypatch), RUN_FILE)[0] == 0
+
+
+# Issue 54: the design search ----------------------------------------------------------------
+# Each row a `gecko-agents design` command line; a refusal leaves nothing behind.
+DESIGN = """seed = 0
+trials = 4
+confirm = 0
+objectives = "pull_off_per_area"
+
+[material]
+E_MPa = 1.413
+nu = 0.3
+w_J_per_m2 = 0.165
+
+[surface]
+kind = "flat"
+
+[test]
+preload_kPa = 10.0
+floor_seeds = 1
+pillars = 4
+engine_pillars = 2
+engine_seeds = 1
+
+[space]
+tip = "flat_punch"
+radius_um = [1.0, 5.0]
+aspect_ratio = 2.0
+lean_deg = 90.0
+fill_fraction = 0.2
+
+[quick]
+trials = 2
+"""
+
+
+def _design(probe: Probe, *argv, text: str = DESIGN, out: str = "o"):
+    """``gecko-agents design`` on a design file ``text`` into ``--out tmp/out``: (exit code,
+    stderr and stdout)."""
+    path = _write(probe, text, "d.toml")
+    try:
+        code = cli.main(["design", path, "--out", str(probe.tmp / out), *argv])
+    except SystemExit as err:
+        code = err.code
+    said = probe.capsys.readouterr()
+    return code, said.err + said.out
+
+
+def _design_refused(probe: Probe, text: str, *argv):
+    """A design file or option refused: rc 2 and no output folder left."""
+    code, message = _design(probe, *argv, text=text)
+    return (code if not (probe.tmp / "o").exists() else -1), message
+
+
+def _design_over_users_files(probe: Probe, name: str):
+    """``design --out`` a folder of a user's files, one of them named as a search's output:
+    refused, every file kept (-1 if one changed)."""
+    d = probe.tmp / "o"
+    (d / "runs").mkdir(parents=True)
+    (d / name).write_text("NOTES")
+    (d / "notes.txt").write_text("k")
+    code, message = _design(probe, "--quick")
+    kept = (d / name).read_text() == "NOTES" and sorted(p.name for p in d.iterdir()) == sorted(
+        {"runs", "notes.txt", name.split("/")[0]}
+    )
+    return (code if kept else -1), message
+
+
+def _second_study(probe: Probe, *argv, text: str = DESIGN):
+    """A study into a folder that holds another (the same file's full variant): refused, the
+    first study's outputs unchanged (-1 if one changed)."""
+    assert _design(probe)[0] == 0
+    d = probe.tmp / "o"
+    before = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    code, message = _design(probe, *argv, text=text)
+    after = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    return (code if after == before else -1), message
+
+
+def _same_study_again(probe: Probe):
+    """The same study into its own folder resumes: more trials, the first ones kept."""
+    assert _design(probe)[0] == 0
+    code, message = _design(probe, "--trials", "6")
+    return code, message
+
+
+def _two_processes(probe: Probe):
+    """A second `design` on a local study another process is running: refused."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    path = _write(probe, DESIGN.replace("trials = 4", "trials = 100000"), "d.toml")
+    out = probe.tmp / "o"
+    cmd = [sys.executable, "-m", "gecko_agents", "design", path, "--out", str(out)]
+    first = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 60
+        while not (out / "study.db").exists() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        time.sleep(0.5)  # its first trials stored
+        code, err = _cli(probe, "design", path, "--out", str(out), "--trials", "1")
+    finally:
+        first.send_signal(signal.SIGKILL)
+        first.wait(timeout=30)
+    return code, err
+
+
+def _trial_states(out: Path) -> tuple[int, int, list[str]]:
+    """(complete, failed, the failed trials' reasons) of the study stored in ``out``."""
+    import sqlite3
+
+    with sqlite3.connect(out / "study.db") as db:
+        states = [s for (s,) in db.execute("SELECT state FROM trials")]
+        reasons = [
+            v
+            for (v,) in db.execute(
+                "SELECT value_json FROM trial_user_attributes WHERE key = 'error'"
+            )
+        ]
+    return states.count("COMPLETE"), states.count("FAIL"), reasons
+
+
+def _model_raises(probe: Probe):
+    """A screen whose model raises RuntimeError on some designs (as the quasi-static solver
+    does on a preload it cannot reach): those trials are failed trials with their reason, the
+    others complete."""
+    import gecko_agents.design.search as design_search
+
+    screen = design_search.evaluate
+
+    def evaluate(spec, values):
+        if values["radius_um"] > 3.0:
+            raise RuntimeError("preload not reached within 200000 steps")
+        return screen(spec, values)
+
+    probe.monkeypatch.setattr(design_search, "evaluate", evaluate)
+    code, message = _design(probe, text=DESIGN.replace("trials = 4", "trials = 8"))
+    if code != 0:
+        return code, message
+    complete, failed, reasons = _trial_states(probe.tmp / "o")
+    report = (probe.tmp / "o" / "report.md").read_text()
+    return (code, complete > 0, failed > 0), " ".join([*reasons, report])
+
+
+def _confirmation_fails(probe: Probe):
+    """An engine confirmation that fails (pillars of 1 kPa, whose elastica finds no
+    equilibrium under the preload): a row of the report with its reason."""
+    text = DESIGN.replace("confirm = 0", "confirm = 1").replace("E_MPa = 1.413", "E_MPa = 0.001")
+    code, message = _design(probe, text=text)
+    if code != 0:
+        return code, message
+    return code, (probe.tmp / "o" / "report.md").read_text()
+
+
+def _full_disk(probe: Probe):
+    """The study's store fills up (SQLite's SQLITE_FULL, as on a full disk: its page count
+    capped): the command says so, every trial stored before kept."""
+    from sqlalchemy import event
+
+    import gecko_agents.design.search as design_search
+
+    storage = design_search._storage
+
+    def capped(url, optuna):
+        rdb = storage(url, optuna)
+        event.listen(
+            rdb.engine, "connect", lambda conn, _r: conn.execute("PRAGMA max_page_count = 40")
+        )
+        rdb.engine.dispose()
+        return rdb
+
+    probe.monkeypatch.setattr(design_search, "_storage", capped)
+    return _design(probe, text=DESIGN.replace("trials = 4", "trials = 400"))
+
+
+def _trials_below_the_study(probe: Probe):
+    """``--trials 2`` on a study of 4: said, not ignored."""
+    assert _design(probe)[0] == 0
+    return _design(probe, "--trials", "2")
+
+
+SEED_1E17 = DESIGN.replace("seed = 0", "seed = 99999999999999999")
+NO_GAP = DESIGN + "\n[constraints]\nmin_gap_um = 1e6\n"
+
+ROWS_54_DESIGN = [
+    # 1–2. A folder is a design folder only when it holds a study this command wrote.
+    Row("design --out a folder with a user's report.md",
+        lambda p: _design_over_users_files(p, "report.md"), 2, ("not a design folder",
+                                                                "report.md")),
+    Row("design --out a folder with a user's runs/design_1.toml",
+        lambda p: _design_over_users_files(p, "runs/design_1.toml"), 2,
+        ("not a design folder", "runs")),
+    Row("design --quick into the full study's --out", lambda p: _second_study(p, "--quick"), 2,
+        ("holds the study", "d.toml", "--out"), slow=True),
+    Row("design of another file into the same --out",
+        lambda p: _second_study(p, text=DESIGN.replace("seed = 0", "seed = 1")), 2,
+        ("holds the study", "d.toml", "--out"), slow=True),
+    Row("design into its own folder resumes", _same_study_again, 0, ("6 screening trials",),
+        slow=True),
+    # 4. A local study file belongs to one process.
+    Row("two design commands on one local study", _two_processes, 2, ("another", "o"),
+        slow=True),
+    # 8–9. A model that cannot evaluate a design: a failed trial or a failed confirmation.
+    Row("design: the screen's model raises RuntimeError", _model_raises, (0, True, True),
+        ("RuntimeError", "preload not reached", "failed_trials"), slow=True),
+    Row("design: an engine confirmation fails", _confirmation_fails, 0,
+        ("Confirmations that failed", "design_1", "RuntimeError", "no equilibrium"), slow=True),
+    # 10. --storage checked before any work.
+    *[
+        Row(f"design --storage {url}", lambda p, u=url: _design_refused(p, DESIGN, "--storage",
+                                                                        u.format(tmp=p.tmp)),
+            2, ("--storage", url.split("{tmp}")[-1]))
+        for url in ("not_a_url", "sqlite:///{tmp}/missing/study.db", "sqlite:///{tmp}",
+                    "nosuchdialect://host/db")
+    ],
+    Row("design with a full disk", _full_disk, 1, ("study.db", "full"), slow=True),
+    # 11. Seeds the sampler takes.
+    Row("design seed 1e17", lambda p: _design_refused(p, SEED_1E17), 2,
+        ("seed", "99999999999999999", "4294967295")),
+    # 14. A bound that leaves no design.
+    Row("design min_gap_um 1e6", lambda p: _design_refused(p, NO_GAP), 2,
+        ("[constraints] min_gap_um", "1e+06", "leaves no design")),
+    # 21. --trials below the study's.
+    Row("design --trials 2 on a study of 4", _trials_below_the_study, 0,
+        ("trials = 2", "holds 4"), slow=True),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_DESIGN],
+)
+def test_probe_54_design(row, tmp_path, capsys, monkeypatch):
+    outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))
+    assert outcome == row.expected, message
+    for name in row.names:
+        assert name in message, (name, message)
+
+
+def test_the_design_rows_are_distinct():
+    assert len({r.id for r in ROWS_54_DESIGN}) == len(ROWS_54_DESIGN)
