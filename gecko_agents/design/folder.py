@@ -13,8 +13,9 @@ never written). A design folder keeps the files a user adds: a search writes onl
 
 One command writes into a design folder at a time (:func:`hold`): it holds an exclusive lock
 on the folder, which the system releases when the process ends, however it ends (POSIX
-``flock``, Windows ``msvcrt.locking``); a second command is refused naming the folder.
-Processes a command spawns only evaluate designs and take no lock.
+``flock``, Windows ``msvcrt.locking``; on a file system without locks, none); a second
+command is refused naming the folder. Processes a command spawns only evaluate designs and
+take no lock.
 """
 
 from __future__ import annotations
@@ -191,6 +192,8 @@ def _lock(folder: Path) -> int:
     except BlockingIOError:
         os.close(fd)
         raise busy from None
+    except OSError:  # a file system without locks (some network ones): the folder is not locked
+        pass
     return fd
 
 
