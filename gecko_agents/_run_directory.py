@@ -139,21 +139,20 @@ def read_series(
 
 def _table(csv_path: Path, rows: list[str], n_columns: int, first_line: int) -> np.ndarray:
     """The data rows of history.csv as an array (one row per record); refuses, naming the
-    line, a row of another length (a file cut short: the save was interrupted or the file
-    truncated) or a value that is not a number."""
-    rows = rows[:-1] if rows and not rows[-1] else rows  # the final newline
+    line, a last row without its line break (every row a save writes ends with one: the file
+    was cut short), a row of another length or a value that is not a number."""
+    if rows and rows[-1]:
+        raise ValueError(
+            f"{csv_path} line {first_line + len(rows) - 1} ends without its line break "
+            f"({len(rows[-1].split(','))} of its {n_columns} values): the file was cut short "
+            "(truncated, or its save interrupted); re-run to regenerate it"
+        )
+    rows = rows[:-1]
     for i, row in enumerate(rows):
-        n = len(row.split(","))
-        if n != n_columns:
-            cut = i == len(rows) - 1 and n < n_columns
+        if len(row.split(",")) != n_columns:
             raise ValueError(
-                f"{csv_path} line {first_line + i} has {n} of its {n_columns} values"
-                + (
-                    ": the file was cut short (truncated, or its save interrupted)"
-                    if cut
-                    else ": the table was edited or damaged"
-                )
-                + "; re-run to regenerate it"
+                f"{csv_path} line {first_line + i} has {len(row.split(','))} of its "
+                f"{n_columns} values: the table was edited or damaged; re-run to regenerate it"
             )
     try:
         body = "\n".join(rows)
@@ -161,9 +160,16 @@ def _table(csv_path: Path, rows: list[str], n_columns: int, first_line: int) -> 
             return np.zeros((0, n_columns))
         return np.loadtxt(io.StringIO(body), delimiter=",", ndmin=2)
     except ValueError as err:
-        raise ValueError(
-            f"{csv_path} holds a value that is not a number ({err}); re-run to regenerate it"
-        ) from err
+        for i, row in enumerate(rows):  # the error path only: name the line
+            for value in row.split(","):
+                try:
+                    float(value)
+                except ValueError:
+                    raise ValueError(
+                        f"{csv_path} line {first_line + i} holds {value[:40]!r}, not a number: "
+                        "the table was edited or damaged; re-run to regenerate it"
+                    ) from err
+        raise ValueError(f"{csv_path} cannot be read as numbers: {err}") from err
 
 
 def read_arrays(npz_path: Path, groups: dict) -> str | None:
