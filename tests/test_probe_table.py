@@ -520,9 +520,9 @@ PROBE_FILE = RUN_FILE.replace(
 
 
 def _probe_file(*lines: str, preset: str = "PAPER_TABLE1", **replace: str) -> str:
-    """PROBE_FILE with ``lines`` added to its [params] (and ``old=new`` replacements); on
-    PAPER_ARRAY, whose rough floor (floor.sigma = 1 µm) no probe may have, the file must
-    turn it off as well."""
+    """PROBE_FILE on ``preset`` with ``lines`` added to its [params] (and ``old=new``
+    replacements). On PAPER_ARRAY, whose floor is rough (floor.sigma = 1 µm), floor.kind =
+    "probe" holds only beside floor.sigma = 0: a constraint between two overrides."""
     text = PROBE_FILE.replace('"floor.sigma" = 0.0', '"floor.sigma" = 0.0\n' + "\n".join(lines))
     text = text.replace('preset = "PAPER_TABLE1"', f'preset = "{preset}"')
     for old, new in replace.items():
