@@ -513,6 +513,194 @@ def test_a_meaningful_run_file_is_not_refused(tmp_path, capsys, monkeypatch):
     assert _run_file(Probe(tmp_path, capsys, monkeypatch), RUN_FILE)[0] == 0
 
 
+# Issue 54: messages --------------------------------------------------------------------------
+PROBE_FILE = RUN_FILE.replace(
+    'mechanics = "rod"', 'mechanics = "rod"\n"floor.kind" = "probe"\n"floor.sigma" = 0.0'
+)  # the one short seta under a probe of 100 µm (the default radius)
+
+
+def _probe_file(*lines: str, preset: str = "PAPER_TABLE1", **replace: str) -> str:
+    """PROBE_FILE on ``preset`` with ``lines`` added to its [params] (and ``old=new``
+    replacements). On PAPER_ARRAY, whose floor is rough (floor.sigma = 1 µm), floor.kind =
+    "probe" holds only beside floor.sigma = 0: a constraint between two overrides."""
+    text = PROBE_FILE.replace('"floor.sigma" = 0.0', '"floor.sigma" = 0.0\n' + "\n".join(lines))
+    text = text.replace('preset = "PAPER_TABLE1"', f'preset = "{preset}"')
+    for old, new in replace.items():
+        text = text.replace(old, new)
+    return text
+
+
+def _on_array_probe(probe: Probe, *lines: str):
+    """``run`` on PAPER_ARRAY under a probe with ``lines`` in its [params]."""
+    return _run_file(probe, _probe_file(*lines, preset="PAPER_ARRAY"))
+
+
+def _design_sigma0_inf(probe: Probe):
+    """The design example with the documented default ``sigma0_MPa = inf`` written out: the
+    same material as without it."""
+    from gecko_agents.design.schema import load_design
+
+    example = ROOT / "examples" / "design_pillars.toml"
+    text = example.read_text().replace("w_J_per_m2 = 0.165", "w_J_per_m2 = 0.165\nsigma0_MPa = inf")
+    path = _write(probe, text, "d.toml")
+    err, message = _raised(lambda: load_design(path))
+    if err is not None:
+        return err, message
+    return load_design(path).material == load_design(example).material, ""
+
+
+def _interrupted_run(probe: Probe):
+    """``run --out DIR --gif`` stopped by Ctrl-C (or SIGTERM, which takes its path) mid-run:
+    exit 130, nothing written, the restart line the whole command."""
+
+    def stop(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    probe.monkeypatch.setattr(Model, "run", stop)
+    out = probe.tmp / "ri"
+    code, err = _cli(probe, "run", _write(probe, RUN_FILE), "--out", str(out), "--gif")
+    assert not out.exists()
+    return code, err.replace(str(probe.tmp), "TMP")
+
+
+def _saved(probe: Probe) -> Path:
+    h = _toy()
+    h.meta.update(n_sim=3, scale_to_array=1.0, record_every=10)
+    return h.save(probe.tmp / "run")
+
+
+def _truncated_history(probe: Probe):
+    """history.csv cut in its fourth data row (line 5), as a full disk or a kill leaves it."""
+    d = _saved(probe)
+    lines = (d / "history.csv").read_text().split("\n")
+    (d / "history.csv").write_text("\n".join(lines[:4]) + "\n" + ",".join(lines[4].split(",")[:2]))
+    return _raised(lambda: hist.load(d))
+
+
+def _load_a_file(probe: Probe):
+    d = _saved(probe)
+    err, message = _raised(lambda: hist.load(d / "history.csv"))
+    return err, message.replace(str(probe.tmp), "TMP")
+
+
+def _cli_out(probe: Probe, *argv) -> tuple[int, str]:
+    """(exit code, stdout) of the command line."""
+    code = cli.main(list(argv))
+    return code, probe.capsys.readouterr().out
+
+
+def _run_summary(probe: Probe, argv):
+    """(the run's forces stand for its array or the closing summary names probe_scale, the
+    summary line)."""
+    out = probe.tmp / "o"
+    code, said = _cli_out(probe, "run", *argv, "--out", str(out), "--no-progress")
+    assert code == 0
+    summary = [line for line in said.splitlines() if "validity" in line]
+    summary = summary or [""]
+    meta = json.loads((out / "metadata.json").read_text())
+    whole = meta["n_sim"] == meta["params"]["array"]["count"]
+    return whole or "probe_scale" in summary[-1], summary[-1]
+
+
+def _tip_listing(probe: Probe):
+    """``gecko-agents params PAPER_ARRAY``: the lines of its ``tip`` row."""
+    code, said = _cli_out(probe, "params", "PAPER_ARRAY")
+    lines = said.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("tip "))
+    end = next(i for i in range(start + 1, len(lines)) if not lines[i].startswith(" "))
+    return code, " ".join(lines[start:end])
+
+
+def _sweep_point_edited(probe: Probe):
+    """A sweep, one point's result edited by hand, then ``--resume``: (the edited value gone
+    from sweep.csv, what the resume said) with the point's key as KEY."""
+    argv = ["--workers", "1"]
+    assert _sweep_kept(probe, argv)[0] == 0
+    (point,) = (probe.tmp / "sw" / "points").glob("*.json")
+    record = json.loads(point.read_text())
+    record["result"]["mean_force_uN"] = 12345.0
+    point.write_text(json.dumps(record, indent=2))
+    code, said = _sweep_kept(probe, [*argv, "--resume"])
+    assert code == 0
+    said = said.replace(point.stem, "KEY")
+    table = (probe.tmp / "sw" / "sweep.csv").read_text()
+    return "12345" not in table, said
+
+
+def _sweep_kept(probe: Probe, argv):
+    """(exit code, stdout) of the sweep of ``_sweep_file`` into ``sw``, its points kept."""
+    spec = probe.tmp / "s.toml"
+    spec.write_text(
+        'preset = "PAPER_TABLE1"\npoint = "cpu_bound_point"\nseeds = [0]\n'
+        '[point_args]\nrepeats = 1\n[grid]\n"fn.n_overlaps" = [10]\n'
+    )
+    out = probe.tmp / "sw"
+    return _cli_out(probe, "sweep", str(spec), "--out", str(out), "--no-progress", *argv)
+
+
+def _tip_names() -> tuple[str, ...]:
+    from gecko_agents.contact.registry import TIP_LAWS
+
+    return tuple(f"'{name}'" for name in TIP_LAWS)
+
+
+ROWS_54_MESSAGES = [
+    # 12. The largest allowed probe: its coarse polyline has no PSD fit, and the run is kept.
+    Row("run file: floor.probe_radius 1e5",
+        lambda p: _run_file(p, _probe_file('"floor.probe_radius" = 1e5')), 0, ()),
+    # 13. On a probe floor, the bad value is named, not the probe/sigma pair.
+    Row("probe run file: contact.sigma0 nan",
+        lambda p: _on_array_probe(p, '"contact.sigma0" = nan', 'tip = "flat_punch"'), 2,
+        ("'contact.sigma0'", "nan")),
+    Row("probe run file: probe_radius 0.01 under a punch",
+        lambda p: _on_array_probe(p, 'tip = "flat_punch"', '"floor.probe_radius" = 0.01'),
+        2, ("'floor.probe_radius'", "0.01")),
+    Row("probe run file: contact.R 200 on a probe of 100",
+        lambda p: _on_array_probe(p, 'tip = "flat_punch"', '"contact.R" = 200.0'), 2,
+        ("'contact.R'", "200")),
+    Row("probe run file: a flange smaller than its stalk",
+        lambda p: _on_array_probe(p, 'tip = "mushroom"', '"contact.R" = 0.1'), 2,
+        ("'contact.R'", "0.1", "Seta.r")),
+    # 15. The documented default written out.
+    Row("design file: sigma0_MPa = inf", _design_sigma0_inf, True, ()),
+    # 16. The restart line is the whole command.
+    Row("run --out --gif interrupted", _interrupted_run, 130,
+        ("start again with: gecko-agents run TMP/r.toml --out TMP/ri --gif",)),
+    # 17. A damaged history.csv, and a file given for its run directory.
+    Row("ga.load: history.csv cut in a row", _truncated_history, ValueError,
+        ("history.csv", "line 5")),
+    Row("ga.load of run/history.csv", _load_a_file, FileNotFoundError,
+        ("TMP/run/history.csv", "load('TMP/run')")),
+    # 20. The closing summary agrees with the warning that a row under a probe is no patch.
+    Row("run file: 2 of 3 setae under a probe",
+        lambda p: _run_summary(p, [_write(p, _probe_file('"array.count" = 3',
+                                                          **{"n_sim = 1": "n_sim = 2"}))]),
+        True, ("probe_scale",)),
+    Row("run examples/pillars_probe.toml --quick",
+        lambda p: _run_summary(p, [str(ROOT / "examples" / "pillars_probe.toml"), "--quick"]),
+        True, (), slow=True),
+    # 21. The tips `params` lists are the registry's; a point file edited by hand is recomputed.
+    Row("params lists every tip law", _tip_listing, 0, _tip_names()),
+    Row("sweep --resume after a point file was edited", _sweep_point_edited, True,
+        ("KEY.json",)),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [
+        pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else [])
+        for r in ROWS_54_MESSAGES
+    ],
+)
+def test_probe_54_messages(row, tmp_path, capsys, monkeypatch):
+    test_probe(row, tmp_path, capsys, monkeypatch)
+
+
+def test_the_messages_rows_are_new_probes():
+    assert not {r.id for r in ROWS} & {r.id for r in ROWS_54_MESSAGES}
+
+
 # Issue 54: the design search ----------------------------------------------------------------
 # Each row a `gecko-agents design` command line; a refusal leaves nothing behind.
 DESIGN = """seed = 0

@@ -144,7 +144,7 @@ def base_params(spec: DesignSpec) -> SetaArray:
 
 def _number(ctx: Ctx, where: str, value, lo: float, hi: float, integer=False):
     v = ctx.type_(where, value, int if integer else float)
-    if not (lo <= v <= hi) or (not integer and not math.isfinite(v)):
+    if not (lo <= v <= hi) or (not integer and math.isinf(v) and math.isfinite(hi)):
         shown = f"[{lo}, {hi}]" if integer else f"[{lo:g}, {hi:g}]"
         raise ctx.error(where, f"{value!r} is outside the allowed range {shown}")
     return v
