@@ -128,3 +128,14 @@ def test_a_confirmation_the_engine_cannot_run_is_a_row_with_its_reason(tmp_path,
     text = report.report_text(spec, [row], {}, 4, {})
     assert "- design_1 (trial 3): PressLimitError: Press(preload=1e+04 µN)" in text
     assert "| design_1 | 2 | 50 | failed (below) | — | — |" in text
+
+
+def test_a_study_continues_only_in_the_store_it_was_started_in(tmp_path):
+    spec = load_design(design(tmp_path))
+    out, name = tmp_path / "out", search.study_name(spec)
+    out.mkdir()
+    url = f"sqlite:///{tmp_path / 'shared.db'}"
+    folder.write_record(out, spec, name, url)
+    folder.check_output(out, name, url)
+    with pytest.raises(folder.DesignFolderError, match=f"stored at {url}, not at study.db"):
+        folder.check_output(out, name)

@@ -95,9 +95,9 @@ def cmd_design(args, extra) -> int:
     stem = spec.path.stem + ("_quick" if spec.quick else "")
     out = args.out if args.out is not None else checked(Path("designs") / stem)
     try:
-        folder.check_output(out, study_name(spec))
         if args.storage is not None:
             folder.check_storage(args.storage)
+        folder.check_output(out, study_name(spec), args.storage)
     except folder.DesignFolderError as err:
         raise UsageError(str(err)) from None
     again = [PROG, "design", str(args.designfile)] + (["--quick"] if args.quick else [])

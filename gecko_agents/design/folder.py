@@ -93,12 +93,13 @@ def saved_studies(out: Path) -> dict[str, dict]:
     return {name: {"study": name} for name in _db_studies(out / "study.db")}
 
 
-def check_output(out: Path, study: str | None = None) -> None:
+def check_output(out: Path, study: str | None = None, storage: str | None = None) -> None:
     """Refuse, before any trial, an output folder the study ``study`` (a name of
-    :func:`gecko_agents.design.search.study_name`; None: any design folder) must not write
-    into: a file, a dangling link, a folder that is not empty and not a design folder, a
-    design folder of another study, or one where a name the search writes is of the other kind
-    (a folder where it writes a file). Raises :class:`DesignFolderError`."""
+    :func:`gecko_agents.design.search.study_name`; None: any design folder), stored at
+    ``storage`` (None: the folder's ``study.db``), must not write into: a file, a dangling
+    link, a folder that is not empty and not a design folder, a design folder of another study
+    or of this study in another store, or one where a name the search writes is of the other
+    kind (a folder where it writes a file). Raises :class:`DesignFolderError`."""
     out = Path(out)
     if out.is_symlink() and not out.exists():
         raise DesignFolderError(
@@ -122,6 +123,13 @@ def check_output(out: Path, study: str | None = None) -> None:
         raise DesignFolderError(
             f"{out}: holds the study {name}{source}; another study ({study}) would replace its "
             "outputs: give it its own --out (an edited design file or --quick is another study)"
+        )
+    where = saved.get(study, {}).get("storage")
+    here = "study.db" if storage is None else _hidden(storage)
+    if study is not None and where is not None and where != here:
+        raise DesignFolderError(
+            f"{out}: holds the study {study} stored at {where}, not at {here}: give the same "
+            "--storage to continue it, or another --out"
         )
     clash = [n for n in OUTPUT_FILES if (out / n).exists() and (out / n).is_dir() != (n == "runs")]
     if clash:

@@ -127,12 +127,12 @@ def run_design(
     :class:`~gecko_agents.design.folder.DesignFolderError` (nothing written) otherwise."""
     out = Path(out)
     name = search.study_name(spec)
-    check_output(out, name)
     if storage is not None:
         folder.check_storage(storage)
+    check_output(out, name, storage)
     out.mkdir(parents=True, exist_ok=True)
     with folder.hold(out):
-        check_output(out, name)  # again, held: another command may have written it since
+        check_output(out, name, storage)  # again, held: another command may have written it since
         folder.write_record(out, spec, name, storage)
         if trials is not None:
             held = len(search.completed(search.open_study(spec, out, storage)))
