@@ -37,7 +37,7 @@ import math
 import numpy as np
 
 from gecko_agents import floor
-from gecko_agents.design.space import KPA, TIP_KINDS, measured_profile, overrides_of
+from gecko_agents.design.space import KPA, TIP_KINDS, gap_of, measured_profile, overrides_of
 from gecko_agents.params import SetaArray
 from gecko_agents.physics import beam, fibril_probe, fibril_probe_halfspace, layer
 
@@ -243,7 +243,7 @@ def evaluate(spec, values: dict) -> dict:
     metrics = {
         "pitch_um": s,
         "L_um": p.seta.L,
-        "gap_um": s - 2 * max(p.seta.r, p.contact.R),  # a flange wider than its stalk
+        "gap_um": gap_of(p),
         "fill_fraction": math.pi * p.seta.r**2 / s**2,
         "euler_load_uN": P_E,
         "preload_per_pillar_uN": preload / n,
