@@ -41,6 +41,7 @@ from gecko_agents.design.space import (
     KPA,
     TIP_KINDS,
     face_overlap,
+    gap_of,
     measured_profile,
     overrides_of,
 )
@@ -254,7 +255,7 @@ def evaluate(spec, values: dict) -> dict:
     metrics = {
         "pitch_um": s,
         "L_um": p.seta.L,
-        "gap_um": s - 2 * max(p.seta.r, p.contact.R),  # a flange wider than its stalk
+        "gap_um": gap_of(p),
         "fill_fraction": math.pi * p.seta.r**2 / s**2,
         "euler_load_uN": P_E,
         "preload_per_pillar_uN": preload / n,

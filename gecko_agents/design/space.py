@@ -34,6 +34,7 @@ __all__ = [
     "OBJECTIVES",
     "CONSTRAINTS",
     "pitch_of",
+    "gap_of",
     "overrides_of",
 ]
 
@@ -154,6 +155,12 @@ def pitch_of(values: dict) -> float:
     if "spacing_um" in values:
         return float(values["spacing_um"])
     return values["radius_um"] * math.sqrt(math.pi / values["fill_fraction"])
+
+
+def gap_of(p: SetaArray) -> float:
+    """The gap between neighbouring pillars of parameter set ``p`` [µm]: the pitch less the
+    widest part of two pillars (a tip wider than its stalk, a mushroom's flange, counts)."""
+    return p.array.pitch - 2 * max(p.seta.r, p.contact.R)
 
 
 KNOBS: dict[str, Knob] = {

@@ -18,6 +18,7 @@ __all__ = [
     "neighbour_distance",
     "pillars_meet",
     "probe_curvature",
+    "probe_scale",
 ]
 
 
@@ -25,6 +26,7 @@ RUNNER = "the runner's stepped force extremes (gecko_agents.model.runner)"
 TIME_STEPPING = "documentation, explanation, 'Time stepping'"
 NEIGHBOURS = "gecko_agents.diagnostics.resolution.neighbour_distance"
 CURVATURE = "Johnson 1985, Contact Mechanics, §4.2 (two spheres: R_eff = R·R_p/(R + R_p))"
+PROBE_FIELD = "the field under the probe: gecko_agents.physics.fibril_probe_halfspace"
 
 
 def _peak(force_lo: float, force_hi: float) -> float:
@@ -183,3 +185,22 @@ def probe_curvature(history, law) -> tuple:
         "this ratio"
     )
     return R / Rp, meaning, CURVATURE, True
+
+
+def probe_scale(history) -> tuple:
+    """``scale_to_array`` = array.count / n_sim of a run under a spherical probe [-].
+
+    The factor scales the simulated setae's forces to the array as if they were a uniform
+    patch of it. Under a probe they are not: each pillar meets the sphere at its own height,
+    so the scaled force is not the array's. Above 1 it stands for pillars never simulated."""
+    if history.params.floor.kind != "probe":
+        return None, "not judged: the floor is not a probe", PROBE_FIELD, False
+    scale = float(history.meta.get("scale_to_array", 1.0))
+    meaning = (
+        f"scale_to_array = {scale:g} under a spherical probe (floor.kind = 'probe'): the "
+        "simulated row is not a uniform patch of the array (each pillar meets the probe at its "
+        "own height), so its forces, scaled, are not the array's; simulate every pillar "
+        "(n_sim = array.count), or take the field under the probe from "
+        "gecko_agents.physics.fibril_probe_halfspace"
+    )
+    return scale, meaning, PROBE_FIELD, True
