@@ -87,7 +87,7 @@ def test_bonded_corner_is_williams_clamped_free_wedge(angle, nu):
 )  # fmt: skip
 def test_obtuse_bonded_corner_of_a_compressible_tip_has_williams_complex_root(angle, nu):
     """Obtuse rims at low ν: Williams' clamped–free equation has no real root in (0, 1) but
-    a complex pair λ = ξ ± iη; the module finds it, to 1e-9 in both parts (measured 1e-13),
+    a complex pair λ = ξ ± iη; the module finds it, to 1e-9 in both parts (measured 7e-16),
     and its stress exponent is ξ − 1 (120°, ν = 0.1: λ = 0.8004 ± 0.1327i)."""
     alpha = math.radians(angle)
     assert _bonded(alpha, nu) is None
