@@ -11,7 +11,7 @@ import pytest
 
 from gecko_agents import history, protocol, render
 from gecko_agents.backing.elastic import STRIP_ARRAYS, STRIP_COLUMNS
-from gecko_agents.model import Model, Numerics
+from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.params import PAPER_ARRAY
 
 ROUGH = PAPER_ARRAY.replace(**{"array.count": 6, "seta.L": 5.0, "floor.sigma": 0.3})
@@ -28,10 +28,15 @@ def _digest(h) -> str:
     return d.hexdigest()[:16]
 
 
+NEEDS_NUMBA = pytest.mark.skipif(
+    not numba_available(), reason="'auto' runs numba's loop only with numba (extra 'fast')"
+)
+
+
 @pytest.mark.parametrize(
     "kernel, press, digest",
-    [("auto", False, "f601cf15ab4eb7be"), ("numpy", True, "6c114eecf6a314b2"),
-     ("python", False, "6fa87cdf89d95ca5")],
+    [pytest.param("auto", False, "f601cf15ab4eb7be", marks=NEEDS_NUMBA),
+     ("numpy", True, "6c114eecf6a314b2"), ("python", False, "6fa87cdf89d95ca5")],
 )  # fmt: skip
 def test_rigid_plate_histories_are_bit_identical_to_before(kernel, press, digest):
     """The rigid plate (``backing.kind = "rigid"``, the default) as a component: the same

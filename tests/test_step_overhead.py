@@ -173,6 +173,7 @@ def test_contact_energy_constants_per_law_and_for_array_parameters():
     assert abs(jkr.contact_energy(aj, 4.0, 0.05, 1000.0)) < 1e-15
 
 
+@needs_numba
 @pytest.mark.parametrize("integrator", ["implicit", "explicit"])
 def test_two_models_stepped_interleaved_step_as_each_alone(integrator):
     """Two models of different tips (contact-energy constants, kernels, buffers) stepped in
