@@ -3,8 +3,10 @@
 Units: µm, µN, µs, ng (:mod:`gecko_agents.params`); a seta's mass is then O(0.1–1). Sign
 conventions: :mod:`gecko_agents.contact` and ``docs/physics.md``.
 
-:class:`Model` builds a run from parameters and conducts it; the pieces live in their own
-modules:
+:class:`Model` is a façade: :func:`gecko_agents.model.build.build` makes every choice of the
+run once (a frozen :class:`~gecko_agents.model.build.Setup`, compatibility checked there), the
+model assembles the parts from it and runs a protocol once into a History; the pieces live in
+their own modules:
 
 * :mod:`gecko_agents.model.world` — the pymunk space (tips, plate, floor, collision events,
   batch I/O);
@@ -88,8 +90,13 @@ class Model(Stepping):
 
     Attributes
     ----------
+    setup : the run's :class:`~gecko_agents.model.build.Setup` (its choices and the seta's
+        constants, also attributes of the model by their names: ``mass``, ``K``, ``Fc``, …).
     backing : what holds the seta roots, built from ``params.backing``
-        (:mod:`gecko_agents.backing`): the rigid plate or an elastic strip.
+        (:mod:`gecko_agents.backing`): the rigid plate, an elastic strip or layer.
+    implicit_step : the :class:`~gecko_agents.model.implicit.ImplicitStep`, or None.
+    multirate : the :class:`~gecko_agents.model.multirate.Multirate` step, or None.
+    constants : the per-step kernels' constants record (at the current ``dt``).
     """
 
     energy_complete = True

@@ -192,6 +192,22 @@ class EventSteps:
         m.dt = dt
         m.constants = m.physics.c = m.constants._replace(dt=dt, hm=0.5 * dt / m.mass)
 
+    def start_books(self, n: int, dt: float) -> None:
+        """The per-seta books of ``n`` setae at the start, the last step ``dt`` [µs]: the
+        impulse F'·dt ``_J`` [µN·µs] and F' − F ``_dF`` [µN] of the last step, the contact's
+        normal, stick and (a film tip's) off-diagonal stiffnesses ``_kn``, ``_kt``, ``_kxy``
+        [µN/µm], dP/dδ of attached tips ``_k_raw`` (nan where free, −inf where not finite)
+        [µN/µm] and its rate over the last step ``_k_rate`` [µN/(µm·µs)] (the pull-off check
+        of :meth:`substeps`)."""
+        self._J = np.zeros((2, n))
+        self._dt_prev = dt
+        self._kn = np.zeros(n)
+        self._kt = np.zeros(n)
+        self._kxy = np.zeros(n)
+        self._dF = np.zeros((2, n))
+        self._k_raw = np.full(n, np.nan)
+        self._k_rate = np.zeros(n)
+
     def books(self, idx) -> dict:
         """The per-seta books of setae ``idx`` (copies): the last impulse ``J`` [µN·µs], its
         F' − F ``dF`` [µN], dP/dδ ``k_raw`` [µN/µm] and its rate ``k_rate``, the last step
@@ -208,16 +224,14 @@ class EventSteps:
     def for_setae(self, model, books: dict, dt: float) -> EventSteps:
         """This step for ``model``, a model of some of the setae alone (a multirate step's,
         :mod:`gecko_agents.model.multirate`), from their ``books`` (:meth:`books`), with the
-        numpy kernels and the step ``dt`` [µs]."""
+        step ``dt`` [µs]."""
         step = copy.copy(self)
         n = books["k_raw"].size
         step.m = model
         step.numerical_dissipated = 0.0
-        step._pad = False
+        step.start_books(n, books["dt_prev"])
         step._J, step._dF = books["J"].copy(), books["dF"].copy()
         step._k_raw, step._k_rate = books["k_raw"].copy(), books["k_rate"].copy()
-        step._dt_prev = books["dt_prev"]
-        step._kn, step._kt, step._kxy = (np.zeros(n) for _ in range(3))
         step.set_dt(dt)
         return step
 

@@ -198,22 +198,19 @@ class ImplicitStep(EventSteps):
         event = default_event_dt(model.omega_max) if event_dt is None else event_dt
         self.k_event = max(1, math.ceil(model.dt / event - 1e-9))
         self.n_located = 0  # steps taken at dt/k near events
-        self._J = np.zeros((2, n))  # the last step's impulse F'·dt [µN·µs]
-        self._dt_prev = model.dt
-        self._kn = np.zeros(n)
-        self._kt = np.zeros(n)
+        self.start_books(n, model.dt)
         # A film tip's (the spatula's) contact stiffness is a full 2×2: its kxy [µN/µm].
         self.film = bool(law.film)
-        self._kxy = np.zeros(n)
-        self._dF = np.zeros((2, n))  # the last step's F' − F [µN]
-        # dP/dδ of attached tips (nan where free, −inf where not finite) [µN/µm] and its
-        # rate of change over the last step [µN/(µm·µs)]: event location's pull-off check.
-        self._k_raw = np.full(n, np.nan)
-        self._k_rate = np.zeros(n)
         self._pad = False  # the compiled pad kernels (implicit_kernel.pad_solver; not yet)
         # The run's energy scale so far [pJ] (note_energies; the runner resets it per run).
         self.energy_scale = 0.0
         self.near = None  # the setae near an event at the last located step (substeps)
+
+    def for_setae(self, model, books: dict, dt: float) -> ImplicitStep:
+        """:meth:`EventSteps.for_setae`, on the numpy kernels (the setae's own pool)."""
+        step = super().for_setae(model, books, dt)
+        step._pad = False
+        return step
 
     def seta_stiffness(self, rx, ry):
         """The seta's stiffness K = −J_x (kxx, kxy, kyx, kyy) [µN/µm], scalars for the
