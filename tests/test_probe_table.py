@@ -942,3 +942,35 @@ def test_probe_54_design(row, tmp_path, capsys, monkeypatch):
 
 def test_the_design_rows_are_distinct():
     assert len({r.id for r in ROWS_54_DESIGN}) == len(ROWS_54_DESIGN)
+
+
+# Issue 54: review ----------------------------------------------------------------------------
+def _relative_storage_elsewhere(probe: Probe):
+    """A study at ``--storage sqlite:///s.db`` into ``--out o``, then the same command from
+    another folder, where that URL names another file: refused, the folder's outputs
+    unchanged (-1 if one changed)."""
+    first, second = probe.tmp / "a", probe.tmp / "b"
+    first.mkdir()
+    second.mkdir()
+    probe.monkeypatch.chdir(first)
+    assert _design(probe, "--storage", "sqlite:///s.db")[0] == 0
+    d = probe.tmp / "o"
+    before = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    probe.monkeypatch.chdir(second)
+    code, message = _design(probe, "--storage", "sqlite:///s.db", "--trials", "2")
+    after = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    return (code if after == before else -1), message
+
+
+ROWS_54_REVIEW = [
+    Row("design --storage sqlite:///s.db again from another folder", _relative_storage_elsewhere,
+        2, ("holds the study", "a/s.db", "b/s.db")),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_REVIEW],
+)
+def test_probe_54_review(row, tmp_path, capsys, monkeypatch):
+    test_probe_54_design(row, tmp_path, capsys, monkeypatch)

@@ -36,6 +36,7 @@ __all__ = [
     "write_record",
     "hold",
     "check_storage",
+    "store_name",
     "storage_full",
 ]
 
@@ -125,8 +126,8 @@ def check_output(out: Path, study: str | None = None, storage: str | None = None
             "outputs: give it its own --out (an edited design file or --quick is another study)"
         )
     where = saved.get(study, {}).get("storage")
-    here = "study.db" if storage is None else _hidden(storage)
-    if study is not None and where is not None and where != here:
+    here = "study.db" if storage is None else store_name(storage)
+    if study is not None and where is not None and store_name(where) != here:
         raise DesignFolderError(
             f"{out}: holds the study {study} stored at {where}, not at {here}: give the same "
             "--storage to continue it, or another --out"
@@ -150,7 +151,7 @@ def write_record(out: Path, spec, study: str, storage: str | None) -> None:
         "design_file": str(spec.path),
         "sha256": spec.sha256,
         "quick": spec.quick,
-        "storage": "study.db" if storage is None else _hidden(storage),
+        "storage": "study.db" if storage is None else store_name(storage),
     }
     atomic_write_bytes(Path(out) / RECORD, json.dumps(record, indent=1).encode())
 
@@ -205,11 +206,18 @@ def _lock(folder: Path) -> int:
     return fd
 
 
-def _hidden(url: str) -> str:
-    """``url`` with its password hidden."""
+def store_name(url: str) -> str:
+    """The store ``url`` names, as a design folder's record keeps it: its password hidden, an
+    SQLite file's path made absolute (``sqlite:///designs.db`` given in another folder is
+    another file); "study.db", the folder's own file, as it is."""
     from sqlalchemy.engine import make_url
 
-    return make_url(url).render_as_string(hide_password=True)
+    if url == "study.db":
+        return url
+    u = make_url(url)
+    if u.get_backend_name() == "sqlite" and u.database and not u.database.startswith("file:"):
+        u = u.set(database=str(Path(u.database).resolve()))
+    return u.render_as_string(hide_password=True)
 
 
 def check_storage(url: str) -> None:
