@@ -962,9 +962,24 @@ def _relative_storage_elsewhere(probe: Probe):
     return (code if after == before else -1), message
 
 
+def _design_interrupted(probe: Probe):
+    """``design --out 'o x' --trials 3`` stopped by Ctrl-C: exit 130, the resume line the
+    whole command, quoted for a shell."""
+    import gecko_agents.design as design
+
+    def stop(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    probe.monkeypatch.setattr(design, "run_design", stop)
+    code, message = _design(probe, "--trials", "3", out="o x")
+    return code, message.replace(str(probe.tmp), "TMP")
+
+
 ROWS_54_REVIEW = [
     Row("design --storage sqlite:///s.db again from another folder", _relative_storage_elsewhere,
         2, ("holds the study", "a/s.db", "b/s.db")),
+    Row("design --out 'o x' --trials 3 interrupted", _design_interrupted, 130,
+        ("resume with: gecko-agents design TMP/d.toml --out 'TMP/o x' --trials 3",)),
 ]  # fmt: skip
 
 
