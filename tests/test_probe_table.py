@@ -975,11 +975,26 @@ def _design_interrupted(probe: Probe):
     return code, message.replace(str(probe.tmp), "TMP")
 
 
+def _every_trial_fails(probe: Probe):
+    """A screen whose model raises on every design: the report counts the failed trials
+    among all the study's trials."""
+    import gecko_agents.design.search as design_search
+
+    def evaluate(spec, values):
+        raise RuntimeError("preload not reached within 200000 steps")
+
+    probe.monkeypatch.setattr(design_search, "evaluate", evaluate)
+    code, message = _design(probe)
+    return code, message + (probe.tmp / "o" / "report.md").read_text()
+
+
 ROWS_54_REVIEW = [
     Row("design --storage sqlite:///s.db again from another folder", _relative_storage_elsewhere,
         2, ("holds the study", "a/s.db", "b/s.db")),
     Row("design --out 'o x' --trials 3 interrupted", _design_interrupted, 130,
         ("resume with: gecko-agents design TMP/d.toml --out 'TMP/o x' --trials 3",)),
+    Row("design: the screen's model raises on every design", _every_trial_fails, 0,
+        ("failed_trials: 4 of 4 trials failed", "RuntimeError")),
 ]  # fmt: skip
 
 
