@@ -988,6 +988,20 @@ def _every_trial_fails(probe: Probe):
     return code, message + (probe.tmp / "o" / "report.md").read_text()
 
 
+def _resumed_designs(probe: Probe, store: str = "o/study.db"):
+    """A study of 4 trials in ``store`` (the default, or a --storage file) resumed to 8 (as
+    after a kill at 4): (how many distinct designs the 8 trials drew, what the resume said)."""
+    import sqlite3
+
+    argv = [] if store == "o/study.db" else ["--storage", f"sqlite:///{probe.tmp / store}"]
+    assert _design(probe, *argv)[0] == 0
+    code, message = _design(probe, *argv, "--trials", "8")
+    assert code == 0
+    with sqlite3.connect(probe.tmp / store) as db:
+        drawn = db.execute("SELECT trial_id, param_value FROM trial_params").fetchall()
+    return len({v for _, v in drawn}), message
+
+
 ROWS_54_REVIEW = [
     Row("design --storage sqlite:///s.db again from another folder", _relative_storage_elsewhere,
         2, ("holds the study", "a/s.db", "b/s.db")),
@@ -995,6 +1009,11 @@ ROWS_54_REVIEW = [
         ("resume with: gecko-agents design TMP/d.toml --out 'TMP/o x' --trials 3",)),
     Row("design: the screen's model raises on every design", _every_trial_fails, 0,
         ("failed_trials: 4 of 4 trials failed", "RuntimeError")),
+    Row("design resumed from 4 to 8 trials draws 8 designs", _resumed_designs, 8,
+        ("8 screening trials",)),
+    Row("design --storage resumed from 4 to 8 trials draws 8 designs",
+        lambda p: _resumed_designs(p, "s.db"), 8,
+        ("8 screening trials",)),
 ]  # fmt: skip
 
 
