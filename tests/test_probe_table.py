@@ -1002,6 +1002,28 @@ def _resumed_designs(probe: Probe, store: str = "o/study.db"):
     return len({v for _, v in drawn}), message
 
 
+def _store_created_meanwhile(probe: Probe):
+    """``design --storage`` on a new SQLite file another command (``--worker 1``, started at
+    the same time) creates first: Optuna's first try at the store meets the other's
+    version row (the race two such commands run), the command goes on."""
+    import optuna
+    from sqlalchemy.exc import IntegrityError
+
+    rdb = optuna.storages.RDBStorage
+    raced = []
+
+    class Racing(rdb):
+        def __init__(self, url, *args, **kwargs):
+            if not raced:
+                raced.append(url)
+                rdb(url, *args, **kwargs)  # the other command's store, created first
+                raise IntegrityError("INSERT INTO alembic_version", {}, Exception("UNIQUE"))
+            super().__init__(url, *args, **kwargs)
+
+    probe.monkeypatch.setattr(optuna.storages, "RDBStorage", Racing)
+    return _design(probe, "--storage", f"sqlite:///{probe.tmp / 's.db'}")
+
+
 ROWS_54_REVIEW = [
     Row("design --storage sqlite:///s.db again from another folder", _relative_storage_elsewhere,
         2, ("holds the study", "a/s.db", "b/s.db")),
@@ -1014,6 +1036,8 @@ ROWS_54_REVIEW = [
     Row("design --storage resumed from 4 to 8 trials draws 8 designs",
         lambda p: _resumed_designs(p, "s.db"), 8,
         ("8 screening trials",)),
+    Row("design --storage: a new store another command created meanwhile",
+        _store_created_meanwhile, 0, ("4 screening trials",)),
 ]  # fmt: skip
 
 

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -176,7 +177,7 @@ def _storage(url: str, optuna):
     """Optuna's database storage at ``url``; an SQLite file in write-ahead-log mode with
     ``synchronous = NORMAL``: a commit survives the process being killed (it may not survive
     the machine losing power), and a trial costs milliseconds instead of an fsync per record."""
-    rdb = optuna.storages.RDBStorage(url)
+    rdb = _created(url, optuna)
     if url.startswith("sqlite"):
         from sqlalchemy import event
 
@@ -187,6 +188,20 @@ def _storage(url: str, optuna):
         event.listen(rdb.engine, "connect", fast)
         rdb.engine.dispose()
     return rdb
+
+
+def _created(url: str, optuna, tries: int = 5):
+    """Optuna's ``RDBStorage(url)``. Commands started together on a new store race to create
+    its tables and version rows (a ``CREATE TABLE`` or an ``INSERT`` the other committed
+    first): the loser tries again, finding them there."""
+    from sqlalchemy.exc import IntegrityError, OperationalError
+
+    for k in range(tries - 1):
+        try:
+            return optuna.storages.RDBStorage(url)
+        except (IntegrityError, OperationalError):
+            time.sleep(0.2 * (k + 1))
+    return optuna.storages.RDBStorage(url)
 
 
 def provenance() -> dict:
