@@ -1024,6 +1024,19 @@ def _store_created_meanwhile(probe: Probe):
     return _design(probe, "--storage", f"sqlite:///{probe.tmp / 's.db'}")
 
 
+def _damaged_store(probe: Probe):
+    """A design folder whose study.db was cut short (a full disk, a copy cut off): refused,
+    naming the file, before any work (-1 if a file changed)."""
+    assert _design(probe)[0] == 0
+    db = probe.tmp / "o" / "study.db"
+    db.write_bytes(db.read_bytes()[:5000])
+    d = probe.tmp / "o"
+    before = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    code, message = _design(probe, "--trials", "6")
+    after = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    return (code if after == before else -1), message
+
+
 ROWS_54_REVIEW = [
     Row("design --storage sqlite:///s.db again from another folder", _relative_storage_elsewhere,
         2, ("holds the study", "a/s.db", "b/s.db")),
@@ -1038,6 +1051,8 @@ ROWS_54_REVIEW = [
         ("8 screening trials",)),
     Row("design --storage: a new store another command created meanwhile",
         _store_created_meanwhile, 0, ("4 screening trials",)),
+    Row("design into its folder with study.db cut short", _damaged_store, 2,
+        ("o/study.db", "damaged")),
 ]  # fmt: skip
 
 

@@ -36,6 +36,7 @@ __all__ = [
     "write_record",
     "hold",
     "check_storage",
+    "check_database",
     "store_name",
     "storage_full",
 ]
@@ -137,6 +138,29 @@ def check_output(out: Path, study: str | None = None, storage: str | None = None
         raise DesignFolderError(
             f"{out}: {_shown(clash)} is not what a search writes there (a file, or the folder "
             "runs); choose another --out"
+        )
+    if storage is None and (out / "study.db").is_file():
+        check_database(out / "study.db")
+
+
+def check_database(db: Path, shown: str | None = None) -> None:
+    """Refuse an SQLite file SQLite cannot read whole (cut short by a full disk or a copy,
+    or not a database), naming it (``shown``: how the command named it). Raises
+    :class:`DesignFolderError`."""
+    try:
+        con = sqlite3.connect(f"{Path(db).resolve().as_uri()}?mode=ro", uri=True)
+        try:
+            verdict = con.execute("PRAGMA quick_check").fetchone()[0]
+        finally:
+            con.close()
+    except sqlite3.OperationalError:  # locked, or its log not readable here: Optuna will say
+        return
+    except sqlite3.DatabaseError as err:
+        verdict = str(err)
+    if verdict != "ok":
+        raise DesignFolderError(
+            f"{shown or db}: is damaged ({verdict}): restore it, or move it aside to start "
+            "its study again"
         )
 
 
@@ -273,6 +297,8 @@ def _check_sqlite_file(shown: str, database: str | None) -> None:
             raise PermissionError("the file is read-only")
     except OSError as err:
         raise DesignFolderError(f"{shown}: cannot be written ({err.strerror or err})") from None
+    if path.is_file():
+        check_database(path, f"{shown} ({path})")
 
 
 def storage_full(err: BaseException) -> str | None:
