@@ -949,7 +949,6 @@ def test_the_design_rows_are_distinct():
     assert len({r.id for r in ROWS_54_DESIGN}) == len(ROWS_54_DESIGN)
 
 
-<<<<<<< HEAD
 # Issue 54: the laws ---------------------------------------------------------------------------
 # Each row the issue's input; the laws' closed-form oracles are in the laws' own test files.
 
@@ -1058,7 +1057,20 @@ ROWS_54_LAWS = [
     Row("detachment force at implicit dt 30",
         lambda p: _detachment_force(p, {"integrator": "implicit", "dt": 30.0,
                                         "event_dt": 30.0}), -1.7271, ()),
-=======
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_LAWS],
+)
+def test_probe_issue_54_laws(row, tmp_path, capsys, monkeypatch):
+    outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))
+    assert outcome == row.expected, message
+    for name in row.names:
+        assert name in message, (name, message)
+
+
 # Issue 54: review ----------------------------------------------------------------------------
 def _relative_storage_elsewhere(probe: Probe):
     """A study at ``--storage sqlite:///s.db`` into ``--out o``, then the same command from
@@ -1168,23 +1180,12 @@ ROWS_54_REVIEW = [
         _store_created_meanwhile, 0, ("4 screening trials",)),
     Row("design into its folder with study.db cut short", _damaged_store, 2,
         ("o/study.db", "damaged")),
->>>>>>> probe54
 ]  # fmt: skip
 
 
 @pytest.mark.parametrize(
     "row",
-<<<<<<< HEAD
-    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_LAWS],
-)
-def test_probe_issue_54_laws(row, tmp_path, capsys, monkeypatch):
-    outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))
-    assert outcome == row.expected, message
-    for name in row.names:
-        assert name in message, (name, message)
-=======
     [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_REVIEW],
 )
 def test_probe_54_review(row, tmp_path, capsys, monkeypatch):
     test_probe_54_design(row, tmp_path, capsys, monkeypatch)
->>>>>>> probe54
