@@ -185,6 +185,8 @@ def preload_pulls(
     gaussian: tuple | None = None,
     refine_peak: bool = False,
     retract_dz: float | None = None,
+    approach_stride: int = 1,
+    turning: str = "secant",
 ) -> list[QuasiStaticResult]:
     """:func:`preload_pull` for several preloads [µN] at once, with one shared approach.
 
@@ -220,13 +222,24 @@ def preload_pulls(
     ``retract_dz`` [µm]: an upper bound on the retract step max(dz, travel/retract_steps); the
     retract then goes on until every seta has let go (up to 10× the estimated travel).
 
+    ``approach_stride``: once every seta is attached and pressed (P > 0), the approach steps
+    grow (doubling) up to this many ``dz``, and a long step that changed any seta's state
+    (stick, slide, its direction) is taken again in steps of ``dz``. A step that changes no
+    state lands where the short ones would (eq 22–27): a stuck tip's equilibrium depends only
+    on its anchor and the plate height, a sliding one's only on the plate height (its anchor
+    trails it at the cap); so the turning points and retracts are those of ``dz`` steps to the
+    root finder's 1e-9 (tested), with far fewer steps down a deep press. Linear setae on
+    fixed heights only (1 otherwise); the approach's record is then sparser.
+
+    ``turning``: how a turning point is found in its step: ``"secant"`` (Illinois regula
+    falsi, few solves) or ``"bisect"`` (halving, as :func:`preload_pull` does). Where the force
+    is not monotone within a step (a block jumping in pulls) the two may stop at different
+    crossings of the preload, a block apart; ``"bisect"`` stops where :func:`preload_pull` does.
+
     Returns
     -------
     One :class:`QuasiStaticResult` per preload, in the order given.
     """
-    pre = np.atleast_1d(np.asarray(preloads, dtype=float))
-    if pre.size == 0 or not np.all(pre > 0):
-        raise ValueError(f"preloads = {preloads!r} must be one or more forces > 0 [µN]")
     pre = np.atleast_1d(np.asarray(preloads, dtype=float))
     if pre.size == 0 or not np.all(pre > 0):
         raise ValueError(f"preloads = {preloads!r} must be one or more forces > 0 [µN]")
@@ -238,7 +251,15 @@ def preload_pulls(
     at, Z_start, top = contact_front(params, h, w, gaussian)
     dz = _approach_step(params, dz)
     st = RodState(h.size) if rod else State(h.size)
-    approach, turns = _shared_approach(br, step_fn, at, st, Z_start, dz, pre, max_steps)
+    if not (isinstance(approach_stride, int) and approach_stride >= 1):
+        raise ValueError(f"approach_stride = {approach_stride!r} must be an integer ≥ 1")
+    if turning not in ("secant", "bisect"):
+        raise ValueError(f"turning = {turning!r} must be 'secant' or 'bisect'")
+    stride = approach_stride if gaussian is None and not rod else 1
+    turn = _turning_point if turning == "secant" else _bisected_turn
+    approach, turns = _shared_approach(
+        br, step_fn, at, st, (Z_start, dz, stride), pre, max_steps, turn
+    )
     # Retracts of every preload together: copy c of the setae starts from turn c.
     Zc = np.array([turns[c].Z for c in range(pre.size)])
     dzc, n_c, n_up = _retract_schedule(params, br, top, Zc, dz, retract_steps, retract_dz)
@@ -250,26 +271,38 @@ def preload_pulls(
     return [_joined(approach, turns[c], rec[c]) for c in range(pre.size)]
 
 
-def _shared_approach(br, step_fn, at, st, Z, dz, pre, max_steps):
-    """Step the plate down by ``dz`` from Z [µm]; each time the force passes the next
-    preload, find that turning point from the state before the step and go on.
+def _changed(before, after) -> bool:
+    """Whether a step changed any seta's contact state or slide direction."""
+    return bool(np.any(before.state != after.state) or np.any(before.sigma != after.sigma))
+
+
+def _shared_approach(br, step_fn, at, st, path, pre, max_steps, turn):
+    """Step the plate down by ``dz`` from Z [µm] (``path`` = (Z, dz, stride)); each time the
+    force passes the next preload, find that turning point (``turn``: :func:`_turning_point`
+    or :func:`_bisected_turn`) from the state before the step and go on. With ``stride`` > 1,
+    steps of up to ``stride``·dz where every seta is attached and pressed (see
+    :func:`preload_pulls`' ``approach_stride``).
 
     Returns (the approach's Z, F, T, n lists by key, :class:`_Turn` by preload index).
     """
+    Z, dz, stride = path
     order = np.argsort(pre, kind="stable")
     ap = {"Z": [], "F": [], "T": [], "n": []}
     turns = {}
-    k = 0
+    k, gap = 0, dz  # gap: this step's plate travel [µm]
     for _ in range(max_steps):
         saved = st.copy()
         hz, wz = at(Z)
         res = step_fn(br, st, Z, hz)
+        if gap > dz and _changed(saved, st):  # a long step that changed a state: retake it
+            st, Z, gap = saved, Z + gap - dz, dz
+            continue
         F = float(np.sum(wz * res[0]))
         while k < order.size and F >= pre[order[k]]:
             target = pre[order[k]]
             F_prev = ap["F"][-1] if ap["F"] else 0.0
-            hi, best = _turning_point(
-                br, step_fn, at, saved, Z, dz, (F_prev, F), target, (res, st.copy(), hz, wz)
+            hi, best = turn(
+                br, step_fn, at, saved, Z, gap, (F_prev, F), target, (res, st.copy(), hz, wz)
             )
             turns[int(order[k])] = _Turn(hi, best[1], best[0], len(ap["Z"]), best[2], best[3])
             k += 1
@@ -279,7 +312,9 @@ def _shared_approach(br, step_fn, at, st, Z, dz, pre, max_steps):
         ap["F"].append(F)
         ap["T"].append(float(np.sum(wz * res[1])))
         ap["n"].append(float(np.sum(wz[st.state != FREE])))
-        Z -= dz
+        pressed = stride > 1 and np.all(res[0] > 0) and not np.any(st.state == FREE)
+        gap = min(2 * gap, stride * dz) if pressed else dz
+        Z -= gap
     raise RuntimeError(
         f"preload {pre[order[k]]} µN not reached within {max_steps} steps of "
         f"{dz} µm; the floor may be out of reach"
@@ -319,6 +354,26 @@ def _turning_point(br, step_fn, at, saved, Z, dz, forces, target, best):
             if side == -1:
                 f_hi *= 0.5
             side = -1
+    return hi, best
+
+
+def _bisected_turn(br, step_fn, at, saved, Z, dz, forces, target, best):
+    """:func:`_turning_point` by halving the step, as :meth:`_ForcePath._bisect` does: the
+    highest plate height found with force ≥ ``target`` [µN] (to 1e-9 of it, or after 60
+    halvings) and (equilibria, state, heights, weights) there."""
+    lo, hi = Z + dz, Z
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        trial = saved.copy()
+        hm, wm = at(mid)
+        r = step_fn(br, trial, mid, hm)
+        Fm = float(np.sum(wm * r[0]))
+        if Fm >= target:
+            hi, best = mid, (r, trial, hm, wm)
+            if Fm - target <= 1e-9 * target:
+                break
+        else:
+            lo = mid
     return hi, best
 
 
