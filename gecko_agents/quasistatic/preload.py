@@ -186,6 +186,7 @@ def preload_pulls(
     refine_peak: bool = False,
     retract_dz: float | None = None,
     approach_stride: int = 1,
+    retract_stride: int = 1,
     turning: str = "secant",
 ) -> list[QuasiStaticResult]:
     """:func:`preload_pull` for several preloads [µN] at once, with one shared approach.
@@ -231,6 +232,13 @@ def preload_pulls(
     root finder's 1e-9 (tested), with far fewer steps down a deep press. Linear setae on
     fixed heights only (1 otherwise); the approach's record is then sparser.
 
+    ``retract_stride``: the same on the retract's grid of steps (not with ``refine_peak``):
+    a copy whose last step changed no seta's state moves up to this many steps at once, and
+    one step at a time again where a move changed one. On a branch each seta's force is
+    monotone in the plate height (eq 22–27), so the force is monotone between state changes
+    and the steps next to every change (every release among them) are still visited: the
+    sampled pull-off, the releases and the attached counts are those of single steps.
+
     ``turning``: how a turning point is found in its step: ``"secant"`` (Illinois regula
     falsi, few solves) or ``"bisect"`` (halving, as :func:`preload_pull` does). Where the force
     is not monotone within a step (a block jumping in pulls) the two may stop at different
@@ -263,8 +271,15 @@ def preload_pulls(
     # Retracts of every preload together: copy c of the setae starts from turn c.
     Zc = np.array([turns[c].Z for c in range(pre.size)])
     dzc, n_c, n_up = _retract_schedule(params, br, top, Zc, dz, retract_steps, retract_dz)
+    if not (isinstance(retract_stride, int) and retract_stride >= 1):
+        raise ValueError(f"retract_stride = {retract_stride!r} must be an integer ≥ 1")
     rec, peaks, hh, ww = _batched_retracts(
-        br, step_fn, [turns[c] for c in range(pre.size)], Zc, dzc, n_c, n_up, Z_start, refine_peak
+        br,
+        step_fn,
+        [turns[c] for c in range(pre.size)],
+        (Zc, dzc, n_c, n_up, Z_start),
+        refine_peak,
+        1 if refine_peak or rod else retract_stride,
     )
     if refine_peak:
         _refine_peaks(br, step_fn, rec, peaks, hh, ww, h.size, Zc, dzc)
@@ -406,41 +421,64 @@ def _turn_record(turn: _Turn, Z) -> dict:
     }
 
 
-def _batched_retracts(br, step_fn, turns, Zc, dzc, n_c, n_up, Z_start, refine_peak):
+def _batched_retracts(br, step_fn, turns, grid, refine_peak, stride=1):
     """The retracts of all copies as one solve over (copies × setae), each copy from its turn.
 
-    A copy stops after its n_c steps or once all its setae have let go above ``Z_start``.
-    Returns (the records of each copy, its highest sampled tension (F, step, state before
-    the next step), the concatenated heights [µm] and weights of all copies).
+    ``grid`` = (Zc, dzc, n_c, n_up, Z_start): copy c visits plate heights Zc[c] + t·dzc[c],
+    t = 1 … n_c[c] (at most n_up moves), and stops once all its setae have let go above
+    ``Z_start`` [µm]. With ``stride`` > 1 (not with ``refine_peak``) a copy whose
+    last step changed no seta's state moves up to ``stride`` steps of the grid at once, and
+    takes such a move again step by step where it changed one (see :func:`preload_pulls`'
+    ``retract_stride``). Returns (the records of each copy, its highest sampled tension (F,
+    step, state before the next step), the concatenated heights [µm] and weights of all
+    copies).
     """
+    Zc, dzc, n_c, n_up, Z_start = grid
     K, n = len(turns), turns[0].heights.size
     big = concat_states([turn.state for turn in turns])
     hh = np.concatenate([turn.heights for turn in turns])
     ww = np.concatenate([turn.weights for turn in turns])
     owner = np.repeat(np.arange(K), n)
     rec = [_turn_record(turns[c], Zc[c]) for c in range(K)]
-    active = np.arange(K)
-    sel = np.arange(K * n)
+    active, sel = np.arange(K), np.arange(K * n)
+    tc, gap = np.zeros(K, dtype=int), np.ones(K, dtype=int)  # grid step, next move
     peaks = {c: (rec[c]["F"][0], 0, take_state(big, slice(c * n, (c + 1) * n))) for c in range(K)}
-    for t in range(1, n_up + 1):
-        Zs = Zc[owner[sel]] + t * dzc[owner[sel]]
-        P, Ft, _, rel, rel_d = step_fn(br, big, Zs, hh[sel])
+    for _ in range(n_up):
+        gap[active] = np.minimum(gap[active], n_c[active] - tc[active])
+        saved = big.copy() if stride > 1 else None
+        o = owner[sel]
+        out = step_fn(br, big, Zc[o] + (tc[o] + gap[o]) * dzc[o], hh[sel])
+        changed = np.zeros(active.size, dtype=bool)
+        if saved is not None:
+            changed = ((saved.state != big.state) | (saved.sigma != big.sigma)).reshape(-1, n)
+            changed = changed.any(axis=1)
+            redo = np.flatnonzero(changed & (gap[active] > 1))
+            if redo.size:  # a long move that changed a state: one grid step instead
+                gap[active[redo]] = 1
+                rows = (redo[:, None] * n + np.arange(n)[None, :]).ravel()
+                o = owner[sel[rows]]
+                _retake(
+                    br, step_fn, saved, big, out, rows, Zc[o] + (tc[o] + 1) * dzc[o], hh[sel[rows]]
+                )
+        tc[active] += gap[active]
+        P, Ft, _, rel, rel_d = out
         att = big.state != FREE
         wp, wf, wa = ww[sel] * P, ww[sel] * Ft, ww[sel] * att
         done = []
         for m, c in enumerate(active):
             s = slice(m * n, (m + 1) * n)
-            rc = rec[c]
+            rc, t = rec[c], int(tc[c])
             rc["Z"].append(Zc[c] + t * dzc[c])
             rc["F"].append(float(wp[s].sum()))
             rc["T"].append(float(wf[s].sum()))
             rc["n"].append(float(wa[s].sum()))
             for j in np.flatnonzero(rel[s]):
-                rc["rel"].append((t, int(j), float(rel_d[s][j])))
+                rc["rel"].append((len(rc["Z"]) - 1, int(j), float(rel_d[s][j])))
             if refine_peak and rc["F"][-1] < peaks[c][0]:
                 peaks[c] = (rc["F"][-1], t, take_state(big, np.arange(m * n, (m + 1) * n)))
             if t >= n_c[c] or (rc["Z"][-1] > Z_start and not att[s].any()):
                 done.append(m)
+            gap[c] = min(2 * gap[c], stride) if stride > 1 and not changed[m] else 1
         if done:
             keep = np.setdiff1d(np.arange(active.size), done)
             if keep.size == 0:
@@ -450,6 +488,17 @@ def _batched_retracts(br, step_fn, turns, Zc, dzc, n_c, n_up, Z_start, refine_pe
             sel = sel[rows]
             active = active[keep]
     return rec, peaks, hh, ww
+
+
+def _retake(br, step_fn, saved, big, out, rows, Z, h) -> None:
+    """Step the setae ``rows`` again from ``saved`` to plate heights ``Z`` [µm] over floor
+    heights ``h`` [µm], writing their state into ``big`` and their equilibria into ``out``."""
+    sub = take_state(saved, rows)
+    again = step_fn(br, sub, Z, h)
+    for k in vars(big):
+        getattr(big, k)[rows] = getattr(sub, k)
+    for arr, new in zip(out, again, strict=True):
+        arr[rows] = new
 
 
 def _joined(approach: dict, turn: _Turn, rc: dict) -> QuasiStaticResult:
