@@ -114,12 +114,13 @@ def write_page(out: dict, path) -> None:
         "",
         "Written by `python -m gecko_agents.bench --main-job"
         + (" --quick" if out["quick"] else "")
-        + " --docs PATH`: both rows come from that",
-        f"one run ({os.cpu_count()} cores, gecko_agents {versions().get('gecko_agents', '?')},",
-        f"numba {_numba_version()}). *default* is the README's first command,",
-        "`python scenarios/reproduce_paper.py`; *baseline* is the same job with the agent",
-        "model's multirate stepping and the Fig 11 sweeps' curves switched off",
-        "(`gecko_agents.bench_main_job`). CPU counts the job and every process it started.",
+        + " --docs PATH`: both rows come from",
+        f"that one run ({os.cpu_count()} cores, gecko_agents "
+        f"{versions().get('gecko_agents', '?')}, numba {_numba_version()}). *default* is the",
+        "README's first command, `python scenarios/reproduce_paper.py`; *baseline* is the same",
+        "job with the agent model's multirate stepping and the Fig 11 sweeps' curves switched",
+        "off (`gecko_agents.bench_main_job`). CPU counts the job and every process it started;",
+        "on a machine shared with other jobs it is the steadier figure.",
         "",
         "| run | wall [s] | CPU [s] |",
         "|---|---|---|",
