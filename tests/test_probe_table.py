@@ -1071,6 +1071,126 @@ def test_probe_issue_54_laws(row, tmp_path, capsys, monkeypatch):
         assert name in message, (name, message)
 
 
+# Issue 54: review ----------------------------------------------------------------------------
+def _relative_storage_elsewhere(probe: Probe):
+    """A study at ``--storage sqlite:///s.db`` into ``--out o``, then the same command from
+    another folder, where that URL names another file: refused, the folder's outputs
+    unchanged (-1 if one changed)."""
+    first, second = probe.tmp / "a", probe.tmp / "b"
+    first.mkdir()
+    second.mkdir()
+    probe.monkeypatch.chdir(first)
+    assert _design(probe, "--storage", "sqlite:///s.db")[0] == 0
+    d = probe.tmp / "o"
+    before = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    probe.monkeypatch.chdir(second)
+    code, message = _design(probe, "--storage", "sqlite:///s.db", "--trials", "2")
+    after = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    return (code if after == before else -1), message
+
+
+def _design_interrupted(probe: Probe):
+    """``design --out 'o x' --trials 3`` stopped by Ctrl-C: exit 130, the resume line the
+    whole command, quoted for a shell."""
+    import gecko_agents.design as design
+
+    def stop(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    probe.monkeypatch.setattr(design, "run_design", stop)
+    code, message = _design(probe, "--trials", "3", out="o x")
+    return code, message.replace(str(probe.tmp), "TMP")
+
+
+def _every_trial_fails(probe: Probe):
+    """A screen whose model raises on every design: the report counts the failed trials
+    among all the study's trials."""
+    import gecko_agents.design.search as design_search
+
+    def evaluate(spec, values):
+        raise RuntimeError("preload not reached within 200000 steps")
+
+    probe.monkeypatch.setattr(design_search, "evaluate", evaluate)
+    code, message = _design(probe)
+    return code, message + (probe.tmp / "o" / "report.md").read_text()
+
+
+def _resumed_designs(probe: Probe, store: str = "o/study.db"):
+    """A study of 4 trials in ``store`` (the default, or a --storage file) resumed to 8 (as
+    after a kill at 4): (how many distinct designs the 8 trials drew, what the resume said)."""
+    import sqlite3
+
+    argv = [] if store == "o/study.db" else ["--storage", f"sqlite:///{probe.tmp / store}"]
+    assert _design(probe, *argv)[0] == 0
+    code, message = _design(probe, *argv, "--trials", "8")
+    assert code == 0
+    with sqlite3.connect(probe.tmp / store) as db:
+        drawn = db.execute("SELECT trial_id, param_value FROM trial_params").fetchall()
+    return len({v for _, v in drawn}), message
+
+
+def _store_created_meanwhile(probe: Probe):
+    """``design --storage`` on a new SQLite file another command (``--worker 1``, started at
+    the same time) creates first: Optuna's first try at the store meets the other's
+    version row (the race two such commands run), the command goes on."""
+    import optuna
+    from sqlalchemy.exc import IntegrityError
+
+    rdb = optuna.storages.RDBStorage
+    raced = []
+
+    class Racing(rdb):
+        def __init__(self, url, *args, **kwargs):
+            if not raced:
+                raced.append(url)
+                rdb(url, *args, **kwargs)  # the other command's store, created first
+                raise IntegrityError("INSERT INTO alembic_version", {}, Exception("UNIQUE"))
+            super().__init__(url, *args, **kwargs)
+
+    probe.monkeypatch.setattr(optuna.storages, "RDBStorage", Racing)
+    return _design(probe, "--storage", f"sqlite:///{probe.tmp / 's.db'}")
+
+
+def _damaged_store(probe: Probe):
+    """A design folder whose study.db was cut short (a full disk, a copy cut off): refused,
+    naming the file, before any work (-1 if a file changed)."""
+    assert _design(probe)[0] == 0
+    db = probe.tmp / "o" / "study.db"
+    db.write_bytes(db.read_bytes()[:5000])
+    d = probe.tmp / "o"
+    before = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    code, message = _design(probe, "--trials", "6")
+    after = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    return (code if after == before else -1), message
+
+
+ROWS_54_REVIEW = [
+    Row("design --storage sqlite:///s.db again from another folder", _relative_storage_elsewhere,
+        2, ("holds the study", "a/s.db", "b/s.db")),
+    Row("design --out 'o x' --trials 3 interrupted", _design_interrupted, 130,
+        ("resume with: gecko-agents design TMP/d.toml --out 'TMP/o x' --trials 3",)),
+    Row("design: the screen's model raises on every design", _every_trial_fails, 0,
+        ("failed_trials: 4 of 4 trials failed", "RuntimeError")),
+    Row("design resumed from 4 to 8 trials draws 8 designs", _resumed_designs, 8,
+        ("8 screening trials",)),
+    Row("design --storage resumed from 4 to 8 trials draws 8 designs",
+        lambda p: _resumed_designs(p, "s.db"), 8,
+        ("8 screening trials",)),
+    Row("design --storage: a new store another command created meanwhile",
+        _store_created_meanwhile, 0, ("4 screening trials",)),
+    Row("design into its folder with study.db cut short", _damaged_store, 2,
+        ("o/study.db", "damaged")),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_REVIEW],
+)
+def test_probe_54_review(row, tmp_path, capsys, monkeypatch):
+    test_probe_54_design(row, tmp_path, capsys, monkeypatch)
+
+
 # Issue 54: the build step ---------------------------------------------------------------------
 # Choices checked once when the model is built (gecko_agents.model.build): multirate asked for
 # where it does not apply is refused naming what rules it out (item 18); a step longer than

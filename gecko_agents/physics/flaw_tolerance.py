@@ -32,7 +32,7 @@ flat face has no profile) and the zone's outer end fixed at the punch's edge (de
 :func:`dugdale_punch_strength`; his eqs 6.17 and the load and penetration beside it are read
 in the ContactMechanics code, ``PyCo/ReferenceSolutions/MaugisDugdale.py``). It runs from
 σ₀πa² (the whole face at σ₀, a ≤ 0.540·a_cr) to Kendall's force (a ≫ a_cr) and lies below
-both: 15.4 % below min(Kendall, σ₀πa²) at a = a_cr, where that simple form has its kink.
+both: 13.4 % below min(Kendall, σ₀πa²) at a = a_cr, where that simple form has its kink.
 
 Written as the release rate of a crack in the package's convention (Kendall's punch
 G = P²/(8πa³E*), :func:`gecko_agents.physics.punch.edge_release_rate`), Griffith's penny crack of
