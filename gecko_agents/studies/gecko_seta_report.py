@@ -1,0 +1,61 @@
+"""Tables, figure and prose of the gecko-seta study (:mod:`gecko_agents.studies.gecko_seta`):
+``sweep.csv``, ``array_estimate.csv``, ``gecko_seta.png`` and ``gecko_seta.md``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from gecko_agents.output_paths import atomic_write_bytes
+from gecko_agents.studies.common import write_table
+
+__all__ = ["write", "figure"]
+
+
+def figure(path: Path, rows: list[dict], h, attached) -> Path:
+    """Three panels: the forces at release against the pull angle; the force against the
+    plate's travel through the press, drag and 90° pull; the fraction of the spatulae's pads
+    attached along the same travel."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(1, 3, figsize=(13, 4))
+    dragged = [r for r in rows if r["drag_um"]]
+    beta = [r["pull_angle_deg"] for r in dragged]
+    ax[0].plot(beta, [r["adhesion_at_release_uN"] for r in dragged], "o-", label="adhesion")
+    ax[0].plot(beta, [r["shear_at_release_uN"] for r in dragged], "s--", label="shear")
+    ax[0].set(xlabel="pull angle β [deg]", ylabel="force at release [µN]")
+    ax[0].set_title("one tokay seta after preload and drag")
+    ax[0].legend()
+    t = np.asarray(h["time_us"])
+    ax[1].plot(t, h["force_normal_uN"], label="normal (> 0 pressed)")
+    ax[1].plot(t, h["force_tangential_uN"], label="tangential")
+    ax[1].set(xlabel="time [µs]", ylabel="force on the floor [µN]")
+    ax[1].set_title("press, drag, 90° pull")
+    ax[1].legend()
+    ax[2].plot(t, attached)
+    ax[2].set(xlabel="time [µs]", ylabel="pad attached ℓ/ℓ0 [-]", ylim=(-0.05, 1.05))
+    ax[2].set_title("the spatulae's attachment")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def write(out: Path, rows, arr, ours: dict, h, attached) -> None:
+    """Write the study's tables, figure and report into ``out``."""
+    write_table(out / "sweep.csv", rows)
+    write_table(out / "array_estimate.csv", arr)
+    figure(out / "gecko_seta.png", rows, h, attached)
+    lines = ["# One tokay seta, branched into spatulae", "", "| quantity | ours |", "|---|---|"]
+    lines += [f"| {name} | {v['text']} |" for name, v in ours.items()]
+    lines += ["", "| seta | per seta [µN] | setae per cm² | N per cm² |", "|---|---|---|---|"]
+    lines += [
+        f"| {r['seta']} | {r['per_seta_uN']:.3g} | {r['setae_per_cm2']:.3g} | "
+        f"{r['N_per_cm2']:.3g} |"
+        for r in arr
+    ]
+    atomic_write_bytes(out / "gecko_seta.md", ("\n".join(lines) + "\n").encode())
