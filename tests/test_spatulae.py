@@ -21,10 +21,12 @@ from gecko_agents.params.literature import FRICTIONAL_SPATULA, TOKAY_SETA
 SPATULAE = FRICTIONAL_SPATULA.replace(tip="spatulae")
 
 
-def _run(params, prot, kernel="auto"):
+def _run(params, prot, kernel="auto", integrator="auto"):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        m = Model(params, seed=1, numerics=Numerics(record_every=1, kernel=kernel))
+        m = Model(
+            params, seed=1, numerics=Numerics(record_every=1, kernel=kernel, integrator=integrator)
+        )
         return m.run(prot, progress=False)
 
 
@@ -136,3 +138,18 @@ def test_bad_values_refused_naming_the_field(field, value):
 def test_spatulae_on_another_tip_refused():
     with pytest.raises(ValueError, match="Spatulae.count = 5 acts on tip = 'spatulae' only"):
         PAPER_ARRAY.replace(**{"spatulae.count": 5})
+
+
+def test_tokay_seta_lets_go_at_n_times_kendalls_force_at_its_release_angle():
+    """The tokay preset pressed and pulled straight up (no drag, so no pre-tension): at
+    release the seta's force has the magnitude seta_pull_off gives at the angle φ it makes
+    with the floor there, N·F_Kendall(φ) (the shaft, not the plate, sets φ)."""
+    from gecko_agents.analysis.pull import release_point
+
+    h = _run(TOKAY_SETA, protocol.drag_pull(1.0, 0.0, 90.0, speed=0.05), integrator="explicit")
+    rel = release_point(h)
+    phi = math.atan2(rel.adhesion, rel.shear)
+    law = contact_law(TOKAY_SETA)
+    normal, shear = seta_pull_off(law.count, phi, law.w, law.b, law.E_f, law.h)
+    assert 30.0 < math.degrees(phi) < 90.0
+    assert math.hypot(rel.adhesion, rel.shear) == pytest.approx(math.hypot(normal, shear), rel=0.03)

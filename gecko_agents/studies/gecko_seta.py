@@ -48,10 +48,14 @@ __all__ = ["NAME", "PRELOAD", "DRAG", "run_seta", "sweep", "array_estimate", "OU
 NAME = "gecko_seta"
 PRELOAD = 1.0  # µN: "a small preload" (assumed: the texts we read give no value)
 DRAG = 5.0  # µm: the drag back along the shaft (Autumn et al. 2000 dragged ≈ 5 µm; assumed)
-QUICK_SPEED = 0.2  # µm/µs: --quick's plate speed (40 times the quasi-static one)
+QUICK_SPEED = 0.05  # µm/µs: --quick's plate speed (ten times the quasi-static one)
 ANGLES = (15.0, 30.0, 45.0, 60.0, 90.0, 120.0, 150.0)  # pull angles β [deg] of a full run
 QUICK_ANGLES = (90.0,)
 CM2 = 1e8  # µm² in a square centimetre
+NUMERICS = Numerics(record_every=1, integrator="explicit")
+"""The explicit step: at the linearly implicit step's default the energy books of a tokay
+seta's release are off by 6 % of the run's energy (not falling with dt) where the explicit
+step's 2 % halves with dt; the release forces of the two agree within 0.4 %."""
 
 
 def speed(quick: bool) -> float:
@@ -61,14 +65,14 @@ def speed(quick: bool) -> float:
 
 
 @functools.lru_cache(maxsize=64)
-def run_seta(params, drag: float, beta: float, v: float, record: bool = False):
+def run_seta(params, drag: float, beta: float, v: float):
     """One press–drag–pull of one seta (drag [µm], 0 for a straight press; pull angle β [deg];
-    plate speed v [µm/µs]): (row, history). Cached: the runs are deterministic and several rows
-    share one."""
+    plate speed v [µm/µs]): (row, history with the seta's records). Cached: the runs are
+    deterministic and several rows share one."""
     prot = protocol.drag_pull(PRELOAD, -drag, beta, speed=v) if drag else None
     if prot is None:
         prot = protocol.drag_pull(PRELOAD, 0.0, beta, speed=v)
-    model = Model(params, seed=1, record_setae=record, numerics=Numerics(record_every=1))
+    model = Model(params, seed=1, record_setae=True, numerics=NUMERICS)
     h = model.run(prot, progress=False)
     d = -drag if drag else None
     rel = release_point(h, d)
@@ -101,9 +105,19 @@ def sweep(params, quick: bool, angles=None) -> list[dict]:
     return rows + [run_seta(params, 0.0, 90.0, v)[0]]
 
 
+ASSUMED = {
+    "count": "spatulae.count",
+    "w": "contact.w",
+    "theta_deg": "seta.theta_deg",
+    "mu": "friction.mu",
+    "h": "spatula.h",
+}
+"""The validation rows' ranged parameters by name: the preset's field each one sets."""
+
+
 def _tokay(**assumed):
-    over = {f"spatulae.{k}" if k == "count" else f"contact.{k}": v for k, v in assumed.items()}
-    return TOKAY_SETA.replace(**over) if over else TOKAY_SETA
+    """:data:`TOKAY_SETA` with the rows' ranged parameters (:data:`ASSUMED`) set."""
+    return TOKAY_SETA.replace(**{ASSUMED[k]: v for k, v in assumed.items()})
 
 
 # --- the validation rows' numbers ------------------------------------------------------------
@@ -191,7 +205,7 @@ def main(argv=None) -> dict:
     args = parse_args(__doc__, argv)
     out = output_dir(NAME, args)
     rows = sweep(TOKAY_SETA, args.quick)
-    _, h = run_seta(TOKAY_SETA, DRAG, 90.0, speed(args.quick), record=True)
+    _, h = run_seta(TOKAY_SETA, DRAG, 90.0, speed(args.quick))
     ours = {name: f(args.quick) for name, f in OURS.items()}
     arr = array_estimate(ours["ours_seta_normal"]["value"])
     ell = attached_fraction(h.setae["film_attached_um"][:, 0], TOKAY_SETA.spatula.length)

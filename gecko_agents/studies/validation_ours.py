@@ -24,8 +24,8 @@ from gecko_agents.model import Model, Numerics
 from gecko_agents.params import literature as lit
 from gecko_agents.physics import beam, curved_rod, punch
 from gecko_agents.studies import frictional_adhesion as fa
+from gecko_agents.studies import gecko_seta, pad_peel
 from gecko_agents.studies import misalignment as mis
-from gecko_agents.studies import pad_peel
 
 # --- closed forms on a tokay seta (AUTUMN2006_SETA) ------------------------------------------
 _SETA_KEYS = {"E": "contact.E1", "r": "seta.r", "L": "seta.L", "theta": "seta.theta_deg"}
@@ -592,3 +592,6 @@ OURS = {
     )
 }
 """The functions a row's ``ours`` may name."""
+
+# The gecko seta's rows (validation.toml, "gecko_*"): computed in their own study.
+OURS.update(gecko_seta.OURS)
