@@ -153,3 +153,22 @@ def test_tokay_seta_lets_go_at_n_times_kendalls_force_at_its_release_angle():
     normal, shear = seta_pull_off(law.count, phi, law.w, law.b, law.E_f, law.h)
     assert 30.0 < math.degrees(phi) < 90.0
     assert math.hypot(rel.adhesion, rel.shear) == pytest.approx(math.hypot(normal, shear), rel=0.03)
+
+
+def test_let_go_forces_reads_each_attachment_at_its_largest_adhesion():
+    """Two attachments, the first let go, the second still on at the end of the run: one
+    let-go, at the first attachment's largest tension."""
+    from types import SimpleNamespace
+
+    from gecko_agents.studies.gecko_seta import let_go_forces
+
+    nan = math.nan
+    ell = np.array([nan, 0.2, 0.2, 0.1, nan, nan, 0.2, 0.2])[:, None]
+    P = np.array([0.0, 1.0, -3.0, -2.0, 0.0, 0.0, -1.0, -4.0])
+    T = np.array([0.0, 0.0, 1.5, 1.0, 0.0, 0.0, 0.5, 2.0])
+
+    class Run(SimpleNamespace):
+        def __getitem__(self, key):
+            return {"force_normal_uN": P, "force_tangential_uN": T}[key]
+
+    assert let_go_forces(Run(setae={"film_attached_um": ell})) == ([3.0], [1.5])

@@ -22,7 +22,8 @@ The functions named ``ours_*`` compute the validation rows' numbers
 the published numbers.
 
 Outputs (``renders/gecko_seta/``): ``sweep.csv``, ``array_estimate.csv``, ``gecko_seta.png``,
-``gecko_seta.md``, ``metadata.json``.
+``gecko_seta.md``, ``metadata.json``; ``--animate`` adds ``spatulae_peel.gif`` (the seta and
+its films through the drag and the 90° pull, drawn by :func:`gecko_agents.render.animate`).
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ import math
 
 import numpy as np
 
-from gecko_agents import protocol
+from gecko_agents import protocol, render
 from gecko_agents.analysis.drag import drag_span
 from gecko_agents.analysis.limit_curve import critical_angle
 from gecko_agents.analysis.pull import pull_off, release_point
@@ -43,7 +44,17 @@ from gecko_agents.params.literature import TOKAY_SETA, TOKAY_SETAL_DENSITY
 from gecko_agents.physics import jkr
 from gecko_agents.studies.common import command_line, output_dir, parse_args, write_json
 
-__all__ = ["NAME", "PRELOAD", "DRAG", "run_seta", "sweep", "array_estimate", "OURS", "main"]
+__all__ = [
+    "NAME",
+    "PRELOAD",
+    "DRAG",
+    "run_seta",
+    "sweep",
+    "branch_check",
+    "array_estimate",
+    "OURS",
+    "main",
+]
 
 NAME = "gecko_seta"
 PRELOAD = 1.0  # µN: "a small preload" (assumed: the texts we read give no value)
@@ -76,16 +87,43 @@ def run_seta(params, drag: float, beta: float, v: float):
     h = model.run(prot, progress=False)
     d = -drag if drag else None
     rel = release_point(h, d)
+    adhesion, shear = let_go_forces(h)
+    start = drag_span(h, d)[0] if drag else int(np.argmax(h["force_normal_uN"]))
     row = {
         "count": params.spatulae.count,
+        "mu": params.friction.mu,
         "drag_um": drag,
         "pull_angle_deg": beta,
         "adhesion_at_release_uN": rel.adhesion,
         "shear_at_release_uN": rel.shear,
         "pull_off_uN": pull_off(h, d).adhesion,
+        "adhesion_held_uN": float(np.max(-np.asarray(h["force_normal_uN"][start:]), initial=0.0)),
         "drag_shear_max_uN": _drag_shear(h, d),
+        "let_go_count": len(adhesion),
+        "let_go_adhesion_uN": adhesion,
+        "let_go_shear_uN": shear,
     }
     return row, h
+
+
+def let_go_forces(h) -> tuple[list[float], list[float]]:
+    """(adhesion, gripping shear) [µN] of every attachment of the seta that ends in a let-go,
+    in the drag or the pull, each at its largest adhesion (the release point of
+    :func:`gecko_agents.analysis.pull.release_point`, per attachment): a seta dragged back
+    along a straight shaft may let go and land again in the drag."""
+    ell = np.asarray(h.setae["film_attached_um"][:, 0], dtype=float)
+    on = np.concatenate([[False], np.isfinite(ell), [False]])
+    starts = np.flatnonzero(~on[:-1] & on[1:])
+    ends = np.flatnonzero(on[:-1] & ~on[1:])  # one past each attachment's last record
+    P, T = np.asarray(h["force_normal_uN"]), np.asarray(h["force_tangential_uN"])
+    adhesion, shear = [], []
+    for i0, i1 in zip(starts, ends, strict=True):
+        if i1 >= len(ell):  # still attached at the end of the run
+            continue
+        i = i0 + int(np.argmax(-P[i0:i1]))
+        adhesion.append(float(-P[i]))
+        shear.append(float(T[i]))
+    return adhesion, shear
 
 
 def _drag_shear(h, drag) -> float:
@@ -94,7 +132,7 @@ def _drag_shear(h, drag) -> float:
     if drag is None:
         return 0.0
     i0, i1 = drag_span(h, drag)
-    return float(np.max(-np.asarray(h["force_tangential_uN"][i0 : i1 + 1]), initial=0.0))
+    return float(np.max(np.asarray(h["force_tangential_uN"][i0 : i1 + 1]), initial=0.0))
 
 
 def sweep(params, quick: bool, angles=None) -> list[dict]:
@@ -132,10 +170,11 @@ def ours_spatula_pull_off(quick: bool = True, w: float | None = None, h: float |
 
 
 def ours_seta_normal(quick: bool = True, **assumed):
-    """Adhesion [µN] of one tokay seta pulled straight off (90°) after the preload and drag."""
+    """Largest adhesion [µN] one tokay seta holds after the preload, through the drag and the
+    pull straight off (90°); the seta may let go and land again in the drag."""
     row = run_seta(_tokay(**assumed), DRAG, 90.0, speed(quick))[0]
-    F = row["pull_off_uN"]
-    return {"value": F, "text": f"{F:.3g} µN at N = {row['count']}"}
+    F = row["adhesion_held_uN"]
+    return {"value": F, "text": f"{F:.3g} µN at N = {row['count']}, {row['let_go_count']} let-go"}
 
 
 def ours_seta_parallel(quick: bool = True, **assumed):
@@ -146,19 +185,20 @@ def ours_seta_parallel(quick: bool = True, **assumed):
 
 
 def ours_critical_angle(quick: bool = True, **assumed):
-    """Critical angle α* [deg] of the tokay seta's gripping releases over pull angles."""
+    """Critical angle α* [deg] of the tokay seta: the limit line through every let-go of its
+    gripping runs over pull angles, in the drag and in the pull (:func:`let_go_forces`)."""
     rows = [r for r in sweep(_tokay(**assumed), quick) if r["drag_um"]]
-    a = critical_angle(
-        [r["shear_at_release_uN"] for r in rows], [r["adhesion_at_release_uN"] for r in rows]
-    )
-    betas = ", ".join(f"{r['pull_angle_deg']:g}" for r in rows)
-    return {"value": a, "text": f"{a:.1f}° over β = {betas}°"}
+    shear = [x for r in rows for x in r["let_go_shear_uN"]]
+    adhesion = [x for r in rows for x in r["let_go_adhesion_uN"]]
+    a = critical_angle(shear, adhesion)
+    return {"value": a, "text": f"{a:.1f}° over {len(shear)} let-go in {len(rows)} runs"}
 
 
 def ours_drag_gain(quick: bool = True, **assumed):
-    """Pull-off at 90° after the preload and drag over that after a straight press [-]."""
+    """Largest adhesion held after the preload and drag (:func:`ours_seta_normal`) over the
+    90° pull-off after a straight press [-]."""
     p, v = _tokay(**assumed), speed(quick)
-    dragged = run_seta(p, DRAG, 90.0, v)[0]["pull_off_uN"]
+    dragged = run_seta(p, DRAG, 90.0, v)[0]["adhesion_held_uN"]
     pressed = run_seta(p, 0.0, 90.0, v)[0]["pull_off_uN"]
     ratio = dragged / pressed if pressed > 0 else math.inf
     return {"value": ratio, "text": f"{ratio:.3g} ({dragged:.3g} / {pressed:.3g} µN)"}
@@ -177,10 +217,29 @@ OURS = {
 """The validation rows' functions by name (merged into the scorer's table)."""
 
 
+def branch_check(params=TOKAY_SETA) -> dict:
+    """How rigid the branches are next to the shaft: N·k_b, the N branches' axial stiffness in
+    parallel (:meth:`gecko_agents.params.spatulae.Spatulae.branch_stiffness`, keratin
+    ``contact.E1``), over the shaft's axial stiffness Ka (eq 17) and its bending stiffness Kp
+    (eq 19) [-]. Rigid branches (the law's assumption) change the seta's compliance by less
+    than 1/ratio along the shaft."""
+    nk = params.spatulae.count * params.spatulae.branch_stiffness(params.contact.E1)
+    return {
+        "branches_uN_per_um": nk,
+        "over_axial": nk / params.axial_stiffness,
+        "over_bending": nk / params.bending_stiffness,
+    }
+
+
+BONDED_MU = 10.0
+"""The nearly bonded pad of the frictional-adhesion study (μ = 10): what a pad that does not
+slide gives, beside the preset's μ = 0.29."""
+
+
 # --- the whole-array estimate ----------------------------------------------------------------
 def array_estimate(tokay_pull_off: float) -> list[dict]:
     """Adhesion per cm² of flat floor [N/cm²] with every seta attached: the tokay's branched
-    seta (its 90° pull-off [µN] from the runs) at its setal density
+    seta (its 90° pull-off after a straight press [µN], from the runs) at its setal density
     (:data:`TOKAY_SETAL_DENSITY`) beside the paper's sphere seta, JKR's Fc = 1.5πwR (Johnson,
     Kendall & Roberts 1971) at the paper's 10⁷ setae per cm² (:data:`PAPER_ARRAY`)."""
     c = PAPER_ARRAY.contact
@@ -197,19 +256,32 @@ def array_estimate(tokay_pull_off: float) -> list[dict]:
     return rows
 
 
+def _extra_args(parser) -> None:
+    parser.add_argument(
+        "--animate", action="store_true", help="also write spatulae_peel.gif (the 90° pull)"
+    )
+
+
 @command_line
 def main(argv=None) -> dict:
-    """Command line: ``--quick`` (one pull angle at :data:`QUICK_SPEED`), ``--out``."""
+    """Command line: ``--quick`` (one pull angle at :data:`QUICK_SPEED`), ``--out``,
+    ``--animate``."""
     from gecko_agents.studies import gecko_seta_report as report
 
-    args = parse_args(__doc__, argv)
+    args = parse_args(__doc__, argv, extra=_extra_args)
     out = output_dir(NAME, args)
     rows = sweep(TOKAY_SETA, args.quick)
+    if not args.quick:  # the pad that does not slide, at 90°
+        bonded = TOKAY_SETA.replace(**{"friction.mu": BONDED_MU})
+        rows += [dict(run_seta(bonded, DRAG, 90.0, speed(False))[0], mu=BONDED_MU)]
     _, h = run_seta(TOKAY_SETA, DRAG, 90.0, speed(args.quick))
     ours = {name: f(args.quick) for name, f in OURS.items()}
-    arr = array_estimate(ours["ours_seta_normal"]["value"])
+    arr = array_estimate(run_seta(TOKAY_SETA, 0.0, 90.0, speed(args.quick))[0]["pull_off_uN"])
     ell = attached_fraction(h.setae["film_attached_um"][:, 0], TOKAY_SETA.spatula.length)
-    report.write(out, rows, arr, ours, h, ell)
+    branches = branch_check()
+    report.write(out, rows, arr, ours, h, ell, branches)
+    if args.animate:
+        render.animate(h, out / "spatulae_peel.gif", window=1)
     summary = {k: v["value"] for k, v in ours.items()}
     write_json(
         out / "metadata.json",
@@ -220,6 +292,8 @@ def main(argv=None) -> dict:
             "preload_uN": PRELOAD,
             "drag_um": DRAG,
             "speed_um_per_us": speed(args.quick),
+            "integrator": NUMERICS.integrator,
+            "branches": branches,
             "summary": summary,
         },
     )

@@ -10,7 +10,13 @@ import numpy as np
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.studies.common import write_table
 
-__all__ = ["write", "figure"]
+__all__ = ["write", "figure", "travel"]
+
+
+def travel(h) -> np.ndarray:
+    """Path length the plate has travelled [µm] at each record (press, drag, pull)."""
+    x, y = np.asarray(h["plate_x_um"]), np.asarray(h["plate_y_um"])
+    return np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
 
 
 def figure(path: Path, rows: list[dict], h, attached) -> Path:
@@ -23,21 +29,21 @@ def figure(path: Path, rows: list[dict], h, attached) -> Path:
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(1, 3, figsize=(13, 4))
-    dragged = [r for r in rows if r["drag_um"]]
+    dragged = [r for r in rows if r["drag_um"] and r["mu"] == rows[0]["mu"]]
     beta = [r["pull_angle_deg"] for r in dragged]
     ax[0].plot(beta, [r["adhesion_at_release_uN"] for r in dragged], "o-", label="adhesion")
     ax[0].plot(beta, [r["shear_at_release_uN"] for r in dragged], "s--", label="shear")
     ax[0].set(xlabel="pull angle β [deg]", ylabel="force at release [µN]")
     ax[0].set_title("one tokay seta after preload and drag")
     ax[0].legend()
-    t = np.asarray(h["time_us"])
+    t = travel(h)
     ax[1].plot(t, h["force_normal_uN"], label="normal (> 0 pressed)")
     ax[1].plot(t, h["force_tangential_uN"], label="tangential")
-    ax[1].set(xlabel="time [µs]", ylabel="force on the floor [µN]")
-    ax[1].set_title("press, drag, 90° pull")
+    ax[1].set(xlabel="plate travel [µm]", ylabel="force on the floor [µN]")
+    ax[1].set_title("press, drag back 5 µm, pull at 90°")
     ax[1].legend()
     ax[2].plot(t, attached)
-    ax[2].set(xlabel="time [µs]", ylabel="pad attached ℓ/ℓ0 [-]", ylim=(-0.05, 1.05))
+    ax[2].set(xlabel="plate travel [µm]", ylabel="pad attached ℓ/ℓ0 [-]", ylim=(-0.05, 1.05))
     ax[2].set_title("the spatulae's attachment")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -45,9 +51,16 @@ def figure(path: Path, rows: list[dict], h, attached) -> Path:
     return path
 
 
-def write(out: Path, rows, arr, ours: dict, h, attached) -> None:
+def _flat(row: dict) -> dict:
+    """A sweep row for CSV: its lists of let-go forces joined by spaces."""
+    return {
+        k: " ".join(f"{x:.4g}" for x in v) if isinstance(v, list) else v for k, v in row.items()
+    }
+
+
+def write(out: Path, rows, arr, ours: dict, h, attached, branches: dict) -> None:
     """Write the study's tables, figure and report into ``out``."""
-    write_table(out / "sweep.csv", rows)
+    write_table(out / "sweep.csv", [_flat(r) for r in rows])
     write_table(out / "array_estimate.csv", arr)
     figure(out / "gecko_seta.png", rows, h, attached)
     lines = ["# One tokay seta, branched into spatulae", "", "| quantity | ours |", "|---|---|"]
@@ -57,5 +70,11 @@ def write(out: Path, rows, arr, ours: dict, h, attached) -> None:
         f"| {r['seta']} | {r['per_seta_uN']:.3g} | {r['setae_per_cm2']:.3g} | "
         f"{r['N_per_cm2']:.3g} |"
         for r in arr
+    ]
+    lines += [
+        "",
+        f"Rigid branches: the N branches in parallel are {branches['over_axial']:.3g} times as "
+        f"stiff axially as the shaft and {branches['over_bending']:.3g} times its bending "
+        f"stiffness ({branches['branches_uN_per_um']:.3g} µN/µm).",
     ]
     atomic_write_bytes(out / "gecko_seta.md", ("\n".join(lines) + "\n").encode())
