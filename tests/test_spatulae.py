@@ -172,3 +172,12 @@ def test_let_go_forces_reads_each_attachment_at_its_largest_adhesion():
             return {"force_normal_uN": P, "force_tangential_uN": T}[key]
 
     assert let_go_forces(Run(setae={"film_attached_um": ell})) == ([3.0], [1.5])
+
+
+def test_the_quasi_static_solver_refuses_the_branched_seta_naming_the_tip():
+    """The quasi-static solver models the JKR sphere only: it refuses tip = 'spatulae' before
+    any work, naming the tip and pointing to the time-stepped model."""
+    from gecko_agents.quasistatic import single_seta
+
+    with pytest.raises(ValueError, match="tip = 'spatulae' must be 'sphere'; run the time-stepped"):
+        single_seta(TOKAY_SETA, [100.0, 90.0])
