@@ -136,7 +136,7 @@ number of pillars (the probe's size) are set per run."""
 TOKAY_SETA = SetaArray(
     contact=Contact(R=0.1, E1=1600.0, nu1=0.3, E2=70_000.0, nu2=0.25, w=0.05),
     seta=Seta(r=2.0, L=110.0, theta_deg=45.0, density=1.2e-3),
-    array=Array(count=1, pitch=10.0),
+    array=Array(count=1, pitch=8.3),
     floor=Floor(sigma=0.0),
     friction=Friction(mu=0.29),
     mechanics="rod",
@@ -168,6 +168,7 @@ Assumed: w = 0.05 J/m² (a van der Waals work of adhesion of non-polar solids, 2
 which the validation compares with); θ = 45° between shaft and mount (as
 :data:`AUTUMN2006_SETA`: the setae are curved and no text we read gives a straight shaft's
 angle); the spatula body's radius R = 0.1 µm (half its width: the Hertz compression of a pressed
-spatula); ν = 0.3 and the density of a polymer, 1.2 g/cm³; a glass floor (E = 70 GPa,
+spatula); ν = 0.3 and the density of a polymer, 1.2 g/cm³; the pitch 8.3 µm of a patch,
+1/√(:data:`TOKAY_SETAL_DENSITY`); a glass floor (E = 70 GPa,
 ν = 0.25); rigid branches sharing the load equally (:class:`gecko_agents.contact.spatulae.
 SpatulaeTip`)."""

@@ -65,10 +65,14 @@ def write(out: Path, rows, arr, ours: dict, h, attached, branches: dict) -> None
     figure(out / "gecko_seta.png", rows, h, attached)
     lines = ["# One tokay seta, branched into spatulae", "", "| quantity | ours |", "|---|---|"]
     lines += [f"| {name} | {v['text']} |" for name, v in ours.items()]
-    lines += ["", "| seta | per seta [µN] | setae per cm² | N per cm² |", "|---|---|---|---|"]
+    lines += [
+        "",
+        "| seta | per seta [µN] | setae per cm² | flat floor [N/cm²] | σ = 1 µm patch [N/cm²] |",
+        "|---|---|---|---|---|",
+    ]
     lines += [
         f"| {r['seta']} | {r['per_seta_uN']:.3g} | {r['setae_per_cm2']:.3g} | "
-        f"{r['N_per_cm2']:.3g} |"
+        f"{r['flat_N_per_cm2']:.3g} | {r['rough_N_per_cm2']:.3g} ({r['n_sim']} setae) |"
         for r in arr
     ]
     lines += [
