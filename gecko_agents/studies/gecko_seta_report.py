@@ -19,10 +19,11 @@ def travel(h) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
 
 
-def figure(path: Path, rows: list[dict], h, attached) -> Path:
-    """Three panels: the forces at release against the pull angle; the force against the
-    plate's travel through the press, drag and 90° pull; the fraction of the spatulae's pads
-    attached along the same travel."""
+def figure(path: Path, rows: list[dict], h, attached, alpha: float) -> Path:
+    """Three panels: the adhesion against the shear at every let-go over the pull angles, with
+    the critical angle's line (α* [deg]); the force against the plate's travel through the
+    press, drag and 90° pull; the fraction of the spatulae's pads attached along the same
+    travel."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -30,12 +31,22 @@ def figure(path: Path, rows: list[dict], h, attached) -> Path:
 
     fig, ax = plt.subplots(1, 3, figsize=(13, 4))
     dragged = [r for r in rows if r["drag_um"] and r["mu"] == rows[0]["mu"]]
-    beta = [r["pull_angle_deg"] for r in dragged]
-    ax[0].plot(beta, [r["adhesion_at_release_uN"] for r in dragged], "o-", label="adhesion")
-    ax[0].plot(beta, [r["shear_at_release_uN"] for r in dragged], "s--", label="shear")
-    ax[0].set(xlabel="pull angle β [deg]", ylabel="force at release [µN]")
-    ax[0].set_title("one tokay seta after preload and drag")
-    ax[0].legend()
+    for r in dragged:
+        ax[0].plot(
+            r["let_go_shear_uN"],
+            r["let_go_adhesion_uN"],
+            "o",
+            label=f"β = {r['pull_angle_deg']:g}°",
+        )
+    pressed = [r for r in rows if not r["drag_um"]]
+    for r in pressed:
+        ax[0].plot(r["let_go_shear_uN"], r["let_go_adhesion_uN"], "k^", label="pressed, 90°")
+    if np.isfinite(alpha):
+        s_max = max([1e-9] + [x for r in rows for x in r["let_go_shear_uN"]])
+        ax[0].plot([0.0, s_max], [0.0, s_max * np.tan(np.radians(alpha))], "k:", lw=1)
+    ax[0].set(xlabel="shear at let-go [µN]", ylabel="adhesion at let-go [µN]")
+    ax[0].set_title(f"every let-go: α* = {alpha:.0f}°")
+    ax[0].legend(fontsize=7)
     t = travel(h)
     ax[1].plot(t, h["force_normal_uN"], label="normal (> 0 pressed)")
     ax[1].plot(t, h["force_tangential_uN"], label="tangential")
@@ -62,7 +73,7 @@ def write(out: Path, rows, arr, ours: dict, h, attached, branches: dict) -> None
     """Write the study's tables, figure and report into ``out``."""
     write_table(out / "sweep.csv", [_flat(r) for r in rows])
     write_table(out / "array_estimate.csv", arr)
-    figure(out / "gecko_seta.png", rows, h, attached)
+    figure(out / "gecko_seta.png", rows, h, attached, ours["ours_critical_angle"]["value"])
     lines = ["# One tokay seta, branched into spatulae", "", "| quantity | ours |", "|---|---|"]
     lines += [f"| {name} | {v['text']} |" for name, v in ours.items()]
     lines += [
