@@ -349,7 +349,9 @@ def _write_validation() -> str:
 
     rows = []
     for r in ROWS:
-        how = {"value": "value within their scatter", "trend": "direction"}.get(r["compare"], "")
+        how = {"value": "magnitude", "trend": "direction"}.get(r["compare"], "")
+        if r["compare"] == "value" and (r["in_words"] or r["kind"] == "self-consistency"):
+            how = "value (counted apart)"
         ours = f"`{r['ours']}`" if r["ours"] else f"not scored: {r.get('unscored', '')}"
         rows.append((f"`{r['id']}`", r["source"], r["measured"], r["theirs"], how, ours))
     return _table(["row", "source", "measured", "theirs", "compared", "ours from"], rows)

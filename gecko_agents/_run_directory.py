@@ -120,28 +120,56 @@ def read_series(
     checksums carry, else None; its columns; the table, one row per record); refuses a table
     that does not start with ``first_columns``."""
     try:
-        text = csv_path.read_text(encoding="utf-8")
-        lines = text.split("\n")
-        csv_id = None
-        while lines and lines[0].startswith("#"):
-            key, _, value = lines.pop(0)[1:].partition(":")
-            if key.strip() == "run_id":
-                csv_id = value.strip()
-        header = lines[0].split(",") if lines else []
-        body = "\n".join(lines[1:])
-        table = (
-            np.loadtxt(io.StringIO(body), delimiter=",", ndmin=2)
-            if body.strip()
-            else np.zeros((0, len(header)))
-        )
-    except ValueError as err:
-        raise ValueError(f"{csv_path} is corrupt: {err}") from err
+        lines = csv_path.read_text(encoding="utf-8").split("\n")
+    except ValueError as err:  # UnicodeDecodeError: a binary file
+        raise ValueError(f"{csv_path} is not a history table: {err}") from err
+    csv_id = None
+    n_comments = 0
+    while lines and lines[0].startswith("#"):
+        key, _, value = lines.pop(0)[1:].partition(":")
+        n_comments += 1
+        if key.strip() == "run_id":
+            csv_id = value.strip()
+    header = lines[0].split(",") if lines else []
     columns = tuple(header)
     if columns[: len(first_columns)] != first_columns or len(set(columns)) < len(columns):
         raise ValueError(f"{csv_path} has columns {header}, expected {list(first_columns)} first")
-    if table.shape[1] != len(columns):
-        raise ValueError(f"{csv_path} has rows of {table.shape[1]} values, expected {len(columns)}")
-    return csv_id, columns, table
+    return csv_id, columns, _table(csv_path, lines[1:], len(columns), n_comments + 2)
+
+
+def _table(csv_path: Path, rows: list[str], n_columns: int, first_line: int) -> np.ndarray:
+    """The data rows of history.csv as an array (one row per record); refuses, naming the
+    line, a last row without its line break (every row a save writes ends with one: the file
+    was cut short), a row of another length or a value that is not a number."""
+    if rows and rows[-1]:
+        raise ValueError(
+            f"{csv_path} line {first_line + len(rows) - 1} ends without its line break "
+            f"({len(rows[-1].split(','))} of its {n_columns} values): the file was cut short "
+            "(truncated, or its save interrupted); re-run to regenerate it"
+        )
+    rows = rows[:-1]
+    for i, row in enumerate(rows):
+        if len(row.split(",")) != n_columns:
+            raise ValueError(
+                f"{csv_path} line {first_line + i} has {len(row.split(','))} of its "
+                f"{n_columns} values: the table was edited or damaged; re-run to regenerate it"
+            )
+    try:
+        body = "\n".join(rows)
+        if not body.strip():
+            return np.zeros((0, n_columns))
+        return np.loadtxt(io.StringIO(body), delimiter=",", ndmin=2)
+    except ValueError as err:
+        for i, row in enumerate(rows):  # the error path only: name the line
+            for value in row.split(","):
+                try:
+                    float(value)
+                except ValueError:
+                    raise ValueError(
+                        f"{csv_path} line {first_line + i} holds {value[:40]!r}, not a number: "
+                        "the table was edited or damaged; re-run to regenerate it"
+                    ) from err
+        raise ValueError(f"{csv_path} cannot be read as numbers: {err}") from err
 
 
 def read_arrays(npz_path: Path, groups: dict) -> str | None:

@@ -33,7 +33,6 @@ import hashlib
 import io
 import json
 import math
-import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -48,7 +47,6 @@ from gecko_agents._run_directory import (
     read_series,
     saved_run_id,
 )
-from gecko_agents._stack import user_stacklevel
 from gecko_agents.output_paths import atomic_write_bytes, make_dir
 from gecko_agents.params import SetaArray
 from gecko_agents.provenance import versions
@@ -122,18 +120,6 @@ pad still covers [µm], NaN while the tip is free. Runs of other tips, and runs 
 these fields existed, have none."""
 
 
-def probe_scale_message(scale: float) -> str:
-    """Why a run under a spherical probe does not scale to its array (``scale_to_array`` ≠ 1):
-    the simulated row is no uniform patch, each pillar meets the probe at its own height."""
-    return (
-        f"scale_to_array = {scale:g} under a spherical probe (floor.kind = 'probe'): the "
-        "simulated row is not a uniform patch of the array (each pillar meets the probe at its "
-        "own height), so its forces do not scale to array.count; simulate every pillar "
-        "(n_sim = array.count), or take the field under the probe from "
-        "gecko_agents.physics.fibril_probe_halfspace"
-    )
-
-
 @dataclass
 class History:
     """A recorded run.
@@ -150,7 +136,9 @@ class History:
         to the plate, ``root_dy_um`` (N,) root heights relative to the plate, ``floor_x_um``,
         ``floor_y_um`` (floor polyline).
     detachments : dict of arrays, one entry per detachment event: ``seta``, ``time_us``,
-        ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``, and
+        ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN`` (the
+        seta's normal force at its release: the law's at δ_detach where the tip passed it,
+        :meth:`gecko_agents.contact.base.ContactLaw.release_force`, else its last force), and
         ``mode`` (where its detachment started, ``"edge"`` or ``"centre"``) for a law that has
         more than one (the mushroom tip).
     meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…),
@@ -177,9 +165,6 @@ class History:
         n = {len(np.asarray(v)) for v in self.scalars.values()}
         if len(n) != 1:
             raise ValueError(f"History.scalars columns differ in length: {sorted(n)}")
-        scale = self.meta.get("scale_to_array", 1.0)
-        if getattr(self.params.floor, "kind", None) == "probe" and scale != 1.0:
-            warnings.warn(probe_scale_message(scale), stacklevel=user_stacklevel())
 
     @property
     def columns(self) -> tuple[str, ...]:
@@ -392,10 +377,17 @@ def load(directory) -> History:
 
     Raises
     ------
-    FileNotFoundError naming the missing file, or ValueError naming the file that is corrupt,
-    truncated, or from another run (its run_id differs from metadata.json's), and what to do.
+    FileNotFoundError naming the missing file or directory (or the file given instead of its
+    run directory), or ValueError naming the file that is corrupt, truncated (and the line
+    cut short), or from another run (its run_id differs from metadata.json's), and what to do.
     """
     d = Path(directory)
+    if d.exists() and not d.is_dir():
+        inside = (d.parent / "metadata.json").is_file()
+        raise FileNotFoundError(
+            f"{str(d)!r} is a file, not a run directory"
+            + (f"; load the run directory it is in: load({str(d.parent)!r})" if inside else "")
+        )
     if not d.is_dir():
         raise FileNotFoundError(f"run directory {str(d)!r} does not exist")
     for name in ("history.csv", "metadata.json"):

@@ -11,6 +11,7 @@ tests/test_calibrate.py. The next probe round adds its rows here.
 """
 
 import json
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -27,6 +28,7 @@ from gecko_agents.model import Model, Numerics
 from gecko_agents.model.cost import RunCostError
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 from gecko_agents.protocol import PressLimitError
+from gecko_agents.runfiles.schema import RunFileError
 
 ROOT = Path(__file__).resolve().parents[1]
 RUN_FILE = GOOD.replace("n_sim = 1", 'n_sim = 1\nkernel = "numpy"')  # no compilation to wait for
@@ -511,3 +513,559 @@ def test_the_table_has_no_duplicate_probe():
 def test_a_meaningful_run_file_is_not_refused(tmp_path, capsys, monkeypatch):
     # The baseline the run-file rows edit: their refusals come from the edit, not the file.
     assert _run_file(Probe(tmp_path, capsys, monkeypatch), RUN_FILE)[0] == 0
+
+
+# Issue 54: messages --------------------------------------------------------------------------
+PROBE_FILE = RUN_FILE.replace(
+    'mechanics = "rod"', 'mechanics = "rod"\n"floor.kind" = "probe"\n"floor.sigma" = 0.0'
+)  # the one short seta under a probe of 100 µm (the default radius)
+
+
+def _probe_file(*lines: str, preset: str = "PAPER_TABLE1", **replace: str) -> str:
+    """PROBE_FILE on ``preset`` with ``lines`` added to its [params] (and ``old=new``
+    replacements). On PAPER_ARRAY, whose floor is rough (floor.sigma = 1 µm), floor.kind =
+    "probe" holds only beside floor.sigma = 0: a constraint between two overrides."""
+    text = PROBE_FILE.replace('"floor.sigma" = 0.0', '"floor.sigma" = 0.0\n' + "\n".join(lines))
+    text = text.replace('preset = "PAPER_TABLE1"', f'preset = "{preset}"')
+    for old, new in replace.items():
+        text = text.replace(old, new)
+    return text
+
+
+def _on_array_probe(probe: Probe, *lines: str):
+    """``run`` on PAPER_ARRAY under a probe with ``lines`` in its [params], at a pitch of
+    10 µm: the preset's 4 µm tip radius fits it as a flat face too (faces wider than their
+    stalks must fit the pitch)."""
+    lines = ('"array.pitch" = 10.0', *lines)
+    return _run_file(probe, _probe_file(*lines, preset="PAPER_ARRAY"))
+
+
+def _design_sigma0_inf(probe: Probe):
+    """The design example with the documented default ``sigma0_MPa = inf`` written out: the
+    same material as without it."""
+    from gecko_agents.design.schema import load_design
+
+    example = ROOT / "examples" / "design_pillars.toml"
+    text = example.read_text().replace("w_J_per_m2 = 0.165", "w_J_per_m2 = 0.165\nsigma0_MPa = inf")
+    path = _write(probe, text, "d.toml")
+    err, message = _raised(lambda: load_design(path))
+    if err is not None:
+        return err, message
+    return load_design(path).material == load_design(example).material, ""
+
+
+def _interrupted_run(probe: Probe):
+    """``run --out DIR --gif`` stopped by Ctrl-C (or SIGTERM, which takes its path) mid-run:
+    exit 130, nothing written, the restart line the whole command."""
+
+    def stop(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    probe.monkeypatch.setattr(Model, "run", stop)
+    out = probe.tmp / "ri"
+    code, err = _cli(probe, "run", _write(probe, RUN_FILE), "--out", str(out), "--gif")
+    assert not out.exists()
+    return code, err.replace(str(probe.tmp), "TMP")
+
+
+def _saved(probe: Probe) -> Path:
+    h = _toy()
+    h.meta.update(n_sim=3, scale_to_array=1.0, record_every=10)
+    return h.save(probe.tmp / "run")
+
+
+def _truncated_history(probe: Probe):
+    """history.csv cut in its fourth data row (line 5), as a full disk or a kill leaves it."""
+    d = _saved(probe)
+    lines = (d / "history.csv").read_text().split("\n")
+    (d / "history.csv").write_text("\n".join(lines[:4]) + "\n" + ",".join(lines[4].split(",")[:2]))
+    return _raised(lambda: hist.load(d))
+
+
+def _load_a_file(probe: Probe):
+    d = _saved(probe)
+    err, message = _raised(lambda: hist.load(d / "history.csv"))
+    return err, message.replace(str(probe.tmp), "TMP")
+
+
+def _cli_out(probe: Probe, *argv) -> tuple[int, str]:
+    """(exit code, stdout) of the command line."""
+    code = cli.main(list(argv))
+    return code, probe.capsys.readouterr().out
+
+
+def _run_summary(probe: Probe, argv):
+    """(the run's forces stand for its array or the closing summary names probe_scale, the
+    summary line)."""
+    out = probe.tmp / "o"
+    code, said = _cli_out(probe, "run", *argv, "--out", str(out), "--no-progress")
+    assert code == 0
+    summary = [line for line in said.splitlines() if "validity" in line]
+    summary = summary or [""]
+    meta = json.loads((out / "metadata.json").read_text())
+    whole = meta["n_sim"] == meta["params"]["array"]["count"]
+    return whole or "probe_scale" in summary[-1], summary[-1]
+
+
+def _tip_listing(probe: Probe):
+    """``gecko-agents params PAPER_ARRAY``: the lines of its ``tip`` row."""
+    code, said = _cli_out(probe, "params", "PAPER_ARRAY")
+    lines = said.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("tip "))
+    end = next(i for i in range(start + 1, len(lines)) if not lines[i].startswith(" "))
+    return code, " ".join(lines[start:end])
+
+
+def _sweep_point_edited(probe: Probe):
+    """A sweep, one point's result edited by hand, then ``--resume``: (the edited value gone
+    from sweep.csv, what the resume said) with the point's key as KEY."""
+    argv = ["--workers", "1"]
+    assert _sweep_kept(probe, argv)[0] == 0
+    (point,) = (probe.tmp / "sw" / "points").glob("*.json")
+    record = json.loads(point.read_text())
+    record["result"]["mean_force_uN"] = 12345.0
+    point.write_text(json.dumps(record, indent=2))
+    code, said = _sweep_kept(probe, [*argv, "--resume"])
+    assert code == 0
+    said = said.replace(point.stem, "KEY")
+    table = (probe.tmp / "sw" / "sweep.csv").read_text()
+    return "12345" not in table, said
+
+
+def _sweep_kept(probe: Probe, argv):
+    """(exit code, stdout) of the sweep of ``_sweep_file`` into ``sw``, its points kept."""
+    spec = probe.tmp / "s.toml"
+    spec.write_text(
+        'preset = "PAPER_TABLE1"\npoint = "cpu_bound_point"\nseeds = [0]\n'
+        '[point_args]\nrepeats = 1\n[grid]\n"fn.n_overlaps" = [10]\n'
+    )
+    out = probe.tmp / "sw"
+    return _cli_out(probe, "sweep", str(spec), "--out", str(out), "--no-progress", *argv)
+
+
+def _tip_names() -> tuple[str, ...]:
+    from gecko_agents.contact.registry import TIP_LAWS
+
+    return tuple(f"'{name}'" for name in TIP_LAWS)
+
+
+ROWS_54_MESSAGES = [
+    # 12. The largest allowed probe: its coarse polyline has no PSD fit, and the run is kept.
+    Row("run file: floor.probe_radius 1e5",
+        lambda p: _run_file(p, _probe_file('"floor.probe_radius" = 1e5')), 0, ()),
+    # 13. On a probe floor, the bad value is named, not the probe/sigma pair.
+    Row("probe run file: contact.sigma0 nan",
+        lambda p: _on_array_probe(p, '"contact.sigma0" = nan', 'tip = "flat_punch"'), 2,
+        ("'contact.sigma0'", "nan")),
+    Row("probe run file: probe_radius 0.01 under a punch",
+        lambda p: _on_array_probe(p, 'tip = "flat_punch"', '"floor.probe_radius" = 0.01'),
+        2, ("'floor.probe_radius'", "0.01")),
+    Row("probe run file: contact.R 200 on a probe of 100",
+        lambda p: _on_array_probe(p, 'tip = "flat_punch"', '"contact.R" = 200.0'), 2,
+        ("'contact.R'", "200")),
+    Row("probe run file: a flange smaller than its stalk",
+        lambda p: _on_array_probe(p, 'tip = "mushroom"', '"contact.R" = 0.1'), 2,
+        ("'contact.R'", "0.1", "Seta.r")),
+    # 15. The documented default written out.
+    Row("design file: sigma0_MPa = inf", _design_sigma0_inf, True, ()),
+    # 16. The restart line is the whole command.
+    Row("run --out --gif interrupted", _interrupted_run, 130,
+        ("start again with: gecko-agents run TMP/r.toml --out TMP/ri --gif",)),
+    # 17. A damaged history.csv, and a file given for its run directory.
+    Row("ga.load: history.csv cut in a row", _truncated_history, ValueError,
+        ("history.csv", "line 5")),
+    Row("ga.load of run/history.csv", _load_a_file, FileNotFoundError,
+        ("TMP/run/history.csv", "load('TMP/run')")),
+    # 20. The closing summary agrees with the warning that a row under a probe is no patch.
+    Row("run file: 2 of 3 setae under a probe",
+        lambda p: _run_summary(p, [_write(p, _probe_file('"array.count" = 3',
+                                                          **{"n_sim = 1": "n_sim = 2"}))]),
+        True, ("probe_scale",)),
+    Row("run examples/pillars_probe.toml --quick",
+        lambda p: _run_summary(p, [str(ROOT / "examples" / "pillars_probe.toml"), "--quick"]),
+        True, (), slow=True),
+    # 21. The tips `params` lists are the registry's; a point file edited by hand is recomputed.
+    Row("params lists every tip law", _tip_listing, 0, _tip_names()),
+    Row("sweep --resume after a point file was edited", _sweep_point_edited, True,
+        ("KEY.json",)),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [
+        pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else [])
+        for r in ROWS_54_MESSAGES
+    ],
+)
+def test_probe_54_messages(row, tmp_path, capsys, monkeypatch):
+    test_probe(row, tmp_path, capsys, monkeypatch)
+
+
+def test_the_messages_rows_are_new_probes():
+    assert not {r.id for r in ROWS} & {r.id for r in ROWS_54_MESSAGES}
+
+
+# Issue 54: the design search ----------------------------------------------------------------
+# Each row a `gecko-agents design` command line; a refusal leaves nothing behind.
+DESIGN = """seed = 0
+trials = 4
+confirm = 0
+objectives = "pull_off_per_area"
+
+[material]
+E_MPa = 1.413
+nu = 0.3
+w_J_per_m2 = 0.165
+
+[surface]
+kind = "flat"
+
+[test]
+preload_kPa = 10.0
+floor_seeds = 1
+pillars = 4
+engine_pillars = 2
+engine_seeds = 1
+
+[space]
+tip = "flat_punch"
+radius_um = [1.0, 5.0]
+aspect_ratio = 2.0
+lean_deg = 90.0
+fill_fraction = 0.2
+
+[quick]
+trials = 2
+"""
+
+
+def _design(probe: Probe, *argv, text: str = DESIGN, out: str = "o"):
+    """``gecko-agents design`` on a design file ``text`` into ``--out tmp/out``: (exit code,
+    stderr and stdout)."""
+    path = _write(probe, text, "d.toml")
+    try:
+        code = cli.main(["design", path, "--out", str(probe.tmp / out), *argv])
+    except SystemExit as err:
+        code = err.code
+    said = probe.capsys.readouterr()
+    return code, said.err + said.out
+
+
+def _design_refused(probe: Probe, text: str, *argv):
+    """A design file or option refused: rc 2 and no output folder left."""
+    code, message = _design(probe, *argv, text=text)
+    return (code if not (probe.tmp / "o").exists() else -1), message
+
+
+def _design_over_users_files(probe: Probe, name: str):
+    """``design --out`` a folder of a user's files, one of them named as a search's output:
+    refused, every file kept (-1 if one changed)."""
+    d = probe.tmp / "o"
+    (d / "runs").mkdir(parents=True)
+    (d / name).write_text("NOTES")
+    (d / "notes.txt").write_text("k")
+    code, message = _design(probe, "--quick")
+    kept = (d / name).read_text() == "NOTES" and sorted(p.name for p in d.iterdir()) == sorted(
+        {"runs", "notes.txt", name.split("/")[0]}
+    )
+    return (code if kept else -1), message
+
+
+def _second_study(probe: Probe, *argv, text: str = DESIGN):
+    """A study into a folder that holds another (the same file's full variant): refused, the
+    first study's outputs unchanged (-1 if one changed)."""
+    assert _design(probe)[0] == 0
+    d = probe.tmp / "o"
+    before = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    code, message = _design(probe, *argv, text=text)
+    after = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    return (code if after == before else -1), message
+
+
+def _same_study_again(probe: Probe):
+    """The same study into its own folder resumes: more trials, the first ones kept."""
+    assert _design(probe)[0] == 0
+    code, message = _design(probe, "--trials", "6")
+    return code, message
+
+
+def _two_processes(probe: Probe):
+    """A second `design` on a local study another process is running: refused."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    path = _write(probe, DESIGN.replace("trials = 4", "trials = 100000"), "d.toml")
+    out = probe.tmp / "o"
+    cmd = [sys.executable, "-m", "gecko_agents", "design", path, "--out", str(out)]
+    first = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 60
+        while not (out / "study.db").exists() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        time.sleep(0.5)  # its first trials stored
+        code, err = _cli(probe, "design", path, "--out", str(out), "--trials", "1")
+    finally:
+        first.send_signal(signal.SIGKILL)
+        first.wait(timeout=30)
+    return code, err
+
+
+def _trial_states(out: Path) -> tuple[int, int, list[str]]:
+    """(complete, failed, the failed trials' reasons) of the study stored in ``out``."""
+    import sqlite3
+
+    with sqlite3.connect(out / "study.db") as db:
+        states = [s for (s,) in db.execute("SELECT state FROM trials")]
+        reasons = [
+            v
+            for (v,) in db.execute(
+                "SELECT value_json FROM trial_user_attributes WHERE key = 'error'"
+            )
+        ]
+    return states.count("COMPLETE"), states.count("FAIL"), reasons
+
+
+def _model_raises(probe: Probe):
+    """A screen whose model raises RuntimeError on some designs (as the quasi-static solver
+    does on a preload it cannot reach): those trials are failed trials with their reason, the
+    others complete."""
+    import gecko_agents.design.search as design_search
+
+    screen = design_search.evaluate
+
+    def evaluate(spec, values):
+        if values["radius_um"] > 3.0:
+            raise RuntimeError("preload not reached within 200000 steps")
+        return screen(spec, values)
+
+    probe.monkeypatch.setattr(design_search, "evaluate", evaluate)
+    code, message = _design(probe, text=DESIGN.replace("trials = 4", "trials = 8"))
+    if code != 0:
+        return code, message
+    complete, failed, reasons = _trial_states(probe.tmp / "o")
+    report = (probe.tmp / "o" / "report.md").read_text()
+    return (code, complete > 0, failed > 0), " ".join([*reasons, report])
+
+
+def _confirmation_fails(probe: Probe):
+    """An engine confirmation that fails (pillars of 1 kPa, whose elastica finds no
+    equilibrium under the preload): a row of the report with its reason."""
+    text = DESIGN.replace("confirm = 0", "confirm = 1").replace("E_MPa = 1.413", "E_MPa = 0.001")
+    code, message = _design(probe, text=text)
+    if code != 0:
+        return code, message
+    return code, (probe.tmp / "o" / "report.md").read_text()
+
+
+def _full_disk(probe: Probe):
+    """The study's store fills up (SQLite's SQLITE_FULL, as on a full disk: its page count
+    capped): the command says so, every trial stored before kept."""
+    from sqlalchemy import event
+
+    import gecko_agents.design.search as design_search
+
+    storage = design_search._storage
+
+    def capped(url, optuna):
+        rdb = storage(url, optuna)
+        event.listen(
+            rdb.engine, "connect", lambda conn, _r: conn.execute("PRAGMA max_page_count = 40")
+        )
+        rdb.engine.dispose()
+        return rdb
+
+    probe.monkeypatch.setattr(design_search, "_storage", capped)
+    return _design(probe, text=DESIGN.replace("trials = 4", "trials = 400"))
+
+
+def _trials_below_the_study(probe: Probe):
+    """``--trials 2`` on a study of 4: said, not ignored."""
+    assert _design(probe)[0] == 0
+    return _design(probe, "--trials", "2")
+
+
+SEED_1E17 = DESIGN.replace("seed = 0", "seed = 99999999999999999")
+NO_GAP = DESIGN + "\n[constraints]\nmin_gap_um = 1e6\n"
+
+ROWS_54_DESIGN = [
+    # 1–2. A folder is a design folder only when it holds a study this command wrote.
+    Row("design --out a folder with a user's report.md",
+        lambda p: _design_over_users_files(p, "report.md"), 2, ("not a design folder",
+                                                                "report.md")),
+    Row("design --out a folder with a user's runs/design_1.toml",
+        lambda p: _design_over_users_files(p, "runs/design_1.toml"), 2,
+        ("not a design folder", "runs")),
+    Row("design --quick into the full study's --out", lambda p: _second_study(p, "--quick"), 2,
+        ("holds the study", "d.toml", "--out"), slow=True),
+    Row("design of another file into the same --out",
+        lambda p: _second_study(p, text=DESIGN.replace("seed = 0", "seed = 1")), 2,
+        ("holds the study", "d.toml", "--out"), slow=True),
+    Row("design into its own folder resumes", _same_study_again, 0, ("6 screening trials",),
+        slow=True),
+    # 4. A local study file belongs to one process.
+    Row("two design commands on one local study", _two_processes, 2, ("another", "o"),
+        slow=True),
+    # 8–9. A model that cannot evaluate a design: a failed trial or a failed confirmation.
+    Row("design: the screen's model raises RuntimeError", _model_raises, (0, True, True),
+        ("RuntimeError", "preload not reached", "failed_trials"), slow=True),
+    Row("design: an engine confirmation fails", _confirmation_fails, 0,
+        ("Confirmations that failed", "design_1", "RuntimeError", "no equilibrium"), slow=True),
+    # 10. --storage checked before any work.
+    *[
+        Row(f"design --storage {url}", lambda p, u=url: _design_refused(p, DESIGN, "--storage",
+                                                                        u.format(tmp=p.tmp)),
+            2, ("--storage", url.split("{tmp}")[-1]))
+        for url in ("not_a_url", "sqlite:///{tmp}/missing/study.db", "sqlite:///{tmp}",
+                    "nosuchdialect://host/db")
+    ],
+    Row("design with a full disk", _full_disk, 1, ("study.db", "full"), slow=True),
+    # 11. Seeds the sampler takes.
+    Row("design seed 1e17", lambda p: _design_refused(p, SEED_1E17), 2,
+        ("seed", "99999999999999999", "4294967295")),
+    # 14. A bound that leaves no design.
+    Row("design min_gap_um 1e6", lambda p: _design_refused(p, NO_GAP), 2,
+        ("[constraints] min_gap_um", "1e+06", "leaves no design")),
+    # 21. --trials below the study's.
+    Row("design --trials 2 on a study of 4", _trials_below_the_study, 0,
+        ("trials = 2", "holds 4"), slow=True),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_DESIGN],
+)
+def test_probe_54_design(row, tmp_path, capsys, monkeypatch):
+    outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))
+    assert outcome == row.expected, message
+    for name in row.names:
+        assert name in message, (name, message)
+
+
+def test_the_design_rows_are_distinct():
+    assert len({r.id for r in ROWS_54_DESIGN}) == len(ROWS_54_DESIGN)
+
+
+# Issue 54: the laws ---------------------------------------------------------------------------
+# Each row the issue's input; the laws' closed-form oracles are in the laws' own test files.
+
+
+def _sharp_obtuse_rim(probe: Probe):
+    """The issue's sharp 120° rim on a tip of ν = 0.1 (flange 20 µm on a 16 µm stalk,
+    σ₀ = 2 MPa): its rim is singular (λ = 0.8004 ± 0.1327i), so it lets go from the rim at
+    σ₀πa²·0.83·χ^(−(1 − Re λ)), not from the centre at σ₀πa² = 2513 µN."""
+    from gecko_agents.contact import contact_law
+    from gecko_agents.physics import flaw_tolerance as ft
+
+    p = STIFF.replace(
+        tip="mushroom", mechanics="rod", contact={"R": 20.0, "sigma0": 2.0, "nu1": 0.1},
+        seta={"r": 16.0}, mushroom={"rim": "sharp", "rim_angle_deg": 120.0},
+    )  # fmt: skip
+    law = contact_law(p)
+    chi = ft.flaw_parameter(20.0, 2.0, law.E_star, law.w)
+    rim = math.pi * 20.0**2 * 2.0 * 0.83 * chi ** -(1.0 - 0.8003909)
+    return (law.release_mode, round(law.pull_off_force / rim, 5)), str(law.mode_forces)
+
+
+def _punch_at_a_cr(probe: Probe):
+    """A flat punch of radius a_cr = 8E*w/(πσ₀²) on an interface of σ₀ = 0.3 MPa: its
+    pull-off over σ₀πa² (the simple form's kink, 1) is the Dugdale punch's 0.8663."""
+    from gecko_agents.contact import contact_law
+    from gecko_agents.physics import flaw_tolerance as ft
+
+    c = STIFF.contact
+    a_cr = float(ft.flaw_tolerant_radius(0.3, c.E_star, c.work_of_adhesion))
+    p = STIFF.replace(tip="flat_punch", mechanics="rod", contact={"R": a_cr, "sigma0": 0.3})
+    law = contact_law(p)
+    return round(law.pull_off_force / (math.pi * a_cr**2 * 0.3), 4), f"a_cr = {a_cr} um"
+
+
+MUSHROOM_DESIGN = """
+seed = 0
+trials = 4
+confirm = 0
+objectives = "pull_off_per_area"
+[material]
+E_MPa = 1.413
+nu = 0.3
+w_J_per_m2 = 0.165
+sigma0_MPa = 0.5
+[surface]
+kind = "flat"
+[test]
+preload_kPa = 10.0
+floor_seeds = 1
+pillars = 10
+[space]
+tip = "mushroom"
+radius_um = 1.1
+aspect_ratio = 2.0
+lean_deg = 90.0
+flange_ratio = 5.0
+fill_fraction = [0.3, 0.7]
+"""
+
+
+def _load_design(path: str):
+    from gecko_agents.design import load_design
+
+    return load_design(Path(path))
+
+
+def _overlapping_flanges_screened(probe: Probe):
+    """The issue's design, flange ratio 5 at fill 0.69: flanges of 5.5 µm radius on a pitch
+    of 2.35 µm, in a space that also holds designs whose flanges fit (flange ratio from 1).
+    The screen holds it to nothing and it breaks the constraint faces_fit_pitch."""
+    from gecko_agents.design.screen import evaluate
+
+    text = MUSHROOM_DESIGN.replace("flange_ratio = 5.0", "flange_ratio = [1.0, 5.0]")
+    spec = _load_design(_write(probe, text, "d.toml"))
+    values = {**spec.fixed, "tip": "mushroom", "backing": "rigid", "mushroom_rim": "flawed"}
+    values |= {"fill_fraction": 0.69, "flange_ratio": 5.0}
+    res = evaluate(spec, values)
+    broken = sorted(k for k, v in res["constraints"].items() if v > 0)
+    return (res["objectives"]["pull_off_per_area"], broken), str(res["constraints"])
+
+
+def _detachment_force(probe: Probe, kw: dict):
+    """The one seta's recorded detachment force [µN, 4 digits] at a step ``kw``: JKR's at
+    its fold, −(5/9)·Fc = −1.7271 µN, whatever the step's overshoot (the run unchecked)."""
+    probe.monkeypatch.setattr(Model, "run", Model.run.__globals__.get("_run", Model.run))
+    h = Model(P41, seed=1, **kw).run(protocol.press_pull(0.5, speed=0.05), progress=False)
+    return round(float(h.detachments["force_uN"][0]), 4), str(h.detachments["overlap_um"])
+
+
+ROWS_54_LAWS = [
+    Row("mushroom flange R 3 on pitch 4",
+        lambda p: _raised(lambda: Model(P41.replace(tip="mushroom", mechanics="elastica",
+                                                    seta={"r": 1.5, "theta_deg": 90.0},
+                                                    contact={"R": 3.0},
+                                                    array={"count": 5, "pitch": 4.0}), n_sim=5)),
+        ValueError, ("Contact.R = 3.0", "Seta.r = 1.5", "Array.pitch/2 = 2.0")),
+    Row("flange ratio 5 at fill 0.69 in a design", _overlapping_flanges_screened,
+        (0.0, ["faces_fit_pitch"]), ("faces_fit_pitch",)),
+    Row("design: flange ratio 5, fill 0.3 to 0.7",
+        lambda p: _raised(lambda: _load_design(_write(p, MUSHROOM_DESIGN, "d.toml"))),
+        RunFileError, ("flange_ratio in [5, 5]", "fill_fraction in [0.3, 0.7]", "d.toml")),
+    Row("sharp 120 deg rim at nu 0.1", _sharp_obtuse_rim, ("edge", 1.0), ("edge", "centre")),
+    Row("punch of radius a_cr with sigma0 0.3", _punch_at_a_cr, 0.8663, ("a_cr",)),
+    Row("detachment force at the explicit step", lambda p: _detachment_force(p, {}),
+        -1.7271, ()),
+    Row("detachment force at implicit dt 30",
+        lambda p: _detachment_force(p, {"integrator": "implicit", "dt": 30.0,
+                                        "event_dt": 30.0}), -1.7271, ()),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_LAWS],
+)
+def test_probe_issue_54_laws(row, tmp_path, capsys, monkeypatch):
+    outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))
+    assert outcome == row.expected, message
+    for name in row.names:
+        assert name in message, (name, message)

@@ -131,7 +131,8 @@ def test_sensitivity_recomputes_at_both_ends_and_at_every_corner():
 def _row(**over):
     base = {"id": "x", "status": "scored", "compare": "value", "theirs_value": 10.0,
             "scatter": None, "scatter_why": None, "band": None, "band_why": "why",
-            "min_effect": None, "expect": None, "unscored": None}  # fmt: skip
+            "min_effect": None, "expect": None, "unscored": None, "tolerance": None,
+            "tolerance_why": None, "bounded": False}  # fmt: skip
     return {**base, **over}
 
 
@@ -160,10 +161,66 @@ def test_trend_verdicts_need_the_sign_and_the_stated_size():
     assert val.verdict(words, {"value": 0.6}, [])[0] == val.TREND_AGREES  # a 40 % drop
     assert val.verdict(words, {"value": 0.8}, [])[0] == val.DISAGREES_MAGNITUDE
     assert val.verdict(words, {"value": 1.2}, [])[0] == val.DISAGREES_SIGN
+    # A size in words met only at an end of an unread parameter: not comparable.
+    spans = [{"status": "assumed", "ours_at_ends": [1.0, 0.0]}]
+    assert val.verdict(words, {"value": 1.0}, spans)[0] == val.NOT_COMPARABLE
+    assert val.verdict(words, {"value": 1.0}, [{**spans[0], "status": "cited"}])[0] == (
+        val.DISAGREES_MAGNITUDE
+    )
     slope = _row(compare="trend", expect=">0", theirs_value=None, min_effect=0.01)
     assert val.verdict(slope, {"value": 0.4}, [])[0] == val.TREND_AGREES
     with pytest.raises(ValueError, match="expect"):
         val.effect(_row(expect="up"), 1.0)
+
+
+def test_magnitude_verdicts_by_tolerance_and_on_the_nearer_bound():
+    tol = _row(tolerance=0.25, tolerance_why="none stated")
+    assert val.verdict(tol, {"value": 12.5}, [])[0] == val.AGREES_TOLERANCE
+    assert val.verdict(tol, {"value": 7.4}, [])[0] == val.DISAGREES_MAGNITUDE
+    # Φ = 0.97: the band is ±25 % of 1 − Φ = 0.03, not of Φ (which would accept Φ > 0.73).
+    phi = _row(theirs_value=0.97, tolerance=0.25, tolerance_why="w", bounded=True)
+    assert val.half_width(phi) == pytest.approx(0.0075)
+    assert val.verdict(phi, {"value": 0.975}, [])[0] == val.AGREES_TOLERANCE
+    assert val.verdict(phi, {"value": 1.0}, [])[0] == val.DISAGREES_MAGNITUDE
+    low = _row(theirs_value=0.2, tolerance=0.25, tolerance_why="w", bounded=True)
+    assert val.half_width(low) == pytest.approx(0.05)  # below 1/2: on Φ itself
+
+
+def _scored(rid, verdict, kind="experiment", compare="value", measurement=None, source="s"):
+    return {"id": rid, "kind": kind, "compare": compare, "in_words": False, "verdict": verdict,
+            "measurement": measurement or rid, "source": source,
+            "quick_may_differ": False}  # fmt: skip
+
+
+def test_headline_counts_magnitude_rows_and_each_measurement_once():
+    rows = [
+        _scored("a", val.AGREES_TOLERANCE, measurement="table 1"),
+        _scored("b", val.DISAGREES_MAGNITUDE, measurement="table 1"),
+        _scored("c", val.AGREES_SCATTER, source="t"),
+        _scored("d", val.NOT_COMPARABLE, source="u"),
+        _scored("e", val.TREND_AGREES, compare="trend"),
+        _scored("f", val.AGREES_BAND, kind="self-consistency"),
+        {**_scored("g", val.AGREES_BAND), "in_words": True},  # 'preload-independent'
+    ]
+    h = val.headline(rows)
+    assert (h["magnitude_rows"], h["magnitude_agree"]) == (3, 2)
+    assert (h["measurements"], h["measurements_agree"]) == (2, 1)  # table 1 fails as a whole
+    assert (h["papers"], h["not_comparable"]) == (2, 1)
+    assert (h["trend_rows"], h["trend_agree"]) == (2, 2)  # words and directions, apart
+
+
+def test_quick_sized_rows_are_agent_runs_that_the_report_marks():
+    assert vo.QUICK_SIZED <= set(vo.OURS)
+    assert not vo.QUICK_SIZED & vo.CLOSED_FORM
+
+
+def test_the_rows_hold_magnitudes_from_independent_papers():
+    """At least 12 magnitude rows from 6 papers, each at its source's stated geometry."""
+    mag = [r for r in SCORED if val.is_magnitude(r)]
+    assert len(mag) >= 12 and len({r["source"] for r in mag}) >= 6
+    for r in mag:
+        assert (r["scatter"] is None) != (r["tolerance"] is None), r["id"]
+        assert r["band"] is None, r["id"]
 
 
 def test_rows_not_scored_say_why_and_are_counted_apart():
@@ -209,12 +266,16 @@ def _write(path, row: dict, extra: str = "") -> None:
 
 def test_the_loader_refuses_incomplete_or_contradictory_rows(tmp_path):
     f = tmp_path / "rows.toml"
-    ok = {"id": "x", "source": "s", "kind": "experiment", "read_at": "a", "quote": "q",
+    ok = {"id": "x", "source": "s", "kind": "self-consistency", "read_at": "a", "quote": "q",
           "measured": "m", "theirs": "t", "quantity": "k", "cause": "c", "compare": "value",
           "theirs_value": 1.0, "band": 2.0, "band_why": "w", "ours": "seta_stiffness",
           "uses": ["p"]}  # fmt: skip
     _write(f, ok)
     assert load_rows(f)[0]["params"][0]["name"] == "E"
+    magnitude = {**ok, "kind": "experiment", "band": None, "tolerance": 0.25,
+                 "tolerance_why": "none stated"}  # fmt: skip
+    _write(f, magnitude)
+    assert load_rows(f)[0]["measurement"] == "x"  # its own measurement by default
     refused = (
         ({"kind": "guess"}, "kind"),
         ({"source": "nope"}, "source"),
@@ -224,6 +285,10 @@ def test_the_loader_refuses_incomplete_or_contradictory_rows(tmp_path):
         ({"status": "pending"}, "says why"),
         ({"theirs_value": None}, "min_effect"),
         ({"band_why": None}, "reason"),
+        ({"kind": "experiment"}, "not a factor band"),
+        ({"band": None, "tolerance": 1.5, "tolerance_why": "w"}, "must be in"),
+        ({"band": None, "tolerance": 0.25}, "tolerance_why"),
+        ({"theirs_value": 2.0, "bounded": True}, "bounded"),
     )
     for bad, match in refused:
         _write(f, {**ok, **bad})
@@ -232,6 +297,19 @@ def test_the_loader_refuses_incomplete_or_contradictory_rows(tmp_path):
     _write(f, {k: v for k, v in ok.items() if k != "quote"})
     with pytest.raises(ValueError, match="lacks the field"):
         load_rows(f)
+
+
+def test_one_model_number_never_scores_two_observations(tmp_path):
+    f = tmp_path / "rows.toml"
+    row = {"source": "s", "kind": "self-consistency", "read_at": "a", "quote": "q",
+           "measured": "m", "theirs": "t", "quantity": "k", "cause": "c", "compare": "value",
+           "theirs_value": 1.0, "band": 2.0, "band_why": "w", "ours": "seta_stiffness"}  # fmt: skip
+    _write(f, {"id": "x", **row}, extra="[[rows]]\n" + "".join(
+        f"{k} = {json.dumps(v)}\n" for k, v in {"id": "y", **row}.items()))  # fmt: skip
+    with pytest.raises(ValueError, match="one model number"):
+        load_rows(f)
+    scored = [r for r in ROWS if r["status"] == "scored"]
+    assert len({r["ours"] for r in scored}) == len(scored)
 
 
 def test_reproduce_beyond_writes_the_literature_comparison_beside_the_report(tmp_path, monkeypatch):
@@ -296,7 +374,16 @@ def test_quick_report_rows_and_files(report):
             assert math.isfinite(r["ours_value"]), r["id"]
     meta = json.loads((out / "metadata.json").read_text())
     assert sum(meta["verdicts"]["scored"].values()) >= 20
-    assert meta["verdicts"]["scored"]["experiment"] >= 12
+    h = meta["headline"]
+    assert h == val.headline(list(rows.values()))
+    assert h["magnitude_rows"] + h["not_comparable"] >= 12 and h["papers"] >= 6
+    # Rows run smaller in --quick are marked, and only those.
+    assert {r["id"] for r in rows.values() if r["quick_may_differ"]} == {
+        r["id"] for r in ROWS if val.quick_may_differ(r)
+    }
+    assert {r["id"] for r in ROWS if r["ours"] in vo.QUICK_SIZED} <= {
+        r["id"] for r in ROWS if val.quick_may_differ(r)
+    }
     assert rows["autumn2006a_k_seta"]["ours_value"] == pytest.approx(lit.AUTUMN2006_SETA.Ky)
 
 
@@ -368,3 +455,67 @@ def test_two_heights_row_holds_all_pillars_only_after_the_high_preload():
     assert low == pytest.approx(5 * F_K, rel=0.03)
     assert 7.5 * F_K < high <= 10 * F_K
     assert vo.two_heights()["value"] == pytest.approx(high / low)
+
+
+# Magnitude rows at the sources' own geometry (closed forms) ----------------------------------
+def test_tang_rows_are_the_bonded_square_corner():
+    """Φ = 0.83·χ^−(1 − λ), λ the bonded incompressible 90° corner's root (r^−0.405)."""
+    from gecko_agents.physics import flaw_tolerance as ft
+    from gecko_agents.physics.wedge import singularity_exponent
+    from gecko_agents.studies import validation_magnitudes as vm
+
+    lam = singularity_exponent(90.0, 0.5, "bonded")
+    for fn, (E, w, s0, a) in ((vm.tang_pdms_fibril, (1.0, 0.05, 0.1, 100.0)),
+                              (vm.tang_keratin_fibril, (2000.0, 0.05, 20.0, 10.0))):  # fmt: skip
+        chi = float(ft.flaw_parameter(a, s0, E / 0.75, w))
+        assert fn()["value"] == pytest.approx(0.83 * chi ** -(1.0 - lam), rel=1e-9)
+
+
+def test_aksak_rows_take_the_centre_stress_uniform():
+    """A 45° rim is not singular: the tip lets go from its centre at σ₀ (Φ = 1 exactly), or by
+    Griffith's penny crack where a defect of radius c is put in the face."""
+    from gecko_agents.studies import validation_magnitudes as vm
+
+    for fn in (vm.aksak_phi_chi5, vm.aksak_phi_chi40, vm.aksak_gamma_beta11):
+        assert fn()["value"] == pytest.approx(1.0, rel=1e-12)
+    k, chi, c = vm.AKSAK, 40.0, 0.3
+    Es = k["E"] / (1 - k["nu"] ** 2)
+    w = k["sigma0"] ** 2 * k["a"] / (2 * math.pi * Es * chi)
+    griffith = math.sqrt(math.pi * Es * w / (2 * c)) / k["sigma0"]
+    assert vm.aksak_phi(1.1, chi, defect=c)["value"] == pytest.approx(min(1.0, griffith))
+
+
+def test_del_campo_ratio_is_aksaks_eq3_with_the_packages_release_forces():
+    """Under a sphere much larger than a fibril the array holds π·n·R·F²/k, so the ratio is
+    (F_m/F_c)²·k_c/k_m; with Aksak et al.'s Γc = 0.74 for the mushroom and equal stiffnesses it
+    is their e = (0.74/0.83)²β⁴χ^(2·0.4) = 2.27χ^0.8 (their printed constant)."""
+    from gecko_agents.physics.wedge import singularity_exponent
+    from gecko_agents.studies import validation_magnitudes as vm
+
+    f = vm.del_campo_fibrils()
+    assert f["ratio"] == pytest.approx((f["F_m"] / f["F_c"]) ** 2 * f["k_c"] / f["k_m"])
+    d, chi = vm.DEL_CAMPO, 33.6  # Aksak et al.'s χ for these pillars
+    beta = d["a_t"] / d["a"]
+    assert f["F_m"] == pytest.approx(math.pi * d["a_t"] ** 2)  # σ₀ = 1 MPa over the flange
+    alpha = 1.0 - singularity_exponent(90.0, 0.5, "bonded")
+    F_c = 0.83 * chi**-alpha * math.pi * d["a"] ** 2
+    assert f["F_c"] == pytest.approx(F_c, rel=2e-3)  # χ printed to 3 digits
+    assert (0.74 / 0.83) ** 2 * beta**4 == pytest.approx(2.27, rel=2e-3)
+    # The calibration point is reproduced exactly; the mushroom row is the ratio's number.
+    assert vm.del_campo_mushroom()["value"] == pytest.approx(0.7 * f["ratio"])
+
+
+@pytest.mark.slow
+def test_paretkar_rows_tell_round_edges_from_end_flaps():
+    """Below buckling both faces hold Kendall's force; pressed by 70 % of L the face that opens
+    at its edge (round edge) holds nothing, the face kept bonded (end flaps) all of it."""
+    from gecko_agents.physics import punch
+    from gecko_agents.studies import pillar_designs as pd
+    from gecko_agents.studies import validation_magnitudes as vm
+
+    c = pd.params_for("flat_punch", 2.4, "flat").contact
+    F_K = float(punch.kendall_pull_off(vm.PARETKAR["r"], c.work_of_adhesion, c.E_star))
+    for edge in (True, False):
+        assert vm.paretkar_pull_off(edge, vm.PARETKAR["below"]) == pytest.approx(F_K, rel=0.01)
+    assert vm.paretkar_round_edges(press=0.7)["value"] == 0.0
+    assert vm.paretkar_end_flaps(press=0.7)["value"] == pytest.approx(1.0, abs=0.01)

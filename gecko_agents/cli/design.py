@@ -8,7 +8,15 @@ import time
 import warnings
 from pathlib import Path
 
-from gecko_agents.cli.common import EXIT_INTERRUPTED, EXIT_OK, PROG, UsageError, checked, error
+from gecko_agents.cli.common import (
+    EXIT_FAILURE,
+    EXIT_INTERRUPTED,
+    EXIT_OK,
+    PROG,
+    UsageError,
+    checked,
+    error,
+)
 from gecko_agents.output_paths import output_dir_arg
 
 __all__ = ["add_design", "cmd_design"]
@@ -22,7 +30,8 @@ def add_design(p: argparse.ArgumentParser) -> None:
         "--out",
         type=output_dir_arg,
         default=None,
-        help="output folder (default designs/<design file name>); a study stored there is resumed",
+        help="output folder (default designs/<design file name>, with _quick for --quick): new, "
+        "empty or this study's own, whose study is then resumed",
     )
     p.add_argument(
         "--trials", type=int, default=None, help="screening trials (default: the file's)"
@@ -67,8 +76,8 @@ def add_design(p: argparse.ArgumentParser) -> None:
 
 
 def cmd_design(args, extra) -> int:
-    from gecko_agents.design import load_design, run_design
-    from gecko_agents.design.search import require_optuna
+    from gecko_agents.design import folder, load_design
+    from gecko_agents.design.search import require_optuna, study_name
 
     spec = load_design(args.designfile, quick=args.quick)
     if args.trials is not None and args.trials < 1:
@@ -83,12 +92,13 @@ def cmd_design(args, extra) -> int:
         raise UsageError(str(err)) from None
     if args.benchmark:
         return _benchmark(spec, args)
-    out = args.out if args.out is not None else checked(Path("designs") / spec.path.stem)
-    from gecko_agents.design.study import check_output
-
+    stem = spec.path.stem + ("_quick" if spec.quick else "")
+    out = args.out if args.out is not None else checked(Path("designs") / stem)
     try:
-        check_output(out)
-    except ValueError as err:
+        if args.storage is not None:
+            folder.check_storage(args.storage)
+        folder.check_output(out, study_name(spec), args.storage)
+    except folder.DesignFolderError as err:
         raise UsageError(str(err)) from None
     again = [PROG, "design", str(args.designfile)] + (["--quick"] if args.quick else [])
     again += ["--out", str(out)] + (["--storage", args.storage] if args.storage else [])
@@ -99,9 +109,33 @@ def cmd_design(args, extra) -> int:
     )
     t0 = time.perf_counter()
     try:
+        summary = _run(spec, out, args)
+    except KeyboardInterrupt:
+        error("interrupted: every finished trial is stored; resume with: " + " ".join(again))
+        return EXIT_INTERRUPTED
+    except Exception as err:
+        full = folder.storage_full(err)
+        if full is None or isinstance(err, UsageError):
+            raise
+        where = args.storage or str(out / "study.db")
+        error(
+            f"{where}: the disk is full ({full}); every finished trial is stored: free some "
+            "space and resume with: " + " ".join(again)
+        )
+        return EXIT_FAILURE
+    _said(summary, out, time.perf_counter() - t0)
+    return EXIT_OK
+
+
+def _run(spec, out: Path, args) -> dict:
+    """:func:`~gecko_agents.design.run_design` with the command's options; a folder or store
+    it refuses is a usage error."""
+    from gecko_agents.design import folder, run_design
+
+    try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", category=UserWarning)  # Optuna's experimental notes
-            summary = run_design(
+            return run_design(
                 spec,
                 out,
                 trials=args.trials,
@@ -110,15 +144,21 @@ def cmd_design(args, extra) -> int:
                 dask=args.dask,
                 worker=args.worker,
             )
+    except folder.DesignFolderError as err:
+        raise UsageError(str(err)) from None
     except ImportError as err:  # --dask without the dask extra
         raise UsageError(str(err)) from None
-    except KeyboardInterrupt:
-        error("interrupted: every finished trial is stored; resume with: " + " ".join(again))
-        return EXIT_INTERRUPTED
+
+
+def _said(summary: dict, out: Path, wall: float) -> None:
+    """The command's last lines: what it wrote and the best design."""
     best = summary["best"]
+    failed = [b for b in best if "error" in b["engine"]]
     print(
-        f"wrote {out}/report.md in {time.perf_counter() - t0:.1f} s: {summary['trials']} "
-        f"trials, {len(best)} designs confirmed"
+        f"wrote {out}/report.md in {wall:.1f} s: {summary['trials']} trials"
+        + (f" ({summary['failed_trials']} failed)" if summary["failed_trials"] else "")
+        + f", {len(best)} designs confirmed"
+        + (f" ({len(failed)} failed in the engine)" if failed else "")
     )
     if best:
         from gecko_agents.design.space import in_use
@@ -128,8 +168,8 @@ def cmd_design(args, extra) -> int:
             f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}"
             for k, v in in_use(b["design"]).items()
         )
-        print(f"best: {knobs}; engine {b['engine']['mean']:.4g} kPa")
-    return EXIT_OK
+        engine = b["engine"].get("error") or f"engine {b['engine']['mean']:.4g} kPa"
+        print(f"best: {knobs}; {engine}")
 
 
 def _benchmark(spec, args) -> int:

@@ -67,6 +67,18 @@ def _default_run_dir(runfile: Path) -> Path:
     return Path("runs") / runfile.stem
 
 
+def _run_command(args) -> str:
+    """The ``run`` command line of ``args``, every option given, quoted for a shell."""
+    words = [PROG, "run", str(args.runfile)]
+    words += ["--out", str(args.out)] if args.out is not None else []
+    words += ["--quick"] if args.quick else []
+    words += [f"--{args.animation}"] if args.animation else []
+    words += ["--no-progress"] if args.no_progress else []
+    words += ["--quiet"] if getattr(args, "quiet", False) else []
+    words += ["--verbose"] if getattr(args, "verbose", False) else []
+    return shlex.join(words)
+
+
 def cmd_run(args, extra) -> int:
     from gecko_agents.model.cost import RunCostError
     from gecko_agents.runfiles import run as runfile
@@ -97,7 +109,7 @@ def cmd_run(args, extra) -> int:
     except KeyboardInterrupt:
         error(
             f"interrupted: nothing was written to {out} (a run directory already there is "
-            f"untouched); start again with: {PROG} run {' '.join(argv)}"
+            f"untouched); start again with: {_run_command(args)}"
         )
         return EXIT_INTERRUPTED
     except Exception as err:
@@ -188,6 +200,7 @@ def cmd_sweep(args, extra) -> int:
     resume += ["--out", str(out)] if args.out is not None else []
     resume += ["--quick"] if args.quick else []
     resume += ["--dask", args.dask] if args.dask else []
+    resume += ["--workers", str(args.workers)] if args.workers is not None else []
     print(
         f"{spec.path}{' (quick)' if spec.quick else ''}: {spec.point} on {spec.preset}, "
         f"{spec.n_points} points → {out}/"
@@ -214,7 +227,7 @@ def cmd_sweep(args, extra) -> int:
         done = len(list(points_dir.glob("*.json"))) if points_dir.is_dir() else 0
         error(
             f"interrupted: {done} finished point(s) are stored in {points_dir}/; resume with: "
-            + " ".join(resume)
+            + shlex.join(resume)
         )
         return EXIT_INTERRUPTED
     except ImportError as err:
@@ -231,7 +244,7 @@ def cmd_sweep(args, extra) -> int:
     if errors:
         error(
             f"{len(errors)} point(s) failed, e.g. seed {errors[0]['seed']}: "
-            f"{errors[0]['error']}; after a fix, re-run with: " + " ".join(resume)
+            f"{errors[0]['error']}; after a fix, re-run with: " + shlex.join(resume)
         )
         return EXIT_FAILURE
     return EXIT_OK
@@ -248,6 +261,6 @@ def _sweep_not_written(err: OSError, out: Path, created: bool, resume: list[str]
     else:
         error(
             f"writing the sweep failed ({err}); {done} finished point(s) are stored in "
-            f"{points_dir}/; free space, then resume with: " + " ".join(resume)
+            f"{points_dir}/; free space, then resume with: " + shlex.join(resume)
         )
     return EXIT_FAILURE

@@ -13,7 +13,7 @@ Design file
 ::
 
     description = "flat punch or sphere pillars on the measured Dektak scan"
-    seed = 0                       # the sampler's seed and the first floor seed
+    seed = 0                       # the sampler's seed and the first floor seed, [0, 2³² − 1]
     trials = 200                   # screening trials
     confirm = 4                    # best designs confirmed with the engine
     objectives = ["pull_off_per_area", "spread"]   # of space.OBJECTIVES
@@ -59,10 +59,12 @@ Design file
     [quick]                        # --quick: trials, confirm and [quick.test] merged in
     trials = 20
 
-Every key, type and range is checked, the quick variant too, and every corner of the space is
-built as a parameter set before the first trial; errors are
+Every key, type and range is checked, the quick variant too, every corner of the space is
+built as a parameter set, and a fabrication bound that leaves no design (a radius, an aspect
+ratio or a gap no corner of the space reaches) is refused before the first trial; errors are
 :class:`~gecko_agents.runfiles.schema.RunFileError` naming the file, the key, the value and the
-allowed range.
+allowed range. The output folder, its lock and a ``--storage`` URL are checked before the
+first trial too (:mod:`~gecko_agents.design.folder`).
 """
 
 from __future__ import annotations

@@ -67,20 +67,35 @@ def confirm_design(spec, values: dict) -> dict:
     backing, the screen's tilts): ``mean`` and ``spread`` (std/mean), each run's value,
     ``release`` (the pull-off with the backing at ``test.release_tilt_deg``; None on a rigid
     plate or a backing layer, which the engine keeps level), its wall time, and the validity
-    items any run found not met (name → the item of the last run that broke it)."""
+    items any run found not met (name → the item of the last run that broke it). A run the
+    engine refuses or cannot finish (a preload it cannot reach, a step that fails) ends the
+    design's confirmation: ``error`` then gives the exception and its message, ``mean`` and
+    ``spread`` are NaN."""
     import time
 
     from gecko_agents.design.screen import tilts
+    from gecko_agents.design.search import CAUGHT
 
     values = {**spec.fixed, **values}
     elastic = values.get("backing", "rigid") == "elastic"
     angles = tilts(spec) if elastic else (0.0,)
     runs, flagged, t0 = [], {}, time.perf_counter()
-    for i in range(spec.test["engine_seeds"]):
-        runs += [_engine_run(spec, values, i, a, flagged) for a in angles]
     release = None
-    if elastic and "release_force" in spec.objectives:
-        release = _engine_run(spec, values, 0, spec.test["release_tilt_deg"], flagged)
+    try:
+        for i in range(spec.test["engine_seeds"]):
+            runs += [_engine_run(spec, values, i, a, flagged) for a in angles]
+        if elastic and "release_force" in spec.objectives:
+            release = _engine_run(spec, values, 0, spec.test["release_tilt_deg"], flagged)
+    except CAUGHT as err:  # a design the engine cannot run: the report's row says why
+        return {
+            "mean": math.nan,
+            "spread": math.nan,
+            "runs": [float(r) for r in runs],
+            "release": None,
+            "validity_flags": flagged,
+            "wall_s": time.perf_counter() - t0,
+            "error": f"{type(err).__name__}: {err}",
+        }
     mean = float(np.mean(runs))
     return {
         "mean": mean,

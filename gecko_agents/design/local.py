@@ -14,7 +14,7 @@ one keeps them busy (Optuna's ask-and-tell), drawing, storing and telling as res
 and evaluates a design itself whenever they are busy: it works while they start, and no core
 waits on it.
 
-A local file belongs to one process (:func:`gecko_agents.design.search.open_study`); a study
+A local file belongs to one process (:func:`gecko_agents.design.folder.hold`); a study
 shared by several processes or machines goes through a database URL and
 :func:`gecko_agents.design.search.run_search`.
 """
@@ -26,6 +26,7 @@ import multiprocessing
 from pathlib import Path
 
 import gecko_agents.design.search as search
+from gecko_agents.design.folder import hold
 
 __all__ = ["run_local", "memory_study", "QUEUED"]
 
@@ -55,13 +56,21 @@ def run_local(spec, out: Path, trials: int | None = None, workers: int = 1, samp
     """Run the study of ``spec`` in ``out/study.db`` until it holds ``trials`` (default
     ``spec.trials``) finished trials, evaluating on this process (``workers`` = 1) or on it
     and ``workers − 1`` spawned processes; ``sampler``, an Optuna sampler in place of the
-    design file's (the worker benchmark's). Returns the stored study."""
+    design file's (the worker benchmark's). Returns the stored study. This process holds
+    ``out`` meanwhile (:func:`gecko_agents.design.folder.hold`): a second process is refused."""
+    Path(out).mkdir(parents=True, exist_ok=True)
+    with hold(out):
+        store = search.open_study(spec, out)
+        left = (spec.trials if trials is None else trials) - len(search.completed(store))
+        if left > 0:
+            _fill(spec, store, left, workers, sampler)
+    return store
+
+
+def _fill(spec, store, n: int, workers: int, sampler) -> None:
+    """``n`` more trials of the study ``store``, drawn in memory, each stored as it finishes."""
     optuna = search.require_optuna()
-    store = search.open_study(spec, out)
     mem = memory_study(spec, store, sampler)
-    left = (spec.trials if trials is None else trials) - len(search.completed(store))
-    if left <= 0:
-        return store
 
     def keep(study, frozen):
         store.add_trial(frozen)
@@ -69,14 +78,13 @@ def run_local(spec, out: Path, trials: int | None = None, workers: int = 1, samp
     if workers <= 1:
         mem.optimize(
             search.objective_fn(spec),
-            n_trials=left,
+            n_trials=n,
             callbacks=[keep],
             catch=search.CAUGHT,
             gc_after_trial=False,
         )
     else:
-        _batched(spec, mem, store, left, workers, optuna)
-    return store
+        _batched(spec, mem, store, n, workers, optuna)
 
 
 def _batched(spec, mem, store, n: int, workers: int, optuna) -> None:

@@ -63,6 +63,8 @@ def trial_rows(spec, trials: list, confirmed: dict) -> list[dict]:
         c = confirmed.get(t.number)
         row["engine_pull_off_per_area"] = c["mean"] if c else math.nan
         row["engine_spread"] = c["spread"] if c else math.nan
+        if c and "error" in c:  # the column only where a confirmation failed
+            row["engine_error"] = c["error"]
         row["code_version"] = a.get("record", {}).get("code_version", "")
         rows.append(row)
     return rows
@@ -219,13 +221,13 @@ def best_table(spec, rows: list[dict]) -> list[str]:
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
         e = r["engine"]
+        engine = ["failed (below)", "—", "—"] if "error" in e else [e["mean"], e["spread"]]
         cells = [
             r["label"],
             *[_fmt(in_use(r["design"]).get(k)) for k in knobs],
             *[_fmt(r["screen"][o]) for o in spec.objectives],
-            _fmt(e["mean"]),
-            _fmt(e["spread"]),
-            _fmt(r["ratio"]),
+            *[_fmt(v) for v in engine],
+            *([] if "error" in e else [_fmt(r["ratio"])]),
         ]
         if release:
             cells.append(
@@ -237,10 +239,21 @@ def best_table(spec, rows: list[dict]) -> list[str]:
     return lines
 
 
+def _failed_lines(failed: list[dict]) -> list[str]:
+    """The report's section on confirmations the engine could not finish, each with its
+    reason; nothing when every one ran."""
+    if not failed:
+        return []
+    lines = ["## Confirmations that failed", ""]
+    lines += [f"- {r['label']} (trial {r['trial']}): {r['engine']['error']}" for r in failed]
+    return [*lines, ""]
+
+
 def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: dict) -> str:
     """The report: the best designs, where the fidelities disagree, the models' validity
     items, the parameter importances, and the published designs beside them."""
-    disagree = [r for r in rows if not abs(r["ratio"] - 1.0) <= DISAGREE]
+    failed = [r for r in rows if "error" in r["engine"]]
+    disagree = [r for r in rows if r not in failed and not abs(r["ratio"] - 1.0) <= DISAGREE]
     lines = [
         f"# Design search: {spec.path.name}{' (quick)' if spec.quick else ''}",
         "",
@@ -258,6 +271,7 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
         "Run files that reproduce each engine run: `runs/<design>.toml` "
         "(`gecko-agents run runs/design_1.toml`).",
         "",
+        *_failed_lines(failed),
         "## Where the screen and the engine disagree",
         "",
     ]

@@ -23,15 +23,21 @@ from gecko_agents.design.space import (
     MATERIAL_DEFAULTS,
     OBJECTIVES,
     TIP_KINDS,
+    face_overlap,
+    gap_of,
     overrides_of,
 )
 from gecko_agents.params import PAPER_ARRAY, SetaArray
 from gecko_agents.runfiles.schema import Ctx, read_toml, sub_table
 
-__all__ = ["DesignSpec", "load_design", "base_params", "PACKAGED_SCANS"]
+__all__ = ["DesignSpec", "load_design", "base_params", "PACKAGED_SCANS", "SEED_MAX"]
 
 PACKAGED_SCANS = {"dektak": DEKTAK_PROFILE}
 """Names a design file may give as ``surface.file`` for a scan shipped with the package."""
+
+SEED_MAX = 2**32 - 1
+"""The largest study seed: Optuna's samplers seed numpy's legacy RandomState, which takes
+seeds in [0, 2³² − 1]."""
 
 _TOP = {"description", "seed", "trials", "confirm", "objectives"}
 _TABLES = ("material", "surface", "test", "space", "constraints")
@@ -139,8 +145,9 @@ def base_params(spec: DesignSpec) -> SetaArray:
 
 def _number(ctx: Ctx, where: str, value, lo: float, hi: float, integer=False):
     v = ctx.type_(where, value, int if integer else float)
-    if not (lo <= v <= hi) or (not integer and not math.isfinite(v)):
-        raise ctx.error(where, f"{value!r} is outside the allowed range [{lo:g}, {hi:g}]")
+    if not (lo <= v <= hi) or (not integer and math.isinf(v) and math.isfinite(hi)):
+        shown = f"[{lo}, {hi}]" if integer else f"[{lo:g}, {hi:g}]"
+        raise ctx.error(where, f"{value!r} is outside the allowed range {shown}")
     return v
 
 
@@ -298,21 +305,44 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
     base = base_params(spec)
     corners = [[(k, v) for v in spec.ranges[k]] for k in spec.ranges]
     sigma0 = spec.material["sigma0_MPa"]
+    widest = (-math.inf, "")  # the widest gap between pillars at a corner [µm], where
+    fits = 0  # corners whose faces fit the pitch (overlap is monotone: the least is a corner)
     for tip, backing, rim in itertools.product(
         spec.choices["tip"], spec.choices["backing"], spec.choices["mushroom_rim"]
     ):
         for corner in itertools.islice(itertools.product(*corners), 256):
             values = {**spec.fixed, **dict(corner), "tip": tip, "backing": backing}
             values["mushroom_rim"] = rim
+            shown = ", ".join(f"{k} = {v:g}" for k, v in corner) or "the fixed values"
+            overlap = face_overlap(values, base)
+            if overlap is not None and overlap > 0:  # a broken constraint, not refused
+                continue
+            fits += 1
             try:
                 p = base.replace(**overrides_of(values, sigma0))
             except (ValueError, TypeError) as err:
-                shown = ", ".join(f"{k} = {v:g}" for k, v in corner) or "the fixed values"
                 raise ctx.error(
                     "[space]",
                     f"the design at {shown} (tip {tip!r}) is not a valid parameter set: {err}",
                 ) from None
             _check_scan(ctx, spec, p, corner)
+            widest = max(widest, (gap_of(p), f"{shown}, tip {tip!r}"))
+    if not fits:
+        knobs = ("radius_um", "flange_ratio", "fill_fraction", "spacing_um")
+        shown = ", ".join(f"{k} in [{span[k][0]:g}, {span[k][1]:g}]" for k in knobs if k in span)
+        raise ctx.error(
+            "[space]",
+            f"{shown} leaves no design whose flanges fit the pitch: flange_ratio·radius_um "
+            "must be at most half the pitch (pitch = radius_um·√(π/fill_fraction), or "
+            "spacing_um), else neighbouring flanges overlap",
+        )
+    bound = spec.constraints.get("min_gap_um")
+    if bound is not None and widest[0] < bound:  # the gap is monotone in each knob
+        raise ctx.error(
+            "[constraints] min_gap_um",
+            f"{bound:g} leaves no design: the widest gap of [space] is {widest[0]:.4g} µm "
+            f"(at {widest[1]})",
+        )
 
 
 def _check_scan(ctx: Ctx, spec: DesignSpec, p: SetaArray, corner) -> None:
@@ -339,7 +369,7 @@ def _check_scan(ctx: Ctx, spec: DesignSpec, p: SetaArray, corner) -> None:
 
 
 def _variant(ctx: Ctx, data: dict, quick_t: dict, path: Path, raw: bytes, quick: bool):
-    seed = _number(ctx, "seed", data.get("seed", 0), 0, 2**63 - 1, integer=True)
+    seed = _number(ctx, "seed", data.get("seed", 0), 0, SEED_MAX, integer=True)
     trials = _number(ctx, "trials", data.get("trials", 100), 1, 100_000, integer=True)
     confirm = _number(ctx, "confirm", data.get("confirm", 3), 0, 100, integer=True)
     description = ctx.type_("description", data.get("description", ""), str)

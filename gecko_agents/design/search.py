@@ -17,11 +17,13 @@ storage's own work.
 
 from __future__ import annotations
 
+import contextlib
 import math
 from pathlib import Path
 
 import numpy as np
 
+from gecko_agents.design.folder import hold
 from gecko_agents.design.screen import evaluate, floor_seed
 from gecko_agents.design.space import BACKING_KNOBS, KNOBS
 
@@ -45,9 +47,11 @@ __all__ = [
 STUDY_DB = "study.db"
 """The default trial store's file name in the output folder."""
 
-CAUGHT = (ValueError, FloatingPointError, ZeroDivisionError)
-"""What a model raises on a design it refuses: the trial fails, the study goes on, and the
-report counts the failures with their first reason."""
+CAUGHT = (ValueError, ArithmeticError, RuntimeError)
+"""What a model raises on a design it refuses or cannot solve (a bad value, an overflow, a
+solver that finds no equilibrium or no preload): the trial fails, the study goes on, and the
+report counts the failures with their first reason; an engine confirmation that raises one is
+a row of the report with its reason."""
 
 
 def require_optuna():
@@ -259,21 +263,28 @@ def run_search(
 ):
     """Run the study until it holds ``trials`` (default ``spec.trials``) finished trials,
     counting those an earlier or a parallel worker finished, as worker number ``worker`` of
-    those sharing it (0 when alone). Returns the study."""
+    those sharing it (0 when alone). Returns the study. A study in ``out``'s local file is
+    held by this process meanwhile (:func:`gecko_agents.design.folder.hold`)."""
     optuna = require_optuna()
     target = spec.trials if trials is None else trials
-    study = open_study(spec, out, storage, worker)
-    left = target - len(completed(study))
-    if left > 0:
-        stop = optuna.study.MaxTrialsCallback(target, states=(optuna.trial.TrialState.COMPLETE,))
-        callbacks = [stop] + ([progress] if progress else [])
-        study.optimize(
-            objective_fn(spec),
-            n_trials=left,
-            callbacks=callbacks,
-            catch=CAUGHT,
-            gc_after_trial=False,
-        )
+    held = contextlib.nullcontext()
+    if storage is None:  # a local file belongs to one process
+        Path(out).mkdir(parents=True, exist_ok=True)
+        held = hold(out)
+    with held:
+        study = open_study(spec, out, storage, worker)
+        left = target - len(completed(study))
+        if left > 0:
+            done = (optuna.trial.TrialState.COMPLETE,)
+            stop = optuna.study.MaxTrialsCallback(target, states=done)
+            callbacks = [stop] + ([progress] if progress else [])
+            study.optimize(
+                objective_fn(spec),
+                n_trials=left,
+                callbacks=callbacks,
+                catch=CAUGHT,
+                gc_after_trial=False,
+            )
     return study
 
 

@@ -20,6 +20,7 @@ from gecko_agents.params.tips import FLAT_FACE_TIPS
 from gecko_agents.physics import flaw_tolerance, punch
 
 __all__ = [
+    "face_overlap",
     "in_use",
     "KPA",
     "MATERIAL",
@@ -33,6 +34,7 @@ __all__ = [
     "OBJECTIVES",
     "CONSTRAINTS",
     "pitch_of",
+    "gap_of",
     "overrides_of",
 ]
 
@@ -153,6 +155,12 @@ def pitch_of(values: dict) -> float:
     if "spacing_um" in values:
         return float(values["spacing_um"])
     return values["radius_um"] * math.sqrt(math.pi / values["fill_fraction"])
+
+
+def gap_of(p: SetaArray) -> float:
+    """The gap between neighbouring pillars of parameter set ``p`` [µm]: the pitch less the
+    widest part of two pillars (a tip wider than its stalk, a mushroom's flange, counts)."""
+    return p.array.pitch - 2 * max(p.seta.r, p.contact.R)
 
 
 KNOBS: dict[str, Knob] = {
@@ -278,6 +286,19 @@ def overrides_of(values: dict, sigma0: float = math.inf) -> dict:
         if key in values and not (key in BACKING_KNOBS and out["backing.kind"] == "rigid"):
             out |= knob.apply(values[key], values)
     return out
+
+
+def face_overlap(values: dict, base) -> float | None:
+    """(2R − s)/s [-] of a design (its knobs ``values``, the design file's fixed ones
+    included; ``base`` the :class:`~gecko_agents.params.SetaArray` they override) whose flat
+    face of radius R is wider than its stalk r, s the pitch: > 0 where neighbouring faces
+    (a mushroom's flanges) overlap; None for other designs."""
+    o = overrides_of(values)
+    R = o.get("contact.R", base.contact.R)
+    r, s = o.get("seta.r", base.seta.r), o.get("array.pitch", base.array.pitch)
+    if o["tip"] not in FLAT_FACE_TIPS or R <= r:
+        return None
+    return (2.0 * R - s) / s
 
 
 OBJECTIVES: dict[str, tuple[str, str, str]] = {

@@ -9,41 +9,15 @@ import time
 from pathlib import Path
 
 import gecko_agents.design.confirm as confirm
+import gecko_agents.design.folder as folder
 import gecko_agents.design.local as local
 import gecko_agents.design.parallel as parallel
 import gecko_agents.design.report as report
 import gecko_agents.design.search as search
 import gecko_agents.design.showcase as showcase
+from gecko_agents.design.folder import OUTPUT_FILES, check_output
 
 __all__ = ["run_design", "search_study", "screen_flags", "check_output", "OUTPUT_FILES"]
-
-OUTPUT_FILES = (
-    "study.db",
-    "trials.csv",
-    "best.json",
-    "report.md",
-    "pareto_front.png",
-    "objectives_vs_parameters.png",
-    "showcase.png",
-    "runs",
-)
-"""What a design search writes into its output folder (``runs`` a folder of run files)."""
-
-
-def check_output(out: Path) -> None:
-    """Refuse, before any trial, an output folder a search must not write into: a file, or a
-    folder that is neither empty nor a design search's (holding none of :data:`OUTPUT_FILES`),
-    whose files are a user's."""
-    out = Path(out)
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"{out}: exists and is not a folder; choose another --out")
-    names = sorted(p.name for p in out.iterdir()) if out.is_dir() else []
-    if names and not set(names) & set(OUTPUT_FILES):
-        shown = ", ".join(names[:5]) + (" …" if len(names) > 5 else "")
-        raise ValueError(
-            f"{out}: is not empty ({shown}) and holds no design search; a search writes "
-            "into a new or empty folder or continues its own: choose another --out"
-        )
 
 
 def screen_flags(trials: list) -> dict:
@@ -58,6 +32,9 @@ def screen_flags(trials: list) -> dict:
 
 
 def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, list[dict]]:
+    """The engine's confirmation of the trials ``chosen`` and a run file for each: (trial
+    number → the engine's values, the report's rows). A confirmation that failed is a row
+    with its reason (``engine["error"]``)."""
     from gecko_agents.output_paths import atomic_write_bytes
 
     designs = [t.user_attrs["design"] for t in chosen]
@@ -71,7 +48,10 @@ def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, li
         confirmed[t.number] = eng
         screened = t.user_attrs["record"]["screen"]
         ref = screened["pull_off_per_area"]
-        ratio = ref / eng["mean"] if eng["mean"] > 0 else math.inf
+        if "error" in eng:
+            ratio = math.nan
+        else:
+            ratio = ref / eng["mean"] if eng["mean"] > 0 else math.inf
         rows.append(
             {
                 "label": label,
@@ -84,8 +64,11 @@ def _confirm(spec, chosen, out: Path, say, workers: int, dask) -> tuple[dict, li
         )
         text = confirm.run_file_text(spec, design, label)
         atomic_write_bytes(out / "runs" / f"{label}.toml", text.encode())
+        engine_said = (
+            f"engine failed: {eng['error']}" if "error" in eng else f"engine {eng['mean']:.4g} kPa"
+        )
         say(
-            f"{label} (trial {t.number}): screen {ref:.4g} kPa, engine {eng['mean']:.4g} kPa "
+            f"{label} (trial {t.number}): screen {ref:.4g} kPa, {engine_said} "
             f"({eng['wall_s']:.1f} s)"
         )
     return confirmed, rows
@@ -136,10 +119,33 @@ def run_design(
     ``spec.confirm`` best designs (the Pareto front first), and ``trials.csv``,
     ``best.json``, ``pareto_front.png``, ``objectives_vs_parameters.png``, ``showcase.png``
     (:mod:`~gecko_agents.design.showcase`), ``runs/*.toml``
-    and ``report.md``. Returns the summary written to ``best.json``."""
+    and ``report.md``. Returns the summary written to ``best.json``.
+
+    ``out`` must be new, empty or this study's design folder, and no other command's at the
+    time; ``storage`` a database URL Optuna can store trials at
+    (:mod:`~gecko_agents.design.folder`). Raises
+    :class:`~gecko_agents.design.folder.DesignFolderError` (nothing written) otherwise."""
     out = Path(out)
-    check_output(out)
+    name = search.study_name(spec)
+    if storage is not None:
+        folder.check_storage(storage)
+    check_output(out, name, storage)
     out.mkdir(parents=True, exist_ok=True)
+    with folder.hold(out):
+        check_output(out, name, storage)  # again, held: another command may have written it since
+        folder.write_record(out, spec, name, storage)
+        if trials is not None:
+            held = len(search.completed(search.open_study(spec, out, storage)))
+            if held > trials:
+                say(
+                    f"trials = {trials} asked, but the study already holds {held} finished "
+                    f"trials: none run, the report covers all {held}"
+                )
+        return _search_and_report(spec, out, trials, storage, workers, dask, worker, say)
+
+
+def _search_and_report(spec, out: Path, trials, storage, workers, dask, worker, say) -> dict:
+    """:func:`run_design`'s work in a folder it holds."""
     t0 = time.perf_counter()
     study = search_study(spec, out, trials, storage, workers, dask, worker)
     done = search.completed(study)
@@ -151,11 +157,12 @@ def run_design(
     on_front = {t.number for t in front}
     for r in rows:
         r["front"] = r["trial"] in on_front
+    ran = {n: e for n, e in confirmed.items() if "error" not in e}  # what the figures show
     imp = report.importances(study, spec)
     report.write_csv(out / "trials.csv", report.trial_rows(spec, done, confirmed))
-    report.draw_front(spec, done, front, confirmed, out)
+    report.draw_front(spec, done, front, ran, out)
     report.draw_parameters(spec, done, out)
-    showcase.draw_showcase(spec, done, front, rows, out)
+    showcase.draw_showcase(spec, done, front, [r for r in rows if r["trial"] in ran], out)
     flags = screen_flags(done)
     fails = [t.user_attrs.get("error", "cut off") for t in search.failed(study)]
     if fails:
@@ -170,6 +177,7 @@ def run_design(
         "quick": spec.quick,
         "study": search.study_name(spec),
         "trials": len(done),
+        "failed_trials": len(fails),
         "screen_s": t_screen,
         "wall_s": time.perf_counter() - t0,
         "best": rows,

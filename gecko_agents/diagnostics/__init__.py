@@ -98,13 +98,20 @@ The contact items (``a_over_R``, ``tabor``) apply to sphere tips that touched (n
     (:mod:`gecko_agents.diagnostics.resolution`). Limit 0.02.
 ``pillars_meet``
     For elastica pillars in a row: the smallest distance between neighbouring centre lines
-    over the records, over the diameter 2r. The model has no pillar–pillar contact, so below
-    1 buckled pillars pass through each other. Limit ≥ 1.
+    over the records, over the diameter 2r, and for flat faces wider than their stalks
+    (mushroom flanges) between neighbouring tips over the face's diameter 2R. The model has no
+    pillar–pillar contact, so below 1 buckled pillars, or flanges, pass through each other.
+    Limit ≥ 1.
 ``probe_curvature``
     On a spherical probe (``floor.kind = "probe"``), how far the tip laws' flat floor is from
     the probe under a tip: a sphere's R/R_p (two spheres in contact act with
     R_eff = R·R_p/(R + R_p), Johnson 1985 §4.2, so a pull-off is off by about the ratio); a flat
     face's sag a²/(2R_p) over its snap-off overlap. Limit 0.1.
+``probe_scale``
+    On a spherical probe, ``scale_to_array`` = array.count / n_sim, the factor that scales the
+    simulated setae's forces to the array. It takes them as a uniform patch of the array;
+    under a probe each pillar meets the sphere at its own height, so only a run of every
+    pillar (n_sim = array.count) gives the array's force. Limit 1.
 """
 
 from __future__ import annotations
@@ -564,11 +571,14 @@ def diagnose(history, *, warn: bool = True) -> dict:
         "release_step": _item(
             "release_step", *resolution.release_step(history, contact_law(history.params))
         ),
-        "pillars_meet": _item("pillars_meet", *resolution.pillars_meet(history)),
+        "pillars_meet": _item(
+            "pillars_meet", *resolution.pillars_meet(history, contact_law(history.params))
+        ),
         "probe_curvature": _item(
             "probe_curvature",
             *resolution.probe_curvature(history, contact_law(history.params)),
         ),
+        "probe_scale": _item("probe_scale", *resolution.probe_scale(history)),
     }
     violations = [name for name, it in items.items() if it["ok"] is False]
     _refuse_if_meaningless(history, f)

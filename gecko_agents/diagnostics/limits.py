@@ -15,5 +15,6 @@ LIMITS = {
     "release_step": ("≤", 0.02),
     "pillars_meet": ("≥", 1.0),
     "probe_curvature": ("≤", 0.1),
+    "probe_scale": ("≤", 1.0),
 }
 """Item → (relation, limit); the reasons and sources are in the module docstring."""

@@ -253,8 +253,9 @@ def statistics(profile: Profile, fit_wavelengths: tuple[float, float] | None = N
     * ``hurst`` and ``psd_slope`` — a fit C ∝ q^−(1+2H) (:func:`hurst_estimate`) for
       wavelengths λ = 2π/q in ``fit_wavelengths`` = (λ_min, λ_max) [µm]; default (8Δx, L/8):
       clear of the window's leakage and of aliasing, at least eight wavelengths in the
-      profile. The estimate means something only where the PSD is a power law: for a
-      self-affine floor pass (2λs, λL/2), inside its cutoffs.
+      profile (a profile of at most 64 points has no such range: no fit, ``hurst`` and
+      the fit bounds are None). The estimate means something only where the PSD is a power
+      law: for a self-affine floor pass (2λs, λL/2), inside its cutoffs.
     * ``length_um``, ``n_points``, ``spacing_um``, ``source``.
 
     Pad floors (the paper's independent heights) have no spatial structure: their PSD fields
@@ -284,20 +285,23 @@ def statistics(profile: Profile, fit_wavelengths: tuple[float, float] | None = N
     h_u, dx = _uniform(profile)
     L = h_u.size * dx
     lam_min, lam_max = (8 * dx, L / 8) if fit_wavelengths is None else fit_wavelengths
-    if not 0 < lam_min < lam_max:
+    if fit_wavelengths is not None and not 0 < lam_min < lam_max:
         raise ValueError(
             f"fit_wavelengths = {fit_wavelengths!r} µm must be (λ_min, λ_max) "
             "with 0 < λ_min < λ_max"
         )
-    q_lo, q_hi = 2 * np.pi / lam_max, 2 * np.pi / lam_min
-    H, slope = hurst_estimate(q, c, q_lo, q_hi)
+    if lam_min < lam_max:
+        q_lo, q_hi = 2 * np.pi / lam_max, 2 * np.pi / lam_min
+        H, slope = hurst_estimate(q, c, q_lo, q_hi)
+    else:  # at most 64 points (a probe's coarse polyline): no wavelengths to fit
+        q_lo = q_hi = H = slope = float("nan")
     qb, cb = _log_bins(q, c)
     out.update(
         spacing_um=float(dx),
         hurst=None if np.isnan(H) else float(H),
         psd_slope=None if np.isnan(slope) else float(slope),
-        fit_q_min_per_um=float(q_lo),
-        fit_q_max_per_um=float(q_hi),
+        fit_q_min_per_um=None if np.isnan(q_lo) else float(q_lo),
+        fit_q_max_per_um=None if np.isnan(q_hi) else float(q_hi),
         psd_q_per_um=[float(v) for v in qb],
         psd_C_um3=[float(v) for v in cb],
     )

@@ -17,16 +17,26 @@ __all__ = ["parameter_table"]
 _EXTRA_DOCS = {
     "mechanics": (
         "-",
-        "seta model: 'linear' (2×2 beam stiffness) or 'rod' (rotary bending spring + axial spring)",
+        "seta model: 'linear' (2×2 beam stiffness), 'rod' (rotary bending spring + axial "
+        "spring) or 'elastica' (a bar chain that bends and buckles, for pillars)",
         "eq 20–21",
     ),
-    "tip": (
-        "-",
-        "the tip's contact law: 'sphere' (JKR; the default), 'hertz' (the same sphere without "
-        "adhesion) or 'spatula' (a peeling thin film, parameters spatula.*)",
-        "eq 1–15",
-    ),
 }
+
+
+def _tip_doc() -> tuple[str, str, str]:
+    """(unit, meaning, equation) of ``tip``: every law of the contact registry by name, with
+    the first clause of its docstring, so a new law is listed as soon as it is registered."""
+    from gecko_agents.contact.registry import TIP_LAWS
+
+    laws = []
+    for name, law in TIP_LAWS.items():
+        first = " ".join((inspect.getdoc(law) or "").split("\n\n", 1)[0].split())
+        clause = re.split(r" \(|: |; |\. ", first, maxsplit=1)[0].rstrip(".").replace("``", "")
+        laws.append(f"'{name}' ({clause[:1].lower() + clause[1:]})")
+    return "-", "the tip's contact law (gecko_agents.contact): " + ", ".join(laws), "eq 1–15"
+
+
 _EQ = re.compile(r"\beq ([0-9][0-9–\-, ]*[0-9])")
 
 
@@ -72,7 +82,9 @@ def parameter_table(params) -> list[tuple[str, str, str, str, str]]:
     for f in dataclasses.fields(params):
         sub = getattr(params, f.name)
         if not dataclasses.is_dataclass(sub):
-            unit, meaning, eq = _EXTRA_DOCS.get(f.name, ("-", "", ""))
+            unit, meaning, eq = (
+                _tip_doc() if f.name == "tip" else _EXTRA_DOCS.get(f.name, ("-", "", ""))
+            )
             rows.append((f.name, repr(sub), unit, meaning, eq))
             continue
         first = (inspect.getdoc(type(sub)) or "").split("\n", 1)[0]

@@ -293,7 +293,8 @@ def load_run(path, *, quick: bool = False) -> RunSpec:
     """Read and check a run file; with ``quick`` take its ``[quick]`` variant.
 
     Both variants are checked whichever is asked for. Without a ``[quick]`` table, ``quick``
-    caps ``n_sim`` at 3.
+    caps ``n_sim`` at 3 (not under a spherical probe, where a row of fewer pillars does not
+    stand for the array: validity item ``probe_scale``).
 
     Raises
     ------
@@ -310,8 +311,9 @@ def load_run(path, *, quick: bool = False) -> RunSpec:
         fast = _run_variant(
             ctx, merge_quick(ctx, data, quick_t, ("params", "model")), quick_t, path, raw
         )
-    else:
-        n = min(full.model.get("n_sim", full.params.array.count), 3)
+    else:  # under a probe a row of fewer pillars does not scale to the array: no cap
+        n = full.model.get("n_sim", full.params.array.count)
+        n = n if full.params.floor.kind == "probe" else min(n, 3)
         fast = dataclasses.replace(full, quick=True, model={**full.model, "n_sim": n})
     return fast if quick else full
 

@@ -216,7 +216,7 @@ def apply_params(
 ) -> SetaArray:
     """``base`` with the overrides, applied together (a constraint between fields, such as
     ``floor.kind = "probe"`` with ``floor.sigma = 0``, holds whatever their order); if that
-    fails they are applied one by one, so the error names its key."""
+    fails the error names the key or keys to blame (:func:`_culprits`)."""
     typed = {}
     for key, value in overrides.items():
         where = f"[{'quick.' if key in quick_keys else ''}{table}] {key!r}"
@@ -239,16 +239,26 @@ def apply_params(
         typed[key] = ctx.type_(where, value, kind)
     try:
         return base.replace(**typed)
-    except (ValueError, TypeError):
-        pass
-    out = base
-    for key, value in typed.items():
-        where = f"[{'quick.' if key in quick_keys else ''}{table}] {key!r}"
+    except (ValueError, TypeError) as err:
+        culprits = _culprits(base, typed, str(err))
+        where = ", ".join(f"[{'quick.' if k in quick_keys else ''}{table}] {k!r}" for k in culprits)
+        raise ctx.error(where or f"[{table}]", str(err)) from None
+
+
+def _culprits(base: SetaArray, typed: dict, message: str) -> list[str]:
+    """The overrides to blame for ``base.replace(**typed)`` failing with ``message``: those
+    without which the rest is accepted (a constraint between fields, such as ``floor.kind =
+    "probe"`` with ``floor.sigma = 0``, holds whatever else fails), else those whose field the
+    message names."""
+    alone = []
+    for key in typed:
         try:
-            out = out.replace(**{key: value})
-        except (ValueError, TypeError) as err:
-            raise ctx.error(where, str(err)) from None
-    return out
+            base.replace(**{k: v for k, v in typed.items() if k != key})
+        except (ValueError, TypeError):
+            continue
+        alone.append(key)
+    named = [k for k in typed if re.search(rf"\b{re.escape(k)}\b", message, re.IGNORECASE)]
+    return [k for k in alone if k in named] or alone or named
 
 
 def _toml_value(value) -> str:

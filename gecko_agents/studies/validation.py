@@ -11,22 +11,33 @@ ranges together; agent runs one parameter at a time, in the full run only, to ke
 short). Nothing is tuned to a row: a disagreement is a result, with its likely cause.
 
 Rows come in three kinds, counted apart: experiments, other models (simulations and published
-laws) and self-consistency checks (the package against its own closed form or run).
-Verdicts (:func:`verdict`), magnitudes first:
+laws) and self-consistency checks (the package against its own closed form or run). The
+headline (:func:`headline`) counts *magnitude rows* (:func:`is_magnitude`): a printed number
+of an experiment or another model against ours at the source's own geometry; direction checks
+and values read from words are *trend* rows (:func:`is_trend`), counted apart. Rows sharing an
+independent measurement (a table, a figure, an abstract sentence) count once beside the rows,
+and one model number never scores two rows (the loader refuses it). Verdicts
+(:func:`verdict`), magnitudes first:
 
 * *agrees (within their scatter)*: ours inside their value ± the scatter the row states;
-* *agrees (within the stated factor)*: ours within theirs/f to theirs·f, f the row's band;
+* *agrees (within the stated tolerance)*: ours within ± the tolerance (±25 % where the source
+  states no scatter) of theirs, or for a bounded quantity (Φ ≤ 1) of its distance to the
+  nearer bound (:func:`half_width`);
+* *agrees (within the stated factor)*: a self-consistency check within theirs/f to theirs·f;
 * *trend agrees (sign and stated factor)*: a direction first (ours on their side of 1, or of 0
   for a slope), then its size: the effect ln(ours) within 1/f to f times ln(theirs), or, where
   they state a direction in words only, at least the size their words state (``min_effect``);
 * *disagrees (sign)*: ours goes the other way; *disagrees (magnitude)*: the right way, or no
-  effect, but outside the scatter or the stated factor;
+  effect, but outside the scatter, tolerance or factor;
 * *not comparable*: outside, but their value lies inside the band ours spans over the
   parameters whose value for their specimen we could not read (assumed, or a published range).
 
 Rows that are not scored say why: *pending* (the physics they need is not in the package yet),
-*out of scope* (a mechanism the package does not model) or *not scored* (the number could not
-be read).
+*out of scope* (a mechanism the package does not model), *not scored* (the number could not
+be read), *calibration point* (an unreported parameter is calibrated on it) or *derived* (the
+model ties its number to another row's). The report states its run; a ``--quick`` verdict of a
+row whose run is smaller there (:data:`~gecko_agents.studies.validation_ours.QUICK_SIZED`) is
+marked †.
 
 Units: µm, µN, µs, MPa (= µN/µm²); stiffness µN/µm = N/m. ``python scenarios/validation.py
 [--quick] --out DIR`` writes ``DIR/literature_comparison.{md,json,png,csv}`` and
@@ -46,11 +57,12 @@ from gecko_agents import render
 from gecko_agents.output_paths import atomic_write_bytes
 from gecko_agents.provenance import versions
 from gecko_agents.studies.common import RENDERS, command_line, parse_args, write_json, write_table
-from gecko_agents.studies.validation_ours import CLOSED_FORM, OURS
-from gecko_agents.studies.validation_rows import KINDS, ROWS
+from gecko_agents.studies.validation_ours import CLOSED_FORM, OURS, QUICK_SIZED
+from gecko_agents.studies.validation_rows import KINDS, MAGNITUDE_KINDS, ROWS
 
 NAME = "literature_comparison"
 AGREES_SCATTER = "agrees (within their scatter)"
+AGREES_TOLERANCE = "agrees (within the stated tolerance)"
 AGREES_BAND = "agrees (within the stated factor)"
 TREND_AGREES = "trend agrees (sign and stated factor)"
 DISAGREES_MAGNITUDE = "disagrees (magnitude)"
@@ -58,6 +70,7 @@ DISAGREES_SIGN = "disagrees (sign)"
 NOT_COMPARABLE = "not comparable"
 VERDICTS = (
     AGREES_SCATTER,
+    AGREES_TOLERANCE,
     AGREES_BAND,
     TREND_AGREES,
     DISAGREES_MAGNITUDE,
@@ -65,7 +78,15 @@ VERDICTS = (
     NOT_COMPARABLE,
 )
 """The verdicts of a scored row."""
-UNSCORED = {"pending": "pending", "out of scope": "out of scope", "not read": "not scored"}
+AGREES = (AGREES_SCATTER, AGREES_TOLERANCE, AGREES_BAND)
+"""The verdicts of a magnitude that agrees."""
+UNSCORED = {
+    "pending": "pending",
+    "out of scope": "out of scope",
+    "not read": "not scored",
+    "calibration": "calibration point (not scored)",
+    "derived": "derived (not scored again)",
+}
 """The verdict of a row that is not scored, by its status."""
 TREND_RESOLUTION = 0.01
 """An effect within 1 % is no effect (a trend neither way): repeated pull-offs of the same pad
@@ -86,11 +107,31 @@ def effect(row: dict, value: float) -> float:
     raise ValueError(f"row {row['id']!r}: expect = {expect!r} must be '>1', '<1' or '>0'")
 
 
+def half_width(row: dict) -> float | None:
+    """The half-width of a tolerance row's band, in the quantity's unit: the tolerance times
+    their value, or for a bounded quantity (0 ≤ theirs ≤ 1, as Φ = σ_s/σ₀) times its distance
+    to the nearer bound, min(theirs, 1 − theirs): the band on Φ or on 1 − Φ, whichever is
+    the smaller number (a band on 0.97 itself would accept every Φ above 0.73)."""
+    if row["tolerance"] is None:
+        return None
+    theirs = row["theirs_value"]
+    scale = min(theirs, 1.0 - theirs) if row["bounded"] else abs(theirs)
+    return row["tolerance"] * scale
+
+
 def _magnitude(row: dict, value: float) -> tuple[str, str] | None:
-    """The agreeing verdict where ours' magnitude lies within the row's scatter or band."""
+    """The agreeing verdict where ours' magnitude lies within the row's scatter, tolerance or
+    (trend rows and self-consistency checks) factor band."""
     theirs, scatter, band = row["theirs_value"], row["scatter"], row["band"]
     if scatter is not None and abs(value - theirs) <= scatter:
         return AGREES_SCATTER, f"ours is within their ±{scatter:g} ({row['scatter_why']})"
+    hw = half_width(row)
+    if hw is not None and abs(value - theirs) <= hw:
+        on = "on the distance to the nearer bound" if row["bounded"] else "of theirs"
+        return AGREES_TOLERANCE, (
+            f"ours {value:.4g} is within ±{hw:.3g} of theirs {theirs:g} "
+            f"(±{100 * row['tolerance']:g} % {on}: {row['tolerance_why']})"
+        )
     if band is None:
         return None
     if row["compare"] == "value" and theirs / band <= value <= theirs * band:
@@ -112,7 +153,12 @@ def _outside(row: dict, value: float, sens: list[dict]) -> tuple[str, str]:
             f"inside the {min(ends):.3g}–{max(ends):.3g} ours spans over "
             "the parameters we could not read for their specimen"
         )
-    how = f"±{row['scatter']:g}" if row["scatter"] is not None else f"×{row['band']:g}"
+    if row["scatter"] is not None:
+        how = f"±{row['scatter']:g}"
+    elif row["tolerance"] is not None:
+        how = f"±{half_width(row):.3g} (±{100 * row['tolerance']:g} %)"
+    else:
+        how = f"×{row['band']:g}"
     if row["compare"] == "trend" and row["scatter"] is None:
         size = math.log(value) / math.log(theirs)
         return DISAGREES_MAGNITUDE, (
@@ -130,20 +176,43 @@ def verdict(row: dict, ours: dict | None, sens: list[dict]) -> tuple[str, str]:
         return UNSCORED["not read"], "ours could not be computed"
     value = ours["value"]
     if row["compare"] == "trend":
-        e = effect(row, value)
-        if e < -TREND_RESOLUTION:
-            return DISAGREES_SIGN, f"ours goes the other way (effect {e:+.3g})"
-        if e <= TREND_RESOLUTION:
-            return DISAGREES_MAGNITUDE, f"ours shows no effect ({e:+.3g}, within ±1 %)"
-        if row["theirs_value"] is None:
-            if e >= row["min_effect"]:
-                return TREND_AGREES, (
-                    f"the same way, effect {e:.3g} ≥ {row['min_effect']:g} ({row['band_why']})"
-                )
-            return DISAGREES_MAGNITUDE, (
-                f"the same way but effect {e:.3g} < {row['min_effect']:g} ({row['band_why']})"
+        v = _trend(row, value)
+        if v is not None and v[0] != TREND_AGREES and _words_met_at_an_end(row, sens):
+            return NOT_COMPARABLE, (
+                f"{v[1]}, but their stated size is met at an end of the range ours spans over "
+                "the parameters we could not read for their specimen"
             )
+        if v is not None:
+            return v
     return _magnitude(row, value) or _outside(row, value, sens)
+
+
+def _trend(row: dict, value: float) -> tuple[str, str] | None:
+    """The verdict of a trend row's direction, and of its size where stated in words (None:
+    a size stated as a number, judged by :func:`_magnitude`)."""
+    e = effect(row, value)
+    if e < -TREND_RESOLUTION:
+        return DISAGREES_SIGN, f"ours goes the other way (effect {e:+.3g})"
+    if e <= TREND_RESOLUTION:
+        return DISAGREES_MAGNITUDE, f"ours shows no effect ({e:+.3g}, within ±1 %)"
+    if row["theirs_value"] is not None:
+        return None
+    if e >= row["min_effect"]:
+        return TREND_AGREES, (
+            f"the same way, effect {e:.3g} ≥ {row['min_effect']:g} ({row['band_why']})"
+        )
+    return DISAGREES_MAGNITUDE, (
+        f"the same way but effect {e:.3g} < {row['min_effect']:g} ({row['band_why']})"
+    )
+
+
+def _words_met_at_an_end(row: dict, sens: list[dict]) -> bool:
+    """Whether a direction stated in words (``min_effect``) is met at an end of a parameter
+    whose value for their specimen we could not read."""
+    if row["min_effect"] is None:
+        return False
+    ends = [v for s in sens if s["status"] != "cited" for v in s["ours_at_ends"]]
+    return any(math.isfinite(v) and effect(row, v) >= row["min_effect"] for v in ends)
 
 
 def _ranged(row: dict) -> list[dict]:
@@ -186,6 +255,17 @@ def sensitivity(row: dict, quick: bool) -> list[dict]:
     return out
 
 
+def quick_may_differ(row: dict) -> bool:
+    """Whether the row's ``--quick`` verdict may differ from the full run's: its run is smaller
+    there (:data:`~gecko_agents.studies.validation_ours.QUICK_SIZED`), or it is an agent run
+    with a parameter range, whose ends (which can make it *not comparable*) only the full run
+    computes."""
+    if row["ours"] is None:
+        return False
+    ranged = any(p["status"] != "cited" for p in _ranged(row))
+    return row["ours"] in QUICK_SIZED or (ranged and row["ours"] not in CLOSED_FORM)
+
+
 def evaluate(row: dict, quick: bool) -> dict:
     """One row of the report: the row's data with ours (where it names a function, scored or
     not), its sensitivity and the verdict."""
@@ -196,6 +276,7 @@ def evaluate(row: dict, quick: bool) -> dict:
     v, why = verdict(row, ours, sens)
     return {
         **row,
+        "quick_may_differ": quick and quick_may_differ(row),
         "ours_value": None if ours is None else ours["value"],
         "ours_values": None if ours is None else ours.get("values", [ours["value"]]),
         "ours_text": "—" if ours is None else ours["text"],
@@ -204,6 +285,52 @@ def evaluate(row: dict, quick: bool) -> dict:
         "reason": f"{why}. {row['cause']}".strip(),
         "wall_time_s": time.perf_counter() - t0,
     }
+
+
+def is_magnitude(row: dict) -> bool:
+    """A magnitude row: an experiment's or another model's printed value compared with ours
+    (not a value read from words, such as 'preload-independent')."""
+    return row["compare"] == "value" and row["kind"] in MAGNITUDE_KINDS and not row["in_words"]
+
+
+def is_trend(row: dict) -> bool:
+    """A trend row, counted apart: a direction, or a value read from words."""
+    return row["compare"] == "trend" or (row["compare"] == "value" and row["in_words"])
+
+
+def headline(rows: list[dict]) -> dict:
+    """The report's headline: magnitude rows (:func:`is_magnitude`) scored, agreeing, and the
+    same counted by independent measurement (a paper's figure, table or abstract sentence,
+    the rows' ``measurement``: it agrees where all its scored rows do) and by paper; trend
+    rows are counted apart. Rows *not comparable* or not scored are left out of both."""
+    mag = [r for r in rows if is_magnitude(r) and r["verdict"] in VERDICTS]
+    mag = [r for r in mag if r["verdict"] != NOT_COMPARABLE]
+    groups: dict[str, list[dict]] = {}
+    for r in mag:
+        groups.setdefault(r["measurement"], []).append(r)
+    trend = [r for r in rows if is_trend(r) and r["verdict"] in VERDICTS]
+    trend = [r for r in trend if r["verdict"] != NOT_COMPARABLE]
+    return {
+        "magnitude_rows": len(mag),
+        "magnitude_agree": sum(r["verdict"] in AGREES for r in mag),
+        "measurements": len(groups),
+        "measurements_agree": sum(all(r["verdict"] in AGREES for r in g) for g in groups.values()),
+        "papers": len({r["source"] for r in mag}),
+        "not_comparable": sum(is_magnitude(r) and r["verdict"] == NOT_COMPARABLE for r in rows),
+        "trend_rows": len(trend),
+        "trend_agree": sum(r["verdict"] in (TREND_AGREES,) + AGREES for r in trend),
+        "quick_may_differ": sum(r["quick_may_differ"] for r in mag + trend),
+    }
+
+
+def headline_text(h: dict) -> str:
+    """:func:`headline` as one sentence."""
+    return (
+        f"Magnitude: {h['magnitude_agree']} of {h['magnitude_rows']} rows agree within their "
+        f"band ({h['measurements_agree']} of {h['measurements']} independent measurements, "
+        f"{h['papers']} papers; {h['not_comparable']} more not comparable). Trend, counted "
+        f"apart: {h['trend_agree']} of {h['trend_rows']} agree."
+    )
 
 
 def counts(rows: list[dict]) -> dict:
@@ -270,7 +397,7 @@ def _table(rows: list[dict]) -> list[str]:
             r["theirs"],
             params_cell(r),
             ours_cell(r),
-            r["verdict"],
+            r["verdict"] + (" †" if r.get("quick_may_differ") else ""),
             r["reason"],
         )
         lines.append(
@@ -279,10 +406,49 @@ def _table(rows: list[dict]) -> list[str]:
     return lines
 
 
-def summary(rows: list[dict]) -> list[str]:
-    """The verdict counts, one line per kind, and the scored total."""
-    c = counts(rows)
-    lines = ["## Verdicts", ""]
+def _band_text(row: dict) -> str:
+    if row["scatter"] is not None:
+        return f"±{row['scatter']:g} ({row['scatter_why']})"
+    if row["tolerance"] is not None:
+        on = " of the distance to the nearer bound" if row["bounded"] else ""
+        return f"±{half_width(row):.3g} (±{100 * row['tolerance']:g} %{on})"
+    return "—"
+
+
+def _magnitude_table(rows: list[dict]) -> list[str]:
+    """The magnitude rows at a glance: their number, ours, the band and the verdict."""
+    lines = [
+        "| row | measurement | quantity | theirs | ours | band | verdict |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        if not is_magnitude(r) or r["ours_value"] is None:
+            continue
+        cells = (
+            r["id"],
+            r["measurement"],
+            r["quantity"],
+            f"{r['theirs_value']:g}",
+            f"{r['ours_value']:.4g}",
+            _band_text(r),
+            r["verdict"] + (" †" if r["quick_may_differ"] else ""),
+        )
+        lines.append("| " + " | ".join(str(c).replace("|", "\\|") for c in cells) + " |")
+    return lines + [""]
+
+
+def summary(rows: list[dict], quick: bool) -> list[str]:
+    """The headline, the verdict counts (one line per kind) and the scored total."""
+    c, h = counts(rows), headline(rows)
+    lines = ["## Headline", "", headline_text(h), ""]
+    if quick and h["quick_may_differ"]:
+        lines += [
+            f"Quick run: {h['quick_may_differ']} of these rows ran smaller than in the full run, "
+            "or without the ends of their parameter ranges (marked † in the tables); their "
+            "verdict may differ there.",
+            "",
+        ]
+    lines += _magnitude_table(rows) + ["## Verdicts", ""]
     for kind in KINDS:
         parts = ", ".join(f"{v}: {n}" for v, n in c[kind].items()) or "none"
         lines.append(f"* {KIND_TITLES[kind]}: {parts}")
@@ -311,8 +477,14 @@ def markdown(rows: list[dict], quick: bool, total: float) -> str:
         "",
     ]
     if quick:
-        lines += ["**Quick run: small pads and few pulls; agent rows without sensitivity.**", ""]
-    lines += summary(rows)
+        lines += [
+            "**Run: quick** (small pads and few pulls; agent rows without sensitivity; a "
+            "verdict marked † may differ in the full run).",
+            "",
+        ]
+    else:
+        lines += ["**Run: full.**", ""]
+    lines += summary(rows, quick)
     for kind in KINDS:
         sel = [r for r in rows if r["kind"] == kind]
         if sel:
@@ -398,15 +570,19 @@ def main(argv=None) -> dict:
     ]
     write_table(out / f"{NAME}.csv", table)
     c = counts(rows)
+    h = headline(rows)
     write_json(
         out / "metadata.json",
-        {"scenario": "validation", "quick": args.quick, "verdicts": c, "runtime_s": total},
+        {
+            "scenario": "validation",
+            "quick": args.quick,
+            "headline": h,
+            "verdicts": c,
+            "runtime_s": total,
+        },
     )
-    scored = c["scored"]
-    print(
-        f"{NAME}: {sum(scored.values())} of {len(rows)} rows scored "
-        f"({', '.join(f'{n} {k}' for k, n in scored.items())}) in {total:.0f} s → {out}"
-    )
+    run = "quick run" if args.quick else "full run"
+    print(f"{NAME} ({run}): {headline_text(h)} {len(rows)} rows in {total:.0f} s → {out}")
     return {"rows": rows, "runtime_s": total}
 
 

@@ -26,6 +26,7 @@ from gecko_agents.physics import beam, curved_rod, punch
 from gecko_agents.studies import frictional_adhesion as fa
 from gecko_agents.studies import gecko_seta, pad_peel
 from gecko_agents.studies import misalignment as mis
+from gecko_agents.studies import validation_magnitudes as magnitudes
 
 # --- closed forms on a tokay seta (AUTUMN2006_SETA) ------------------------------------------
 _SETA_KEYS = {"E": "contact.E1", "r": "seta.r", "L": "seta.L", "theta": "seta.theta_deg"}
@@ -114,8 +115,7 @@ CLOSED_FORM = {
     "seta_anisotropy",
     "seta_vertical_along",
     "array_modulus",
-    "tang_pdms_fibril",
-}
+} | magnitudes.CLOSED_FORM
 """Rows whose ours is a closed form: their sensitivity is computed in ``--quick`` too, at every
 corner of their ranged parameters together."""
 
@@ -398,12 +398,6 @@ def buckled_preload(quick: bool = True) -> dict:
     return _buckled(5.0, 1.5)
 
 
-def buckled_short_pillar(quick: bool = True) -> dict:
-    """:func:`buckled_ratio` of a pillar of L/2r = 2.4 (Paretkar et al.'s largest), pressed to
-    1.1 P_E."""
-    return _buckled(2.4, 1.1)
-
-
 TWO_HEIGHTS = {"n": 10, "step": 0.5, "low": 0.5, "high": 4.0, "speed": 0.02}
 """Yagüe Isla & Kroner's two pillar heights on the pillar-design study's pillars (L = 15 µm):
 10 pillars, every other one 0.5 µm shorter; preloads 0.5 µN (below the 1.7 µN that brings the
@@ -546,19 +540,6 @@ def kroner_sphere_over_flat(quick: bool = True) -> dict:
     }
 
 
-def tang_pdms_fibril(quick: bool = True) -> dict:
-    """Pull-off stress over σ0 of Tang et al.'s (2005) flaw-sensitive PDMS fibril (E = 1 MPa,
-    ν = 0.5, w = 0.05 µN/µm, σ0 = 0.1 MPa, a = 100 µm) by the package's flat-punch law with an
-    interface strength (:func:`gecko_agents.physics.flaw_tolerance.punch_pull_off`, the law the
-    engine's punch lets go by)."""
-    from gecko_agents.physics import flaw_tolerance as ft
-
-    a, w, sigma0, E_star = 100.0, 0.05, 0.1, 1.0 / (1.0 - 0.5**2)
-    ratio = float(ft.punch_pull_off(a, w, E_star, sigma0)) / (math.pi * a * a * sigma0)
-    chi = float(ft.flaw_parameter(a, sigma0, E_star, w))
-    return {"value": ratio, "text": f"{ratio:.3f} (χ = {chi:.2f}; Kendall's force, below σ0·πa²)"}
-
-
 OURS = {
     f.__name__: f
     for f in (
@@ -585,13 +566,23 @@ OURS = {
         greiner_radius,
         greiner_aspect,
         buckled_preload,
-        buckled_short_pillar,
         kendall_punch,
         two_heights,
-        tang_pdms_fibril,
     )
+} | magnitudes.OURS
+"""The functions a row's ``ours`` may name (with the magnitude rows' of
+:mod:`gecko_agents.studies.validation_magnitudes`)."""
+OURS |= gecko_seta.OURS  # the gecko seta's rows ("gecko_*"): :mod:`.gecko_seta`
+QUICK_SIZED = {
+    "frictional_adhesion",
+    "gillies_rough",
+    "kendall_peel",
+    "kendall_angle_law",
+    "booth_misalignment",
+    "booth_aligned",
+    "booth_layer_aligned",
+    "kim_sitti_backing",
+    "kroner_flat_misalignment",
 }
-"""The functions a row's ``ours`` may name."""
-
-# The gecko seta's rows (validation.toml, "gecko_*"): computed in their own study.
-OURS.update(gecko_seta.OURS)
+"""Rows whose ours runs smaller (fewer setae, fewer pulls, a shorter peel) in ``--quick``: their
+quick verdict may differ from the full run's, and the report marks it."""

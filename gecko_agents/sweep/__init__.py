@@ -11,7 +11,8 @@ On disk (``out_dir``)::
 
     points/<key>.json   one file per finished point, written atomically: overrides, seed, full
                         parameters, result row, status ("ok" or "error" with the message and
-                        traceback), elapsed seconds, library versions
+                        traceback), elapsed seconds, library versions, and the SHA-256 of
+                        all that ("sha256": a file edited by hand is recomputed, not reused)
     sweep.csv           one row per point in :func:`expand_grid` order, rebuilt from the point
                         files after every call of :func:`run_sweep`
 
@@ -156,7 +157,9 @@ def _points_to_run(out: Path, points, keys) -> list[tuple[SweepPoint, str]]:
     failed = sum(1 for k in stored & set(keys) if records[k] is not None and k not in done)
     foreign = len(stored - set(keys))
     notes = [
-        f"{len(damaged)} damaged point file(s) (unreadable or truncated) are recomputed"
+        f"{len(damaged)} damaged point file(s) (unreadable, truncated or edited after they "
+        f"were written: {', '.join(f'{k}.json' for k in damaged[:3])}"
+        f"{' …' if len(damaged) > 3 else ''}) are recomputed"
         if damaged
         else "",
         f"{failed} point(s) that failed before are retried" if failed else "",

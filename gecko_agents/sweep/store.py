@@ -7,7 +7,8 @@ Layout of a sweep's ``out_dir`` (:mod:`gecko_agents.sweep`)::
 
 A point's key hashes everything that decides its result — the point function's name, its
 keyword arguments, the full parameter set, the seed and the code — so a stored point is reused
-only by the same computation.
+only by the same computation; each point file carries the SHA-256 of its own record, so one
+edited after it was written is recomputed, not reused.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from gecko_agents.params import SetaArray
 from gecko_agents.provenance import code_fingerprint, source_fingerprint
 from gecko_agents.sweep.grid import SweepPoint, canonical_json
 
-__all__ = ["point_code", "point_key", "read_record", "write_record", "write_table"]
+__all__ = ["point_code", "point_key", "record_digest", "read_record", "write_record", "write_table"]
 
 
 def point_code(fn) -> str:
@@ -53,18 +54,29 @@ def point_key(
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
+def record_digest(record: dict) -> str:
+    """16 hex digits of the SHA-256 of a point record as JSON (keys sorted), its own
+    ``"sha256"`` left out: what :func:`write_record` stores and :func:`read_record` checks."""
+    rest = {k: v for k, v in record.items() if k != "sha256"}
+    text = json.dumps(rest, sort_keys=True, allow_nan=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
 def read_record(path: Path, key: str) -> dict | None:
-    """The stored record of point ``key`` at ``path``; None if missing, unreadable or another
-    point's."""
+    """The stored record of point ``key`` at ``path``; None if missing, unreadable, another
+    point's, or edited after it was written (its ``"sha256"`` missing or not its digest)."""
     try:
         record = json.loads(path.read_text())
     except (OSError, ValueError):
         return None
-    return record if isinstance(record, dict) and record.get("key") == key else None
+    if not isinstance(record, dict) or record.get("key") != key:
+        return None
+    return record if record.get("sha256") == record_digest(record) else None
 
 
 def write_record(point_dir: Path, record: dict) -> None:
-    """Store a finished point as ``point_dir/<key>.json`` (atomically)."""
+    """Store a finished point as ``point_dir/<key>.json`` (atomically), with its digest."""
+    record = {**record, "sha256": record_digest(record)}
     data = json.dumps(record, indent=2, allow_nan=True).encode()
     atomic_write_bytes(point_dir / f"{record['key']}.json", data)
 
