@@ -7,10 +7,13 @@ Protocol (Autumn et al.'s, as described in the texts the validation rows quote):
 :data:`PRELOAD`, a drag of :data:`DRAG` back along the shaft ("gripping", towards −x), then a
 pull at an angle β from the floor (90°: straight up; 180°: back along the floor). Read off each
 run (:mod:`gecko_agents.analysis`): the adhesion and shear at release, the pull-off, the largest
-shear held in the drag and the fraction of the spatulae's pads still attached. The same pull
-after a straight press (no drag) gives the gain of the preload-and-drag. Over pull angles the
-releases trace the limit line whose angle from the shear axis is the critical angle α*
-(:func:`gecko_agents.analysis.limit_curve.critical_angle`).
+adhesion held, the largest shear held in the drag, the fraction of the spatulae's pads still
+attached, and the forces of every let-go (:func:`let_go_forces`: dragged back, a straight seta
+lets go and lands again). The largest adhesion after a straight press (no drag) gives the gain
+of the preload-and-drag. The let-go forces of all pull angles trace the limit line whose angle
+from the shear axis is the critical angle α*
+(:func:`gecko_agents.analysis.limit_curve.critical_angle`). Runs on the explicit step
+(:data:`NUMERICS`) at :data:`FULL_SPEED`, or :data:`QUICK_SPEED` with ``--quick``.
 
 The whole-array estimate of the source paper (its section 3.3.2, Fig 10–11: how much a square
 centimetre of setae holds) is redone for the branched tokay seta at the tokay's setal density
