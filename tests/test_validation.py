@@ -334,6 +334,7 @@ def test_ptfe_friction_of_a_coulomb_tip_is_its_mu_both_ways():
 
 @pytest.mark.slow
 def test_kendall_punch_row_is_kendalls_pull_off():
+    """Over the tip law's closed form: Kendall's with the study's σ₀ (the Dugdale punch)."""
     assert vo.kendall_punch()["value"] == pytest.approx(1.0, abs=0.02)
 
 
@@ -443,14 +444,14 @@ def test_two_level_floor_puts_every_other_pillar_a_step_lower():
 
 @pytest.mark.slow
 def test_two_heights_row_holds_all_pillars_only_after_the_high_preload():
-    """Low preload: the 5 long flat punches hold Kendall's F_K each; high: all 10 (the plate
-    reads a little less than 10 F_K: the short pillars are stretched less when the long ones
-    let go)."""
-    from gecko_agents.physics import punch
+    """Low preload: the 5 long flat punches hold their pull-off F_K each (Kendall's with the
+    study's σ₀, the Dugdale punch); high: all 10 (the plate reads a little less than 10 F_K:
+    the short pillars are stretched less when the long ones let go)."""
+    from gecko_agents.physics import flaw_tolerance
     from gecko_agents.studies import pillar_designs as pd
 
     c = pd.params_for("flat_punch", 5.0, "flat").contact
-    F_K = float(punch.kendall_pull_off(c.R, c.work_of_adhesion, c.E_star))
+    F_K = float(flaw_tolerance.punch_pull_off(c.R, c.work_of_adhesion, c.E_star, c.sigma0))
     low, high = vo.two_height_pull_offs()
     assert low == pytest.approx(5 * F_K, rel=0.03)
     assert 7.5 * F_K < high <= 10 * F_K
@@ -507,14 +508,16 @@ def test_del_campo_ratio_is_aksaks_eq3_with_the_packages_release_forces():
 
 @pytest.mark.slow
 def test_paretkar_rows_tell_round_edges_from_end_flaps():
-    """Below buckling both faces hold Kendall's force; pressed by 70 % of L the face that opens
-    at its edge (round edge) holds nothing, the face kept bonded (end flaps) all of it."""
-    from gecko_agents.physics import punch
+    """Below buckling both faces hold their pull-off (Kendall's with the study's σ₀, the
+    Dugdale punch); pressed by 70 % of L the face that opens at its edge (round edge) holds
+    nothing, the face kept bonded (end flaps) all of it."""
+    from gecko_agents.physics import flaw_tolerance
     from gecko_agents.studies import pillar_designs as pd
     from gecko_agents.studies import validation_magnitudes as vm
 
     c = pd.params_for("flat_punch", 2.4, "flat").contact
-    F_K = float(punch.kendall_pull_off(vm.PARETKAR["r"], c.work_of_adhesion, c.E_star))
+    r = vm.PARETKAR["r"]
+    F_K = float(flaw_tolerance.punch_pull_off(r, c.work_of_adhesion, c.E_star, c.sigma0))
     for edge in (True, False):
         assert vm.paretkar_pull_off(edge, vm.PARETKAR["below"]) == pytest.approx(F_K, rel=0.01)
     assert vm.paretkar_round_edges(press=0.7)["value"] == 0.0

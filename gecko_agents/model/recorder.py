@@ -80,7 +80,7 @@ class Recorder:
             "n_sliding": np.count_nonzero(s.slip & s.attached),
             "energy_elastic_pJ": el,
             "energy_kinetic_pJ": ke,
-            "energy_dissipated_pJ": dissipated,
+            "energy_dissipated_pJ": dissipated + m.damping_half_step(),
             "work_plate_pJ": work,
         }
         for k, val in row.items():

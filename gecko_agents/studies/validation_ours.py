@@ -22,7 +22,7 @@ from gecko_agents.analysis.pull import plate_pull_off, pull_off, release_point
 from gecko_agents.floor import Profile, from_profile
 from gecko_agents.model import Model, Numerics
 from gecko_agents.params import literature as lit
-from gecko_agents.physics import beam, curved_rod, punch
+from gecko_agents.physics import beam, curved_rod, flaw_tolerance
 from gecko_agents.studies import frictional_adhesion as fa
 from gecko_agents.studies import gecko_seta, pad_peel
 from gecko_agents.studies import misalignment as mis
@@ -454,7 +454,9 @@ def two_heights(quick: bool = True) -> dict:
 
 def kendall_punch(quick: bool = True) -> dict:
     """Pull-off of one vertical flat-punch pillar (pillar-design study, L/2r = 5) pressed 5 %
-    of L, over Kendall's √(8πE*wa³) (:func:`gecko_agents.physics.punch.kendall_pull_off`)."""
+    of L, over its tip law's closed form: Kendall's √(8πE*wa³) with the study's interface
+    strength σ₀ as Maugis's Dugdale punch (:func:`gecko_agents.physics.flaw_tolerance.
+    punch_pull_off`; Kendall's exactly at σ₀ = inf)."""
     from gecko_agents.studies import pillar_designs as pd
 
     p = pd.params_for("flat_punch", 5.0, "flat").replace(**{"array.count": 1})
@@ -462,10 +464,10 @@ def kendall_punch(quick: bool = True) -> dict:
         protocol.press_pull(0.05 * p.seta.L, speed=pd.SPEED), progress=False
     )
     a, w, E_star = p.contact.jkr_args()
-    F_K = float(punch.kendall_pull_off(a, w, E_star))
+    F_c = float(flaw_tolerance.punch_pull_off(a, w, E_star, p.contact.sigma0))
     return {
-        "value": h.peak_pull_off / F_K,
-        "text": f"×{h.peak_pull_off / F_K:.4f} ({h.peak_pull_off:.3f} over {F_K:.3f} µN)",
+        "value": h.peak_pull_off / F_c,
+        "text": f"×{h.peak_pull_off / F_c:.4f} ({h.peak_pull_off:.3f} over {F_c:.3f} µN)",
     }
 
 
