@@ -87,7 +87,11 @@ class Stepping:
         so the books balance at every record, also while a released seta rings down (where
         −½dt·c·v² reached 5 % of a punch's energy), not only once the motion has stopped
         (semi-implicit Euler's discrete energy identity, Hairer, Lubich & Wanner 2006,
-        Geometric Numerical Integration, §I.1)."""
+        Geometric Numerical Integration, §I.1). 0 under the implicit step, whose books of
+        F' − F and of the dampers (:meth:`~gecko_agents.model.implicit.ImplicitStep.correct`)
+        close its own step."""
+        if self.implicit_step is not None:
+            return 0.0
         s = self.state
         v_next = s.pv[2:4] + s.F * (self.dt / self.mass)
         Fd = s.F_damp_seta + s.F_damp_contact
