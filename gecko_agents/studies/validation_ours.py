@@ -26,6 +26,7 @@ from gecko_agents.physics import beam, curved_rod, punch
 from gecko_agents.studies import frictional_adhesion as fa
 from gecko_agents.studies import misalignment as mis
 from gecko_agents.studies import pad_peel
+from gecko_agents.studies.pad_scale import booth_pad_aligned, booth_pad_misaligned, kim_sitti_pad
 
 # --- closed forms on a tokay seta (AUTUMN2006_SETA) ------------------------------------------
 _SETA_KEYS = {"E": "contact.E1", "r": "seta.r", "L": "seta.L", "theta": "seta.theta_deg"}
@@ -589,6 +590,9 @@ OURS = {
         kendall_punch,
         two_heights,
         tang_pdms_fibril,
+        kim_sitti_pad,
+        booth_pad_misaligned,
+        booth_pad_aligned,
     )
 }
 """The functions a row's ``ours`` may name."""
