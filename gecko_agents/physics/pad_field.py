@@ -44,15 +44,17 @@ from gecko_agents.physics.layer_field import FieldTest, LayerField
 
 __all__ = ["PAD_TOLERANCES", "PadField", "PadOperator", "lattice_kernel", "press_pull_pad"]
 
-DIRECT_MAX = 20_000
-"""Distinct lattice distances up to which the kernel is evaluated point by point; beyond, the
-layer's smooth correction is interpolated (:func:`lattice_kernel`)."""
+DIRECT_MAX = 2_000
+"""Distinct lattice distances up to which the kernel is evaluated point by point (a field of
+about 45² and less); beyond, the layer's smooth correction is interpolated
+(:func:`lattice_kernel`)."""
+_CHUNK = 128  # distances per call of the point kernel: its quadrature holds 128 × 10⁴ values
 SPLINE_STEP = 1.0 / 64.0
 """Node spacing of the interpolated correction, in layer thicknesses [-] (its error, 4e-11 of
 the self term, in ``tests/test_layer_field_pad.py``)."""
 PAD_TOLERANCES = {
-    "force_tol": 1e-2,
-    "cascade_tol": 0.05,
+    "force_tol": 3e-3,
+    "cascade_tol": 0.02,
     "cg_tol": 1e-5,
     "single": True,
     "stop_early": True,
@@ -84,9 +86,11 @@ def _interpolated_kernel(r, thickness, modulus, poisson, radius):
         lo, hi = float(r[near].min()), float(r[near].max())
         count = max(4, math.ceil((hi - lo) / (SPLINE_STEP * t)) + 1)
         nodes = np.linspace(lo, hi, count)
-        corr = 1.0 / (math.pi * Es * nodes) - layer.point_kernel(
-            nodes, thickness, modulus, poisson, radius
-        )
+        kernel = np.concatenate([
+            layer.point_kernel(nodes[i : i + _CHUNK], thickness, modulus, poisson, radius)
+            for i in range(0, count, _CHUNK)
+        ])  # fmt: skip
+        corr = 1.0 / (math.pi * Es * nodes) - kernel
         out[near] = 1.0 / (math.pi * Es * r[near]) - CubicSpline(nodes, corr)(r[near])
     return out
 
