@@ -129,13 +129,13 @@ def main(argv=None) -> dict:
     args = parser.parse_args(argv)
     sizes = (32, 64) if args.quick else tuple(n for n in SIZES if n <= args.max_n)
     rows = []
-    for t in THICKNESSES:
-        for n in sizes:
+    for n in sizes:  # both layers at each size, the page rewritten after each row
+        for t in THICKNESSES:
             rows.append(measure(n, t, oracle=n <= ORACLE_MAX_N))
             print({k: (round(v, 5) if isinstance(v, float) else v) for k, v in rows[-1].items()})
-    text = table(rows, os.getloadavg())
-    if args.docs is not None:
-        args.docs.write_text(text, encoding="utf-8")
+            text = table(rows, os.getloadavg())
+            if args.docs is not None:
+                args.docs.write_text(text, encoding="utf-8")
     print(text)
     return {"rows": rows}
 

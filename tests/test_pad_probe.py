@@ -62,3 +62,27 @@ def test_bad_floor_refused(kw, match):
         pad_probe.rough_floor(FIELD, **({"rms_height": 0.1} | kw))
     with pytest.raises(ValueError, match="floor must be"):
         pad_probe.pad_heights(FIELD, math.inf, 0.0, np.zeros((3, 3)))
+
+
+@pytest.mark.parametrize("probe", ["sphere 1 cm", "rough", "afm"])
+def test_pad_solution_on_these_probes_is_the_event_to_event_one(probe):
+    """A 24 × 24 field pressed to 0.2 N·F_r by a 1 cm sphere, a flat on a rough floor (RMS
+    50 nm) or on the AFM map, pulled off at the pad tolerances: the event-to-event pull-off
+    and contact within 0.5 %."""
+    from gecko_agents.physics import layer_field as lf
+
+    field = pad_field.PadField(**{**FIELD.__dict__, "n": 24})
+    if probe != "sphere 1 cm":
+        pytest.importorskip("SurfaceTopography")
+    floor = None
+    if probe == "rough":
+        floor = pad_probe.rough_floor(field, 0.05)
+    elif probe == "afm":
+        floor = pad_probe.map_floor(field)
+    h = pad_probe.pad_heights(field, 1e4 if probe == "sphere 1 cm" else math.inf, 0.0, floor)
+    P = 0.2 * 24 * 24 * field.release_force
+    small = lf.LayerField(**{**FIELD.__dict__, "n": 24})
+    exact = lf.press_pull(small, h, P, resolution=1e-6)
+    got = pad_field.press_pull_pad(field, h, P, **pad_field.PAD_TOLERANCES)
+    assert got.pull_off == pytest.approx(exact.pull_off, rel=5e-3)
+    assert got.attached_max == exact.attached_max
