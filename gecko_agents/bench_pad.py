@@ -100,8 +100,9 @@ def table(rows: list[dict], load) -> str:
         "field (`layer_field.press_pull`, resolution 1e-6 µm), where it was run.",
         "",
         "| t [µm] | n | fibres | width [mm] | pull-off / N·F_r | solves | FFT products "
-        "| CPU [s] | CPU / smallest | wall [s] | traced peak [MB] | process resident peak so far [MB] "
-        "| error vs event-to-event | event-to-event CPU / pad CPU |",
+        "| CPU [s] | CPU / smallest | wall [s] | traced peak [MB] "
+        "| process resident peak so far [MB] | error vs event-to-event "
+        "| event-to-event CPU / pad CPU |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for t in sorted({r["t_um"] for r in rows}):
