@@ -10,15 +10,20 @@ neither pymunk nor numba)::
     params = ga.PAPER_TABLE1.replace(mechanics="rod")
     history = ga.Model(params, seed=1).run(ga.protocol.press_pull(depth=1.0))
     history.save("my_run")
-    same = ga.load("my_run")
+    same = ga.load_history("my_run")
+
+``dir(gecko_agents)`` and ``__all__`` list the public names only. The old names ``load`` (now
+``load_history``: a run directory) and ``load_run`` (now ``read_run_file``: a TOML run file)
+still work, with a DeprecationWarning, until 0.3.
 """
 
-from importlib import import_module
-from importlib.metadata import PackageNotFoundError, version
+from importlib import import_module as _import_module
+from importlib.metadata import PackageNotFoundError as _PackageNotFoundError
+from importlib.metadata import version as _version
 
 try:
-    __version__ = version("gecko_agents")
-except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = _version("gecko_agents")
+except _PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+unknown"
 
 # name -> (module, attribute or None for the module itself)
@@ -26,8 +31,8 @@ _LAZY = {
     "Model": ("gecko_agents.model", "Model"),
     "Numerics": ("gecko_agents.numerics", "Numerics"),
     "History": ("gecko_agents.history", "History"),
-    "load": ("gecko_agents.history", "load"),
-    "load_run": ("gecko_agents.runfiles.run", "load_run"),
+    "load_history": ("gecko_agents.history", "load_history"),
+    "read_run_file": ("gecko_agents.runfiles.run", "read_run_file"),
     "SetaArray": ("gecko_agents.params", "SetaArray"),
     "PAPER_TABLE1": ("gecko_agents.params", "PAPER_TABLE1"),
     "PAPER_ARRAY": ("gecko_agents.params", "PAPER_ARRAY"),
@@ -38,15 +43,23 @@ _LAZY = {
     "floor": ("gecko_agents.floor", None),
 }
 
+# old name -> new name: each still works, with a DeprecationWarning, until 0.3
+_RENAMED = {"load": "load_history", "load_run": "read_run_file"}
+
 __all__ = ["__version__", *_LAZY]
 
 
 def __getattr__(name: str):
+    if name in _RENAMED:  # not cached: every use of an old name warns
+        from gecko_agents._deprecation import warn_renamed
+
+        warn_renamed(f"gecko_agents.{name}", f"gecko_agents.{_RENAMED[name]}")
+        return __getattr__(_RENAMED[name])
     try:
         module, attribute = _LAZY[name]
     except KeyError:
         raise AttributeError(f"module 'gecko_agents' has no attribute {name!r}") from None
-    value = import_module(module)
+    value = _import_module(module)
     if attribute is not None:
         value = getattr(value, attribute)
     globals()[name] = value
@@ -54,4 +67,5 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY))
+    """The public names only (``__all__``) and the module's own dunders."""
+    return sorted(set(__all__) | {n for n in globals() if n.startswith("__")})

@@ -91,7 +91,7 @@ def test_strip_records_are_history_columns_and_arrays(peeled):
 @pytest.mark.slow
 def test_saved_elastic_run_loads_from_its_directory_alone(peeled):
     _, h, run_dir = peeled
-    loaded = history.load(run_dir)
+    loaded = history.load_history(run_dir)
     assert loaded.columns == h.columns == history.SCALAR_COLUMNS + STRIP_COLUMNS
     for c in h.columns:
         np.testing.assert_array_equal(loaded[c], h[c])
@@ -117,7 +117,7 @@ def test_a_strip_column_edited_on_disk_is_refused(peeled, tmp_path):
     lines[1] = ",".join(row)
     csv.write_text("\n".join(lines))
     with pytest.raises(ValueError, match="history.csv is not the file run .* SHA-256"):
-        history.load(tmp_path)
+        history.load_history(tmp_path)
 
 
 @pytest.mark.slow
@@ -126,7 +126,7 @@ def test_loaded_elastic_run_is_drawn_with_its_strip(peeled, tmp_path):
     record, the front marker sits on it at the recorded front's abscissa, and the animation
     is written."""
     m, h, run_dir = peeled
-    loaded = history.load(run_dir)
+    loaded = history.load_history(run_dir)
     front = h["strip_front_x_um"]
     k = int(np.flatnonzero(np.isfinite(front))[len(h) // 4])
     frame = render.render_frame(loaded, k, window=m.n)

@@ -180,7 +180,7 @@ def test_the_quick_example_runs_in_well_under_a_minute_and_its_run_file_reproduc
 
     from gecko_agents.analysis.pull import pull_off
     from gecko_agents.cli import main
-    from gecko_agents.runfiles.run import load_run
+    from gecko_agents.runfiles.run import read_run_file
 
     example = Path(__file__).resolve().parents[1] / "examples" / "design_pillars.toml"
     out = tmp_path / "design"
@@ -190,7 +190,7 @@ def test_the_quick_example_runs_in_well_under_a_minute_and_its_run_file_reproduc
     for name in ("report.md", "trials.csv", "pareto_front.png", "objectives_vs_parameters.png"):
         assert (out / name).stat().st_size > 0
     best = json.loads((out / "best.json").read_text())["best"][0]
-    run = load_run(out / "runs" / "design_1.toml")
+    run = read_run_file(out / "runs" / "design_1.toml")
     h = run.build_model().run(run.protocol, progress=False)
     area = run.params.array.count * run.params.array.pitch**2
     assert pull_off(h).adhesion / area / KPA == pytest.approx(best["engine"]["runs"][0], rel=1e-9)
@@ -199,17 +199,17 @@ def test_the_quick_example_runs_in_well_under_a_minute_and_its_run_file_reproduc
 def test_a_run_file_floor_table_is_the_scan_from_its_offset(tmp_path):
     from gecko_agents.data import DEKTAK_PROFILE
     from gecko_agents.floor import readers
-    from gecko_agents.runfiles.run import load_run
+    from gecko_agents.runfiles.run import read_run_file
 
     text = 'preset = "PAPER_TABLE1"\n[floor]\nfile = "dektak"\noffset_um = 100.0\n'
     text += '[protocol]\npreset = "press_pull"\ndepth_um = 0.5\n'
-    spec = load_run(design(tmp_path, text, "run.toml"))
+    spec = read_run_file(design(tmp_path, text, "run.toml"))
     scan = readers.read_text(DEKTAK_PROFILE)
     k = int(scan.x.searchsorted(scan.x[0] + 100.0))
     assert spec.floor_profile.x[0] == 0.0
     assert list(spec.floor_profile.y) == list(scan.y[k:])
     with pytest.raises(RunFileError, match=r"\[floor\] offset_um.*outside the scan"):
-        load_run(design(tmp_path, text.replace("100.0", "1e9"), "run.toml"))
+        read_run_file(design(tmp_path, text.replace("100.0", "1e9"), "run.toml"))
 
 
 @pytest.mark.parametrize(

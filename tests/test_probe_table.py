@@ -109,7 +109,7 @@ def _edited_run(probe: Probe, edit):
     h.meta.update(n_sim=3, scale_to_array=1.0, record_every=10)  # as a model run records them
     d = h.save(probe.tmp / "run")
     edit(d)
-    return _raised(lambda: hist.load(d))
+    return _raised(lambda: hist.load_history(d))
 
 
 def _set_field(key, value):
@@ -333,9 +333,9 @@ def _pull_off(probe: Probe, kw: dict, item: str):
 def _probe_pillars(probe_radius: float):
     """The pillars example on a probe of ``probe_radius``: (most tips attached at once, the
     pull-off of one flat punch if at most one touched)."""
-    from gecko_agents.runfiles.run import load_run
+    from gecko_agents.runfiles.run import read_run_file
 
-    spec = load_run(ROOT / "examples" / "pillars_probe.toml")
+    spec = read_run_file(ROOT / "examples" / "pillars_probe.toml")
     p = spec.params.replace(floor={"probe_radius": probe_radius})
     h = Model(p, **spec.model).run(spec.protocol, progress=False)
     return int(np.max(h["n_attached"])), ""
@@ -344,9 +344,9 @@ def _probe_pillars(probe_radius: float):
 def _crowded_pillars(probe: Probe):
     """Pillars at pitch 3.2 (r = 1.5) pressed to 3 µN under the 30 µm probe buckle into each
     other: the validity item pillars_meet says so."""
-    from gecko_agents.runfiles.run import load_run
+    from gecko_agents.runfiles.run import read_run_file
 
-    spec = load_run(ROOT / "examples" / "pillars_probe.toml")
+    spec = read_run_file(ROOT / "examples" / "pillars_probe.toml")
     m = Model(spec.params.replace(array={"pitch": 3.2}), **spec.model)
     h = m.run([protocol.Press(3.0, speed=0.01), protocol.PullOff(0.02)], progress=False)
     it = h.meta["validity"]["items"]["pillars_meet"]
@@ -398,7 +398,7 @@ def _fields_digest_removed(probe: Probe):
     h.meta.update(n_sim=3, scale_to_array=1.0, record_every=10, versions={"gecko_agents": "0.2.0"})
     d = h.save(probe.tmp / "run")
     _drop(d, "fields_sha256")
-    return _raised(lambda: hist.load(d))
+    return _raised(lambda: hist.load_history(d))
 
 
 def _quiet_description(probe: Probe):
@@ -574,12 +574,12 @@ def _truncated_history(probe: Probe):
     d = _saved(probe)
     lines = (d / "history.csv").read_text().split("\n")
     (d / "history.csv").write_text("\n".join(lines[:4]) + "\n" + ",".join(lines[4].split(",")[:2]))
-    return _raised(lambda: hist.load(d))
+    return _raised(lambda: hist.load_history(d))
 
 
 def _load_a_file(probe: Probe):
     d = _saved(probe)
-    err, message = _raised(lambda: hist.load(d / "history.csv"))
+    err, message = _raised(lambda: hist.load_history(d / "history.csv"))
     return err, message.replace(str(probe.tmp), "TMP")
 
 
@@ -667,10 +667,10 @@ ROWS_54_MESSAGES = [
     Row("run --out --gif interrupted", _interrupted_run, 130,
         ("start again with: gecko-agents run TMP/r.toml --out TMP/ri --gif",)),
     # 17. A damaged history.csv, and a file given for its run directory.
-    Row("ga.load: history.csv cut in a row", _truncated_history, ValueError,
+    Row("ga.load_history: history.csv cut in a row", _truncated_history, ValueError,
         ("history.csv", "line 5")),
-    Row("ga.load of run/history.csv", _load_a_file, FileNotFoundError,
-        ("TMP/run/history.csv", "load('TMP/run')")),
+    Row("ga.load_history of run/history.csv", _load_a_file, FileNotFoundError,
+        ("TMP/run/history.csv", "load_history('TMP/run')")),
     # 20. The closing summary agrees with the warning that a row under a probe is no patch.
     Row("run file: 2 of 3 setae under a probe",
         lambda p: _run_summary(p, [_write(p, _probe_file('"array.count" = 3',

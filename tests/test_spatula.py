@@ -416,7 +416,7 @@ def test_film_front_and_pad_length_are_recorded_for_film_tips_only(tmp_path):
     assert ell[first] == pytest.approx(p.spatula.length, rel=1e-3)
     assert front[first] == pytest.approx(h.setae["tip_x_um"][first, 0], abs=0.05)
     h.save(tmp_path / "run")
-    back = hist.load(tmp_path / "run")
+    back = hist.load_history(tmp_path / "run")
     np.testing.assert_array_equal(back.setae["film_attached_um"], h.setae["film_attached_um"])
     sphere = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.0})
     with warnings.catch_warnings():
