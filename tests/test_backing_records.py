@@ -6,6 +6,7 @@ run, and are drawn from the loaded run."""
 import hashlib
 import warnings
 
+import extras
 import numpy as np
 import pytest
 
@@ -30,7 +31,8 @@ def _digest(h) -> str:
 
 @pytest.mark.parametrize(
     "kernel, press, digest",
-    [("auto", False, "a55b1ff30ce313c1"), ("numpy", True, "d29aa6fb2cd26c6c"),
+    [pytest.param("auto", False, "a55b1ff30ce313c1", marks=extras.needs("fast")),
+     ("numpy", True, "d29aa6fb2cd26c6c"),
      ("python", False, "5d0afac93cc0d7e7")],
 )  # fmt: skip
 def test_rigid_plate_histories_are_bit_identical_to_before(kernel, press, digest):

@@ -9,6 +9,7 @@ import sys
 import tomllib
 from pathlib import Path
 
+import extras
 import pytest
 
 from gecko_agents import cli, history, sweep
@@ -323,7 +324,7 @@ def test_calibrate_is_a_command_like_the_others(capsys):
 
 # History.to_dataframe ---------------------------------------------------------------------------
 def test_to_dataframe(tmp_path):
-    pd = pytest.importorskip("pandas")
+    pd = extras.require("pandas")
     src = tmp_path / "study.toml"
     src.write_text(GOOD)
     assert cli.main(["run", str(src), "--out", str(tmp_path / "o"), "--no-progress"]) == 0

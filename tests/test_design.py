@@ -1,9 +1,9 @@
 """The design search (gecko_agents.design): design files refused before any trial, the search
 finding what closed forms know, a killed study resuming, and the quick example end to end."""
 
-import importlib.util
 import math
 
+import extras
 import pytest
 
 from gecko_agents.design import load_design, search
@@ -11,9 +11,7 @@ from gecko_agents.design.space import KPA
 from gecko_agents.physics import flaw_tolerance, jkr, punch
 from gecko_agents.runfiles.schema import RunFileError
 
-needs_optuna = pytest.mark.skipif(
-    importlib.util.find_spec("optuna") is None, reason="the design extra (optuna)"
-)
+needs_optuna = extras.needs("design")
 
 E, NU, W = 1.413, 0.3, 0.165
 
@@ -143,7 +141,7 @@ def test_with_a_buckling_preload_the_best_aspect_ratio_sits_on_the_constraint(tm
 
 @needs_optuna
 def test_a_killed_study_resumes_with_every_finished_trial(tmp_path):
-    optuna = pytest.importorskip("optuna")
+    optuna = extras.require("design")
     spec = load_design(design(tmp_path))
     out = tmp_path / "out"
     first = search.run_search(spec, out, trials=5)
@@ -311,7 +309,7 @@ def test_the_largest_preload_bound_is_the_force_that_brings_every_tip_down(tmp_p
 @pytest.mark.slow
 @needs_optuna
 def test_a_local_dask_cluster_fills_and_confirms_one_study(tmp_path):
-    pytest.importorskip("distributed")
+    extras.require("dask")
     from gecko_agents.design import run_design
 
     spec = load_design(design(tmp_path, BASE.replace("confirm = 0", "confirm = 1")))

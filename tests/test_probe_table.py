@@ -14,6 +14,7 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
+import extras
 import numpy as np
 import pytest
 from test_cli import GOOD  # a minimal run file: one seta of Table 1, 5 µm long
@@ -177,6 +178,7 @@ class Row:
     expected: object
     names: tuple[str, ...]
     slow: bool = False  # a run of several pillars: the slow tier
+    extra: str | None = None  # the optional extra it needs (tests/extras.py)
 
 
 ROWS = [
@@ -889,34 +891,36 @@ ROWS_54_DESIGN = [
     # 1–2. A folder is a design folder only when it holds a study this command wrote.
     Row("design --out a folder with a user's report.md",
         lambda p: _design_over_users_files(p, "report.md"), 2, ("not a design folder",
-                                                                "report.md")),
+                                                                "report.md"), extra="design"),
     Row("design --out a folder with a user's runs/design_1.toml",
         lambda p: _design_over_users_files(p, "runs/design_1.toml"), 2,
-        ("not a design folder", "runs")),
+        ("not a design folder", "runs"), extra="design"),
     Row("design --quick into the full study's --out", lambda p: _second_study(p, "--quick"), 2,
-        ("holds the study", "d.toml", "--out"), slow=True),
+        ("holds the study", "d.toml", "--out"), slow=True, extra="design"),
     Row("design of another file into the same --out",
         lambda p: _second_study(p, text=DESIGN.replace("seed = 0", "seed = 1")), 2,
-        ("holds the study", "d.toml", "--out"), slow=True),
+        ("holds the study", "d.toml", "--out"), slow=True, extra="design"),
     Row("design into its own folder resumes", _same_study_again, 0, ("6 screening trials",),
-        slow=True),
+        slow=True, extra="design"),
     # 4. A local study file belongs to one process.
     Row("two design commands on one local study", _two_processes, 2, ("another", "o"),
-        slow=True),
+        slow=True, extra="design"),
     # 8–9. A model that cannot evaluate a design: a failed trial or a failed confirmation.
     Row("design: the screen's model raises RuntimeError", _model_raises, (0, True, True),
-        ("RuntimeError", "preload not reached", "failed_trials"), slow=True),
+        ("RuntimeError", "preload not reached", "failed_trials"), slow=True, extra="design"),
     Row("design: an engine confirmation fails", _confirmation_fails, 0,
-        ("Confirmations that failed", "design_1", "RuntimeError", "no equilibrium"), slow=True),
+        ("Confirmations that failed", "design_1", "RuntimeError", "no equilibrium"), slow=True,
+        extra="design"),
     # 10. --storage checked before any work.
     *[
         Row(f"design --storage {url}", lambda p, u=url: _design_refused(p, DESIGN, "--storage",
                                                                         u.format(tmp=p.tmp)),
-            2, ("--storage", url.split("{tmp}")[-1]))
+            2, ("--storage", url.split("{tmp}")[-1]), extra="design")
         for url in ("not_a_url", "sqlite:///{tmp}/missing/study.db", "sqlite:///{tmp}",
                     "nosuchdialect://host/db")
     ],
-    Row("design with a full disk", _full_disk, 1, ("study.db", "full"), slow=True),
+    Row("design with a full disk", _full_disk, 1, ("study.db", "full"), slow=True,
+        extra="design"),
     # 11. Seeds the sampler takes.
     Row("design seed 1e17", lambda p: _design_refused(p, SEED_1E17), 2,
         ("seed", "99999999999999999", "4294967295")),
@@ -925,13 +929,21 @@ ROWS_54_DESIGN = [
         ("[constraints] min_gap_um", "1e+06", "leaves no design")),
     # 21. --trials below the study's.
     Row("design --trials 2 on a study of 4", _trials_below_the_study, 0,
-        ("trials = 2", "holds 4"), slow=True),
+        ("trials = 2", "holds 4"), slow=True, extra="design"),
 ]  # fmt: skip
 
 
 @pytest.mark.parametrize(
     "row",
-    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_DESIGN],
+    [
+        pytest.param(
+            r,
+            id=r.id,
+            marks=([pytest.mark.slow] if r.slow else [])
+            + ([extras.needs(r.extra)] if r.extra else []),
+        )
+        for r in ROWS_54_DESIGN
+    ],
 )
 def test_probe_54_design(row, tmp_path, capsys, monkeypatch):
     outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))

@@ -6,6 +6,7 @@ a dragged-and-pulled seta against the load-controlled pull-off under shear."""
 import math
 import warnings
 
+import extras
 import numpy as np
 import pytest
 from scipy.optimize import brentq, minimize_scalar
@@ -206,7 +207,7 @@ def test_pressed_tip_slides_where_its_branch_ends():
     assert work == pytest.approx(books, rel=2e-3)
 
 
-def _drag_pull(params, drag, kernel="numba", speed=0.05, **kw):
+def _drag_pull(params, drag, kernel="auto", speed=0.05, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         p = params.replace(**{"array.count": 1})
@@ -266,7 +267,7 @@ def test_kernels_agree(kernel):
     from gecko_agents.model import numba_available
 
     if kernel == "numba" and not numba_available():
-        pytest.skip("numba is not installed (optional extra 'fast')")
+        pytest.skip(extras.reason("fast"))
     p = SHEARED.replace(**{"array.count": 3, "friction.mu": 0.5})
     dp = protocol.drag_pull(0.4, 6.0, 60.0, speed=0.05)
     prot = [*dp[:-1], protocol.Move(dx=-10.0, speed=0.05), dp[-1]]

@@ -4,6 +4,7 @@ parameters, and a dragged-and-pulled seta whose history passes the invariants (c
 import math
 import warnings
 
+import extras
 import numpy as np
 import pytest
 
@@ -151,7 +152,7 @@ def test_unknown_tip_refused():
         SPATULA.replace(tip="suction cup")
 
 
-def _pull_off(drag, kernel="numba", mu=10.0, speed=protocol.DEFAULT_SPEED, damping=None):
+def _pull_off(drag, kernel="auto", mu=10.0, speed=protocol.DEFAULT_SPEED, damping=None):
     """Pull-off [µN] (:func:`gecko_agents.analysis.pull.pull_off`: the largest adhesion in the
     pull after the drag) of a spatula seta pressed to 0.2 µN, dragged ``drag`` [µm] and pulled
     at 90°, the plate at ``speed`` [µm/µs]; and its history."""
@@ -165,6 +166,7 @@ def _pull_off(drag, kernel="numba", mu=10.0, speed=protocol.DEFAULT_SPEED, dampi
 
 
 @pytest.mark.slow
+@extras.needs("fast")
 def test_kernels_agree_on_a_drag_and_pull():
     """Numba loop and numpy path give the same history to rounding (a fast plate: the kernels
     are compared, not the physics)."""
@@ -351,7 +353,7 @@ def test_kernels_agree_on_a_pressed_drag(kernel):
     from gecko_agents.model import numba_available
 
     if kernel == "numba" and not numba_available():
-        pytest.skip("numba is not installed (optional extra 'fast')")
+        pytest.skip(extras.reason("fast"))
     p = SPATULA.replace(**{"array.count": 3, "friction.mu": 0.5})
     prot = [
         *protocol.drag_pull(0.4, 6.0, 60.0, speed=0.05)[:-1],
