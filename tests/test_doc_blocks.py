@@ -3,11 +3,12 @@ says how pages are run and marked). A block marked for an extra runs where the e
 installed and skips the page's test, naming the extra, where it is not; .ci/wheel_check runs
 the same pages on the bare installed wheel."""
 
+import tomllib
 from pathlib import Path
 
 import extras
 import pytest
-from doc_blocks import Block, python_blocks, run_page
+from doc_blocks import EXTRA_MODULES, Block, python_blocks, run_page
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = sorted(
@@ -23,6 +24,14 @@ def test_blocks_are_found_and_the_marks_read():
         "<!-- extra: topography -->\n```python\nz = 3\n```\n```bash\nls\n```\n"
     )
     assert python_blocks(text) == [Block(3, "x = 1\n", None), Block(11, "z = 3\n", "topography")]
+
+
+def test_every_extra_that_installs_a_module_is_known_by_its_module():
+    """The pages' marks and the tests' skips (tests/extras.py) know every optional extra of
+    pyproject.toml but the developer tool sets."""
+    with open(ROOT / "pyproject.toml", "rb") as f:
+        declared = tomllib.load(f)["project"]["optional-dependencies"]
+    assert set(EXTRA_MODULES) == set(declared) - {"dev", "mutation"}
 
 
 def test_a_failing_block_names_its_page_and_line(tmp_path):
