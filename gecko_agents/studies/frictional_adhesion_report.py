@@ -1,7 +1,6 @@
-"""Figures and report of the frictional-adhesion study
-(:mod:`gecko_agents.studies.frictional_adhesion`): the limit-curve figure, the anisotropy map's
-figure, and the "beyond the paper" report with its tables (sweep, map, flatter setae, patch,
-plate-speed check).
+"""Figures and report of the frictional-adhesion study (:mod:`gecko_agents.studies.
+frictional_adhesion`): the limit-curve figure, the anisotropy map's figure, and the "beyond the
+paper" report with its tables (sweep, map, flatter setae, patch, plate-speed check).
 
 Everything here formats numbers the study and :mod:`gecko_agents.analysis` computed; nothing is
 measured here. Units: µm, µN, µs, degrees; adhesion > 0 in tension, shear > 0 along +x.

@@ -1,8 +1,7 @@
-"""The published measurements of the literature comparison
-(:mod:`gecko_agents.studies.validation`), read from the data file
-:data:`gecko_agents.data.LITERATURE_ROWS` (TOML): one table per row with the source cited
-in full, the text we read (``quote``, word for word, with the address it came from in
-``read_at``), their value as printed, how a magnitude agrees
+"""The published measurements of the literature comparison (:mod:`gecko_agents.studies.
+validation`), read from the data file :data:`gecko_agents.data.LITERATURE_ROWS` (TOML): one
+table per row with the source cited in full, the text we read (``quote``, word for word, with
+the address it came from in ``read_at``), their value as printed, how a magnitude agrees
 (their scatter or a relative tolerance, on the nearer bound for a bounded quantity; a factor
 band for a trend or a self-consistency check; for a direction stated in words the smallest
 effect the words state), the independent measurement it comes from, and the parameters our
