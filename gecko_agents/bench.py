@@ -287,9 +287,15 @@ def _arguments(argv):
         help="steps and wall time against pull-off and release error, explicit and implicit",
     )
     ap.add_argument(
+        "--main-job",
+        action="store_true",
+        help="the main job against itself without its fast paths, in one run "
+        "(gecko_agents.bench_main_job)",
+    )
+    ap.add_argument(
         "--docs",
         metavar="PATH",
-        help="with --work-precision: also write its table to PATH (Markdown)",
+        help="with --work-precision or --main-job: also write its table to PATH (Markdown)",
     )
     ap.add_argument(
         "--no-dask", action="store_true", help="skip the 1- vs 2-worker Dask sweep throughput"
@@ -381,9 +387,13 @@ def _dask_section(out: dict) -> None:
 def main(argv=None) -> dict:
     """Run the benchmark and print its table; returns the numbers."""
     args = _arguments(argv)
+    if args.docs and not os.access(os.path.dirname(os.path.abspath(args.docs)), os.W_OK):
+        raise SystemExit(f"--docs {args.docs}: its folder does not exist or is not writable")
+    if args.main_job:
+        from gecko_agents.bench_main_job import main_job
+
+        return main_job(args.quick, docs=args.docs)
     if args.work_precision:
-        if args.docs and not os.access(os.path.dirname(os.path.abspath(args.docs)), os.W_OK):
-            raise SystemExit(f"--docs {args.docs}: its folder does not exist or is not writable")
         return work_precision(args.quick, docs=args.docs)
     default = Model(PAPER_ARRAY, n_sim=max(args.sizes)).kernel
     kernels = ["numpy"] + (["numba"] if numba_available() else [])

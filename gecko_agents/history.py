@@ -137,7 +137,9 @@ class History:
         to the plate, ``root_dy_um`` (N,) root heights relative to the plate, ``floor_x_um``,
         ``floor_y_um`` (floor polyline).
     detachments : dict of arrays, one entry per detachment event: ``seta``, ``time_us``,
-        ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN``, and
+        ``plate_y_um``, ``overlap_um`` (the overlap at which the tip let go), ``force_uN`` (the
+        seta's normal force at its release: the law's at δ_detach where the tip passed it,
+        :meth:`gecko_agents.contact.base.ContactLaw.release_force`, else its last force), and
         ``mode`` (where its detachment started, ``"edge"`` or ``"centre"``) for a law that has
         more than one (the mushroom tip).
     meta : everything else worth keeping (dt, protocol, quasi-static measure, versions…),

@@ -31,15 +31,17 @@ def _digest(h) -> str:
 
 @pytest.mark.parametrize(
     "kernel, press, digest",
-    [pytest.param("auto", False, "a55b1ff30ce313c1", marks=extras.needs("fast")),
-     ("numpy", True, "d29aa6fb2cd26c6c"),
-     ("python", False, "5d0afac93cc0d7e7")],
+    [pytest.param("auto", False, "f601cf15ab4eb7be", marks=extras.needs("fast")),
+     ("numpy", True, "6c114eecf6a314b2"),
+     ("python", False, "6fa87cdf89d95ca5")],
 )  # fmt: skip
 def test_rigid_plate_histories_are_bit_identical_to_before(kernel, press, digest):
     """The rigid plate (``backing.kind = "rigid"``, the default) as a component: the same
     history bit for bit as the model that had the plate built in (pinned on the development
-    machine from that code, commit 04094c1; numpy 2, numba for "auto"). A drag on a rough
-    floor with the loops, a press and pull with the numpy kernel."""
+    machine from that code, commit 04094c1; numpy 2, numba for "auto"), but for the
+    detachments' force, since the law's at its release (the pins of 04094c1 without that
+    column are unchanged). A drag on a rough floor with the loops, a press and pull with the
+    numpy kernel."""
     prot = (
         protocol.press_pull(0.3, speed=0.05)
         if press

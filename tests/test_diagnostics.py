@@ -301,3 +301,39 @@ def test_a_loaded_run_that_never_touched_is_diagnosed_as_the_live_one(monkeypatc
     with pytest.raises(dg.MeaninglessRunError) as loaded:
         dg.diagnose(past, warn=False)
     assert str(loaded.value) == str(live.value)
+
+
+def _row_of_tips(p, tip_x):
+    """A history of parameters ``p`` whose neighbouring tips stood at ``tip_x`` [µm] (one
+    record) and whose centre lines came as close as its tips."""
+    n = len(tip_x)
+    setae = {f: np.zeros((1, n)) for f in hist.PER_SETA_FIELDS}
+    setae["tip_x_um"] = np.array([tip_x], float)
+    meta = {"min_neighbour_distance_um": float(np.min(np.diff(tip_x)))}
+    scalars = {c: np.zeros(1) for c in hist.SCALAR_COLUMNS}
+    return hist.History(p, 1, scalars, setae, {}, {}, meta)
+
+
+def test_pillars_meet_judges_flanges_wider_than_their_stalks():
+    """Mushroom flanges of R = 1.9 µm on stalks of r = 1.2 µm at pitch 4 µm (they fit while
+    straight) whose tips came 3.5 µm apart: the stalks are clear (3.5/2.4 = 1.46) but the
+    flanges overlap (3.5/3.8 = 0.92 < 1); a flat punch as wide as its stalk is judged by the
+    stalks alone, and without tip records the centre lines stand in for the tips."""
+    from gecko_agents.diagnostics import resolution
+
+    base = PAPER_TABLE1.replace(
+        mechanics="elastica", seta={"r": 1.2, "theta_deg": 90.0}, array={"count": 3}
+    )
+    mushroom = base.replace(tip="mushroom", contact={"R": 1.9})
+    h = _row_of_tips(mushroom, [0.0, 3.5, 8.0])
+    value, meaning, _, applies = resolution.pillars_meet(h, contact_law(mushroom))
+    assert applies and value == pytest.approx(3.5 / 3.8, rel=1e-12)
+    assert value < dg.LIMITS["pillars_meet"][1]
+    assert "faces' diameter 3.8" in meaning
+    h.setae.clear()
+    assert resolution.pillars_meet(h, contact_law(mushroom))[0] == pytest.approx(3.5 / 3.8)
+    punch = base.replace(tip="flat_punch", contact={"R": 1.2})
+    value, meaning, _, _ = resolution.pillars_meet(
+        _row_of_tips(punch, [0.0, 3.5, 8.0]), contact_law(punch)
+    )
+    assert value == pytest.approx(3.5 / 2.4) and "centre lines" in meaning

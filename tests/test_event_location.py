@@ -186,3 +186,53 @@ def test_a_fast_segment_keeps_its_travel_cap_with_a_long_event_step():
     assert steps[None] == pytest.approx(explicit, rel=1e-12)
     assert steps[10 * explicit] == pytest.approx(explicit, rel=1e-12)
     assert IMPLICIT_TRAVEL / 0.5 < explicit  # the cap is below one explicit step here
+
+
+ONE_SETA = PAPER_ARRAY.replace(
+    **{"mechanics": "rod", "seta.L": 5.0, "array.count": 1, "floor.sigma": 0.0}
+)
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [
+        {"integrator": "explicit"},
+        {"integrator": "implicit", "dt": 3.0, "event_dt": 3.0},
+        {"integrator": "implicit", "dt": 30.0, "event_dt": 30.0},
+    ],
+)
+def test_a_detachments_force_is_the_jkr_fold_whatever_the_step(kw):
+    """One rod seta of the paper (L = 5 µm) pulled off at three steps: the explicit, and
+    implicit steps of 3 and 30 µs with nothing located, whose tip passes the fold by up to
+    0.6 µm. The force recorded with its detachment is JKR's at the fold δ_c, where the tip
+    lets go: −(5/9)·Fc, Fc = (3/2)πwR (Johnson, Kendall & Roberts 1971), to 1e-12 (the
+    force of the step before, recorded before, was −2.28, −2.01 and −2.92 µN)."""
+    # Unchecked: the 30 µs step's energy books break their tolerance, as such a step's do.
+    run = Model.run.__globals__.get("_run", Model.run)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        h = run(Model(ONE_SETA, n_sim=1, seed=1, **kw), protocol.press_pull(0.5), progress=False)
+    c = ONE_SETA.contact
+    fold = -(5.0 / 9.0) * 1.5 * math.pi * c.work_of_adhesion * c.R
+    assert len(h.detachments["force_uN"]) == 1
+    assert h.detachments["force_uN"][0] == pytest.approx(fold, rel=1e-12)
+    assert h.detachments["overlap_um"][0] < jkr_fold_overlap(c)
+
+
+def jkr_fold_overlap(c) -> float:
+    """δ_c = −(3/4)·(π²w²R/E*²)^(1/3) [µm], the fold of JKR's branch under fixed grips
+    (Johnson, Kendall & Roberts 1971, Proc R Soc A 324:301)."""
+    return -0.75 * (math.pi**2 * c.work_of_adhesion**2 * c.R / c.E_star**2) ** (1.0 / 3.0)
+
+
+def test_every_detachment_of_an_array_is_at_its_fold_with_and_without_location(explicit, located):
+    """The rough 20-seta array: every tip that let go past its fold records −(5/9)·Fc, at
+    the explicit step and the located implicit one alike (per-seta forces of the step
+    before differed by up to a quarter)."""
+    c = ROUGH.contact
+    fold = -(5.0 / 9.0) * 1.5 * math.pi * c.work_of_adhesion * c.R
+    for _, h in (explicit, located):
+        det = h.detachments
+        passed = np.isfinite(det["overlap_um"])
+        assert passed.sum() >= N
+        np.testing.assert_allclose(det["force_uN"][passed], fold, rtol=1e-12)

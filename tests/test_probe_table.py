@@ -11,6 +11,7 @@ tests/test_calibrate.py. The next probe round adds its rows here.
 """
 
 import json
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -28,6 +29,7 @@ from gecko_agents.model import Model, Numerics
 from gecko_agents.model.cost import RunCostError
 from gecko_agents.params import PAPER_ARRAY, PAPER_TABLE1
 from gecko_agents.protocol import PressLimitError
+from gecko_agents.runfiles.schema import RunFileError
 
 ROOT = Path(__file__).resolve().parents[1]
 RUN_FILE = GOOD.replace("n_sim = 1", 'n_sim = 1\nkernel = "numpy"')  # no compilation to wait for
@@ -533,7 +535,10 @@ def _probe_file(*lines: str, preset: str = "PAPER_TABLE1", **replace: str) -> st
 
 
 def _on_array_probe(probe: Probe, *lines: str):
-    """``run`` on PAPER_ARRAY under a probe with ``lines`` in its [params]."""
+    """``run`` on PAPER_ARRAY under a probe with ``lines`` in its [params], at a pitch of
+    10 µm: the preset's 4 µm tip radius fits it as a flat face too (faces wider than their
+    stalks must fit the pitch)."""
+    lines = ('"array.pitch" = 10.0', *lines)
     return _run_file(probe, _probe_file(*lines, preset="PAPER_ARRAY"))
 
 
@@ -954,3 +959,246 @@ def test_probe_54_design(row, tmp_path, capsys, monkeypatch):
 
 def test_the_design_rows_are_distinct():
     assert len({r.id for r in ROWS_54_DESIGN}) == len(ROWS_54_DESIGN)
+
+
+# Issue 54: the laws ---------------------------------------------------------------------------
+# Each row the issue's input; the laws' closed-form oracles are in the laws' own test files.
+
+
+def _sharp_obtuse_rim(probe: Probe):
+    """The issue's sharp 120° rim on a tip of ν = 0.1 (flange 20 µm on a 16 µm stalk,
+    σ₀ = 2 MPa): its rim is singular (λ = 0.8004 ± 0.1327i), so it lets go from the rim at
+    σ₀πa²·0.83·χ^(−(1 − Re λ)), not from the centre at σ₀πa² = 2513 µN."""
+    from gecko_agents.contact import contact_law
+    from gecko_agents.physics import flaw_tolerance as ft
+
+    p = STIFF.replace(
+        tip="mushroom", mechanics="rod", contact={"R": 20.0, "sigma0": 2.0, "nu1": 0.1},
+        seta={"r": 16.0}, mushroom={"rim": "sharp", "rim_angle_deg": 120.0},
+    )  # fmt: skip
+    law = contact_law(p)
+    chi = ft.flaw_parameter(20.0, 2.0, law.E_star, law.w)
+    rim = math.pi * 20.0**2 * 2.0 * 0.83 * chi ** -(1.0 - 0.8003909)
+    return (law.release_mode, round(law.pull_off_force / rim, 5)), str(law.mode_forces)
+
+
+def _punch_at_a_cr(probe: Probe):
+    """A flat punch of radius a_cr = 8E*w/(πσ₀²) on an interface of σ₀ = 0.3 MPa: its
+    pull-off over σ₀πa² (the simple form's kink, 1) is the Dugdale punch's 0.8663."""
+    from gecko_agents.contact import contact_law
+    from gecko_agents.physics import flaw_tolerance as ft
+
+    c = STIFF.contact
+    a_cr = float(ft.flaw_tolerant_radius(0.3, c.E_star, c.work_of_adhesion))
+    p = STIFF.replace(tip="flat_punch", mechanics="rod", contact={"R": a_cr, "sigma0": 0.3})
+    law = contact_law(p)
+    return round(law.pull_off_force / (math.pi * a_cr**2 * 0.3), 4), f"a_cr = {a_cr} um"
+
+
+MUSHROOM_DESIGN = """
+seed = 0
+trials = 4
+confirm = 0
+objectives = "pull_off_per_area"
+[material]
+E_MPa = 1.413
+nu = 0.3
+w_J_per_m2 = 0.165
+sigma0_MPa = 0.5
+[surface]
+kind = "flat"
+[test]
+preload_kPa = 10.0
+floor_seeds = 1
+pillars = 10
+[space]
+tip = "mushroom"
+radius_um = 1.1
+aspect_ratio = 2.0
+lean_deg = 90.0
+flange_ratio = 5.0
+fill_fraction = [0.3, 0.7]
+"""
+
+
+def _load_design(path: str):
+    from gecko_agents.design import load_design
+
+    return load_design(Path(path))
+
+
+def _overlapping_flanges_screened(probe: Probe):
+    """The issue's design, flange ratio 5 at fill 0.69: flanges of 5.5 µm radius on a pitch
+    of 2.35 µm, in a space that also holds designs whose flanges fit (flange ratio from 1).
+    The screen holds it to nothing and it breaks the constraint faces_fit_pitch."""
+    from gecko_agents.design.screen import evaluate
+
+    text = MUSHROOM_DESIGN.replace("flange_ratio = 5.0", "flange_ratio = [1.0, 5.0]")
+    spec = _load_design(_write(probe, text, "d.toml"))
+    values = {**spec.fixed, "tip": "mushroom", "backing": "rigid", "mushroom_rim": "flawed"}
+    values |= {"fill_fraction": 0.69, "flange_ratio": 5.0}
+    res = evaluate(spec, values)
+    broken = sorted(k for k, v in res["constraints"].items() if v > 0)
+    return (res["objectives"]["pull_off_per_area"], broken), str(res["constraints"])
+
+
+def _detachment_force(probe: Probe, kw: dict):
+    """The one seta's recorded detachment force [µN, 4 digits] at a step ``kw``: JKR's at
+    its fold, −(5/9)·Fc = −1.7271 µN, whatever the step's overshoot (the run unchecked)."""
+    probe.monkeypatch.setattr(Model, "run", Model.run.__globals__.get("_run", Model.run))
+    h = Model(P41, seed=1, **kw).run(protocol.press_pull(0.5, speed=0.05), progress=False)
+    return round(float(h.detachments["force_uN"][0]), 4), str(h.detachments["overlap_um"])
+
+
+ROWS_54_LAWS = [
+    Row("mushroom flange R 3 on pitch 4",
+        lambda p: _raised(lambda: Model(P41.replace(tip="mushroom", mechanics="elastica",
+                                                    seta={"r": 1.5, "theta_deg": 90.0},
+                                                    contact={"R": 3.0},
+                                                    array={"count": 5, "pitch": 4.0}), n_sim=5)),
+        ValueError, ("Contact.R = 3.0", "Seta.r = 1.5", "Array.pitch/2 = 2.0")),
+    Row("flange ratio 5 at fill 0.69 in a design", _overlapping_flanges_screened,
+        (0.0, ["faces_fit_pitch"]), ("faces_fit_pitch",)),
+    Row("design: flange ratio 5, fill 0.3 to 0.7",
+        lambda p: _raised(lambda: _load_design(_write(p, MUSHROOM_DESIGN, "d.toml"))),
+        RunFileError, ("flange_ratio in [5, 5]", "fill_fraction in [0.3, 0.7]", "d.toml")),
+    Row("sharp 120 deg rim at nu 0.1", _sharp_obtuse_rim, ("edge", 1.0), ("edge", "centre")),
+    Row("punch of radius a_cr with sigma0 0.3", _punch_at_a_cr, 0.8663, ("a_cr",)),
+    Row("detachment force at the explicit step", lambda p: _detachment_force(p, {}),
+        -1.7271, ()),
+    Row("detachment force at implicit dt 30",
+        lambda p: _detachment_force(p, {"integrator": "implicit", "dt": 30.0,
+                                        "event_dt": 30.0}), -1.7271, ()),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_LAWS],
+)
+def test_probe_issue_54_laws(row, tmp_path, capsys, monkeypatch):
+    outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))
+    assert outcome == row.expected, message
+    for name in row.names:
+        assert name in message, (name, message)
+
+
+# Issue 54: review ----------------------------------------------------------------------------
+def _relative_storage_elsewhere(probe: Probe):
+    """A study at ``--storage sqlite:///s.db`` into ``--out o``, then the same command from
+    another folder, where that URL names another file: refused, the folder's outputs
+    unchanged (-1 if one changed)."""
+    first, second = probe.tmp / "a", probe.tmp / "b"
+    first.mkdir()
+    second.mkdir()
+    probe.monkeypatch.chdir(first)
+    assert _design(probe, "--storage", "sqlite:///s.db")[0] == 0
+    d = probe.tmp / "o"
+    before = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    probe.monkeypatch.chdir(second)
+    code, message = _design(probe, "--storage", "sqlite:///s.db", "--trials", "2")
+    after = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    return (code if after == before else -1), message
+
+
+def _design_interrupted(probe: Probe):
+    """``design --out 'o x' --trials 3`` stopped by Ctrl-C: exit 130, the resume line the
+    whole command, quoted for a shell."""
+    import gecko_agents.design as design
+
+    def stop(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    probe.monkeypatch.setattr(design, "run_design", stop)
+    code, message = _design(probe, "--trials", "3", out="o x")
+    return code, message.replace(str(probe.tmp), "TMP")
+
+
+def _every_trial_fails(probe: Probe):
+    """A screen whose model raises on every design: the report counts the failed trials
+    among all the study's trials."""
+    import gecko_agents.design.search as design_search
+
+    def evaluate(spec, values):
+        raise RuntimeError("preload not reached within 200000 steps")
+
+    probe.monkeypatch.setattr(design_search, "evaluate", evaluate)
+    code, message = _design(probe)
+    return code, message + (probe.tmp / "o" / "report.md").read_text()
+
+
+def _resumed_designs(probe: Probe, store: str = "o/study.db"):
+    """A study of 4 trials in ``store`` (the default, or a --storage file) resumed to 8 (as
+    after a kill at 4): (how many distinct designs the 8 trials drew, what the resume said)."""
+    import sqlite3
+
+    argv = [] if store == "o/study.db" else ["--storage", f"sqlite:///{probe.tmp / store}"]
+    assert _design(probe, *argv)[0] == 0
+    code, message = _design(probe, *argv, "--trials", "8")
+    assert code == 0
+    with sqlite3.connect(probe.tmp / store) as db:
+        drawn = db.execute("SELECT trial_id, param_value FROM trial_params").fetchall()
+    return len({v for _, v in drawn}), message
+
+
+def _store_created_meanwhile(probe: Probe):
+    """``design --storage`` on a new SQLite file another command (``--worker 1``, started at
+    the same time) creates first: Optuna's first try at the store meets the other's
+    version row (the race two such commands run), the command goes on."""
+    import optuna
+    from sqlalchemy.exc import IntegrityError
+
+    rdb = optuna.storages.RDBStorage
+    raced = []
+
+    class Racing(rdb):
+        def __init__(self, url, *args, **kwargs):
+            if not raced:
+                raced.append(url)
+                rdb(url, *args, **kwargs)  # the other command's store, created first
+                raise IntegrityError("INSERT INTO alembic_version", {}, Exception("UNIQUE"))
+            super().__init__(url, *args, **kwargs)
+
+    probe.monkeypatch.setattr(optuna.storages, "RDBStorage", Racing)
+    return _design(probe, "--storage", f"sqlite:///{probe.tmp / 's.db'}")
+
+
+def _damaged_store(probe: Probe):
+    """A design folder whose study.db was cut short (a full disk, a copy cut off): refused,
+    naming the file, before any work (-1 if a file changed)."""
+    assert _design(probe)[0] == 0
+    db = probe.tmp / "o" / "study.db"
+    db.write_bytes(db.read_bytes()[:5000])
+    d = probe.tmp / "o"
+    before = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    code, message = _design(probe, "--trials", "6")
+    after = {p: p.read_bytes() for p in d.rglob("*") if p.is_file()}
+    return (code if after == before else -1), message
+
+
+ROWS_54_REVIEW = [
+    Row("design --storage sqlite:///s.db again from another folder", _relative_storage_elsewhere,
+        2, ("holds the study", "a/s.db", "b/s.db")),
+    Row("design --out 'o x' --trials 3 interrupted", _design_interrupted, 130,
+        ("resume with: gecko-agents design TMP/d.toml --out 'TMP/o x' --trials 3",)),
+    Row("design: the screen's model raises on every design", _every_trial_fails, 0,
+        ("failed_trials: 4 of 4 trials failed", "RuntimeError")),
+    Row("design resumed from 4 to 8 trials draws 8 designs", _resumed_designs, 8,
+        ("8 screening trials",)),
+    Row("design --storage resumed from 4 to 8 trials draws 8 designs",
+        lambda p: _resumed_designs(p, "s.db"), 8,
+        ("8 screening trials",)),
+    Row("design --storage: a new store another command created meanwhile",
+        _store_created_meanwhile, 0, ("4 screening trials",)),
+    Row("design into its folder with study.db cut short", _damaged_store, 2,
+        ("o/study.db", "damaged")),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "row",
+    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_REVIEW],
+)
+@extras.needs("design")  # every row runs the design search or opens its store
+def test_probe_54_review(row, tmp_path, capsys, monkeypatch):
+    test_probe_54_design(row, tmp_path, capsys, monkeypatch)

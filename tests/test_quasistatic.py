@@ -345,6 +345,57 @@ def test_shared_approach_equals_one_preload_pull_per_preload(mechanics):
         assert [r[:2] for r in m.releases] == [r[:2] for r in one.releases]
 
 
+@pytest.mark.parametrize("law", ["paper", "adhesive"])
+def test_long_approach_steps_of_a_pressed_array_land_where_the_short_ones_do(law):
+    # A deep press of soft setae on a rough floor: once every seta is attached and pressed,
+    # steps of up to 32 dz that change no contact state give the same turning points and
+    # retracts as dz steps (a stuck tip depends on its anchor and the plate height only, a
+    # sliding one on the plate height only), in far fewer approach steps.
+    p = PAPER_ARRAY.replace(**{"array.count": 400, "floor.sigma": 1.0, "friction.law": law})
+    h, w = qs.representative_heights(400, 1.0, np.random.default_rng(2), 20)
+    pre = [3.0, 100.0, 400.0]
+    short = qs.preload_pulls(p, h, pre, weights=w, retract_steps=100)
+    long = qs.preload_pulls(p, h, pre, weights=w, retract_steps=100, approach_stride=32)
+    for s, g in zip(short, long, strict=True):
+        i, j = s.turn_index, g.turn_index
+        assert g.plate_y[j] == pytest.approx(s.plate_y[i], rel=0, abs=1e-9)
+        assert g.preload == pytest.approx(s.preload, rel=1e-9)
+        # the retracts: the same plate heights, forces and releases
+        assert_allclose(g.plate_y[j:], s.plate_y[i:], rtol=0, atol=1e-9)
+        scale = np.abs(s.force_normal).max()
+        assert_allclose(g.force_normal[j:], s.force_normal[i:], rtol=0, atol=1e-9 * scale)
+        assert [(k - j, m) for k, m, _ in g.releases] == [(k - i, m) for k, m, _ in s.releases]
+        assert g.n_attached.max() == s.n_attached.max()
+    if law == "paper":  # the paper's sliding setae press deep (adhesive friction: stiff, short)
+        assert long[-1].turn_index < short[-1].turn_index / 4
+    with pytest.raises(ValueError, match="approach_stride"):
+        qs.preload_pulls(p, h, pre, weights=w, approach_stride=0)
+
+
+@pytest.mark.parametrize("law", ["paper", "adhesive"])
+def test_long_retract_moves_keep_every_release_and_the_sampled_pull_off(law):
+    # Between state changes each seta's force is monotone in the plate height, so moves of up
+    # to 32 grid steps where nothing changes skip only points inside monotone stretches: the
+    # sampled pull-off, every release (seta, plate height, overlap) and the attached counts
+    # are those of single steps, from a small fraction of the records.
+    p = PAPER_ARRAY.replace(**{"array.count": 400, "floor.sigma": 1.0, "friction.law": law})
+    h, w = qs.representative_heights(400, 1.0, np.random.default_rng(2), 20)
+    pre = [3.0, 60.0]
+    one = qs.preload_pulls(p, h, pre, weights=w, retract_steps=100)
+    far = qs.preload_pulls(p, h, pre, weights=w, retract_steps=100, retract_stride=32)
+    for s, g in zip(one, far, strict=True):
+        assert g.pull_off == pytest.approx(s.pull_off, rel=1e-12)
+        assert g.n_attached.max() == s.n_attached.max()
+        rel_g = np.array([(g.plate_y[k], m, d) for k, m, d in g.releases])
+        rel_s = np.array([(s.plate_y[k], m, d) for k, m, d in s.releases])
+        assert_allclose(rel_g, rel_s, rtol=1e-12, atol=0)
+        assert np.isin(g.plate_y, s.plate_y).all()  # grid points, a subset
+    retract_records = [[len(r.plate_y) - r.turn_index for r in rs] for rs in (one, far)]
+    assert sum(retract_records[1]) < 0.6 * sum(retract_records[0]), retract_records
+    with pytest.raises(ValueError, match="retract_stride"):
+        qs.preload_pulls(p, h, pre, weights=w, retract_stride=1.5)
+
+
 def test_quantile_heights_are_the_conditional_means_of_equal_probability_slices():
     h, w, z = qs.quantile_heights(10**7, 2.0, 64, return_edges=True)
     assert_allclose(w, 10**7 / 64)

@@ -183,3 +183,25 @@ def test_sweep_workers_are_checked_before_anything_runs(tmp_path, capsys, value,
     assert err.value.code == 2
     assert message in capsys.readouterr().err
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("law", ["paper", "adhesive"])
+def test_a_point_read_off_its_curve_equals_its_own_press_and_pull(law):
+    # One shared approach (long steps once pressed, turning points bisected as a single press
+    # does) and batched retracts give each preload's row of a single press-and-pull, in
+    # whichever order the sweep asks for the points. Seed 0's floor has a block jumping in
+    # (and pulling) inside the step that reaches 60 µN: a secant search stops at another
+    # crossing there, with 2.5 % less pull-off.
+    from gecko_agents.params import PAPER_ARRAY
+
+    p = PAPER_ARRAY.replace(**{"array.count": 20_000, "friction.law": law})
+    curve = [60.0, 200.0, 600.0, 6000.0]
+    kw = {"n_blocks": 100, "retract_steps": 100}
+    for preload in reversed(curve):
+        row = points.quasistatic_preload_point(p, 0, preload_uN=preload, curve_uN=curve, **kw)
+        one = points.quasistatic_preload_point(p, 0, preload_uN=preload, **kw)
+        assert row.keys() == one.keys()
+        for k, v in one.items():
+            assert row[k] == pytest.approx(v, rel=1e-8), k
+    with pytest.raises(ValueError, match="curve_uN"):
+        points.quasistatic_preload_point(p, 0, preload_uN=7.0, curve_uN=curve, **kw)

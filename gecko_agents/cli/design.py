@@ -4,6 +4,7 @@ array designs (:mod:`gecko_agents.design`)."""
 from __future__ import annotations
 
 import argparse
+import shlex
 import time
 import warnings
 from pathlib import Path
@@ -100,8 +101,7 @@ def cmd_design(args, extra) -> int:
         folder.check_output(out, study_name(spec), args.storage)
     except folder.DesignFolderError as err:
         raise UsageError(str(err)) from None
-    again = [PROG, "design", str(args.designfile)] + (["--quick"] if args.quick else [])
-    again += ["--out", str(out)] + (["--storage", args.storage] if args.storage else [])
+    again = _design_command(args, out)
     print(
         f"{spec.path}{' (quick)' if spec.quick else ''}: {', '.join(spec.objectives)} over "
         f"{', '.join([*spec.ranges, *[c for c, v in spec.choices.items() if len(v) > 1]])} "
@@ -111,7 +111,7 @@ def cmd_design(args, extra) -> int:
     try:
         summary = _run(spec, out, args)
     except KeyboardInterrupt:
-        error("interrupted: every finished trial is stored; resume with: " + " ".join(again))
+        error("interrupted: every finished trial is stored; resume with: " + again)
         return EXIT_INTERRUPTED
     except Exception as err:
         full = folder.storage_full(err)
@@ -120,11 +120,23 @@ def cmd_design(args, extra) -> int:
         where = args.storage or str(out / "study.db")
         error(
             f"{where}: the disk is full ({full}); every finished trial is stored: free some "
-            "space and resume with: " + " ".join(again)
+            "space and resume with: " + again
         )
         return EXIT_FAILURE
     _said(summary, out, time.perf_counter() - t0)
     return EXIT_OK
+
+
+def _design_command(args, out: Path) -> str:
+    """The ``design`` command line of ``args`` into ``out``, every option given, quoted for a
+    shell."""
+    words = [PROG, "design", str(args.designfile)] + (["--quick"] if args.quick else [])
+    words += ["--out", str(out)] + (["--storage", args.storage] if args.storage else [])
+    words += ["--trials", str(args.trials)] if args.trials is not None else []
+    words += ["--workers", str(args.workers)] if args.workers != 1 else []
+    words += ["--dask", args.dask] if args.dask else []
+    words += ["--worker", str(args.worker)] if args.worker else []
+    return shlex.join(words)
 
 
 def _run(spec, out: Path, args) -> dict:

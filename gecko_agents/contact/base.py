@@ -107,6 +107,16 @@ class ContactLaw:
         """Normal force P [µN] at contact radius a [µm] and overlap δ [µm]."""
         raise NotImplementedError
 
+    def release_force(self) -> float:
+        """Normal force P [µN] at the detach overlap δ_detach on the law's own branch: what a
+        tip that lets go by passing δ_detach holds there, whatever a step's overshoot past it
+        (JKR's fold δ_c: −5/9·Fc, Johnson, Kendall & Roberts 1971; a punch: its pull-off).
+        NaN for a law whose tips let go otherwise (a radius with kinetics, a peeling film)."""
+        if self.rate_dependent or self.tangential:
+            return math.nan
+        d = np.array([self.detach_overlap], float)
+        return float(self.force(self.radius(d, None, 0.0), d)[0])
+
     def energy(self, a, delta):
         """Energy stored in the contact at (a, δ), from attachment [pJ]."""
         raise NotImplementedError

@@ -37,11 +37,12 @@ class FlatPunch(ContactLaw):
     go earlier (:func:`gecko_agents.physics.punch.tilted_pull_off`, F = F_K − 3|M|/a, not yet
     used here); this law is the aligned limit.
 
-    An interface of finite strength ``contact.sigma0`` = σ₀ caps the pull-off at σ₀ over the
-    face where that is below Kendall's (flaw tolerance:
-    :func:`gecko_agents.physics.flaw_tolerance.punch_pull_off`, Tang, Hui & Glassmaker 2005,
-    J R Soc Interface 2:505); the face lets go at δ = −F/(2E*a), the same Sneddon stiffness.
-    σ₀ = inf (default) is Kendall's law exactly.
+    An interface of finite strength ``contact.sigma0`` = σ₀ gives Kendall's edge crack a
+    cohesive (Dugdale) zone: the face lets go at Maugis's Dugdale punch's force, σ₀πa² for
+    a ≤ 0.540·a_cr and below both that and Kendall's above (flaw tolerance:
+    :func:`gecko_agents.physics.flaw_tolerance.punch_pull_off`; Maugis 1992, J Colloid
+    Interface Sci 150:243), at δ = −F/(2E*a), the same Sneddon stiffness (the zone's own
+    compliance is not modelled). σ₀ = inf (default) is Kendall's law exactly.
 
     Parameters
     ----------

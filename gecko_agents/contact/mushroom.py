@@ -16,9 +16,10 @@ class MushroomTip(FlatPunch):
     P = 2E*a_tδ while bonded, in series with the stalk's springs: the flange's compliance adds
     to the stalk's), letting go at the smaller of its two modes'
     tensions (:func:`gecko_agents.physics.mushroom.pull_offs`): from the rim (Kendall's edge
-    crack for a flawed rim, Tang's form with the rim's singularity for a sharp one) or from the
-    centre (Griffith's penny crack from a defect of radius ``mushroom.defect_radius``, bounded
-    by ``contact.sigma0``). Aksak, Şahin & Sitti 2014, Beilstein J Nanotechnol 5:630.
+    crack with a cohesive zone for a flawed rim, Tang's form with the rim's singularity for a
+    sharp one) or from the centre (Griffith's penny crack from a defect of radius
+    ``mushroom.defect_radius``, bounded by ``contact.sigma0``). Aksak, Şahin & Sitti 2014,
+    Beilstein J Nanotechnol 5:630.
 
     :attr:`release_mode` names the mode (``"edge"`` or ``"centre"``), recorded with each
     detachment in the history. With a flawed rim, no defect and any σ₀, the tip is the flat

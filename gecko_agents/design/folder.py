@@ -36,6 +36,8 @@ __all__ = [
     "write_record",
     "hold",
     "check_storage",
+    "check_database",
+    "store_name",
     "storage_full",
 ]
 
@@ -125,8 +127,8 @@ def check_output(out: Path, study: str | None = None, storage: str | None = None
             "outputs: give it its own --out (an edited design file or --quick is another study)"
         )
     where = saved.get(study, {}).get("storage")
-    here = "study.db" if storage is None else _hidden(storage)
-    if study is not None and where is not None and where != here:
+    here = "study.db" if storage is None else store_name(storage)
+    if study is not None and where is not None and store_name(where) != here:
         raise DesignFolderError(
             f"{out}: holds the study {study} stored at {where}, not at {here}: give the same "
             "--storage to continue it, or another --out"
@@ -136,6 +138,29 @@ def check_output(out: Path, study: str | None = None, storage: str | None = None
         raise DesignFolderError(
             f"{out}: {_shown(clash)} is not what a search writes there (a file, or the folder "
             "runs); choose another --out"
+        )
+    if storage is None and (out / "study.db").is_file():
+        check_database(out / "study.db")
+
+
+def check_database(db: Path, shown: str | None = None) -> None:
+    """Refuse an SQLite file SQLite cannot read whole (cut short by a full disk or a copy,
+    or not a database), naming it (``shown``: how the command named it). Raises
+    :class:`DesignFolderError`."""
+    try:
+        con = sqlite3.connect(f"{Path(db).resolve().as_uri()}?mode=ro", uri=True)
+        try:
+            verdict = con.execute("PRAGMA quick_check").fetchone()[0]
+        finally:
+            con.close()
+    except sqlite3.OperationalError:  # locked, or its log not readable here: Optuna will say
+        return
+    except sqlite3.DatabaseError as err:
+        verdict = str(err)
+    if verdict != "ok":
+        raise DesignFolderError(
+            f"{shown or db}: is damaged ({verdict}): restore it, or move it aside to start "
+            "its study again"
         )
 
 
@@ -150,7 +175,7 @@ def write_record(out: Path, spec, study: str, storage: str | None) -> None:
         "design_file": str(spec.path),
         "sha256": spec.sha256,
         "quick": spec.quick,
-        "storage": "study.db" if storage is None else _hidden(storage),
+        "storage": "study.db" if storage is None else store_name(storage),
     }
     atomic_write_bytes(Path(out) / RECORD, json.dumps(record, indent=1).encode())
 
@@ -205,11 +230,18 @@ def _lock(folder: Path) -> int:
     return fd
 
 
-def _hidden(url: str) -> str:
-    """``url`` with its password hidden."""
+def store_name(url: str) -> str:
+    """The store ``url`` names, as a design folder's record keeps it: its password hidden, an
+    SQLite file's path made absolute (``sqlite:///designs.db`` given in another folder is
+    another file); "study.db", the folder's own file, as it is."""
     from sqlalchemy.engine import make_url
 
-    return make_url(url).render_as_string(hide_password=True)
+    if url == "study.db":
+        return url
+    u = make_url(url)
+    if u.get_backend_name() == "sqlite" and u.database and not u.database.startswith("file:"):
+        u = u.set(database=str(Path(u.database).resolve()))
+    return u.render_as_string(hide_password=True)
 
 
 def check_storage(url: str) -> None:
@@ -265,6 +297,8 @@ def _check_sqlite_file(shown: str, database: str | None) -> None:
             raise PermissionError("the file is read-only")
     except OSError as err:
         raise DesignFolderError(f"{shown}: cannot be written ({err.strerror or err})") from None
+    if path.is_file():
+        check_database(path, f"{shown} ({path})")
 
 
 def storage_full(err: BaseException) -> str | None:

@@ -40,15 +40,17 @@ the end."""
 
 def memory_study(spec, store, sampler=None):
     """An in-memory study with the sampler of ``spec`` (or ``sampler``) holding the finished
-    trials of ``store`` (complete and failed), in their order."""
+    trials of ``store`` (complete and failed), in their order; a study resumed draws with a
+    seed of its own (:func:`~gecko_agents.design.search.sampler_seed`)."""
     optuna = search.require_optuna()
+    done = (optuna.trial.TrialState.COMPLETE, optuna.trial.TrialState.FAIL)
+    held = store.get_trials(deepcopy=False, states=done)
     mem = optuna.create_study(
-        sampler=sampler or search.make_sampler(spec, optuna),
+        sampler=sampler or search.make_sampler(spec, optuna, start=len(held)),
         directions=spec.directions,
         study_name="memory",
     )
-    done = (optuna.trial.TrialState.COMPLETE, optuna.trial.TrialState.FAIL)
-    mem.add_trials(store.get_trials(deepcopy=False, states=done))
+    mem.add_trials(held)
     return mem
 
 

@@ -308,7 +308,9 @@ def report_text(spec, rows: list[dict], imp: dict, n_trials: int, screen_flags: 
         )
     lines += ["", "## Validity items not met", ""]
     lines += [
-        f"- screen, {name}: not met in {n} of {n_trials} trials ({meaning})"
+        f"- screen, {name}: {n} of {n_trials + n} trials failed ({meaning})"
+        if name == "failed_trials"  # not among the n_trials finished ones
+        else f"- screen, {name}: not met in {n} of {n_trials} trials ({meaning})"
         for name, (n, meaning) in screen_flags.items()
     ] or ["- screen: none"]
     for r in rows:

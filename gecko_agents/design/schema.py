@@ -23,6 +23,7 @@ from gecko_agents.design.space import (
     MATERIAL_DEFAULTS,
     OBJECTIVES,
     TIP_KINDS,
+    face_overlap,
     gap_of,
     overrides_of,
 )
@@ -305,6 +306,7 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
     corners = [[(k, v) for v in spec.ranges[k]] for k in spec.ranges]
     sigma0 = spec.material["sigma0_MPa"]
     widest = (-math.inf, "")  # the widest gap between pillars at a corner [µm], where
+    fits = 0  # corners whose faces fit the pitch (overlap is monotone: the least is a corner)
     for tip, backing, rim in itertools.product(
         spec.choices["tip"], spec.choices["backing"], spec.choices["mushroom_rim"]
     ):
@@ -312,6 +314,10 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
             values = {**spec.fixed, **dict(corner), "tip": tip, "backing": backing}
             values["mushroom_rim"] = rim
             shown = ", ".join(f"{k} = {v:g}" for k, v in corner) or "the fixed values"
+            overlap = face_overlap(values, base)
+            if overlap is not None and overlap > 0:  # a broken constraint, not refused
+                continue
+            fits += 1
             try:
                 p = base.replace(**overrides_of(values, sigma0))
             except (ValueError, TypeError) as err:
@@ -321,6 +327,15 @@ def _cross_checks(ctx: Ctx, spec: DesignSpec) -> None:
                 ) from None
             _check_scan(ctx, spec, p, corner)
             widest = max(widest, (gap_of(p), f"{shown}, tip {tip!r}"))
+    if not fits:
+        knobs = ("radius_um", "flange_ratio", "fill_fraction", "spacing_um")
+        shown = ", ".join(f"{k} in [{span[k][0]:g}, {span[k][1]:g}]" for k in knobs if k in span)
+        raise ctx.error(
+            "[space]",
+            f"{shown} leaves no design whose flanges fit the pitch: flange_ratio·radius_um "
+            "must be at most half the pitch (pitch = radius_um·√(π/fill_fraction), or "
+            "spacing_um), else neighbouring flanges overlap",
+        )
     bound = spec.constraints.get("min_gap_um")
     if bound is not None and widest[0] < bound:  # the gap is monotone in each knob
         raise ctx.error(

@@ -37,7 +37,14 @@ import math
 import numpy as np
 
 from gecko_agents import floor
-from gecko_agents.design.space import KPA, TIP_KINDS, gap_of, measured_profile, overrides_of
+from gecko_agents.design.space import (
+    KPA,
+    TIP_KINDS,
+    face_overlap,
+    gap_of,
+    measured_profile,
+    overrides_of,
+)
 from gecko_agents.params import SetaArray
 from gecko_agents.physics import beam, fibril_probe, fibril_probe_halfspace, layer
 
@@ -213,6 +220,11 @@ def evaluate(spec, values: dict) -> dict:
     :data:`~gecko_agents.design.space.OBJECTIVES`), ``constraints`` (key → violation, ≤ 0
     where the design keeps the bound, as a fraction of it), ``metrics`` (what the report
     shows) and ``validity`` (the screen's assumptions, each judged for this design)."""
+    from gecko_agents.design.schema import base_params
+
+    overlap = face_overlap({**spec.fixed, **values}, base_params(spec))
+    if overlap is not None and overlap > 0:
+        return _overlapping_faces(overlap)
     p = design_params(spec, values)
     n, s = p.array.count, p.array.pitch
     area = n * s * s
@@ -251,11 +263,38 @@ def evaluate(spec, values: dict) -> dict:
         "full_contact_kPa": full_touch,
         "pull_off_std_kPa": float(np.std(per_area)),
     }
+    constraints = constraint_values(spec, values, p, metrics)
+    if overlap is not None:
+        constraints[FACES_FIT] = overlap
     return {
         "objectives": objectives,
-        "constraints": constraint_values(spec, values, p, metrics),
+        "constraints": constraints,
         "metrics": metrics,
         "validity": validity(spec, p, metrics),
+    }
+
+
+FACES_FIT = "faces_fit_pitch"
+"""The constraint every design with a face wider than its stalk keeps: (2R − s)/s ≤ 0, its
+neighbouring faces (a mushroom's flanges) apart (the parameters refuse overlapping ones)."""
+
+
+def _overlapping_faces(overlap: float) -> dict:
+    """The screen of a design whose faces overlap: no array holds it, so it holds nothing
+    and breaks :data:`FACES_FIT` (its metrics not computed, NaN)."""
+    keys = ("pitch_um", "L_um", "gap_um", "fill_fraction", "euler_load_uN",
+            "preload_per_pillar_uN", "peak_pillar_force_uN", "full_contact_kPa",
+            "pull_off_std_kPa")  # fmt: skip
+    return {
+        "objectives": {
+            "pull_off_per_area": 0.0,
+            "worst_case": 0.0,
+            "spread": 1.0,
+            "release_force": 0.0,
+        },
+        "constraints": {FACES_FIT: overlap},
+        "metrics": dict.fromkeys(keys, math.nan),
+        "validity": [],
     }
 
 

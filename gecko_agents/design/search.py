@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -107,22 +108,27 @@ def own_constraints(optuna) -> bool:
     return hasattr(optuna.trial.Trial, "set_constraint")
 
 
-def sampler_seed(spec, worker: int = 0) -> int:
-    """The sampler's seed in worker ``worker`` of a study: the study's seed in the first (so
-    one worker's study is the same every time), a seed drawn from (seed, worker) in the
-    others, which would otherwise draw the first one's designs again."""
-    if worker == 0:
+def sampler_seed(spec, worker: int = 0, start: int = 0) -> int:
+    """The sampler's seed in worker ``worker`` of a study that held ``start`` finished trials
+    when the sampler began: the study's seed in the first worker of a new study (so one
+    worker's study is the same every time), a seed drawn from (seed, worker[, start]) in the
+    others, which would otherwise draw the first one's designs again (a resumed study its
+    first run's: a sampler's random draws, TPE's first ten and NSGA-II's first generation, do
+    not depend on the trials it holds)."""
+    if worker == 0 and start == 0:
         return spec.seed
-    return int(np.random.SeedSequence([spec.seed, worker]).generate_state(1)[0])
+    key = [spec.seed, worker] + ([start] if start else [])
+    return int(np.random.SeedSequence(key).generate_state(1)[0])
 
 
-def make_sampler(spec, optuna, worker: int = 0):
-    """The study's sampler (TPE for one objective, NSGA-II for several) in worker ``worker``.
+def make_sampler(spec, optuna, worker: int = 0, start: int = 0):
+    """The study's sampler (TPE for one objective, NSGA-II for several) in worker ``worker``
+    of a study holding ``start`` finished trials (:func:`sampler_seed`).
     TPE treats the designs still being evaluated as no better than the worst so far (its
     constant liar), so workers holding several designs each do not all draw near one point;
     with one worker none is pending when it draws, and the study is the same as without."""
     kw = {} if own_constraints(optuna) else {"constraints_func": _constraints_of}
-    seed = sampler_seed(spec, worker)
+    seed = sampler_seed(spec, worker, start)
     if len(spec.objectives) == 1:
         return optuna.samplers.TPESampler(seed=seed, n_startup_trials=10, constant_liar=True, **kw)
     return optuna.samplers.NSGAIISampler(seed=seed, population_size=20, **kw)
@@ -157,15 +163,21 @@ def open_study(spec, out: Path, storage: str | None = None, worker: int = 0):
         running = study.get_trials(deepcopy=False, states=(optuna.trial.TrialState.RUNNING,))
         for t in running:
             study._storage.set_trial_state_values(t._trial_id, optuna.trial.TrialState.FAIL)
+    if held := len(study.get_trials(deepcopy=False, states=_finished(optuna))):
+        study.sampler = make_sampler(spec, optuna, worker, held)  # a resumed study
     study.set_user_attr("design_sha256", spec.sha256)
     return study
+
+
+def _finished(optuna) -> tuple:
+    return (optuna.trial.TrialState.COMPLETE, optuna.trial.TrialState.FAIL)
 
 
 def _storage(url: str, optuna):
     """Optuna's database storage at ``url``; an SQLite file in write-ahead-log mode with
     ``synchronous = NORMAL``: a commit survives the process being killed (it may not survive
     the machine losing power), and a trial costs milliseconds instead of an fsync per record."""
-    rdb = optuna.storages.RDBStorage(url)
+    rdb = _created(url, optuna)
     if url.startswith("sqlite"):
         from sqlalchemy import event
 
@@ -176,6 +188,20 @@ def _storage(url: str, optuna):
         event.listen(rdb.engine, "connect", fast)
         rdb.engine.dispose()
     return rdb
+
+
+def _created(url: str, optuna, tries: int = 5):
+    """Optuna's ``RDBStorage(url)``. Commands started together on a new store race to create
+    its tables and version rows (a ``CREATE TABLE`` or an ``INSERT`` the other committed
+    first): the loser tries again, finding them there."""
+    from sqlalchemy.exc import IntegrityError, OperationalError
+
+    for k in range(tries - 1):
+        try:
+            return optuna.storages.RDBStorage(url)
+        except (IntegrityError, OperationalError):
+            time.sleep(0.2 * (k + 1))
+    return optuna.storages.RDBStorage(url)
 
 
 def provenance() -> dict:

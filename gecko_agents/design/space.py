@@ -20,6 +20,7 @@ from gecko_agents.params.tips import FLAT_FACE_TIPS
 from gecko_agents.physics import flaw_tolerance, punch
 
 __all__ = [
+    "face_overlap",
     "in_use",
     "KPA",
     "MATERIAL",
@@ -285,6 +286,19 @@ def overrides_of(values: dict, sigma0: float = math.inf) -> dict:
         if key in values and not (key in BACKING_KNOBS and out["backing.kind"] == "rigid"):
             out |= knob.apply(values[key], values)
     return out
+
+
+def face_overlap(values: dict, base) -> float | None:
+    """(2R − s)/s [-] of a design (its knobs ``values``, the design file's fixed ones
+    included; ``base`` the :class:`~gecko_agents.params.SetaArray` they override) whose flat
+    face of radius R is wider than its stalk r, s the pitch: > 0 where neighbouring faces
+    (a mushroom's flanges) overlap; None for other designs."""
+    o = overrides_of(values)
+    R = o.get("contact.R", base.contact.R)
+    r, s = o.get("seta.r", base.seta.r), o.get("array.pitch", base.array.pitch)
+    if o["tip"] not in FLAT_FACE_TIPS or R <= r:
+        return None
+    return (2.0 * R - s) / s
 
 
 OBJECTIVES: dict[str, tuple[str, str, str]] = {

@@ -98,8 +98,10 @@ The contact items (``a_over_R``, ``tabor``) apply to sphere tips that touched (n
     (:mod:`gecko_agents.diagnostics.resolution`). Limit 0.02.
 ``pillars_meet``
     For elastica pillars in a row: the smallest distance between neighbouring centre lines
-    over the records, over the diameter 2r. The model has no pillar–pillar contact, so below
-    1 buckled pillars pass through each other. Limit ≥ 1.
+    over the records, over the diameter 2r, and for flat faces wider than their stalks
+    (mushroom flanges) between neighbouring tips over the face's diameter 2R. The model has no
+    pillar–pillar contact, so below 1 buckled pillars, or flanges, pass through each other.
+    Limit ≥ 1.
 ``probe_curvature``
     On a spherical probe (``floor.kind = "probe"``), how far the tip laws' flat floor is from
     the probe under a tip: a sphere's R/R_p (two spheres in contact act with
@@ -569,7 +571,9 @@ def diagnose(history, *, warn: bool = True) -> dict:
         "release_step": _item(
             "release_step", *resolution.release_step(history, contact_law(history.params))
         ),
-        "pillars_meet": _item("pillars_meet", *resolution.pillars_meet(history)),
+        "pillars_meet": _item(
+            "pillars_meet", *resolution.pillars_meet(history, contact_law(history.params))
+        ),
         "probe_curvature": _item(
             "probe_curvature",
             *resolution.probe_curvature(history, contact_law(history.params)),

@@ -116,21 +116,45 @@ def neighbour_distance(nodes) -> float:
     return float(min(one, other))
 
 
-def pillars_meet(history) -> tuple:
-    """Smallest distance between neighbouring pillars' centre lines over the records, over
-    their diameter 2r [-]: below 1 they pass through each other, which the model does not
-    stop (pillars touch only the floor), so a buckled array's forces are those of pillars
-    that could not be there."""
+def _tips_apart(history) -> float:
+    """Least distance between neighbouring setae's tip nodes over the records [µm] (the row's
+    order), from the per-seta tip series; inf where they were not recorded."""
+    x, y = history.setae.get("tip_x_um"), history.setae.get("tip_y_um")
+    if x is None or y is None or np.ndim(x) != 2 or np.shape(x)[1] < 2 or not len(x):
+        return math.inf
+    return float(np.min(np.hypot(np.diff(x, axis=1), np.diff(y, axis=1))))
+
+
+def pillars_meet(history, law) -> tuple:
+    """Smallest distance between neighbouring pillars over the records, over the width they
+    need [-]: their centre lines over the diameter 2r and, for a flat face wider than its
+    stalk (a mushroom's flange, R > r), their tips over the face's diameter 2R (the centre
+    lines over 2R where the tips were not recorded). Below 1 they pass through each other,
+    which the model does not stop (pillars touch only the floor), so the forces are those of
+    pillars, or flanges, that could not be there."""
     gap = history.meta.get("min_neighbour_distance_um")
     if gap is None or not math.isfinite(gap):
         return None, "not judged: one seta, or not an elastica", NEIGHBOURS, False
     d = 2.0 * history.params.seta.r
+    value = gap / d
     meaning = (
         f"neighbouring centre lines came {gap:.3g} µm apart, against the pillars' diameter "
         f"{d:.3g} µm: below 1 they pass through each other (no pillar–pillar contact in the "
         "model); space them wider (array.pitch) or press less"
     )
-    return gap / d, meaning, NEIGHBOURS, True
+    face = 2.0 * float(law.R)
+    if law.flat_face and face > d:
+        tips = _tips_apart(history)
+        tips = gap if math.isinf(tips) else tips
+        if tips / face < value:
+            value = tips / face
+            meaning = (
+                f"neighbouring tips came {tips:.3g} µm apart, against the faces' diameter "
+                f"{face:.3g} µm (wider than the stalks' {d:.3g} µm): below 1 the faces overlap "
+                "(no contact between them in the model); space them wider (array.pitch), "
+                "use smaller faces (contact.R) or press less"
+            )
+    return value, meaning, NEIGHBOURS, True
 
 
 def probe_curvature(history, law) -> tuple:

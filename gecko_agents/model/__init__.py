@@ -422,12 +422,17 @@ class Model(Stepping):
     def pop_releases(self) -> list:
         """The tips that let go in the last step (``physics.events``), each as (seta, overlap
         [µm], release overlap [µm], force [µN]): the release overlap is where the tip started
-        to run away from its equilibrium (its overlap at the step if it never did). Clears
+        to run away from its equilibrium (its overlap at the step if it never did); the force
+        is the law's at δ_detach for a tip that passed it (:meth:`~gecko_agents.contact.base.
+        ContactLaw.release_force`, not the step's overshoot), else its last force. Clears
         those tips' release marks (``state.jump``), so each release is reported once."""
         jump = self.state.jump
+        located = self.law.release_force()
         out = []
         for i, d, force in self.physics.events:
             j = jump[i]
+            if -math.inf < d < self.law.detach_overlap and not math.isnan(located):
+                force = located
             out.append((i, d, d if np.isnan(j) else float(j), force))
             jump[i] = np.nan
         return out

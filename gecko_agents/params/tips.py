@@ -28,7 +28,8 @@ class Mushroom:
     Attributes
     ----------
     rim : how the flange's rim meets the floor. ``"flawed"`` (default): a step or rounding at
-        the rim restores an edge crack (Kendall's, capped at σ₀: the flat punch's law).
+        the rim restores an edge crack (Kendall's with a cohesive zone at σ₀: the flat punch's
+        law).
         ``"sharp"``: an intact corner of edge angle ``rim_angle_deg`` bonded to the floor,
         singular or not by the wedge's eigenproblem (:mod:`gecko_agents.physics.wedge`);
         needs a finite ``contact.sigma0``.
@@ -67,6 +68,22 @@ def check_tip_options(p) -> None:
         )
     if p.tip == "mushroom":
         _check_mushroom(p.contact, p.seta, p.mushroom)
+    if p.tip in FLAT_FACE_TIPS:
+        _check_faces_fit(p)
+
+
+def _check_faces_fit(p) -> None:
+    """A face wider than its stalk (a mushroom's flange, a punch with R > r) fits the pitch:
+    neighbouring faces of radius R on roots ``array.pitch`` apart overlap past R = pitch/2,
+    an array no floor can hold (each face would carry σ₀ over area it shares)."""
+    R, r, pitch = p.contact.R, p.seta.r, p.array.pitch
+    if p.array.count > 1 and R > r and 2.0 * R > pitch:
+        raise ValueError(
+            f"Contact.R = {R!r} (the {p.tip} face's radius, wider than its stalk Seta.r = "
+            f"{r!r}) is outside the allowed range [0, Array.pitch/2 = {pitch / 2.0!r}] of an "
+            f"array of {p.array.count} at Array.pitch = {pitch!r}: neighbouring faces would "
+            "overlap"
+        )
 
 
 def _check_mushroom(contact, seta, shape: Mushroom) -> None:

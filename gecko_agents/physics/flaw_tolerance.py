@@ -24,6 +24,16 @@ https://pmc.ncbi.nlm.nih.gov/articles/PMC1618499/table/tbl1) gives the rows that
 Sitti 2014 (Beilstein J Nanotechnol 5:630), whose χ = 33.6 for PDMS (E = 1.42 MPa, ν = 0.5,
 w = 25 mJ/m², σ₀ = 1 MPa, a = 10 µm) is a further hand check.
 
+A flat punch whose edge carries a flaw lets go by Kendall's edge crack; with an interface
+of strength σ₀ that crack has a cohesive (Dugdale) zone, a band c < r < a of the face held
+at σ₀ while the punch's edge opens by less than h₀ = w/σ₀. Its pull-off is Maugis's (1992,
+J Colloid Interface Sci 150:243) Dugdale solution with the sphere's Hertz terms dropped (a
+flat face has no profile) and the zone's outer end fixed at the punch's edge (derived in
+:func:`dugdale_punch_strength`; his eqs 6.17 and the load and penetration beside it are read
+in the ContactMechanics code, ``PyCo/ReferenceSolutions/MaugisDugdale.py``). It runs from
+σ₀πa² (the whole face at σ₀, a ≤ 0.540·a_cr) to Kendall's force (a ≫ a_cr) and lies below
+both: 13.4 % below min(Kendall, σ₀πa²) at a = a_cr, where that simple form has its kink.
+
 Written as the release rate of a crack in the package's convention (Kendall's punch
 G = P²/(8πa³E*), :func:`gecko_agents.physics.punch.edge_release_rate`), Griffith's penny crack of
 radius c inside a bonded face under a uniform stress σ has G = 2σ²c/(πE*) (the crack in an
@@ -35,6 +45,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.optimize import brentq
 
 from gecko_agents.physics import punch
 
@@ -47,6 +58,8 @@ __all__ = [
     "kendall_strength",
     "flaw_tolerant_radius",
     "penny_crack_strength",
+    "UNIFORM_CHI",
+    "dugdale_punch_strength",
     "punch_pull_off",
 ]
 
@@ -143,23 +156,67 @@ def penny_crack_strength(c, w, E_star, sigma0=math.inf):
     return np.minimum(sigma0, griffith)
 
 
-def punch_pull_off(a, w, E_star, sigma0=math.inf):
-    """Pull-off force of a flat punch whose interface has the strength σ₀ [µN]:
-    min(√(8πE*wa³), πa²·σ_c), Kendall's (:func:`gecko_agents.physics.punch.kendall_pull_off`)
-    capped by Tang's σ_c (:func:`tang_strength`) over the face. σ₀ = inf returns Kendall's
-    exactly.
+UNIFORM_CHI = 1.0 / (8.0 * (math.pi / 2.0 - 1.0))
+"""χ = 0.2190 below which the Dugdale punch lets go with its whole face at σ₀
+(:func:`dugdale_punch_strength`): a = π/(16(1 − 2/π))·a_cr = 0.540·a_cr."""
 
-    Where both fall with size, Tang's stress is 1.30·χ^0.1 times Kendall's (the bonded corner
-    is less singular than Kendall's edge crack), above it for χ > 0.07; so the cap that acts is
-    σ₀πa², for χ < 4/π² (radii below :func:`flaw_tolerant_radius`): the punch keeps Kendall's
-    edge crack, a flawed edge, and gains the interface's strength.
+
+def _edge_opening(phi: float) -> float:
+    """G = √(1 − t²)·arccos t − (1 − t) at t = cos φ, φ·sin φ − 2sin²(φ/2): the Dugdale
+    punch's edge opening over 4σ₀a/(πE*) at bonded radius c = a·cos φ
+    (:func:`dugdale_punch_strength`; in φ, free of the cancellation near t = 1)."""
+    return phi * math.sin(phi) - 2.0 * math.sin(0.5 * phi) ** 2
+
+
+def _dugdale_ratio(chi: float) -> float:
+    if chi <= UNIFORM_CHI:
+        return 1.0
+    target = 1.0 / (8.0 * chi)
+    phi = brentq(lambda x: _edge_opening(x) - target, 0.0, math.pi / 2, xtol=1e-300, rtol=1e-15)
+    return (2.0 * phi + math.sin(2.0 * phi)) / math.pi  # (2/π)(arccos t + t√(1 − t²))
+
+
+def dugdale_punch_strength(a, sigma0, E_star, w):
+    """Mean tensile stress at pull-off of a rigid flat punch of radius a on a half-space whose
+    interface holds at most σ₀ up to an opening h₀ = w/σ₀ (Dugdale), detaching from its
+    edge inward [MPa]: σ₀·Φ(χ), Φ = (2/π)(arccos t + t√(1 − t²)), t = c/a the bonded radius
+    where the edge's opening reaches h₀, G(t) = √(1 − t²)·arccos t − (1 − t) = 1/(8χ);
+    Φ = 1 for χ ≤ :data:`UNIFORM_CHI` (G(0) = π/2 − 1: the whole face at σ₀ before the edge
+    opens h₀). χ is Tang's :func:`flaw_parameter`.
+
+    Maugis (1992, J Colloid Interface Sci 150:243) solves the sphere: bonded over r < c, σ₀ over
+    c < r < m, with P = P_Hertz − 2σ₀[m²·arccos(c/m) + c√(m² − c²)], δ = c²/R − (2σ₀/E*)√(m² − c²)
+    and, for the gap at m, the Hertz term plus (4σ₀c/(πE*))[√(s² − 1)·arcsec s − s + 1],
+    s = m/c (his eq 6.17 in dimensional form). A flat face drops the Hertz terms and its zone
+    ends at its edge, m = a; the gap there reaching h₀ is the condition above, and the load
+    2σ₀[a²·arccos t + a²t√(1 − t²)] is Φ·σ₀πa². Large χ gives Kendall's √(8πE*wa³)
+    (t → 1, a − c = πE*w/(4σ₀²)), χ → UNIFORM_CHI gives σ₀πa²; below both everywhere.
+
+    Parameters
+    ----------
+    a : punch radius [µm]. sigma0 : cohesive strength σ₀ [MPa], > 0. E_star : E* [MPa].
+    w : work of adhesion [µN/µm].
+    """
+    chi = np.asarray(flaw_parameter(a, sigma0, E_star, w), float)
+    ratio = np.vectorize(_dugdale_ratio, otypes=[float])(chi)
+    return sigma0 * (ratio if ratio.ndim else float(ratio))
+
+
+def punch_pull_off(a, w, E_star, sigma0=math.inf):
+    """Pull-off force of a flat punch with a flawed edge whose interface has the strength σ₀
+    [µN]: the Dugdale punch, πa²·:func:`dugdale_punch_strength`, between σ₀πa² (small
+    punches) and Kendall's √(8πE*wa³) (large ones; :func:`gecko_agents.physics.punch.
+    kendall_pull_off`), and below both. σ₀ = inf returns Kendall's exactly.
+
+    The sharp, bonded 90° corner (an edge with no flaw) holds more: Tang's stress
+    (:func:`tang_strength`) is 1.30·χ^0.1 times Kendall's where both fall with size, the
+    corner being less singular than a crack, so the flawed edge is the weaker.
 
     Parameters
     ----------
     a : punch radius [µm]. w : work of adhesion [µN/µm]. E_star : E* [MPa].
     sigma0 : cohesive strength σ₀ [MPa].
     """
-    kendall = punch.kendall_pull_off(a, w, E_star)
     if math.isinf(sigma0):
-        return kendall
-    return np.minimum(kendall, np.pi * np.square(a) * tang_strength(a, sigma0, E_star, w))
+        return punch.kendall_pull_off(a, w, E_star)
+    return np.pi * np.square(a) * dugdale_punch_strength(a, sigma0, E_star, w)

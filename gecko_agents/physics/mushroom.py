@@ -18,8 +18,9 @@ detachment starts
 
 Their B_e, B_c and Γ_c(β) are given only in figures, so this module does not use them. It
 takes instead the laws with no fitted constant but Tang's: the edge of a flawed rim is
-Kendall's crack capped at σ₀ (:func:`gecko_agents.physics.flaw_tolerance.punch_pull_off`, the
-flat punch's law); a sharp, singular rim follows Tang et al.'s form with the rim's own exponent
+Kendall's crack with a cohesive zone at σ₀, Maugis's Dugdale punch
+(:func:`gecko_agents.physics.flaw_tolerance.punch_pull_off`, the flat punch's law); a
+sharp, singular rim follows Tang et al.'s form with the rim's own exponent
 α = 1 − λ and Tang's B = 0.83 (Tang, Hui & Glassmaker 2005, J R Soc Interface 2:505; at 90°
 and ν = 1/2, α = 0.405, Tang's fit), an assumption at other angles; the centre lets go by
 Griffith's penny crack from a central defect of radius c, bounded by σ₀, under a stress taken
@@ -45,10 +46,12 @@ MODES = ("edge", "centre")
 def edge_pull_off(a_t, w, E_star, sigma0, rim="flawed", rim_angle_deg=90.0, nu=0.5) -> float:
     """Tension [µN] at which a crack runs in from the flange's rim (module docstring).
 
-    ``rim = "flawed"``: Kendall's edge crack capped at σ₀πa_t², the flat punch's law.
+    ``rim = "flawed"``: Kendall's edge crack with a cohesive zone at σ₀ (the Dugdale punch,
+    at most σ₀πa_t²), the flat punch's law.
     ``rim = "sharp"``: σ₀πa_t²·min(1, 0.83·χ^(−(1 − λ))) with λ the bonded rim's
-    :func:`~gecko_agents.physics.wedge.singularity_exponent`; ``inf`` where the rim is not
-    singular (no edge mode) or σ₀ is unbounded.
+    :func:`~gecko_agents.physics.wedge.singularity_exponent` (the real part of a complex
+    root: an obtuse rim of a compressible tip); ``inf`` where the rim is not singular (no
+    edge mode) or σ₀ is unbounded.
 
     Parameters
     ----------

@@ -185,6 +185,9 @@ def preload_pulls(
     gaussian: tuple | None = None,
     refine_peak: bool = False,
     retract_dz: float | None = None,
+    approach_stride: int = 1,
+    retract_stride: int = 1,
+    turning: str = "secant",
 ) -> list[QuasiStaticResult]:
     """:func:`preload_pull` for several preloads [µN] at once, with one shared approach.
 
@@ -220,13 +223,31 @@ def preload_pulls(
     ``retract_dz`` [µm]: an upper bound on the retract step max(dz, travel/retract_steps); the
     retract then goes on until every seta has let go (up to 10× the estimated travel).
 
+    ``approach_stride``: once every seta is attached and pressed (P > 0), the approach steps
+    grow (doubling) up to this many ``dz``, and a long step that changed any seta's state
+    (stick, slide, its direction) is taken again in steps of ``dz``. A step that changes no
+    state lands where the short ones would (eq 22–27): a stuck tip's equilibrium depends only
+    on its anchor and the plate height, a sliding one's only on the plate height (its anchor
+    trails it at the cap); so the turning points and retracts are those of ``dz`` steps to the
+    root finder's 1e-9 (tested), with far fewer steps down a deep press. Linear setae on
+    fixed heights only (1 otherwise); the approach's record is then sparser.
+
+    ``retract_stride``: the same on the retract's grid of steps (not with ``refine_peak``):
+    a copy whose last step changed no seta's state moves up to this many steps at once, and
+    one step at a time again where a move changed one. On a branch each seta's force is
+    monotone in the plate height (eq 22–27), so the force is monotone between state changes
+    and the steps next to every change (every release among them) are still visited: the
+    sampled pull-off, the releases and the attached counts are those of single steps.
+
+    ``turning``: how a turning point is found in its step: ``"secant"`` (Illinois regula
+    falsi, few solves) or ``"bisect"`` (halving, as :func:`preload_pull` does). Where the force
+    is not monotone within a step (a block jumping in pulls) the two may stop at different
+    crossings of the preload, a block apart; ``"bisect"`` stops where :func:`preload_pull` does.
+
     Returns
     -------
     One :class:`QuasiStaticResult` per preload, in the order given.
     """
-    pre = np.atleast_1d(np.asarray(preloads, dtype=float))
-    if pre.size == 0 or not np.all(pre > 0):
-        raise ValueError(f"preloads = {preloads!r} must be one or more forces > 0 [µN]")
     pre = np.atleast_1d(np.asarray(preloads, dtype=float))
     if pre.size == 0 or not np.all(pre > 0):
         raise ValueError(f"preloads = {preloads!r} must be one or more forces > 0 [µN]")
@@ -238,38 +259,65 @@ def preload_pulls(
     at, Z_start, top = contact_front(params, h, w, gaussian)
     dz = _approach_step(params, dz)
     st = RodState(h.size) if rod else State(h.size)
-    approach, turns = _shared_approach(br, step_fn, at, st, Z_start, dz, pre, max_steps)
+    if not (isinstance(approach_stride, int) and approach_stride >= 1):
+        raise ValueError(f"approach_stride = {approach_stride!r} must be an integer ≥ 1")
+    if turning not in ("secant", "bisect"):
+        raise ValueError(f"turning = {turning!r} must be 'secant' or 'bisect'")
+    stride = approach_stride if gaussian is None and not rod else 1
+    turn = _turning_point if turning == "secant" else _bisected_turn
+    approach, turns = _shared_approach(
+        br, step_fn, at, st, (Z_start, dz, stride), pre, max_steps, turn
+    )
     # Retracts of every preload together: copy c of the setae starts from turn c.
     Zc = np.array([turns[c].Z for c in range(pre.size)])
     dzc, n_c, n_up = _retract_schedule(params, br, top, Zc, dz, retract_steps, retract_dz)
+    if not (isinstance(retract_stride, int) and retract_stride >= 1):
+        raise ValueError(f"retract_stride = {retract_stride!r} must be an integer ≥ 1")
     rec, peaks, hh, ww = _batched_retracts(
-        br, step_fn, [turns[c] for c in range(pre.size)], Zc, dzc, n_c, n_up, Z_start, refine_peak
+        br,
+        step_fn,
+        [turns[c] for c in range(pre.size)],
+        (Zc, dzc, n_c, n_up, Z_start),
+        refine_peak,
+        1 if refine_peak or rod else retract_stride,
     )
     if refine_peak:
         _refine_peaks(br, step_fn, rec, peaks, hh, ww, h.size, Zc, dzc)
     return [_joined(approach, turns[c], rec[c]) for c in range(pre.size)]
 
 
-def _shared_approach(br, step_fn, at, st, Z, dz, pre, max_steps):
-    """Step the plate down by ``dz`` from Z [µm]; each time the force passes the next
-    preload, find that turning point from the state before the step and go on.
+def _changed(before, after) -> bool:
+    """Whether a step changed any seta's contact state or slide direction."""
+    return bool(np.any(before.state != after.state) or np.any(before.sigma != after.sigma))
+
+
+def _shared_approach(br, step_fn, at, st, path, pre, max_steps, turn):
+    """Step the plate down by ``dz`` from Z [µm] (``path`` = (Z, dz, stride)); each time the
+    force passes the next preload, find that turning point (``turn``: :func:`_turning_point`
+    or :func:`_bisected_turn`) from the state before the step and go on. With ``stride`` > 1,
+    steps of up to ``stride``·dz where every seta is attached and pressed (see
+    :func:`preload_pulls`' ``approach_stride``).
 
     Returns (the approach's Z, F, T, n lists by key, :class:`_Turn` by preload index).
     """
+    Z, dz, stride = path
     order = np.argsort(pre, kind="stable")
     ap = {"Z": [], "F": [], "T": [], "n": []}
     turns = {}
-    k = 0
+    k, gap = 0, dz  # gap: this step's plate travel [µm]
     for _ in range(max_steps):
         saved = st.copy()
         hz, wz = at(Z)
         res = step_fn(br, st, Z, hz)
+        if gap > dz and _changed(saved, st):  # a long step that changed a state: retake it
+            st, Z, gap = saved, Z + gap - dz, dz
+            continue
         F = float(np.sum(wz * res[0]))
         while k < order.size and F >= pre[order[k]]:
             target = pre[order[k]]
             F_prev = ap["F"][-1] if ap["F"] else 0.0
-            hi, best = _turning_point(
-                br, step_fn, at, saved, Z, dz, (F_prev, F), target, (res, st.copy(), hz, wz)
+            hi, best = turn(
+                br, step_fn, at, saved, Z, gap, (F_prev, F), target, (res, st.copy(), hz, wz)
             )
             turns[int(order[k])] = _Turn(hi, best[1], best[0], len(ap["Z"]), best[2], best[3])
             k += 1
@@ -279,7 +327,9 @@ def _shared_approach(br, step_fn, at, st, Z, dz, pre, max_steps):
         ap["F"].append(F)
         ap["T"].append(float(np.sum(wz * res[1])))
         ap["n"].append(float(np.sum(wz[st.state != FREE])))
-        Z -= dz
+        pressed = stride > 1 and np.all(res[0] > 0) and not np.any(st.state == FREE)
+        gap = min(2 * gap, stride * dz) if pressed else dz
+        Z -= gap
     raise RuntimeError(
         f"preload {pre[order[k]]} µN not reached within {max_steps} steps of "
         f"{dz} µm; the floor may be out of reach"
@@ -322,6 +372,26 @@ def _turning_point(br, step_fn, at, saved, Z, dz, forces, target, best):
     return hi, best
 
 
+def _bisected_turn(br, step_fn, at, saved, Z, dz, forces, target, best):
+    """:func:`_turning_point` by halving the step, as :meth:`_ForcePath._bisect` does: the
+    highest plate height found with force ≥ ``target`` [µN] (to 1e-9 of it, or after 60
+    halvings) and (equilibria, state, heights, weights) there."""
+    lo, hi = Z + dz, Z
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        trial = saved.copy()
+        hm, wm = at(mid)
+        r = step_fn(br, trial, mid, hm)
+        Fm = float(np.sum(wm * r[0]))
+        if Fm >= target:
+            hi, best = mid, (r, trial, hm, wm)
+            if Fm - target <= 1e-9 * target:
+                break
+        else:
+            lo = mid
+    return hi, best
+
+
 def _retract_schedule(params, br, top, Zc, dz, retract_steps, retract_dz):
     """Retract step of each copy [µm], its number of steps, and the most of any copy."""
     n_up = retract_steps or 4000
@@ -351,41 +421,64 @@ def _turn_record(turn: _Turn, Z) -> dict:
     }
 
 
-def _batched_retracts(br, step_fn, turns, Zc, dzc, n_c, n_up, Z_start, refine_peak):
+def _batched_retracts(br, step_fn, turns, grid, refine_peak, stride=1):
     """The retracts of all copies as one solve over (copies × setae), each copy from its turn.
 
-    A copy stops after its n_c steps or once all its setae have let go above ``Z_start``.
-    Returns (the records of each copy, its highest sampled tension (F, step, state before
-    the next step), the concatenated heights [µm] and weights of all copies).
+    ``grid`` = (Zc, dzc, n_c, n_up, Z_start): copy c visits plate heights Zc[c] + t·dzc[c],
+    t = 1 … n_c[c] (at most n_up moves), and stops once all its setae have let go above
+    ``Z_start`` [µm]. With ``stride`` > 1 (not with ``refine_peak``) a copy whose
+    last step changed no seta's state moves up to ``stride`` steps of the grid at once, and
+    takes such a move again step by step where it changed one (see :func:`preload_pulls`'
+    ``retract_stride``). Returns (the records of each copy, its highest sampled tension (F,
+    step, state before the next step), the concatenated heights [µm] and weights of all
+    copies).
     """
+    Zc, dzc, n_c, n_up, Z_start = grid
     K, n = len(turns), turns[0].heights.size
     big = concat_states([turn.state for turn in turns])
     hh = np.concatenate([turn.heights for turn in turns])
     ww = np.concatenate([turn.weights for turn in turns])
     owner = np.repeat(np.arange(K), n)
     rec = [_turn_record(turns[c], Zc[c]) for c in range(K)]
-    active = np.arange(K)
-    sel = np.arange(K * n)
+    active, sel = np.arange(K), np.arange(K * n)
+    tc, gap = np.zeros(K, dtype=int), np.ones(K, dtype=int)  # grid step, next move
     peaks = {c: (rec[c]["F"][0], 0, take_state(big, slice(c * n, (c + 1) * n))) for c in range(K)}
-    for t in range(1, n_up + 1):
-        Zs = Zc[owner[sel]] + t * dzc[owner[sel]]
-        P, Ft, _, rel, rel_d = step_fn(br, big, Zs, hh[sel])
+    for _ in range(n_up):
+        gap[active] = np.minimum(gap[active], n_c[active] - tc[active])
+        saved = big.copy() if stride > 1 else None
+        o = owner[sel]
+        out = step_fn(br, big, Zc[o] + (tc[o] + gap[o]) * dzc[o], hh[sel])
+        changed = np.zeros(active.size, dtype=bool)
+        if saved is not None:
+            changed = ((saved.state != big.state) | (saved.sigma != big.sigma)).reshape(-1, n)
+            changed = changed.any(axis=1)
+            redo = np.flatnonzero(changed & (gap[active] > 1))
+            if redo.size:  # a long move that changed a state: one grid step instead
+                gap[active[redo]] = 1
+                rows = (redo[:, None] * n + np.arange(n)[None, :]).ravel()
+                o = owner[sel[rows]]
+                _retake(
+                    br, step_fn, saved, big, out, rows, Zc[o] + (tc[o] + 1) * dzc[o], hh[sel[rows]]
+                )
+        tc[active] += gap[active]
+        P, Ft, _, rel, rel_d = out
         att = big.state != FREE
         wp, wf, wa = ww[sel] * P, ww[sel] * Ft, ww[sel] * att
         done = []
         for m, c in enumerate(active):
             s = slice(m * n, (m + 1) * n)
-            rc = rec[c]
+            rc, t = rec[c], int(tc[c])
             rc["Z"].append(Zc[c] + t * dzc[c])
             rc["F"].append(float(wp[s].sum()))
             rc["T"].append(float(wf[s].sum()))
             rc["n"].append(float(wa[s].sum()))
             for j in np.flatnonzero(rel[s]):
-                rc["rel"].append((t, int(j), float(rel_d[s][j])))
+                rc["rel"].append((len(rc["Z"]) - 1, int(j), float(rel_d[s][j])))
             if refine_peak and rc["F"][-1] < peaks[c][0]:
                 peaks[c] = (rc["F"][-1], t, take_state(big, np.arange(m * n, (m + 1) * n)))
             if t >= n_c[c] or (rc["Z"][-1] > Z_start and not att[s].any()):
                 done.append(m)
+            gap[c] = min(2 * gap[c], stride) if stride > 1 and not changed[m] else 1
         if done:
             keep = np.setdiff1d(np.arange(active.size), done)
             if keep.size == 0:
@@ -395,6 +488,17 @@ def _batched_retracts(br, step_fn, turns, Zc, dzc, n_c, n_up, Z_start, refine_pe
             sel = sel[rows]
             active = active[keep]
     return rec, peaks, hh, ww
+
+
+def _retake(br, step_fn, saved, big, out, rows, Z, h) -> None:
+    """Step the setae ``rows`` again from ``saved`` to plate heights ``Z`` [µm] over floor
+    heights ``h`` [µm], writing their state into ``big`` and their equilibria into ``out``."""
+    sub = take_state(saved, rows)
+    again = step_fn(br, sub, Z, h)
+    for k in vars(big):
+        getattr(big, k)[rows] = getattr(sub, k)
+    for arr, new in zip(out, again, strict=True):
+        arr[rows] = new
 
 
 def _joined(approach: dict, turn: _Turn, rc: dict) -> QuasiStaticResult:

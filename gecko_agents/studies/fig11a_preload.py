@@ -6,9 +6,10 @@ Three estimates of the same curve:
   beam setae, stick/slip with the paper's friction cap μ·max(P, 0) (eq 27), so a tip in tension
   slides freely; force-controlled press to the preload, then pull off, for all 10⁷ setae through
   1000 weighted representative floor heights (< 0.2 % from 20 000 blocks; metadata.json holds a
-  check). One sweep point = one preload × floor seed (``_preload.quasistatic_preload_point``
+  check). One sweep point = one preload × floor seed (``quasistatic_preload_point``
   run by ``gecko_agents.sweep``: the preload is the grid's ``fn.preload_uN`` axis, the floor
-  seed the sweep's seed).
+  seed the sweep's seed); the points of one floor are read off one curve, a shared approach
+  and batched retracts (``studies.preload.CURVES``), equal to one press-and-pull each.
 * **quasi-static, adhesive friction** — the same with this package's default cap μ|P + 2Fc|
   (a contact in tension still holds shear): every touched tip stays stuck, so the seta's normal
   stiffness is Ka·sin²θ + Kp·cos²θ instead of eq 20's Ky (45× stiffer), a preload is reached

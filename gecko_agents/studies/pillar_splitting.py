@@ -9,9 +9,9 @@ radius covers the backing alike. A flat punch's pull-off per area is then
 (πa²/pitch²)·σ, σ its pull-off stress:
 
 * without a strength limit (σ₀ = inf), Kendall's √(8E*w/(πa)): splitting always pays, as a^−1/2;
-* with a strength σ₀, min(Kendall's, σ₀)
-  (:func:`gecko_agents.physics.flaw_tolerance.punch_pull_off`): splitting pays down to the
-  flaw-tolerant radius a_cr = 8E*w/(πσ₀²) and not below;
+* with a strength σ₀, the Dugdale punch (:func:`gecko_agents.physics.flaw_tolerance.
+  punch_pull_off`), below min(Kendall's, σ₀): splitting pays down to about the flaw-tolerant
+  radius a_cr = 8E*w/(πσ₀²) and not below 0.540·a_cr, where the whole face holds σ₀;
 * a mushroom (flange 1.2 × its stalk, Aksak et al.'s optimum, sharp 45° rim, not singular)
   lets go from its centre at σ₀ over the flange with no defect, whatever its size; with a
   central defect a quarter of the flange's radius, by Griffith's penny crack, capped at σ₀.
@@ -19,15 +19,13 @@ radius covers the backing alike. A flat punch's pull-off per area is then
 The interface strength σ₀ is an assumption here (no measured value for polyurethane on glass
 was read): 0.3 and 1 MPa, the latter Aksak, Şahin & Sitti's (2014) "reasonable value" for
 PDMS. The lines are the closed forms; the markers are single pillars pressed 1 % of their
-length and pulled off in the time-stepped model (``mechanics = "elastica"``), their force at
-release.
+length and pulled off in the time-stepped model (``mechanics = "elastica"``), their largest
+tension.
 """
 
 from __future__ import annotations
 
 import math
-
-import numpy as np
 
 from gecko_agents import protocol, render
 from gecko_agents.model import Model
@@ -113,7 +111,9 @@ def model_params(base, design: dict, a: float):
 
 def model_rows(base, radii, speed: float, names=None) -> list[dict]:
     """The time-stepped model's pull-off per area [kPa] of single pillars: pressed 1 % of L,
-    pulled at ``speed`` [µm/µs], the force at release; with the mode that released them."""
+    pulled at ``speed`` [µm/µs], the largest tension of any step (``History.peak_pull_off``;
+    the detachment records the law's own force at release); with the mode that released
+    them."""
     rows = []
     for name in names or DESIGNS:
         for a in radii:
@@ -121,7 +121,7 @@ def model_rows(base, radii, speed: float, names=None) -> list[dict]:
             h = Model(p, n_sim=1, seed=0).run(
                 protocol.press_pull(0.01 * p.seta.L, speed=speed), progress=False
             )
-            F = float(-np.min(h.detachments["force_uN"]))
+            F = h.peak_pull_off
             mode = h.detachments.get("mode")
             rows.append(
                 {

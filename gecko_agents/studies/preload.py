@@ -34,6 +34,10 @@ PAPER_ONSET_N = 1.0  # "after the pre-pressure reached 1 N"
 W_ALT = 0.080  # Fig 5's w [J/m²] (docs/physics.md, "Work of adhesion")
 N_BLOCKS = 1000
 RETRACT_STEPS = 2000  # pull-off within 0.05 % of 8000 steps
+CURVES = True
+"""Whether a quasi-static sweep's points are read off one curve per floor (the
+``curve_uN`` of :func:`quasistatic_preload_point`: one shared approach, the retracts batched)
+instead of one press-and-pull each; False only for the main-job benchmark's baseline."""
 AGENT = {"n_sim": 16, "speed": 0.02}
 """Agent patch settings: 16 rod setae, plate at 0.02 µm/µs (20 mm/s; peak within 0.7 % of
 0.005 µm/µs); see :func:`agent_preload_point`."""
@@ -185,20 +189,24 @@ def n_workers(args) -> int | None:
 
 def quasistatic_sweep(base, grid, preloads_N, cfg, out, args, label) -> list[dict]:
     """run_sweep of :func:`quasistatic_preload_point` (one point = one
-    preload × grid point × floor seed, the floor seeds from ``grid["floor.seed"]``); rows that
+    preload × grid point × floor seed, the floor seeds from ``grid["floor.seed"]``; with
+    :data:`CURVES` the preloads of one grid point and seed are one curve); rows that
     finished."""
     grid = dict(grid)
     floor_seeds = grid.pop("floor.seed")
     grid["fn.preload_uN"] = preload_values(preloads_N, cfg["count"])
+    kwargs = qs_kwargs(cfg) | ({"curve_uN": grid["fn.preload_uN"]} if CURVES else {})
     rows = sweep.run_sweep(
         quasistatic_preload_point,
         base,
         grid,
         floor_seeds,
         out,
-        fn_kwargs=qs_kwargs(cfg),
+        fn_kwargs=kwargs,
         dask=args.dask,
-        n_workers=n_workers(args),
+        # a few curves: cheaper in this process than shared out to workers, each of which
+        # would start up and compute every curve whose points it is handed
+        n_workers=1 if CURVES and args.workers is None and args.dask is None else n_workers(args),
         progress=not args.no_progress,
     )
     return ok_rows(rows, label)
@@ -258,8 +266,9 @@ def block_check(base, cfg, preload_N: float = 1.0) -> dict:
     """Pull-off with N_BLOCKS vs 4 × N_BLOCKS representative heights at one preload."""
     preload = preload_values([preload_N], cfg["count"])[0]
     vals = {}
+    curve = {"curve_uN": [preload]} if CURVES else {}  # the method of the sweeps' points
     for nb in (cfg["n_blocks"], 4 * cfg["n_blocks"]):
-        kw = qs_kwargs(cfg) | {"n_blocks": nb, "preload_uN": preload}
+        kw = qs_kwargs(cfg) | {"n_blocks": nb, "preload_uN": preload} | curve
         vals[nb] = quasistatic_preload_point(base, 0, **kw)["pull_off_uN"]
     a, b = vals.values()
     return {

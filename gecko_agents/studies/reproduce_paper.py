@@ -151,11 +151,12 @@ def _add_jobs(parser) -> None:
     )
 
 
-def run_scenarios(base: Path, args, log: WarningLog) -> dict:
+def run_scenarios(base: Path, args, log: WarningLog, setup=None) -> dict:
     """Every scenario of :data:`SCENARIOS` (and :data:`BEYOND` with ``--beyond``),
     ``args.jobs`` at a time (:data:`LONGEST` first, so the long ones overlap the rest);
     {name: (result, wall time)} in that order. Each scenario's warnings go to ``log`` as one
-    family."""
+    family. ``setup``: a top-level function each scenario process calls before its first
+    scenario (see :func:`main`)."""
     names = SCENARIOS + (BEYOND if args.beyond else ())
     subs = {
         name: ["--out", str(base / name)]
@@ -177,7 +178,8 @@ def run_scenarios(base: Path, args, log: WarningLog) -> dict:
 
     order = sorted(names, key=lambda n: LONGEST.index(n) if n in LONGEST else len(LONGEST))
     ctx = multiprocessing.get_context("spawn")
-    with one_blas_thread(), ProcessPoolExecutor(max_workers=args.jobs, mp_context=ctx) as pool:
+    pool = ProcessPoolExecutor(max_workers=args.jobs, mp_context=ctx, initializer=setup)
+    with one_blas_thread(), pool:
         futures = {pool.submit(run_scenario, n, subs[n], log.verbosity): n for n in order}
         for k, fut in enumerate(as_completed(futures), 1):
             name = futures[fut]
@@ -291,24 +293,31 @@ def pull_speed_section(out: Path) -> str:
     return "\n".join(lines)
 
 
-def main(argv=None) -> dict:
-    """The main job (module docstring); its console ends with the validity summary line."""
+def main(argv=None, *, setup=None) -> dict:
+    """The main job (module docstring); its console ends with the validity summary line.
+
+    ``setup``: a top-level function called in this process and in every scenario process
+    before any scenario runs (the main-job benchmark's baseline,
+    :func:`gecko_agents.bench_main_job.without_fast_paths`, switches fast paths off with it).
+    """
     args = parse_args(__doc__, argv, _add_jobs)
     if args.jobs < 1:
         raise SystemExit(f"--jobs = {args.jobs} must be ≥ 1")
     base = args.out if args.out is not None else RENDERS
+    if setup is not None:
+        setup()
     with WarningLog(verbosity(args)) as log, all_or_nothing():  # finished scenarios stay
-        out = _main(args, make_dir(base), log)
+        out = _main(args, make_dir(base), log, setup)
     validities = [h.meta["validity"] for h in out.pop("runs").values()]
     where = f"the report's table in {base / 'paper_comparison.md'}"
     print(summary_line(validities, where), flush=True)
     return out
 
 
-def _main(args, base: Path, log: WarningLog) -> dict:
+def _main(args, base: Path, log: WarningLog, setup=None) -> dict:
     rows, timings, results = [], {}, {}
     t_all = time.perf_counter()
-    for name, (res, wall) in run_scenarios(base, args, log).items():
+    for name, (res, wall) in run_scenarios(base, args, log, setup).items():
         timings[name] = wall
         rows += res.get("claims", [])
         results[name] = {k: v for k, v in res.items() if k != "claims"}

@@ -57,7 +57,7 @@ def _tang(E: float, nu: float, w: float, sigma0: float, a: float) -> dict:
     return {
         "value": phi,
         "text": f"Φ = {phi:.3f} (χ = {chi:.2f}; bonded 90° corner; a flawed edge, Kendall's "
-        f"crack, would give {flawed:.3f})",
+        f"crack with a cohesive zone, would give {flawed:.3f})",
     }
 
 
