@@ -67,5 +67,5 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    """The public names only (``__all__``) and the module's own dunders."""
-    return sorted(set(__all__) | {n for n in globals() if n.startswith("__")})
+    """The public API only (``__all__``; not the helpers this module imports)."""
+    return sorted(__all__)

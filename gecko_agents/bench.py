@@ -171,7 +171,9 @@ def pymunk_rate(m: Model, steps: int) -> float:
     return m.n * steps / (time.perf_counter() - t)
 
 
-def press_pull_run(n: int, progress: bool = False, multirate: bool = True) -> tuple[float, int]:
+def press_pull_run(
+    n: int, progress: bool = False, multirate: bool | None = None
+) -> tuple[float, int]:
     """Wall time [s] and steps of a full press-pull of ``n`` setae: the paper's array with rod
     setae on a σ = 0.5 µm pad floor, ``protocol.press_pull(1.0)``, seed 1 (``progress``: show
     the run's progress bar; ``multirate``: :class:`Numerics`' multirate)."""

@@ -112,7 +112,7 @@ def wp_measure(
     dt_factor: float | None,
     speed: float,
     record_every: int | None = 1,
-    multirate: bool = True,
+    multirate: bool | None = None,
 ) -> dict:
     """One run of a work-precision case: steps, seta-steps, wall time [s], pull-off force [µN]
     and release displacement [µm] (plate travel from the start of the pull to the last tip's

@@ -497,6 +497,23 @@ def energy_balance_error(h: History) -> float:
     return err / scale
 
 
+def _law_bounds(h: History) -> tuple[float, float, float]:
+    """(largest tension one tip holds [µN], overlap below which no tip stays attached [µm],
+    energy tolerance factor [-]) of a history's tip law: the bounds the recorder wrote
+    (:func:`gecko_agents.contact.bounds`); a history without them (older runs, quasi-static
+    results) has the JKR sphere's."""
+    c = h.params.contact
+    rate = math.isfinite(getattr(c, "crack_speed", math.inf))
+    bounds = h.meta.get("tip_bounds") or {
+        "max_tension_uN": math.inf if rate else c.pull_off_force,
+        "detach_overlap_um": 20.0 * c.snap_off_overlap if rate else c.snap_off_overlap,
+        "rate_dependent": rate,
+    }
+    # Older histories lack the law's factor: 2 for crack kinetics, as it has now.
+    factor = bounds.get("energy_tolerance_factor", 2.0 if bounds["rate_dependent"] else 1.0)
+    return float(bounds["max_tension_uN"]), float(bounds["detach_overlap_um"]), factor
+
+
 def invariant_violations(
     h: History, rtol: float = 1e-9, energy_rtol: float | None = None
 ) -> list[str]:
@@ -522,20 +539,8 @@ def invariant_violations(
     * once every tip has let go at the end of a run, the force is zero.
     """
     out = []
-    # The tip law's own bounds, written by the recorder (:func:`gecko_agents.contact.bounds`);
-    # a history without them (older runs, quasi-static results) has the JKR sphere's.
-    c = h.params.contact
-    rate = math.isfinite(getattr(c, "crack_speed", math.inf))
-    bounds = h.meta.get("tip_bounds") or {
-        "max_tension_uN": math.inf if rate else c.pull_off_force,
-        "detach_overlap_um": 20.0 * c.snap_off_overlap if rate else c.snap_off_overlap,
-        "rate_dependent": rate,
-    }
-    Fc = float(bounds["max_tension_uN"])
-    detach = float(bounds["detach_overlap_um"])
+    Fc, detach, factor = _law_bounds(h)
     if energy_rtol is None:
-        # Older histories lack the law's factor: 2 for crack kinetics, as it has now.
-        factor = bounds.get("energy_tolerance_factor", 2.0 if bounds["rate_dependent"] else 1.0)
         energy_rtol = ENERGY_RTOL * factor
     quasi_static = h.meta.get("solver") == "quasistatic"
     untimed = (

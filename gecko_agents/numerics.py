@@ -40,7 +40,9 @@ class Numerics:
     threads : numba threads of the pad loop; None: from the model's size and the idle cores.
     multirate : near an event, only the setae near it take the implicit step's short steps,
         the rest the long one, where the setae are independent
-        (:mod:`gecko_agents.model.multirate`); False: the whole array takes them.
+        (:mod:`gecko_agents.model.multirate`). None (default): where it applies; True: asked
+        for, refused where it does not apply (naming what rules it out,
+        :func:`gecko_agents.model.build.choose_multirate`); False: the whole array takes them.
     """
 
     integrator: str = "auto"
@@ -51,7 +53,7 @@ class Numerics:
     contact: str = "batch"
     detection: str = "auto"
     threads: int | None = None
-    multirate: bool = True
+    multirate: bool | None = None
 
     def replace(self, **changes) -> Numerics:
         """A copy with ``changes`` (field → value)."""

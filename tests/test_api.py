@@ -159,3 +159,18 @@ def test_the_api_reference_lists_every_module_once_as_public_or_internal():
         module, attribute = ga._LAZY[name]
         if attribute is None:
             assert module in public, f"{module} (ga.{name}) is listed as internal"
+def test_dir_lists_the_public_api_only():
+    import gecko_agents as ga
+
+    assert dir(ga) == sorted(ga.__all__)
+    assert not {"import_module", "version", "PackageNotFoundError"} & set(dir(ga))
+
+
+def test_load_run_is_read_run_file_with_a_deprecation():
+    """``ga.load_run`` reads a run file, not a saved run (``ga.load``): it is
+    ``ga.read_run_file`` now, the older name served with a warning naming the new one."""
+    import gecko_agents as ga
+
+    with pytest.warns(DeprecationWarning, match="gecko_agents.read_run_file"):
+        older = ga.load_run
+    assert older is ga.read_run_file

@@ -186,7 +186,8 @@ MODULE_NAMES = {_module_name(p): p for p in MODULES}
 
 
 def test_backing_sits_below_the_model():
-    """A backing is built by the model and reads it; it never imports the model's modules."""
+    """A backing is built by the model from the setup and the parts it acts on; it never
+    imports the model's modules."""
     for name, path in MODULE_NAMES.items():
         if name.startswith("gecko_agents.backing"):
             up = {m for m in _package_imports(path) if m.startswith("gecko_agents.model")}
@@ -211,3 +212,96 @@ def test_no_import_circles():
                 todo.extend(graph.get(m, ()))
     flagged = [c for c in circles if not any(c in pair for pair in allowed)]
     assert not flagged, f"modules on an import circle: {sorted(flagged)}"
+
+
+ENGINE = ("gecko_agents.model", "gecko_agents.backing", "gecko_agents.numerics",
+          "gecko_agents.protocol")  # fmt: skip
+NAMEDTUPLE_API = {"_replace", "_asdict", "_fields", "_make"}
+
+
+def _private_names_defined(tree: ast.Module) -> set[str]:
+    """Private names a module defines: its functions, classes and the attributes it assigns
+    (``x._name = …`` on any object)."""
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            names.add(node.name)
+        elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store):
+            names.add(node.attr)
+        elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            names.add(node.id)
+    return {n for n in names if n.startswith("_")}
+
+
+def _foreign_private_reads(tree: ast.Module) -> list[tuple[int, str]]:
+    """(line, name) of each ``x._name`` on an object other than ``self``/``cls`` whose name the
+    module does not define itself: another module's private attribute."""
+    own = _private_names_defined(tree) | NAMEDTUPLE_API
+    return [
+        (node.lineno, node.attr)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Attribute)
+        and node.attr.startswith("_")
+        and not node.attr.startswith("__")
+        and not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"))
+        and node.attr not in own
+    ]
+
+
+def test_the_private_read_check_sees_a_foreign_attribute():
+    tree = ast.parse("def f(m):\n    m._mine = 1\n    return m._mine + m._theirs + self._x\n")
+    assert _foreign_private_reads(tree) == [(3, "_theirs")]
+
+
+@pytest.mark.parametrize(
+    "name", sorted(n for n in MODULE_NAMES if n.startswith(ENGINE)), ids=lambda n: n
+)
+def test_the_engine_reads_no_other_modules_private_attributes(name):
+    """The engine's parts talk through public names: a model's parts, the steppers and the
+    backings read no private attribute defined in another module."""
+    found = _foreign_private_reads(_tree(MODULE_NAMES[name]))
+    assert not found, f"{name} reads private attributes of other modules: {found}"
+
+
+def test_the_architecture_page_names_the_tree():
+    """docs/explanation/architecture.md names every folder and public top-level module of the
+    package, and every public module of the engine's folders (model/, backing/)."""
+    page = PKG.parent / "docs" / "explanation" / "architecture.md"
+    if not page.exists():
+        pytest.skip("no docs/ beside the package (an installed copy)")
+    text = page.read_text()
+    names = [f"`{p.name}/`" for p in PKG.iterdir() if p.is_dir() and (p / "__init__.py").exists()]
+    names += [f"`{p.name}`" for p in PKG.glob("*.py") if not p.name.startswith("_")]
+    for folder in ("model", "backing"):
+        names += [f"`{p.stem}`" for p in (PKG / folder).glob("*.py") if not p.name.startswith("_")]
+    missing = sorted(n for n in names if n not in text)
+    assert not missing, f"{page.name} does not name {missing}"
+
+
+ENGINE_FOLDERS = ("model", "backing")
+ENGINE_FILES = ("numerics.py", "protocol.py", "history.py", "render/scene.py")
+
+
+@pytest.mark.parametrize(
+    "path",
+    [p for p in MODULES if p.relative_to(PKG).parts[0] in ENGINE_FOLDERS
+     or p.relative_to(PKG).as_posix() in ENGINE_FILES],
+    ids=lambda p: str(p.relative_to(PKG)),
+)  # fmt: skip
+def test_the_engines_rooms_hold_whole_in_view(path):
+    """The engine's classes and functions, docstrings included, stay a size a reader holds in
+    view: no class over 300 lines, no function over 80 (split by responsibility)."""
+    tree = ast.parse(path.read_text())
+    big = [
+        (node.name, n)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.ClassDef)
+        and (n := node.end_lineno - node.lineno + 1) > MAX_CLASS_CODE_LINES
+    ]
+    long = [
+        (node.name, n)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
+        and (n := node.end_lineno - node.lineno + 1) > MAX_FUNCTION_LINES
+    ]
+    assert not big and not long, f"{path}: classes {big}, functions {long} (lines)"

@@ -20,6 +20,7 @@ SPHERE = PAPER_TABLE1.replace(tip="sphere")
         ({"tip": "flat_punch"}, contact.FlatPunch),
         ({"tip": "mushroom"}, contact.MushroomTip),
         ({"tip": "spatula"}, contact.SpatulaTip),
+        ({"tip": "spatulae"}, contact.SpatulaeTip),
         ({"contact.crack_speed": 0.5}, contact.RateJKRSphere),
         ({"contact.shear_coupling": "savkoor_briggs"}, contact.ShearedJKRSphere),
     ],

@@ -100,10 +100,10 @@ def _linear_sphere_run(share, monkeypatch):
     """(model, history) of the work-precision benchmark's linear sphere press-pull with
     :data:`~gecko_agents.model.implicit.FREE_RINGING_SHARE` set to ``share``."""
     from gecko_agents.bench import WP_CASES
-    from gecko_agents.model import implicit
+    from gecko_agents.model import event_steps
     from gecko_agents.params import PAPER_TABLE1
 
-    monkeypatch.setattr(implicit, "FREE_RINGING_SHARE", share)
+    monkeypatch.setattr(event_steps, "FREE_RINGING_SHARE", share)
     over, proto, n = WP_CASES["linear sphere"]
     from gecko_agents.model.runner import run_protocol
 

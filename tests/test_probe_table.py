@@ -1202,3 +1202,38 @@ ROWS_54_REVIEW = [
 @extras.needs("design")  # every row runs the design search or opens its store
 def test_probe_54_review(row, tmp_path, capsys, monkeypatch):
     test_probe_54_design(row, tmp_path, capsys, monkeypatch)
+
+
+# Issue 54: the build step ---------------------------------------------------------------------
+# Choices checked once when the model is built (gecko_agents.model.build): multirate asked for
+# where it does not apply is refused naming what rules it out (item 18); a step longer than
+# the whole protocol is refused naming dt, its value and its range (item 19).
+ROD_ROW = PAPER_ARRAY.replace(**{"array.count": 4, "mechanics": "rod", "seta.L": 5.0})
+
+
+def _multirate_on(**overrides):
+    return _raised(lambda: Model(ROD_ROW.replace(**overrides), numerics=Numerics(multirate=True)))
+
+
+BUILD_ROWS = [
+    Row("multirate true on a layer backing", lambda p: _multirate_on(**{"backing.kind": "layer"}),
+        ValueError, ("multirate = True", "backing.kind = 'layer'")),
+    Row("multirate true on the elastica", lambda p: _multirate_on(mechanics="elastica"),
+        ValueError, ("multirate = True", "mechanics = 'elastica'")),
+    Row("multirate true on a continuous floor",
+        lambda p: _multirate_on(**{"floor.correlation_length": 2.0}),
+        ValueError, ("multirate = True", "continuous floor")),
+    Row("Numerics implicit dt 1e9 names its range",
+        lambda p: _raised(lambda: Model(P41, numerics=Numerics(integrator="implicit", dt=1e9)).run(
+            protocol.press_pull(0.5), progress=False)),
+        RunCostError, ("dt = 1e+09 µs", "allowed range of dt is (0, 1.4e+03] µs")),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("row", [pytest.param(r, id=r.id) for r in BUILD_ROWS])
+def test_build_step_probe(row, tmp_path, capsys, monkeypatch):
+    test_probe(row, tmp_path, capsys, monkeypatch)
+
+
+def test_build_step_rows_are_new_probes():
+    assert not {r.id for r in BUILD_ROWS} & {r.id for r in ROWS}

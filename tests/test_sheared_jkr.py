@@ -15,11 +15,16 @@ from gecko_agents import protocol, quasistatic
 from gecko_agents.analysis.pull import pull_off
 from gecko_agents.contact import JKRSphere, ShearedJKRSphere, contact_law
 from gecko_agents.contact.sheared_jkr import _radius
-from gecko_agents.model import Model, Numerics
+from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import jkr
 from gecko_agents.physics import savkoor_briggs as sj
 from gecko_agents.physics.friction import combined_shear_modulus
+
+needs_numba = pytest.mark.skipif(
+    not numba_available(), reason="numba is not installed (optional extra 'fast')"
+)
+
 
 SHEARED = PAPER_ARRAY.replace(
     **{"contact.shear_coupling": "savkoor_briggs", "mechanics": "rod", "floor.sigma": 0.0}
@@ -215,6 +220,7 @@ def _drag_pull(params, drag, kernel="auto", speed=0.05, **kw):
         return m.run(protocol.drag_pull(0.2, drag, 90.0, speed=speed), progress=False)
 
 
+@needs_numba
 def test_pull_off_after_a_gripping_drag_is_savkoor_briggs():
     """One rod seta (θ = 60°, μ = 10) pressed to 0.2 µN, dragged 8 µm back along its shaft and
     pulled straight off: the soft seta loads its tip nearly as a dead load, so the pull-off is
@@ -234,6 +240,7 @@ def law_fc():
     return float(jkr.pull_off_force(R, W))
 
 
+@needs_numba
 def test_without_friction_it_is_the_jkr_sphere():
     """μ = 0 with the paper's friction law: the tip never carries shear (ξ = 0), and a
     press–pull gives the JKR sphere's history to rounding."""

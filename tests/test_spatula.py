@@ -13,8 +13,13 @@ from gecko_agents.analysis.pull import pull_off
 from gecko_agents.contact import contact_law
 from gecko_agents.contact.spatula import K_MU, K_PAPER, _film_force
 from gecko_agents.history import STATE_SLIP, STATE_STICK
-from gecko_agents.model import Model, Numerics
+from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.params import PAPER_ARRAY
+
+needs_numba = pytest.mark.skipif(
+    not numba_available(), reason="numba is not installed (optional extra 'fast')"
+)
+
 
 SPATULA = PAPER_ARRAY.replace(**{"tip": "spatula", "mechanics": "rod", "floor.sigma": 0.0})
 BONDED = SPATULA.replace(**{"spatula.interface": "bonded"})
@@ -176,6 +181,7 @@ def test_kernels_agree_on_a_drag_and_pull():
     assert along == pytest.approx(along_np, rel=1e-9)
 
 
+@needs_numba
 def test_gripping_drag_holds_at_least_twice_the_releasing_one():
     """A seta dragged back along its shaft (the plate to −x, small peel angle) holds more than
     one pushed over its pad, pulled at 90° quasi-statically: 1.185 / 0.566 µN = ×2.10 at μ = 10

@@ -314,7 +314,7 @@ def test_one_model_number_never_scores_two_observations(tmp_path):
 
 def test_reproduce_beyond_writes_the_literature_comparison_beside_the_report(tmp_path, monkeypatch):
     calls = []
-    monkeypatch.setattr(reproduce_paper, "run_scenarios", lambda base, args, log: {})
+    monkeypatch.setattr(reproduce_paper, "run_scenarios", lambda base, args, log, *setup: {})
     monkeypatch.setattr(reproduce_paper, "conclusion_rows", lambda quick: [])
     monkeypatch.setattr(reproduce_paper, "run_scenario", lambda *a: calls.append(a[:2]))
     reproduce_paper.main(["--quick", "--beyond", "--jobs", "1", "--out", str(tmp_path)])

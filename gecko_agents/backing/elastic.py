@@ -78,6 +78,7 @@ import math
 
 import numpy as np
 
+from gecko_agents.backing.handle import HandleSpring
 from gecko_agents.backing.strip import MIN_LINKS, OMEGA_DT, Strip, bending_length
 
 __all__ = [
@@ -117,16 +118,33 @@ linear setae, 3 per link): stable at ω_c·dt = 1.49 (10 explicit steps), diverg
 and 2.98 (20); half the explicit bound ω·dt < 2 keeps a margin, as the explicit step's 0.75."""
 
 
-def strip_step(model) -> float:
-    """The strip's own step [µs] in ``model`` (a :class:`gecko_agents.model.Model`): the
-    model's dt with the explicit integrator (the strip steps with the tips); with the implicit
-    one, the explicit step the model would take (0.75/ω_max of the tips' stiffest spring,
-    the model's ``explicit_dt``), or the model's dt if shorter. The
-    links' inertia is scaled for this step (:class:`ElasticBacking`), and the strip sub-cycles
-    the tips' step in steps no longer than it (:meth:`ElasticBacking.roots`)."""
-    if model.integrator != "implicit":
-        return model.dt
-    return min(model.explicit_dt, model.dt)
+def strip_step(setup) -> float:
+    """The strip's own step [µs] in a run of ``setup`` (a
+    :class:`gecko_agents.model.build.Setup`, or a :class:`gecko_agents.model.Model`): the run's
+    dt with the explicit integrator (the strip steps with the tips); with the implicit one,
+    the explicit step the run would take (0.75/ω_max of the tips' stiffest spring,
+    ``explicit_dt``), or its dt if shorter. The links' inertia is scaled for this step
+    (:class:`ElasticBacking`), and the strip sub-cycles the tips' step in steps no longer than
+    it (:meth:`ElasticBacking.roots`)."""
+    if setup.integrator != "implicit":
+        return setup.dt
+    return min(setup.explicit_dt, setup.dt)
+
+
+def start_turned(world, lift: float, alpha: float) -> None:
+    """A misaligned start: raise the handle of ``world`` by ``lift`` [µm] (the strip's lowest
+    edge starts where a level strip would) and put every tip at rest below its root on the
+    strip turned by ``alpha`` [rad] about the handle."""
+    w = world
+    pp = w.plate.position
+    w.plate.position = (pp.x, pp.y + lift)
+    w.plate_start = pp.y + lift
+    c, s = math.cos(alpha), math.sin(alpha)
+    dx = w.root_dx * (c - 1.0)
+    dy = w.root_dx * s + lift
+    for body, ddx, ddy in zip(w.tips, dx.tolist(), dy.tolist(), strict=True):
+        p = body.position
+        body.position = (p.x + ddx, p.y + ddy)
 
 
 class ElasticBacking:
@@ -139,14 +157,14 @@ class ElasticBacking:
 
     Parameters
     ----------
-    model : the :class:`gecko_agents.model.Model` being built (world, state, physics, dt).
-        Its ``params.backing.leader_arm`` [µm] > 0 (with ``drive = "peel_end"``) adds a
-        pre-peeled arm of that length beyond the pad's +x edge: links of the same strip with
-        no setae under them, laid out at ``params.backing.peel_angle_deg`` from the floor (+x,
-        the pulled side; 90 = straight up), stress-free in that shape (the kink's joint has
-        that rest angle); the handle holds the arm's end, so pulling the handle along the same
-        angle peels the pad at a steady angle (a handle pulled from the end of a flat strip
-        drags it instead).
+    setup, world, state, physics, spring_force : as
+        :class:`gecko_agents.backing.rigid.RigidBacking`'s. ``params.backing.leader_arm``
+        [µm] > 0 (with ``drive = "peel_end"``) adds a pre-peeled arm of that length beyond the
+        pad's +x edge: links of the same strip with no setae under them, laid out at
+        ``params.backing.peel_angle_deg`` from the floor (+x, the pulled side; 90 = straight
+        up), stress-free in that shape (the kink's joint has that rest angle); the handle
+        holds the arm's end, so pulling the handle along the same angle peels the pad at a
+        steady angle (a handle pulled from the end of a flat strip drags it instead).
 
     Attributes
     ----------
@@ -156,31 +174,20 @@ class ElasticBacking:
 
     kind = "elastic"
     rigid = False
+    implicit = True
+    loops = False
+    contacts = ("batch",)
+    mechanics = ("linear", "rod", "elastica")
 
-    @staticmethod
-    def kernel(kernel: str, contact: str) -> str:
-        """The kernel the model runs: numpy (refuses the loops and the callback contact)."""
-        if kernel in ("numba", "python"):
-            raise ValueError(
-                f"kernel = {kernel!r}: the elastic backing (backing.kind = 'elastic') runs "
-                "with kernel='numpy'"
-            )
-        if contact != "batch":
-            raise ValueError(
-                f"contact = {contact!r}: the elastic backing (backing.kind = 'elastic') runs "
-                "with contact='batch'"
-            )
-        return "numpy"
-
-    def __init__(self, model):
-        bk = model.params.backing  # its leader_arm and peel_angle_deg, checked there
+    def __init__(self, setup, world, state, physics, spring_force):
+        bk = setup.params.backing  # its leader_arm and peel_angle_deg, checked there
         self.leader_arm, self.peel_angle_deg = float(bk.leader_arm), float(bk.peel_angle_deg)
-        self.params, self.world, self.state = model.params, model.world, model.state
-        self.physics, self.n, self._model = model.physics, model.n, model
-        self.dt = strip_step(model)
+        self.params, self.world, self.state = setup.params, world, state
+        self.physics, self.n, self.spring_force = physics, setup.n, spring_force
+        self.Ka = setup.seta.Ka
+        self.tips_implicit = setup.integrator == "implicit"  # the tips' step
+        self.dt = strip_step(setup)
         self._build_strip()
-        if model._implicit is not None:  # the tips follow the links a step behind
-            model._implicit.limit_step(COUPLING_OMEGA_DT / self.coupling_omega())
         self.setae_force = (0.0, 0.0)
         self._roots = (np.zeros(self.n), np.zeros(self.n))
         self._k, self._handle_force = 1, (0.0, 0.0)  # sub-steps of the step (roots)
@@ -207,7 +214,7 @@ class ElasticBacking:
         rho_A = bk.density * pitch * bk.t_b
         alpha = math.radians(bk.misalignment_deg)
         if alpha:
-            self._lift(0.5 * length * abs(math.sin(alpha)), alpha)
+            start_turned(self.world, 0.5 * length * abs(math.sin(alpha)), alpha)
         n_arm = math.ceil(self.leader_arm / ell - 1e-9)  # links of the leader arm
         strip = Strip(
             -0.5 * length,
@@ -221,7 +228,8 @@ class ElasticBacking:
         )
         if n_arm:
             strip.kink_up(n_links, math.radians(self.peel_angle_deg))
-        k_each = self._attach_handle(strip, n_links, n_arm, length, alpha)
+        self.handle = HandleSpring(strip, self.world, bk, n_links, n_arm, length, alpha)
+        k_each = self.handle.k
         # Rotary inertia first: the zig-zag mode is the links turning about their centres
         # (ω² = 4k_r/I), slowed to ω·dt = OMEGA_DT by the links' moment of inertia alone,
         # which leaves the bending waves longer than a link (ω² = EI·q⁴/ρA) at the true mass.
@@ -234,7 +242,7 @@ class ElasticBacking:
         strip.scale_inertia(mass=mass)
         m_eff *= mass
         # Damping ratio on the link end's effective mass (explicit: c·dt/m_eff = 2ζ·ω·dt).
-        self._c_h = 2.0 * bk.damping_ratio * math.sqrt(k_each * m_eff)
+        self.handle.c = 2.0 * bk.damping_ratio * math.sqrt(k_each * m_eff)
         self.strip = strip
         # Roots: link and abscissa from its centre on a straight strip.
         rx = w.root_dx
@@ -260,64 +268,30 @@ class ElasticBacking:
             "handle_stiffness_each_uN_per_um": k_each,
         }
 
-    def _attach_handle(self, strip, n_links, n_arm, length, alpha) -> float:
-        """The handle spring's points on the strip: k_h/n per link centre (uniform) or k_h on
-        the +x end (peel: of the arm, if any); returns the stiffness of each [µN/µm]."""
-        w, bk = self.world, self.params.backing
-        if bk.drive == "uniform":
-            self._h_link = np.arange(n_links)
-            self._h_s = np.zeros(n_links)
-            self._h_dx = strip.x_centre.copy()
-            k_each = bk.handle_stiffness / n_links
-        else:  # the +x end of the strip (of the arm, if any)
-            self._h_link = np.array([strip.n - 1])
-            self._h_s = np.array([0.5 * strip.ell])
-            self._h_dx = np.array([0.5 * length])
-            k_each = bk.handle_stiffness
-        self._h_dy = np.zeros_like(self._h_dx)
-        if n_arm:  # the arm's end, where kink_up laid it
-            ex, ey = strip.nodes()
-            self._h_dx[0], self._h_dy[0] = ex[-1] - w.plate.position.x, ey[-1] - w.plate.position.y
-        if alpha:  # the handle holds the strip turned: its attachment points turn with it
-            self._h_dx, self._h_dy = self._h_dx * math.cos(alpha), self._h_dx * math.sin(alpha)
-        self._k_h = k_each
-        self._E_handle = 0.0
-        return k_each
-
-    def _lift(self, lift, alpha):
-        """A misaligned start: raise the handle by ``lift`` [µm] (the strip's lowest edge
-        starts where a level strip would) and put every tip at rest below its root on the
-        strip turned by ``alpha`` [rad] about the handle."""
-        w = self.world
-        pp = w.plate.position
-        w.plate.position = (pp.x, pp.y + lift)
-        w.plate_start = pp.y + lift
-        c, s = math.cos(alpha), math.sin(alpha)
-        dx = w.root_dx * (c - 1.0)
-        dy = w.root_dx * s + lift
-        for body, ddx, ddy in zip(w.tips, dx.tolist(), dy.tolist(), strict=True):
-            p = body.position
-            body.position = (p.x + ddx, p.y + ddy)
-
     # ------------------------------------------------------------------ stepping
     def coupling_omega(self) -> float:
         """ω_c [1/µs] of the setae on the link that carries most of them: √(n·Ka/m), n the
         setae on it, Ka the seta's stiffest spring (its axial stiffness, eq 17; the seta's
         share of the model's ``k_max``) [µN/µm], m the link's mass as scaled [ng]."""
         n = int(np.bincount(self._r_link, minlength=self.strip.n).max())
-        return math.sqrt(n * self._model.Ka / self.strip.m)
+        return math.sqrt(n * self.Ka / self.strip.m)
 
-    def roots(self, hx, hy, vpx, vpy):
+    def step_limit(self) -> float | None:
+        """The longest step between events the implicit step may take [µs]: the tips follow
+        the links a step behind, so ω_c·dt ≤ :data:`COUPLING_OMEGA_DT`; None with the explicit
+        step (the strip steps with the tips)."""
+        return COUPLING_OMEGA_DT / self.coupling_omega() if self.tips_implicit else None
+
+    def roots(self, hx, hy, vpx, vpy, dt):
         """Where the roots' material points on the links will be at the end of the step and
         how fast they move, as per-seta "plates" for the seta springs (root minus the root
         offset, since :meth:`~gecko_agents.model.step_numpy.NumpyStep.spring_damp` adds it);
         the handle reaches (``hx``, ``hy``) [µm] at the step's end, moving at (``vpx``,
-        ``vpy``) [µm/µs]. Where the tips' step is longer than the strip's own (the implicit
-        step), the strip takes its sub-steps first (``_subcycle``) and the roots are
-        where they took it; else they are predicted, x + v·dt, where the strip's step after
-        the tips' (:meth:`advance`) takes them."""
+        ``vpy``) [µm/µs], the tips' step ``dt`` [µs]. Where the tips' step is longer than the
+        strip's own (the implicit step), the strip takes its sub-steps first (``_subcycle``)
+        and the roots are where they took it; else they are predicted, x + v·dt, where the
+        strip's step after the tips' (:meth:`advance`) takes them."""
         w, st = self.world, self.strip
-        dt = self._model.dt
         self._k = max(1, math.ceil(dt / self.dt - 1e-9))
         if self._k > 1:
             self._subcycle(dt, self._k, hx, hy, vpx, vpy)
@@ -346,7 +320,7 @@ class ElasticBacking:
             a = (j + 1) / k
             rx, ry, _, _, ox, oy = st.points(st.rows, link, self._r_s, h)
             tips = np.column_stack((x0 + a * (x1 - x0), y0 + a * (y1 - y0)))
-            F = self._model.spring_force(tips, np.column_stack((rx, ry)))[0]
+            F = self.spring_force(tips, np.column_stack((rx, ry)))[0]
             fs = (F[:, 0] + Fdx, F[:, 1] + Fdy)
             back = (k - 1 - j) * h  # the handle's time to the step's end [µs]
             self._handle_force = self._substep(
@@ -415,8 +389,8 @@ class ElasticBacking:
         Fdx, Fdy = s.F_damp_seta
         dfx, dfy = damp
         dtq = np.bincount(link, ox * Fdy - oy * Fdx, nl)
-        hl = self._h_link
-        Fhx, Fhy, Fcx, Fcy, qox, qoy = self._handle_forces(data, hx, hy, vpx, vpy, fx, fy, tq, dt)
+        hl = self.handle.link
+        Fhx, Fhy, Fcx, Fcy, qox, qoy = self.handle.forces(data, hx, hy, vpx, vpy, fx, fy, tq, dt)
         new = st.step(dt, fx, fy, tq)
         # Mid-step velocities of the links: what a force on a link works against.
         vmx, vmy = 0.5 * (data[:, 3] + new[:, 3]), 0.5 * (data[:, 4] + new[:, 4])
@@ -431,22 +405,6 @@ class ElasticBacking:
         handle_power = vpx * float(Fcx.sum()) + vpy * float(Fcy.sum())
         ph.diss += (handle_power - hl_power) * dt + st.dissipated
         return float(Fhx.sum()), float(Fhy.sum())
-
-    def _handle_forces(self, data, hx, hy, vpx, vpy, fx, fy, tq, dt):
-        """The handle spring k·(handle point − link point) + c·(v_handle − v_point) on the
-        links it holds, added to the links' forces ``fx``, ``fy`` and torques ``tq``; books its
-        energy ½k_h·|Δ|² at the end of the step ``dt`` [µs]. Returns its force, its damper's
-        share and the lever arms."""
-        hl = self._h_link
-        qx, qy, qvx, qvy, qox, qoy = self.strip.points(data, hl, self._h_s, dt)
-        ex, ey = hx + self._h_dx - qx, hy + self._h_dy - qy
-        self._E_handle = 0.5 * self._k_h * float(ex @ ex + ey @ ey)
-        Fcx, Fcy = self._c_h * (vpx - qvx), self._c_h * (vpy - qvy)
-        Fhx, Fhy = self._k_h * ex + Fcx, self._k_h * ey + Fcy
-        np.add.at(fx, hl, Fhx)
-        np.add.at(fy, hl, Fhy)
-        np.add.at(tq, hl, qox * Fhy - qoy * Fhx)
-        return Fhx, Fhy, Fcx, Fcy, qox, qoy
 
     # ------------------------------------------------------------------ state
     def front_x(self) -> float:
@@ -470,7 +428,7 @@ class ElasticBacking:
     def energy(self) -> float:
         """Elastic energy of the strip's joints and the handle spring [pJ] at the last step's
         evaluation positions."""
-        return self.strip.energy_bending + self._E_handle
+        return self.strip.energy_bending + self.handle.energy
 
     def kinetic_energy(self, tips: float) -> float:
         """Kinetic energy of the tips (``tips`` [pJ]) and of the strip's links [pJ] (both in

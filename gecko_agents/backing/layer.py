@@ -115,49 +115,28 @@ class LayerBacking:
 
     kind = "layer"
     rigid = False
+    implicit = False  # the module docstring says why
+    loops = False
+    contacts = ("batch",)
+    mechanics = ("linear", "rod")
 
-    @staticmethod
-    def kernel(kernel: str, contact: str) -> str:
-        """The kernel the model runs: numpy (refuses the loops and the callback contact)."""
-        if kernel in ("numba", "python"):
-            raise ValueError(
-                f"kernel = {kernel!r}: the layer backing (backing.kind = 'layer') runs with "
-                "kernel='numpy'"
-            )
-        if contact != "batch":
-            raise ValueError(
-                f"contact = {contact!r}: the layer backing (backing.kind = 'layer') runs with "
-                "contact='batch'"
-            )
-        return "numpy"
-
-    def __init__(self, model):
-        p = model.params
+    def __init__(self, setup, world, state, physics, spring_force):
+        p = setup.params
         if p.backing.leader_arm:
             raise ValueError(
                 f"Backing.leader_arm = {p.backing.leader_arm!r} µm needs kind = 'elastic' (the "
                 "layer backing, kind = 'layer', has no leader arm)"
             )
-        if p.mechanics not in ("linear", "rod"):
-            raise ValueError(
-                f"mechanics = {p.mechanics!r}: the layer backing (backing.kind = 'layer') "
-                "runs with mechanics 'linear' or 'rod'"
-            )
-        if model.integrator != "explicit":
-            raise ValueError(
-                f"integrator = {model.integrator!r}: the layer backing (backing.kind = "
-                "'layer') runs with the explicit step (integrator 'explicit' or 'auto'; "
-                "gecko_agents.backing.layer says why)"
-            )
         bk, pitch = p.backing, p.array.pitch
-        self._model, self.world, self.state = model, model.world, model.state
-        self.physics, self.n = model.physics, model.n
+        self.world, self.state, self.physics, self.n = world, state, physics, setup.n
+        self.spring_force, self.linear = spring_force, p.mechanics == "linear"
+        self.K, self.dt = setup.seta.K, setup.dt  # the explicit step: dt stays
         # C is Toeplitz (the roots are evenly spaced): its first column is the kernel.
         self.column = (
             layer.line_kernel(pitch * np.arange(self.n), bk.t_b, bk.E_b, bk.nu_b, pitch) / pitch
         )
-        self._c = model.c_seta
-        self._k_eff = float(model.K[1, 1]) + self._c / model.dt
+        self._c = setup.seta.c_seta
+        self._k_eff = float(self.K[1, 1]) + self._c / self.dt
         self._C = ToeplitzSolver(self.column)
         self._A = ToeplitzSolver(np.eye(1, self.n)[0] + self._k_eff * self.column)
         self.w = np.zeros(self.n)
@@ -186,27 +165,26 @@ class LayerBacking:
     def _normal_force(self, hx, hy, w, vpy):
         """Upward force [µN] of each seta on its root (spring + damper) with the roots at
         w [µm] above the rigid plate's place, the tips where the step evaluates them."""
-        m, s, wd = self._model, self.state, self.world
+        s, wd = self.state, self.world
         x, y = s.xy
-        if m.params.mechanics == "linear":  # eq 16–21: F = −K·u, u the deflection
-            K = m.K
+        if self.linear:  # eq 16–21: F = −K·u, u the deflection
+            K = self.K
             ux = x - hx - wd.rest_dx
             uy = y - hy - wd.rest_dy - w
             Fy = -K[1, 0] * ux - K[1, 1] * uy
         else:
             roots = np.column_stack((hx + wd.root_dx, hy + wd.root_dy + w))
-            Fy = m.spring_force(np.column_stack((x, y)), roots)[0][:, 1]
-        v_root = vpy + (w - self.w_prev) / m.dt
+            Fy = self.spring_force(np.column_stack((x, y)), roots)[0][:, 1]
+        v_root = vpy + (w - self.w_prev) / self.dt
         return -Fy + self._c * (s.pv[3] - v_root)
 
-    def roots(self, hx, hy, vpx, vpy):
+    def roots(self, hx, hy, vpx, vpy, dt):
         """The roots where the layer and the setae balance for this step's tips (module
         docstring), as per-seta "plates" for the seta springs (root minus its offset), and
         their velocities [µm/µs]; the holder at (``hx``, ``hy``) [µm] moving at (``vpx``,
-        ``vpy``) [µm/µs]."""
-        m = self._model
+        ``vpy``) [µm/µs], the step ``dt`` [µs] (the explicit step's, ``self.dt``)."""
         self._w_older, self.w_prev, w = self.w_prev, self.w, self.w
-        rod = m.params.mechanics != "linear"
+        rod = not self.linear
         P = self._normal_force(hx, hy, w, vpy)
         for _ in range(_ROD_ITERATIONS if rod else 1):
             rhs = P + self._k_eff * w  # (I + k̃C)·w_new = C·rhs: exact for the linear seta
@@ -220,7 +198,11 @@ class LayerBacking:
             if done:
                 break
         self.w, self.P = w, P
-        return hx, hy + w, vpx, vpy + (w - self.w_prev) / m.dt
+        return hx, hy + w, vpx, vpy + (w - self.w_prev) / self.dt
+
+    def step_limit(self) -> float | None:
+        """No bound of its own (the layer runs with the explicit step)."""
+        return None
 
     def hold(self, state) -> None:
         """Nothing to keep: the layer took its roots' forces in :meth:`roots`."""

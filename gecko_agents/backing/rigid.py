@@ -31,31 +31,42 @@ class RigidBacking:
     :meth:`kinetic_energy` (the energy columns), :meth:`record` (what the
     :class:`~gecko_agents.model.recorder.Recorder` writes per record), :attr:`geometry` and
     :attr:`info` (static, for the History), :attr:`rigid` (the roots move with the plate: the
-    compiled pad loop and the skip of the free approach apply).
+    compiled pad loop and the skip of the free approach apply); and what it runs with, which
+    the build step (:func:`gecko_agents.model.build.build`) checks: :attr:`implicit`,
+    :attr:`loops`, :attr:`contacts`, :attr:`mechanics`.
 
     Parameters
     ----------
-    model : the :class:`gecko_agents.model.Model` being built (its world is read).
+    setup : the run's :class:`gecko_agents.model.build.Setup` (its parameters, seta constants
+        and steps). world : the :class:`gecko_agents.model.world.World` (the handle, the
+        roots' offsets). state : the per-seta state. physics : the step's forces
+        (:class:`gecko_agents.model.step_numpy.NumpyStep`). spring_force : the setae's
+        springs, ``spring_force(tips, roots)`` → (forces (N, 2) [µN], energies [pJ], …)
+        (:meth:`gecko_agents.model.stepping.Stepping.spring_force`).
     """
 
     kind = "rigid"
     rigid = True
+    implicit = True
+    """The implicit step is verified with this backing (docs/physics.md, "Time stepping")."""
+    loops = True
+    """The pad loops (:mod:`gecko_agents.model.step_loop`) step the setae on it."""
+    contacts = ("batch", "callback")
+    """The contact paths it runs with."""
+    mechanics = ("linear", "rod", "elastica")
+    """The seta mechanics it holds."""
     info = None
     """Static figures for ``meta["backing"]`` (none for the rigid plate)."""
 
-    @staticmethod
-    def kernel(kernel: str, contact: str) -> str:
-        """The kernel the model runs with ``kernel`` and ``contact`` asked for: any."""
-        return kernel
-
-    def __init__(self, model):
-        self.world = model.world
+    def __init__(self, setup, world, state, physics, spring_force):
+        self.world = world
         self.geometry = {}
         """Static arrays for ``History.geometry`` (none for the rigid plate)."""
 
-    def roots(self, hx: float, hy: float, vpx: float, vpy: float):
+    def roots(self, hx: float, hy: float, vpx: float, vpy: float, dt: float):
         """The plate the seta springs are measured from: the handle at (``hx``, ``hy``) [µm],
-        where the step evaluates forces, moving at (``vpx``, ``vpy``) [µm/µs]."""
+        where the step of ``dt`` [µs] evaluates forces, moving at (``vpx``, ``vpy``)
+        [µm/µs]."""
         return hx, hy, vpx, vpy
 
     def hold(self, state) -> None:
@@ -69,6 +80,11 @@ class RigidBacking:
     def root_positions(self, handle) -> np.ndarray:
         """Root positions (N, 2) [µm] with the handle at ``handle`` (x, y) [µm]."""
         return np.asarray(handle) + np.column_stack([self.world.root_dx, self.world.root_dy])
+
+    def step_limit(self) -> float | None:
+        """The longest step between events the backing allows the implicit step [µs] (None:
+        no bound of its own)."""
+        return None
 
     def energy(self) -> float:
         """Elastic energy of the backing [pJ]: none in a rigid plate."""

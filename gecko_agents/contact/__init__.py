@@ -39,7 +39,7 @@ Mindlin's stick stiffness: :mod:`gecko_agents.physics.friction`), compiled where
 
 Layout: :mod:`.base` (interface, shared scalar helpers), one module per law (:mod:`.jkr_sphere`,
 :mod:`.rate_jkr`, :mod:`.hertz`, :mod:`.flat_punch`, :mod:`.mushroom`, :mod:`.spatula`,
-:mod:`.sheared_jkr`) and
+:mod:`.spatulae` (N films on a branched seta), :mod:`.sheared_jkr`) and
 :mod:`.registry` (names).
 Adding a law: write one module with a subclass of :class:`ContactLaw`, register it in
 :data:`TIP_LAWS`, add its tests. Nothing in the model changes.
@@ -54,6 +54,7 @@ from gecko_agents.contact.rate_jkr import RateJKRSphere
 from gecko_agents.contact.registry import TIP_LAWS, bounds, contact_law
 from gecko_agents.contact.sheared_jkr import ShearedJKRSphere
 from gecko_agents.contact.spatula import SpatulaTip
+from gecko_agents.contact.spatulae import SpatulaeTip
 
 __all__ = [
     "ContactLaw",
@@ -63,6 +64,7 @@ __all__ = [
     "FlatPunch",
     "MushroomTip",
     "SpatulaTip",
+    "SpatulaeTip",
     "ShearedJKRSphere",
     "TIP_LAWS",
     "contact_law",

@@ -13,6 +13,7 @@ from gecko_agents.contact.mushroom import MushroomTip
 from gecko_agents.contact.rate_jkr import RateJKRSphere
 from gecko_agents.contact.sheared_jkr import ShearedJKRSphere
 from gecko_agents.contact.spatula import SpatulaTip
+from gecko_agents.contact.spatulae import SpatulaeTip
 
 __all__ = ["TIP_LAWS", "bounds", "contact_law"]
 
@@ -23,6 +24,7 @@ TIP_LAWS: dict[str, type[ContactLaw]] = {
     "spatula": SpatulaTip,
     "flat_punch": FlatPunch,
     "mushroom": MushroomTip,
+    "spatulae": SpatulaeTip,
 }
 """Tip laws by the name ``params.tip`` selects."""
 
@@ -47,13 +49,16 @@ def contact_law(params) -> ContactLaw:
     """The contact law of a :class:`gecko_agents.params.SetaArray`: ``params.tip``, with crack
     kinetics (:class:`RateJKRSphere`) for a sphere of finite ``contact.crack_speed`` and the
     Savkoor–Briggs coupling (:class:`ShearedJKRSphere`) for ``contact.shear_coupling``; the
-    spatula and the mushroom take their own parameter groups as well."""
+    spatula, the branched seta's spatulae and the mushroom take their own parameter groups as
+    well."""
     if params.tip == "sphere" and math.isfinite(getattr(params.contact, "crack_speed", math.inf)):
         return RateJKRSphere(params.contact)
     if params.tip == "sphere" and getattr(params.contact, "shear_coupling", "none") != "none":
         return ShearedJKRSphere(params.contact, params.friction)
     if params.tip == "spatula":
         return SpatulaTip(params.contact, params.spatula, params.friction)
+    if params.tip == "spatulae":
+        return SpatulaeTip(params.contact, params.spatula, params.spatulae, params.friction)
     if params.tip == "mushroom":
         return MushroomTip(params.contact, params.mushroom)
     return TIP_LAWS[params.tip](params.contact)

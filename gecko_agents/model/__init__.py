@@ -3,8 +3,10 @@
 Units: µm, µN, µs, ng (:mod:`gecko_agents.params`); a seta's mass is then O(0.1–1). Sign
 conventions: :mod:`gecko_agents.contact` and ``docs/physics.md``.
 
-:class:`Model` builds a run from parameters and conducts it; the pieces live in their own
-modules:
+:class:`Model` is a façade: :func:`gecko_agents.model.build.build` makes every choice of the
+run once (a frozen :class:`~gecko_agents.model.build.Setup`, compatibility checked there), the
+model assembles the parts from it and runs a protocol once into a History; the pieces live in
+their own modules:
 
 * :mod:`gecko_agents.model.world` — the pymunk space (tips, plate, floor, collision events,
   batch I/O);
@@ -30,43 +32,27 @@ and tips are moved rigidly up to where the first sensor would reach the floor.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
-from gecko_agents.backing import backing_class
-from gecko_agents.contact import contact_law
 from gecko_agents.floor import Profile
 from gecko_agents.history import History
-from gecko_agents.model.implicit import ImplicitStep, check_integrator
+from gecko_agents.model.build import SetaConstants, Setup, build, loop_constants
+from gecko_agents.model.free_travel import skip_free_travel
+from gecko_agents.model.implicit import ImplicitStep
 from gecko_agents.model.mass_damping import DEFAULT_DAMPING, Damping, seta_mass
-from gecko_agents.model.multirate import Multirate, multirate_applies
+from gecko_agents.model.multirate import Multirate
 from gecko_agents.model.runner import SimulationUnstable, run_protocol
-from gecko_agents.model.setup import (
-    KERNELS,
-    checked_arguments,
-    choose_kernel,
-    choose_threads,
-    detection_mode,
-    elastica_kernel,
-    explicit_time_step,
-    numba_available,
-    time_step,
-)
+from gecko_agents.model.setup import KERNELS, numba_available
 from gecko_agents.model.state import SetaState
-from gecko_agents.model.step_numpy import LoopConstants, NumpyStep
+from gecko_agents.model.step_numpy import NumpyStep
 from gecko_agents.model.stepping import Stepping
 from gecko_agents.model.world import World
-from gecko_agents.numerics import (
-    BACKING_OPTIONS,
-    Numerics,
-    older_spellings,
-    split_options,
-)
-from gecko_agents.params import SetaArray, check_seed
-from gecko_agents.physics import beam
+from gecko_agents.numerics import BACKING_OPTIONS, Numerics, older_spellings, split_options
+from gecko_agents.params import SetaArray
 from gecko_agents.physics.elastica import Elastica
-from gecko_agents.protocol import DEFAULT_SPEED
 
 __all__ = [
     "Damping",
@@ -104,8 +90,13 @@ class Model(Stepping):
 
     Attributes
     ----------
+    setup : the run's :class:`~gecko_agents.model.build.Setup` (its choices and the seta's
+        constants, also attributes of the model by their names: ``mass``, ``K``, ``Fc``, …).
     backing : what holds the seta roots, built from ``params.backing``
-        (:mod:`gecko_agents.backing`): the rigid plate or an elastic strip.
+        (:mod:`gecko_agents.backing`): the rigid plate, an elastic strip or layer.
+    implicit_step : the :class:`~gecko_agents.model.implicit.ImplicitStep`, or None.
+    multirate : the :class:`~gecko_agents.model.multirate.Multirate` step, or None.
+    constants : the per-step kernels' constants record (at the current ``dt``).
     """
 
     energy_complete = True
@@ -127,79 +118,68 @@ class Model(Stepping):
         **older,
     ):
         params, numerics = older_spellings(params, numerics, older)
-        self.numerics = numerics
-        dt, contact, record_every = numerics.dt, numerics.contact, numerics.record_every
-        kernel, detection, threads = numerics.kernel, numerics.detection, numerics.threads
-        integrator, event_dt = numerics.integrator, numerics.event_dt
-        n = checked_arguments(params, n_sim, contact, record_every, kernel, floor_profile)
-        self.integrator = check_integrator(integrator, contact, params)
-        backing = backing_class(params.backing.kind)
-        kernel = backing.kernel(kernel, contact)
-        threads = choose_threads(threads, int(n), contact)
-        self.params, self.n, self.contact_path = params, int(n), contact
-        if isinstance(seed, np.random.Generator):
-            # Draw the run's seed from the caller's generator: the history records it, so the
-            # run stays reproducible, and successive models from one generator differ.
-            seed = int(seed.integers(2**63))
-        self.seed = params.floor.seed if seed is None else check_seed(seed)
+        setup = build(
+            params,
+            numerics,
+            n_sim=n_sim,
+            seed=seed,
+            damping=damping,
+            floor_profile=floor_profile,
+        )
+        self.setup = setup
+        self.params, self.numerics, self.n, self.seed = params, numerics, setup.n, setup.seed
+        self.contact_path, self.integrator = setup.contact, setup.integrator
         self.rng = np.random.default_rng(self.seed)
         self.damping = damping
         self.record_setae = record_setae
-        self.law = law = contact_law(params)
-        self._set_mechanics(params, law, damping)
-        self.dt = time_step(
-            self.integrator,
-            dt,
-            self.omega_max,
-            self.k_max,
-            self.mass,
-            law.rate_dependent,
-            event_dt,
-        )
+        self.law = setup.law
+        for f in dataclasses.fields(SetaConstants):  # the seta's constants, by their names
+            setattr(self, f.name, getattr(setup.seta, f.name))
+        self.dt = setup.dt
         if verbose:
             print(
                 f"gecko_agents: {self.integrator} step dt = {self.dt:.4g} µs (ω_max·dt = "
                 f"{self.omega_max * self.dt:.2f}; explicit stable below 2)"
             )
-        self.record_every = record_every or max(1, round(0.02 / DEFAULT_SPEED / self.dt))
-        self.record_in_time = record_every is None  # the implicit step's default: every interval
+        self.record_every, self.record_in_time = setup.record_every, setup.record_in_time
         self.state = SetaState(self.n)
         self.world = World(
             params,
             self.n,
             self.state,
             self.mass,
-            params.contact.R + abs(law.detach_overlap),
+            params.contact.R + abs(self.law.detach_overlap),
             self.rng,
             floor_profile,
-            detection_mode(detection, contact),
+            setup.detection,
         )
-        self._constants = self._loop_constants()
+        self.constants = loop_constants(setup, self.dt)
         self.physics = NumpyStep(
-            self._constants, law, self.state, self.world, self.K, params.friction
+            self.constants, self.law, self.state, self.world, self.K, params.friction
         )
-        if contact == "callback":
+        if self.contact_path == "callback":
             self.world.on_pre_solve(self._pre_solve)
-        kernel = self._set_step_parts(params, kernel, dt, event_dt)
-        self._fast_pads = self.world.pads and contact == "batch"
-        self.kernel, self._loop, self.loop_threads = choose_kernel(
-            kernel, self._fast_pads, self.n, type(self.law), threads
-        )
+        self._set_step_parts(setup)
+        self.fast_pads = setup.fast_pads
+        self.kernel, self.loop, self.loop_threads = setup.kernel, setup.loop, setup.loop_threads
         self._start_books()
-        self.backing = backing(self)
-        self._multirate = Multirate(self) if multirate_applies(self) else None
+        self.backing = setup.backing(setup, self.world, self.state, self.physics, self.spring_force)
+        limit = self.backing.step_limit()
+        if self.implicit_step is not None and limit is not None:
+            self.implicit_step.limit_step(limit)
+        self.multirate = Multirate(self) if setup.multirate else None
 
     def _start_books(self) -> None:
         """The clock, the step's scratch arrays and the books a run starts from."""
         self.time = 0.0
         self._ran = False
-        self._warned_linear = False
-        self._lost_idx = np.zeros(self.n, dtype=np.int64)
-        self._gone_idx = np.zeros(self.n, dtype=np.int64)
-        self._res = np.zeros(7)
-        self._pnext = (0.0, self.world.plate_start)
+        self.warned_linear = False
+        self.lost_idx = np.zeros(self.n, dtype=np.int64)
+        self.gone_idx = np.zeros(self.n, dtype=np.int64)
+        self.loop_results = np.zeros(7)
+        self.plate_next = (0.0, self.world.plate_start)
         self.reaction = (0.0, 0.0)
-        self._work_step = 0.0
+        self.work_step = 0.0
         self.reset_state_arrays()
 
     @classmethod
@@ -215,68 +195,34 @@ class Model(Stepping):
         numerics = rest.pop("numerics", None) or Numerics()
         return cls(params, numerics=numerics.replace(**num), **rest)
 
-    def _set_step_parts(self, params, kernel: str, dt, event_dt) -> str:
-        """The implicit step (its default step if ``dt`` is None; ``event_dt`` as
-        :class:`gecko_agents.model.implicit.ImplicitStep`) and the elastica's chains,
-        where chosen; returns the kernel (the elastica runs on numpy)."""
-        self._implicit = None
+    def _set_step_parts(self, setup: Setup) -> None:
+        """The implicit step (``implicit_step``, :class:`ImplicitStep`, where chosen) and the
+        elastica's chains."""
+        self.implicit_step = None
         if self.integrator == "implicit":
-            self._implicit = ImplicitStep(self, default_step=dt is None, event_dt=event_dt)
+            self.implicit_step = ImplicitStep(
+                self, default_step=setup.default_step, event_dt=setup.event_dt
+            )
             if not self.world.pads:  # the contact normals NumpyStep.contact keeps
-                self._implicit.normal = self.physics.normal
-        if params.mechanics == "elastica":
-            kernel = elastica_kernel(kernel, self.integrator)
+                self.implicit_step.normal = self.physics.normal
+        if setup.mechanics.name == "elastica":
+            params = setup.params
             self.physics.chain = Elastica.of(params, self.n)
             self.physics.chain_axis = self.axis
             self.physics.chain_damping_ratio = math.sqrt(self.Kp / params.Ky)
-        return kernel
 
-    def _set_mechanics(self, params, law, damping) -> None:
-        """The seta's stiffnesses (eq 16–21), mass, damping coefficients and the stiffest
-        spring a tip can meet, which sets the time step."""
-        s = params.seta
-        self.L, self.theta = s.L, s.theta
-        self.axis = np.array([math.cos(self.theta), -math.sin(self.theta)])
-        self.Ka, self.Kp = params.axial_stiffness, params.bending_stiffness
-        self.K = beam.stiffness_matrix(self.Ka, self.Kp, self.theta)
-        self.k_phi = self.Kp * self.L**2
-        self.mass = seta_mass(params)
-        self.k_t = law.tangential_stiffness
-        self.Fc = law.pull_off_force
-        # Slowest period of a free seta (normal mode, eq 20): the force servo averages over it.
-        self.settle_time = 2 * math.pi * math.sqrt(self.mass / params.Ky)
-        self.c_seta = 2 * damping.seta * math.sqrt(params.Ky * self.mass)
-        self.c_n = 2 * damping.normal * math.sqrt(law.zero_load_stiffness * self.mass)
-        self.c_t = 2 * damping.tangential * math.sqrt(self.k_t * self.mass)
-        # Stiffest spring a tip can meet: seta (Ka) + contact at 5 Fc of compression + stick.
-        self.k_max = self.Ka + law.stiffest(5 * params.contact.pull_off_force) + self.k_t
-        self.omega_max = math.sqrt(self.k_max / self.mass)
+    # Older private spellings, kept for code written against them.
+    @property
+    def _implicit(self):
+        return self.implicit_step
 
-    def _loop_constants(self) -> LoopConstants:
-        p, K = self.params, self.K
-        return LoopConstants(
-            dt=self.dt,
-            rod=p.mechanics == "rod",
-            k00=-K[0, 0],
-            k01=-K[0, 1],
-            k10=-K[1, 0],
-            k11=-K[1, 1],
-            L=self.L,
-            Ka=self.Ka,
-            k_phi=self.k_phi,
-            theta=self.theta,
-            c_seta=self.c_seta,
-            R=p.contact.R,
-            detach=self.law.detach_overlap,
-            c_n=self.c_n,
-            c_t=self.c_t,
-            k_t=self.k_t,
-            mu=p.friction.mu,
-            paper=p.friction.law == "paper",
-            Fc=self.Fc,
-            hm=0.5 * self.dt / self.mass,
-            release=self.law.release_radius,
-        )
+    @property
+    def _multirate(self):
+        return self.multirate
+
+    @property
+    def _constants(self):
+        return self.constants
 
     # ------------------------------------------------------------------ public state
     @property
@@ -304,14 +250,12 @@ class Model(Stepping):
     def explicit_dt(self) -> float:
         """The explicit step this model would take [µs] (0.75/ω_max; 0.375/ω_max with crack
         kinetics): the elastic strip's own step under the implicit step."""
-        return explicit_time_step(
-            None, self.omega_max, self.k_max, self.mass, self.law.rate_dependent
-        )
+        return self.setup.explicit_dt
 
     @property
     def event_dt(self) -> float:
         """The step near events [µs]: the implicit step's located step, or dt."""
-        return self.dt if self._implicit is None else self._implicit.event_dt
+        return self.dt if self.implicit_step is None else self.implicit_step.event_dt
 
     @property
     def profile(self) -> Profile:
@@ -402,37 +346,19 @@ class Model(Stepping):
             )
         self._ran = True
         h = run_protocol(self, protocol, progress, max_steps, ke_bound, fast_approach)
-        if self._implicit is not None:
-            h.meta["implicit_dissipated_pJ"] = self._implicit.numerical_dissipated
+        if self.implicit_step is not None:
+            h.meta["implicit_dissipated_pJ"] = self.implicit_step.numerical_dissipated
         return h
 
     def skip_free_travel(self, seg, state, vp) -> float:
         """Move plate and tips rigidly along ``vp`` (plate velocity [µm/µs]) towards where
         segment ``seg`` (its running ``state``) lets the first sensor reach the floor, while
-        nothing can touch (:meth:`gecko_agents.model.world.World.skip_free_travel`); returns
+        nothing can touch (:func:`gecko_agents.model.free_travel.skip_free_travel`); returns
         the travel [µm]: 0 while a tip is attached or with a backing that is not rigid."""
         if self.state.attached.any() or not self.backing.rigid:
             return 0.0
         target = seg.target(self, state)
         omega = math.sqrt(self.params.Ky / self.mass)
-        travel = self.world.skip_free_travel(vp, omega, self.dt, target)
+        travel = skip_free_travel(self.world, vp, omega, self.dt, target)
         self.time += travel / math.hypot(*vp) if travel else 0.0
         return travel
-
-    def pop_releases(self) -> list:
-        """The tips that let go in the last step (``physics.events``), each as (seta, overlap
-        [µm], release overlap [µm], force [µN]): the release overlap is where the tip started
-        to run away from its equilibrium (its overlap at the step if it never did); the force
-        is the law's at δ_detach for a tip that passed it (:meth:`~gecko_agents.contact.base.
-        ContactLaw.release_force`, not the step's overshoot), else its last force. Clears
-        those tips' release marks (``state.jump``), so each release is reported once."""
-        jump = self.state.jump
-        located = self.law.release_force()
-        out = []
-        for i, d, force in self.physics.events:
-            j = jump[i]
-            if -math.inf < d < self.law.detach_overlap and not math.isnan(located):
-                force = located
-            out.append((i, d, d if np.isnan(j) else float(j), force))
-            jump[i] = np.nan
-        return out

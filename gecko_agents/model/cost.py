@@ -58,12 +58,21 @@ def run_cost(n_setae: int, durations_us, dt_us: float, event_dt_us: float | None
 
 
 def check_cost(n_setae: int, durations_us, dt_us: float, event_dt_us=None, names=None) -> float:
-    """Refuse (:class:`RunCostError`) a run above :data:`COST_REFUSE` seta-steps, warn
-    (:class:`ValidityWarning`) above :data:`COST_WARN`; returns the estimate
+    """Refuse (:class:`RunCostError`) a run above :data:`COST_REFUSE` seta-steps (naming dt and
+    its range where a step is longer than the whole protocol, the sum of ``durations_us``),
+    warn (:class:`ValidityWarning`) above :data:`COST_WARN`; returns the estimate
     (:func:`run_cost`). ``names``: the segments' reprs, to name the longest."""
     durations = [float(d) for d in durations_us]
-    cost = run_cost(n_setae, durations, dt_us, event_dt_us)
     total = sum(durations)
+    cost = run_cost(n_setae, durations, dt_us, event_dt_us)
+    if not cost <= COST_REFUSE and dt_us > total and event_dt_us is not None:
+        raise RunCostError(
+            f"dt = {dt_us:.3g} µs is longer than the whole protocol (at most ~{total:.3g} µs "
+            f"over {len(durations)} segment(s)), and each step would split into up to "
+            f"{math.ceil(dt_us / event_dt_us - 1e-9):.3g} located steps near events: the "
+            f"allowed range of dt is (0, {total:.3g}] µs; leave dt unset for the "
+            "integrator's default"
+        )
     longest = max(range(len(durations)), key=durations.__getitem__) if durations else None
     which = f", most of it in {names[longest]}" if names and longest is not None else ""
     sub = (

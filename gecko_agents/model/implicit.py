@@ -70,8 +70,17 @@ import math
 
 import numpy as np
 
-from gecko_agents.history import ENERGY_RTOL, ENERGY_SCALE_COLUMNS
+from gecko_agents.backing import backing_class
+from gecko_agents.model.event_steps import (
+    FREE_RINGING_SHARE,
+    IMPLICIT_EVENT_FACTOR,
+    IMPLICIT_TRAVEL,
+    EventSteps,
+    default_event_dt,
+    whole_event_steps,
+)
 from gecko_agents.model.implicit_kernel import clip, pad_solver, past_cap, solve, step_books
+from gecko_agents.model.mechanics import MECHANICS, Mechanics
 from gecko_agents.physics.friction import friction_cap
 from gecko_agents.protocol import DEFAULT_SPEED
 
@@ -83,6 +92,7 @@ __all__ = [
     "FREE_RINGING_SHARE",
     "ImplicitStep",
     "check_integrator",
+    "choose_integrator",
     "implicit_time_step",
     "whole_event_steps",
 ]
@@ -98,40 +108,15 @@ the documentation (explanation, "Performance"); ``tests/test_integrator_converge
 the errors. At the default plate speed :data:`IMPLICIT_TRAVEL` caps it
 (:func:`implicit_time_step`)."""
 
-IMPLICIT_TRAVEL = 0.01
-"""Largest plate travel per default implicit step at the default plate speed [µm]."""
 
-FREE_RINGING_SHARE = 0.1 * ENERGY_RTOL
-"""Free tips faster than twice the plate count as near an event (:meth:`ImplicitStep.substeps`)
-only while their kinetic energy together exceeds this share of the run's energy scale so far
-[-] (:func:`gecko_agents.history.energy_balance_error`'s scale): a tenth of the balance's
-tolerance, since long steps book a ringing seta's energy only to within about its size
-(``tests/test_event_location.py`` checks both sides)."""
-
-IMPLICIT_EVENT_FACTOR = 1.0
-"""The step near an event (:meth:`ImplicitStep.substeps`) in units of the explicit one
-(0.75/ω_max) [-], at most the step between events; ``Model(event_dt=...)`` sets another. Chosen
-by accuracy: a located tip lets go a few event steps of plate travel later than at the
-explicit step, the scheme's own first-order error, so the event step is the resolution of
-every release; longer event steps trade the energy books on a flat floor, where every tip
-snaps off in one step, for fewer steps on rough floors (the measured table: documentation,
-explanation, "Performance"; ``tests/test_event_location.py``)."""
-
-
-def check_integrator(integrator, contact: str, params=None) -> str:
-    """The integrator a model of ``params`` runs: ``integrator`` if it is one of
-    ``INTEGRATORS`` (the implicit step with ``contact = "batch"`` only: the callback path adds
-    contact forces after the step's). ``"auto"`` is the implicit step where it is verified,
-    the explicit one elsewhere:
-
-    - ``contact = "callback"``; ``mechanics = "elastica"`` (no Jacobian of the chain);
-      ``backing.kind = "layer"`` (:mod:`gecko_agents.backing.layer`).
-
-    Why the spatula and the elastic backing run implicitly, with what they were measured to
-    give against the explicit step: docs/physics.md, "Time stepping"."""
+def choose_integrator(integrator, contact: str, mechanics: Mechanics, backing) -> str:
+    """The integrator a run takes: ``integrator`` if it is one of
+    :data:`INTEGRATORS` and goes with the rest; ``"auto"`` is the
+    implicit step where it is verified (the batch contact path, a mechanics with its
+    Jacobian, a backing measured with it: docs/physics.md, "Time stepping"), the explicit one
+    elsewhere. The implicit step is refused, naming both choices, where it is not verified."""
+    verified = contact == "batch" and mechanics.jacobian and backing.implicit
     if integrator == "auto":
-        verified = contact == "batch" and (params is None or params.mechanics != "elastica")
-        verified = verified and (params is None or params.backing.kind != "layer")
         return "implicit" if verified else "explicit"
     if integrator not in INTEGRATORS:
         raise ValueError(f"integrator = {integrator!r} must be one of {INTEGRATORS}")
@@ -140,19 +125,27 @@ def check_integrator(integrator, contact: str, params=None) -> str:
             f"integrator = 'implicit' needs contact = 'batch', got {contact!r} (the callback "
             "path adds contact forces after the step's): use 'explicit' or 'auto'"
         )
+    if integrator == "implicit" and not mechanics.jacobian:
+        raise ValueError(
+            f"integrator = 'implicit' with mechanics = {mechanics.name!r}: the implicit step "
+            "has no Jacobian of the chain; mechanics = 'elastica' runs with integrator = "
+            "'explicit' (or 'auto')"
+        )
+    if integrator == "implicit" and not backing.implicit:
+        raise ValueError(
+            f"integrator = 'implicit' with backing.kind = {backing.kind!r}: the {backing.kind} "
+            "backing runs with the explicit step (integrator 'explicit' or 'auto'; "
+            f"gecko_agents.backing.{backing.kind} says why)"
+        )
     return integrator
 
 
-def whole_event_steps(bound: float, event: float) -> float:
-    """The longest whole number of steps ``event`` [µs] within ``bound`` [µs], at least one:
-    a step between events that splits into located steps as long as allowed."""
-    return event * max(1, math.floor(bound / event + 1e-9))
-
-
-def default_event_dt(omega_max: float) -> float:
-    """The step near an event by default [µs]: :data:`IMPLICIT_EVENT_FACTOR` explicit steps
-    0.75/ω_max (ω_max [1/µs] of the stiffest spring on the tip)."""
-    return IMPLICIT_EVENT_FACTOR * 0.75 / omega_max
+def check_integrator(integrator, contact: str, params=None) -> str:
+    """:func:`choose_integrator` for a model of ``params`` (None: linear setae on the rigid
+    plate)."""
+    mechanics = MECHANICS["linear" if params is None else params.mechanics]
+    backing = backing_class("rigid" if params is None else params.backing.kind)
+    return choose_integrator(integrator, contact, mechanics, backing)
 
 
 def implicit_time_step(dt, omega_max: float, event_dt=None) -> float:
@@ -177,7 +170,7 @@ def implicit_time_step(dt, omega_max: float, event_dt=None) -> float:
     return float(dt)
 
 
-class ImplicitStep:
+class ImplicitStep(EventSteps):
     """The implicit correction of a model's step (see the module docstring).
 
     Parameters
@@ -205,22 +198,19 @@ class ImplicitStep:
         event = default_event_dt(model.omega_max) if event_dt is None else event_dt
         self.k_event = max(1, math.ceil(model.dt / event - 1e-9))
         self.n_located = 0  # steps taken at dt/k near events
-        self._J = np.zeros((2, n))  # the last step's impulse F'·dt [µN·µs]
-        self._dt_prev = model.dt
-        self._kn = np.zeros(n)
-        self._kt = np.zeros(n)
+        self.start_books(n, model.dt)
         # A film tip's (the spatula's) contact stiffness is a full 2×2: its kxy [µN/µm].
         self.film = bool(law.film)
-        self._kxy = np.zeros(n)
-        self._dF = np.zeros((2, n))  # the last step's F' − F [µN]
-        # dP/dδ of attached tips (nan where free, −inf where not finite) [µN/µm] and its
-        # rate of change over the last step [µN/(µm·µs)]: event location's pull-off check.
-        self._k_raw = np.full(n, np.nan)
-        self._k_rate = np.zeros(n)
         self._pad = False  # the compiled pad kernels (implicit_kernel.pad_solver; not yet)
         # The run's energy scale so far [pJ] (note_energies; the runner resets it per run).
         self.energy_scale = 0.0
         self.near = None  # the setae near an event at the last located step (substeps)
+
+    def for_setae(self, model, books: dict, dt: float) -> ImplicitStep:
+        """:meth:`EventSteps.for_setae`, on the numpy kernels (the setae's own pool)."""
+        step = super().for_setae(model, books, dt)
+        step._pad = False
+        return step
 
     def seta_stiffness(self, rx, ry):
         """The seta's stiffness K = −J_x (kxx, kxy, kyx, kyy) [µN/µm], scalars for the
@@ -335,7 +325,7 @@ class ImplicitStep:
         m = self.m
         s, dt, mass = m.state, m.dt, m.mass
         if K is None:
-            return solve(self._pad, self, kn, kt, cn, ct, roots, F)
+            return solve(self._pad, self, kn, kt, self._kxy, cn, ct, roots, F)
         kxx, kxy, kyx, kyy = K
         vx, vy = s.pv[2], s.pv[3]
         wx, wy = vx - roots[2], vy - roots[3]  # motion relative to the root
@@ -411,7 +401,7 @@ class ImplicitStep:
         v0t = vx * tx + vy * ty
         v1t = v0t + (fx[i] * tx + fy[i] * ty) * h
         f = s.Ft[i] - m.dt * kt[i] * v1t - ct[i] * (v1t - v0t)
-        c = m._constants
+        c = m.constants
         cap = friction_cap(s.P[i], c.Fc, c.mu, c.paper)
         past = np.abs(f) > cap
         if not past.any():
@@ -444,129 +434,6 @@ class ImplicitStep:
         out = -0.5 * float(np.add.reduce(vx * (J[0] - Fdt[0]) + vy * (J[1] - Fdt[1])))
         self.numerical_dissipated += out
         return out
-
-    def limit_step(self, dt_max: float) -> None:
-        """Shorten the default step between events to at most ``dt_max`` [µs], a whole number
-        of event steps (at least one; an event step longer than ``dt_max`` is shortened to
-        it); a dt the caller chose stands. For a bound that the model's parts set after the
-        step was chosen (the elastic strip's coupling to its setae,
-        :class:`gecko_agents.backing.elastic.ElasticBacking`)."""
-        if not self.default_step or self.dt_full <= dt_max:
-            return
-        event = min(self.event_dt, dt_max)
-        dt = whole_event_steps(dt_max, event)
-        self.k_event = round(dt / event)
-        self.dt_full = self.dt_base = self._dt_prev = dt
-        self.set_dt(dt)
-
-    @property
-    def event_dt(self) -> float:
-        """The step taken near an event [µs]: ``dt_full``/k, at most
-        :data:`IMPLICIT_EVENT_FACTOR` explicit steps (an elastic strip sub-cycles each of
-        them at its own step, :meth:`gecko_agents.backing.elastic.ElasticBacking.roots`)."""
-        return self.dt_full / self.k_event
-
-    def begin_segment(self, speed) -> None:
-        """Set the segment's step ``dt_base`` [µs] for its plate ``speed`` [µm/µs] (None or
-        0: ``dt_full``). With the default step (:func:`implicit_time_step` without a dt), a
-        fast segment shortens it so that the plate travels at most :data:`IMPLICIT_TRAVEL`
-        per step, to a whole number of the steps taken near events, at least one (the step is
-        set for accuracy: plate travel and events per step); below an event step longer than
-        the default's (``event_dt``), to the travel itself, at least the default's event step.
-        A dt the caller chose stands. The segment asks its plate velocity at this step, so it
-        lands on its end point."""
-        dt = self.dt_full
-        cap = IMPLICIT_TRAVEL / speed if speed else math.inf
-        if self.default_step and cap < dt:
-            event = self.event_dt
-            if cap >= event:
-                dt = whole_event_steps(cap, event)
-            else:  # one event step at most: the default's (an explicit step), or the travel
-                dt = max(cap, min(event, default_event_dt(self.m.omega_max)))
-        self.dt_base = dt
-        self.set_dt(dt)
-
-    def substeps(self, vp) -> int:
-        """How many steps the next step of ``dt_base`` takes [-], with the model's dt set for
-        them: k steps of the explicit step's length near an event, else one.
-
-        Near an event means an attached tip running away from its branch (faster than twice
-        the plate speed ``vp`` [µm/µs], as the release marks of
-        :meth:`gecko_agents.model.step_numpy.NumpyStep.bookkeeping`: past a fold, a crack
-        running through, a slip), free tips as fast while their kinetic energy together
-        exceeds :data:`FREE_RINGING_SHARE` of the run's energy scale so far, or a tip whose
-        overlap δ would cross the law's snap-off
-        overlap (attached) or, moving towards the floor, its jump-in overlap (free) within two
-        steps at its normal speed, or an attached tip past its load-controlled pull-off
-        (dP/dδ < 0, :meth:`gecko_agents.contact.ContactLaw.stiffness`) or reaching it within
-        two steps at the rate dP/dδ fell over the last one: from there the seta alone holds
-        the tip, up to the fold where dP/dδ = −(the seta's normal stiffness) and the tip
-        escapes. Found by its speed alone, the escape started up to a long step late (the
-        first releases of a 20-seta retraction at 10 explicit steps: 0.021 µm of plate travel
-        behind the explicit step's, 0.011 µm located). A step of the explicit length there
-        resolves the event as the explicit step does; between events the long step stands.
-        With an elastic backing too: without it a quick pad peel at 30° pulled 8.6 % above the
-        explicit step (0.46 µm of plate travel per step), with it 0.7 %."""
-        m = self.m
-        dt = self.dt_base
-        k = math.ceil(dt / self.event_dt - 1e-9)
-        if k > 1:
-            s = m.state
-            v_ref = max(math.hypot(*vp), 1e-4)
-            vx, vy = s.pv[2], s.pv[3]
-            att = s.attached
-            vn = (
-                vy
-                if self.normal is None
-                else np.where(att, vx * self.normal[0] + vy * self.normal[1], vy)
-            )
-            reach = 2.0 * dt * np.abs(vn)
-            d = s.delta
-            with np.errstate(invalid="ignore"):
-                fast = vx * vx + vy * vy > 4.0 * v_ref * v_ref
-                near = att & fast
-                near |= self._ringing(fast & ~att, vx, vy)
-                near |= att & (d - m.law.detach_overlap < reach)
-                near |= ~att & (vn < 0.0) & (m.law.attach_overlap - d < reach)
-                # Past the load-controlled pull-off (dP/dδ < 0) or reaching it within two
-                # steps at its last rate: the fold, where the tip escapes, lies ahead.
-                near |= self._k_raw + 2.0 * dt * np.fmin(self._k_rate, 0.0) < 0.0
-            if not near.any():
-                k = 1
-            self.near = near if k > 1 else None
-        else:
-            self.near = None
-        self.set_dt(dt / k)
-        self.n_located += k if k > 1 else 0
-        return k
-
-    def _ringing(self, free_fast, vx, vy):
-        """``free_fast`` (the free tips faster than twice the plate) where their kinetic energy
-        together exceeds :data:`FREE_RINGING_SHARE` of the run's energy scale so far
-        (``energy_scale``), else all False: a released tip's ringing is resolved only while
-        the long step's books of it could move the balance by a share of its tolerance."""
-        if not free_fast.any():
-            return free_fast
-        ke = 0.5 * self.m.mass * float(np.sum(vx[free_fast] ** 2 + vy[free_fast] ** 2))
-        if ke > FREE_RINGING_SHARE * self.energy_scale:
-            return free_fast
-        return np.zeros_like(free_fast)
-
-    def note_energies(self, row: dict) -> None:
-        """Raise ``energy_scale`` [pJ] to a recorded ``row``'s plate work, elastic and
-        dissipated energy, as :func:`gecko_agents.history.energy_balance_error` takes it."""
-        self.energy_scale = max(self.energy_scale, *(abs(row[c]) for c in ENERGY_SCALE_COLUMNS))
-
-    def set_dt(self, dt: float) -> None:
-        """Set the model's step to ``dt`` [µs] (its loop constants too). The recorder's
-        kinetic energy reads the last step's velocity change as F'·dt/m with the model's
-        dt, so the tips' force is rescaled to keep that change."""
-        m = self.m
-        if dt == m.dt:
-            return
-        m.state.F *= m.dt / dt
-        m.dt = dt
-        m._constants = m.physics.c = m._constants._replace(dt=dt, hm=0.5 * dt / m.mass)
 
     def book_releases(self, events) -> float:
         """Energy to book as dissipated for the tips that let go this step [pJ]: ``events``

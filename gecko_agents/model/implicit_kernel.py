@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from gecko_agents.physics._util import register_jitables
+from gecko_agents.physics._util import jitable, register_jitables
 from gecko_agents.physics.friction import friction_cap
 
 try:  # np.clip's ufunc, called without np.clip's wrapper (the same result)
@@ -37,6 +37,21 @@ __all__ = [
     "solve",
     "step_books",
 ]
+
+
+@jitable
+def rod_stiffness(dx: float, dy: float, L: float, Ka: float, k_phi: float):
+    """(kxx, kxy, kyy) [µN/µm] of a rod seta whose tip sits (``dx``, ``dy``) [µm] from its
+    root: axial Ka·e eᵀ plus rotary kφ/ℓ²·e⊥e⊥ᵀ plus its tension's Ka(ℓ − L)/ℓ·e⊥e⊥ᵀ clamped
+    ≥ 0 (:meth:`gecko_agents.model.implicit.ImplicitStep.seta_stiffness`; L [µm], Ka
+    [µN/µm], ``k_phi`` [µN·µm/rad²])."""
+    ell = math.sqrt(dx * dx + dy * dy)
+    ex, ey = dx / ell, dy / ell
+    t = Ka * (ell - L) / ell
+    if not (t >= 0.0 or t != t):  # np.maximum(t, 0.0), NaN kept
+        t = 0.0
+    kp = k_phi / (ell * ell) + t
+    return Ka * ex * ex + kp * ey * ey, (Ka - kp) * ex * ey, Ka * ey * ey + kp * ex * ex
 
 
 def pad_solve(
@@ -91,16 +106,8 @@ def pad_solve(
         if rod:
             dx = xy[0, i] - rx - root_dx[i]
             dy = xy[1, i] - ry - root_dy[i]
-            ell = math.sqrt(dx * dx + dy * dy)
-            ex, ey = dx / ell, dy / ell
-            t = Ka * (ell - L) / ell
-            if not (t >= 0.0 or t != t):  # np.maximum(t, 0.0), NaN kept
-                t = 0.0
-            kp = k_phi / (ell * ell) + t
-            kxy = (Ka - kp) * ex * ey
+            kxx, kxy, kyy = rod_stiffness(dx, dy, L, Ka, k_phi)
             kyx = kxy
-            kxx = Ka * ex * ex + kp * ey * ey
-            kyy = Ka * ey * ey + kp * ex * ex
         vx, vy = pv[2, i], pv[3, i]
         wx, wy = vx - rvx, vy - rvy
         gx = kxx * wx + kxy * wy
@@ -206,10 +213,10 @@ def pad_solver(model, step):
     return pad_kernels() if applies else None
 
 
-def solve(kernels, step, kn, kt, cn, ct, roots, F):
+def solve(kernels, step, kn, kt, kxy, cn, ct, roots, F):
     """F' [µN] (two (N,) arrays) by the compiled :func:`pad_solve` of ``kernels``
-    (:func:`pad_solver`) for the implicit ``step``: the stiffnesses and dampers, ``roots`` and
-    ``F`` as ``ImplicitStep._solve``'s."""
+    (:func:`pad_solver`) for the implicit ``step``: the stiffnesses (``kxy`` a film tip's
+    off-diagonal one [µN/µm]) and dampers, ``roots`` and ``F`` as ``ImplicitStep._solve``'s."""
     m = step.m
     s, w = m.state, m.world
     rod = m.params.mechanics != "linear"
@@ -229,7 +236,7 @@ def solve(kernels, step, kn, kt, cn, ct, roots, F):
         cn,
         ct,
         step.film,
-        step._kxy,
+        kxy,
         m.c_seta,
         m.dt,
         m.mass,
@@ -242,5 +249,5 @@ def past_cap(kernels, m, fx, fy, kt, ct) -> bool:
     """The compiled :func:`pad_past_cap` of ``kernels`` (:func:`pad_solver`) for model ``m``,
     F' = (``fx``, ``fy``) [µN] and the stick spring ``kt`` [µN/µm] and damper ``ct``
     [µN·µs/µm]."""
-    s, c = m.state, m._constants
+    s, c = m.state, m.constants
     return kernels[1](s.pv, fx, fy, s.Ft, s.P, kt, ct, m.dt, m.mass, c.Fc, c.mu, c.paper)

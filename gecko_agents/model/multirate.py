@@ -49,20 +49,9 @@ _SET = pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
 
 
 def multirate_applies(model) -> bool:
-    """Whether ``model``'s located steps may be multirate: the implicit step on a pad floor
-    with the batch contact path, a rigid backing and linear or rod setae (module docstring
-    for why not elsewhere), and ``numerics.multirate``."""
-    if not isinstance(model.numerics.multirate, bool):
-        raise ValueError(f"multirate = {model.numerics.multirate!r} must be True or False")
-    return (
-        model.numerics.multirate
-        and model._implicit is not None
-        and model.backing.rigid
-        and model.world.pads
-        and model.contact_path == "batch"
-        and model.params.mechanics in ("linear", "rod")
-        and model.physics.opening is None
-    )
+    """Whether ``model``'s located steps are multirate (the build step decides:
+    :func:`gecko_agents.model.build.choose_multirate`)."""
+    return model.multirate is not None
 
 
 class SubWorld:
@@ -214,30 +203,21 @@ class Multirate:
         w.load(m.mass, idx, m.world, saved["rows"], s, saved["plate"])
         sub.world = w
         sub.n = idx.size
-        sub.physics = NumpyStep(sub._constants, m.law, s, w, m.K, m.params.friction)
-        sub.backing = RigidBacking(sub)
-        sub._lost_idx = np.zeros(idx.size, dtype=np.int64)
-        sub._gone_idx = np.zeros(idx.size, dtype=np.int64)
-        sub._res = np.zeros(7)
-        sub._on_plate_prev = saved["on_plate_prev"]
+        sub.physics = NumpyStep(sub.constants, m.law, s, w, m.K, m.params.friction)
+        sub.backing = RigidBacking(m.setup, w, s, sub.physics, sub.spring_force)
+        sub.lost_idx = np.zeros(idx.size, dtype=np.int64)
+        sub.gone_idx = np.zeros(idx.size, dtype=np.int64)
+        sub.loop_results = np.zeros(7)
+        sub.on_plate_prev = saved["on_plate_prev"]
         sub.time = saved["time"]
-        imp = sub._implicit = copy.copy(m._implicit)
-        imp.m = sub
-        imp.numerical_dissipated = 0.0
-        imp._pad = False
-        imp._J, imp._dF = saved["J"].copy(), saved["dF"].copy()
-        imp._k_raw, imp._k_rate = saved["k_raw"].copy(), saved["k_rate"].copy()
-        imp._dt_prev = saved["dt_prev"]
-        imp._kn, imp._kt, imp._kxy = (np.zeros(idx.size) for _ in range(3))
-        imp.set_dt(dt / k)
+        sub.implicit_step = m.implicit_step.for_setae(sub, saved["books"], dt / k)
         return sub
 
     def _gather(self, idx) -> dict:
         """The state of setae ``idx`` at the start of the step (their bodies' positions and
         velocities, ``rows``, come after the whole array's step has read them)."""
         m = self.m
-        s, imp = m.state, m._implicit
-        dt_prev = imp._dt_prev
+        s = m.state
         return {
             "block": s.block[:, idx],
             "attached": s.attached[idx],
@@ -246,11 +226,7 @@ class Multirate:
             "candidate_step": s.candidate_step[idx],
             "ext": s.external_force[idx],
             "plate": m.plate_position,
-            "J": imp._J[:, idx],
-            "dF": imp._dF[:, idx],
-            "k_raw": imp._k_raw[idx],
-            "k_rate": imp._k_rate[idx],
-            "dt_prev": dt_prev if np.ndim(dt_prev) == 0 else dt_prev[idx],
+            "books": m.implicit_step.books(idx),
             "on_plate_prev": self._on_plate(idx),
             "time": m.time,
         }
@@ -260,7 +236,7 @@ class Multirate:
         step's evaluation positions (:meth:`gecko_agents.model.stepping.Stepping.spring_force`)
         and their dampers, as the step summed them."""
         m = self.m
-        root = m.backing.root_positions(m._pnext)[idx]
+        root = m.backing.root_positions(m.plate_next)[idx]
         f = m.spring_force(m.state.xy[:, idx].T, root)[0]
         fd = m.state.F_damp_seta[:, idx]
         return float(np.sum(f[:, 0] + fd[0])), float(np.sum(f[:, 1] + fd[1]))
@@ -282,15 +258,15 @@ class Multirate:
         long = self._run(idx, saved, vp, dt, 1)
         short = self._run(idx, saved, vp, dt, k)
         self._scatter(idx, short["sub"], k)
-        ph, imp = m.physics, m._implicit
+        ph, imp = m.physics, m.implicit_step
         ph.diss += short["diss"] - long["diss"]
         imp.numerical_dissipated += short["numerical"] - long["numerical"]
-        m._work_step += short["work"] - long["work"]
-        opx, opy = m._on_plate_prev
+        m.work_step += short["work"] - long["work"]
+        opx, opy = m.on_plate_prev
         lx, ly = long["last"]
         sx, sy = short["last"]
-        m._on_plate_prev = (opx - lx + sx, opy - ly + sy)
-        m.reaction = (-m._on_plate_prev[0], -m._on_plate_prev[1])
+        m.on_plate_prev = (opx - lx + sx, opy - ly + sy)
+        m.reaction = (-m.on_plate_prev[0], -m.on_plate_prev[1])
         ph.events = []
         self.n_steps += 1
         self._last = attached != m.state.attached  # the setae that attached or let go
@@ -315,13 +291,13 @@ class Multirate:
             if sub.physics.events:
                 ev = [(int(idx[i]), d, r, f) for i, d, r, f in sub.pop_releases()]
                 released.append((sub.time, sub.world.plate.position, ev, sub.dt))
-        if sub._warned_linear:
-            self.m._warned_linear = True
+        if sub.warned_linear:
+            self.m.warned_linear = True
         return {
             "work": work,
             "diss": diss,
-            "numerical": sub._implicit.numerical_dissipated,
-            "last": sub._on_plate_prev,
+            "numerical": sub.implicit_step.numerical_dissipated,
+            "last": sub.on_plate_prev,
             "released": [(t, (p.x, p.y), ev, h) for t, p, ev, h in released],
             "sub": sub,
         }
@@ -331,20 +307,16 @@ class Multirate:
         (their force as the model's step reads it, F'·(dt/k)/dt), flags, bodies and the
         implicit step's per-seta books, with their last step dt/k."""
         m = self.m
-        s, ss, imp, simp = m.state, sub.state, m._implicit, sub._implicit
+        s, ss, imp, simp = m.state, sub.state, m.implicit_step, sub.implicit_step
         block = ss.block.copy()
         block[FX] /= k  # the velocity change F·dt/m the recorder reads, at the model's dt
         block[FY] /= k
         s.block[:, idx] = block
         for name in ("attached", "slip", "candidate", "candidate_step"):
             getattr(s, name)[idx] = getattr(ss, name)
-        imp._J[:, idx] = simp._J
-        imp._dF[:, idx] = simp._dF
-        imp._k_raw[idx] = simp._k_raw
-        imp._k_rate[idx] = simp._k_rate
         dt_prev = np.full(m.n, m.dt)
         dt_prev[idx] = sub.dt
-        imp._dt_prev = dt_prev
+        imp.take_books(idx, simp, dt_prev)
         w = m.world
         data = w.read_raw().copy()
         data[w.order[idx]] = sub.world.rows()

@@ -62,8 +62,8 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         if not isinstance(seg, Segment):
             raise TypeError(f"unknown protocol segment {seg!r}")
     m.reset_state_arrays()
-    if m._implicit is not None:
-        m._implicit.energy_scale = 0.0  # the run's own (History.energy_balance_error)
+    if m.implicit_step is not None:
+        m.implicit_step.energy_scale = 0.0  # the run's own (History.energy_balance_error)
     run = _Run(
         Recorder(m.record_setae, film=m.law.film, mode=m.law.release_mode),
         ke_bound,
@@ -77,7 +77,7 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         m.n,
         [seg.longest_duration(m) for seg in segments],
         m.dt,
-        None if m._implicit is None else m.event_dt,
+        None if m.implicit_step is None else m.event_dt,
         [repr(seg) for seg in segments],
     )
     t_wall = time.perf_counter()
@@ -114,8 +114,8 @@ def run_protocol(m, protocol, progress, max_steps, ke_bound, fast_approach) -> H
         "stepped_force_normal_range_uN": [run.force_lo, run.force_hi] if run.n_steps else None,
         "release_step_travel_um": run.release_travel,
         "min_neighbour_distance_um": run.neighbours if math.isfinite(run.neighbours) else None,
-        "multirate_steps": 0 if m._multirate is None else m._multirate.n_steps,
-        "multirate_seta_substeps": 0 if m._multirate is None else m._multirate.seta_steps,
+        "multirate_steps": 0 if m.multirate is None else m.multirate.n_steps,
+        "multirate_seta_substeps": 0 if m.multirate is None else m.multirate.seta_steps,
         **model_facts(m, segments),
     }
     if m.backing.info is not None:
@@ -197,7 +197,7 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
     may_skip = run.fast_approach and seg.skips_free_travel
     every, rec = m.record_every, run.recorder
     e_scale = m.n * max(m.Fc, 1e-300) * abs(m.law.detach_overlap)
-    implicit = m._implicit
+    implicit = m.implicit_step
     interval = None
     if implicit is not None:
         implicit.begin_segment(getattr(seg, "speed", None))
@@ -212,7 +212,7 @@ def _run_segment(m, seg: Segment, run: _Run, bar: SegmentBar) -> None:
         # The implicit step takes k steps of dt/k near an event (ImplicitStep.substeps),
         # only the setae near it where they are independent (multirate).
         k = 1 if implicit is None else implicit.substeps(vp)
-        multi = m._multirate
+        multi = m.multirate
         near = None
         if k > 1 and multi is not None and run.n_steps and implicit.near is not None:
             near = multi.near(implicit.near, k)

@@ -14,7 +14,6 @@ import numpy as np
 
 from gecko_agents.floor import Profile
 from gecko_agents.floor import statistics as _floor_stats
-from gecko_agents.model.implicit import implicit_time_step
 from gecko_agents.model.step_loop import PARALLEL_MIN_SETAE, pad_loop
 from gecko_agents.model.step_loop import numba_available as _numba_installed
 from gecko_agents.params import SetaArray
@@ -136,25 +135,6 @@ def idle_cores() -> int:
     return max(1, round(cores - busy))
 
 
-def time_step(integrator: str, dt, omega_max, k_max, mass, rate_dependent, event_dt=None) -> float:
-    """The model's step [µs] for its ``integrator``: :func:`explicit_time_step` or
-    :func:`gecko_agents.model.implicit.implicit_time_step` (same arguments, units there).
-    ``event_dt`` [µs], the implicit step's near events, is refused for the explicit step
-    (finite and > 0 otherwise)."""
-    if event_dt is not None:
-        if integrator != "implicit":
-            raise ValueError(
-                f"event_dt = {event_dt!r} µs sets the implicit step near events; this model "
-                f"runs the {integrator} step (integrator = 'implicit' or 'auto' where it is "
-                "verified, gecko_agents.model.implicit.check_integrator)"
-            )
-        if not (isinstance(event_dt, int | float) and math.isfinite(event_dt) and event_dt > 0):
-            raise ValueError(f"event_dt = {event_dt!r} µs must be finite and > 0")
-    if integrator == "implicit":
-        return implicit_time_step(dt, omega_max, event_dt)
-    return explicit_time_step(dt, omega_max, k_max, mass, rate_dependent)
-
-
 def explicit_time_step(dt, omega_max: float, k_max: float, mass: float, rate_dependent: bool):
     """The explicit step [µs]: ``dt`` if inside the stable range (0, 2/ω_max), refused naming
     the stiffest spring k_max [µN/µm] and the tip mass [ng] otherwise; None gives 0.75/ω_max
@@ -172,21 +152,6 @@ def explicit_time_step(dt, omega_max: float, k_max: float, mass: float, rate_dep
             f"{mass:.3g} ng needs ω·dt < 2"
         )
     return float(dt)
-
-
-def elastica_kernel(kernel: str, integrator: str = "explicit") -> str:
-    """The kernel of ``mechanics = "elastica"``: numpy, the only one that solves the chain
-    (:mod:`gecko_agents.physics.elastica`); ``"numba"`` or ``"python"`` are refused, and so
-    is the implicit integrator (it has no Jacobian of the chain)."""
-    if integrator != "explicit":
-        raise ValueError(
-            f"integrator={integrator!r}: mechanics='elastica' runs with integrator='explicit'"
-        )
-    if kernel not in ("auto", "numpy"):
-        raise ValueError(
-            f"kernel={kernel!r}: mechanics='elastica' runs on kernel='numpy' (or 'auto')"
-        )
-    return "numpy"
 
 
 def choose_kernel(kernel: str, fast_pads: bool, n: int, law_type, threads: int = 1):

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -46,7 +47,39 @@ from gecko_agents.model.state import P as PN
 from gecko_agents.physics._util import jitable, register_jitables
 from gecko_agents.physics.friction import friction_cap
 
-__all__ = ["pad_loop", "numba_available"]
+__all__ = ["PadArrays", "PlateStep", "pad_loop", "numba_available"]
+
+
+class PadArrays(NamedTuple):
+    """The arrays one step of the pad loop reads and writes (one record: numba takes a named
+    tuple of arrays as one argument)."""
+
+    data: np.ndarray  # the batch rows (x, y, vx, vy) in pymunk's order [µm, µm/µs]
+    rows: np.ndarray  # seta i's row in ``data``
+    out: np.ndarray  # the forces written for pymunk, rows as ``data`` [µN]
+    h: np.ndarray  # each seta's pad height [µm]
+    cand: np.ndarray  # the tip is a contact candidate (bool (N,))
+    attached: np.ndarray  # (bool (N,))
+    slip: np.ndarray  # (bool (N,))
+    S: np.ndarray  # the state block (rows as gecko_agents.model.state)
+    ext: np.ndarray  # extra force on each tip (N, 2) [µN]
+    pad_c: np.ndarray  # each pad window's centre [µm]
+    rest: np.ndarray  # the linear seta's rest tip offsets (2, N) [µm]
+    root: np.ndarray  # the rod's root offsets (2, N) [µm]
+    lost_idx: np.ndarray  # setae whose tips lost their candidate while attached (int64 (N,))
+    gone_idx: np.ndarray  # setae whose tips let go (int64 (N,))
+    res: np.ndarray  # plate force (x, y), dissipation, #lost, #gone, max |u|², max drift
+
+
+class PlateStep(NamedTuple):
+    """The plate's motion over one step of the pad loop."""
+
+    pnx: float  # the plate where the step evaluates forces [µm]
+    pny: float
+    vpx: float  # the plate's velocity [µm/µs]
+    vpy: float
+    vref: float  # the reference speed of the release marks [µm/µs]
+    has_ext: bool  # some tip has an extra force
 
 
 @jitable  # called from inside the compiled loops too
@@ -112,28 +145,10 @@ def _jit(compiled: bool, **options):
 def _springs_pass(energy, rate: bool, jit):
     """Pass 1 of a block: springs, damping, overlaps and contact state changes."""
 
-    def springs(
-        b0,
-        b1,
-        data,
-        rows,
-        c,
-        k,
-        pnx,
-        pny,
-        vpx,
-        vpy,
-        has_ext,
-        h,
-        cand,
-        attached,
-        S,
-        ext,
-        rest,
-        root,
-        lost_idx,
-        gone_idx,
-    ):
+    def springs(b0, b1, a, p, c, k):
+        data, rows, h, cand, attached, S, ext = a.data, a.rows, a.h, a.cand, a.attached, a.S, a.ext
+        rest, root, lost_idx, gone_idx = a.rest, a.root, a.lost_idx, a.gone_idx
+        pnx, pny, vpx, vpy, has_ext = p.pnx, p.pny, p.vpx, p.vpy, p.has_ext
         R, dc, kt, arel = c.R, c.detach, c.k_t, c.release
         opx = opy = diss = sfdx = sfdy = max_u2 = 0.0
         nl = ng = 0
@@ -202,7 +217,8 @@ def _force_pass(force, energy, jit):
     """Pass 3 of a block: contact forces, stick/slip, release bookkeeping, dissipation and
     the forces written for pymunk."""
 
-    def forces(b0, b1, rows, out, c, k, fast2, slow2, attached, slip, S, pad_c, diss):
+    def forces(b0, b1, a, c, k, fast2, slow2, diss):
+        rows, out, attached, slip, S, pad_c = a.rows, a.out, a.attached, a.slip, a.S, a.pad_c
         cn, ct, kt, mu, paper, Fc, hm = c.c_n, c.c_t, c.k_t, c.mu, c.paper, c.Fc, c.hm
         dd = drift = 0.0
         for i in range(b0, b1):
@@ -283,13 +299,14 @@ def _gather(sums, n_blocks, lost_idx, gone_idx, vpx, vpy, dt, res):
 def pad_loop(law_type, compiled: bool, parallel: bool = False):
     """The pad-floor step of every seta as one loop, for contact laws of class ``law_type``.
 
-    Returns ``loop(data, rows, out, c, k, pnx, pny, vpx, vpy, vref, has_ext, h, cand,
-    attached, slip, S, ext, pad_c, rest, root, lost_idx, gone_idx, res)``: reads the batch
-    rows ``data`` (x, y, vx, vy; seta i in row ``rows[i]``), writes the forces into ``out`` and
-    the state block ``S`` (rows as :mod:`gecko_agents.model.state`), the detached tips into
-    ``lost_idx``/``gone_idx`` (ascending) and into ``res``: plate force (x, y), dissipation,
-    #lost, #gone, max |u|², max pad-window drift. ``c`` is a :class:`LoopConstants`, ``k`` the
-    law's constants. ``compiled``: numba (None if numba is missing) or the interpreter.
+    Returns ``loop(a, p, c, k)``: with the arrays ``a`` (:class:`PadArrays`) and the plate's
+    motion ``p`` (:class:`PlateStep`), reads the batch rows ``a.data`` (x, y, vx, vy; seta i
+    in row ``a.rows[i]``), writes the forces into ``a.out`` and the state block ``a.S`` (rows as
+    :mod:`gecko_agents.model.state`), the detached tips into ``a.lost_idx``/``a.gone_idx``
+    (ascending) and into ``a.res``: plate force (x, y), dissipation, #lost, #gone, max |u|²,
+    max pad-window drift. ``c`` is a :class:`gecko_agents.model.step_numpy.LoopConstants`,
+    ``k`` the law's constants. ``compiled``: numba (None if numba is missing) or the
+    interpreter.
     ``parallel``: the blocks of ``BLOCK`` setae run on numba's threads. Setae are
     independent within a step and every sum is taken per block, then over the blocks in
     their order, so the result is the same bit for bit with and without threads (and, for
@@ -314,67 +331,26 @@ def pad_loop(law_type, compiled: bool, parallel: bool = False):
         blocks = numba.prange
 
     def loop(
-        data,
-        rows,
-        out,
+        a,
+        p,
         c,
         k,
-        pnx,
-        pny,
-        vpx,
-        vpy,
-        vref,
-        has_ext,
-        h,
-        cand,
-        attached,
-        slip,
-        S,
-        ext,
-        pad_c,
-        rest,
-        root,
-        lost_idx,
-        gone_idx,
-        res,
     ):
-        n = S.shape[1]
+        n = a.S.shape[1]
+        vref = p.vref
         fast2, slow2 = 4.0 * vref * vref, vref * vref
         n_blocks = (n + BLOCK - 1) // BLOCK
         sums = np.zeros((max(n_blocks, 1), 10))
         for b in blocks(n_blocks):  # the three passes over one block at a time (cache)
             b0 = b * BLOCK
             b1 = min(n, b0 + BLOCK)
-            opx, opy, sfdx, sfdy, max_u2, diss, nl, ng = springs(
-                b0,
-                b1,
-                data,
-                rows,
-                c,
-                k,
-                pnx,
-                pny,
-                vpx,
-                vpy,
-                has_ext,
-                h,
-                cand,
-                attached,
-                S,
-                ext,
-                rest,
-                root,
-                lost_idx,
-                gone_idx,
-            )
-            diss = radii(b0, b1, c, k, attached, S, diss)
-            diss, dd, drift = forces(
-                b0, b1, rows, out, c, k, fast2, slow2, attached, slip, S, pad_c, diss
-            )
+            opx, opy, sfdx, sfdy, max_u2, diss, nl, ng = springs(b0, b1, a, p, c, k)
+            diss = radii(b0, b1, c, k, a.attached, a.S, diss)
+            diss, dd, drift = forces(b0, b1, a, c, k, fast2, slow2, diss)
             sb = sums[b]
             sb[0], sb[1], sb[2], sb[3], sb[4], sb[5] = opx, opy, diss, dd, sfdx, sfdy
             sb[6], sb[7], sb[8], sb[9] = max_u2, drift, nl, ng
-        gather(sums, n_blocks, lost_idx, gone_idx, vpx, vpy, c.dt, res)
+        gather(sums, n_blocks, a.lost_idx, a.gone_idx, p.vpx, p.vpy, c.dt, a.res)
 
     # (A closure is compiled anew in every process, ~2 s: numba cannot cache it on disk.)
     return _jit(compiled, parallel=parallel)(loop)
@@ -450,30 +426,18 @@ def _tangential_loop(law_type, compiled: bool):
     film = _film_contact(_jit(compiled)(law_type.step_scalar), jit, law_type.damp_sliding)
 
     def loop(
-        data,
-        rows,
-        out,
+        a,
+        p,
         c,
         k,
-        pnx,
-        pny,
-        vpx,
-        vpy,
-        vref,
-        has_ext,
-        h,
-        cand,
-        attached,
-        slip,
-        S,
-        ext,
-        pad_c,
-        rest,
-        root,
-        lost_idx,
-        gone_idx,
-        res,
     ):
+        data, rows, out, h, cand, attached, slip, S = (
+            a.data, a.rows, a.out, a.h, a.cand, a.attached, a.slip, a.S
+        )  # fmt: skip
+        ext, pad_c, rest, root, lost_idx, gone_idx, res = (
+            a.ext, a.pad_c, a.rest, a.root, a.lost_idx, a.gone_idx, a.res
+        )  # fmt: skip
+        pnx, pny, vpx, vpy, vref, has_ext = p
         R, hm = c.R, c.hm
         fast2, slow2 = 4.0 * vref * vref, vref * vref
         opx = opy = diss = dd = sfdx = sfdy = max_u2 = drift = 0.0

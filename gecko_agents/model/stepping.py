@@ -14,6 +14,7 @@ import warnings
 import numpy as np
 
 from gecko_agents._stack import user_stacklevel
+from gecko_agents.model.step_loop import PadArrays, PlateStep
 from gecko_agents.physics import beam
 
 __all__ = ["Stepping"]
@@ -22,7 +23,12 @@ __all__ = ["Stepping"]
 class Stepping:
     """Stepping and the readings of a step, for :class:`gecko_agents.model.Model` (which
     builds every attribute these methods use: ``state``, ``world``, ``physics``, ``backing``,
-    ``law``, the stiffnesses and the step ``dt``)."""
+    ``law``, the stiffnesses and the step ``dt``).
+
+    After each step: ``reaction`` (the plate's, [µN]), ``work_step`` (the plate's work over the
+    step [pJ]), ``on_plate_prev`` (the setae's pull on the plate [µN]), ``plate_next`` (the
+    plate where the step evaluated forces [µm]); ``warned_linear``: a seta deflected beyond
+    0.1 L under the linear beam model (warned once)."""
 
     def spring_force(self, x, root):
         """Seta spring force on the tips [µN], elastic energies [pJ] and (linear) deflections.
@@ -42,7 +48,7 @@ class Stepping:
     def spring_energies(self) -> np.ndarray:
         """Elastic energy of every seta [pJ] at the last step's evaluation positions (as
         :meth:`spring_force`'s, without its forces)."""
-        root = self.backing.root_positions(self._pnext)
+        root = self.backing.root_positions(self.plate_next)
         if self.physics.chain is not None:  # the elastica's chain
             return self.spring_force(self.state.xy.T, root)[1]
         dx, dy = self.state.xy - root.T
@@ -74,7 +80,7 @@ class Stepping:
 
     def overlaps(self) -> np.ndarray:
         """Overlap δ of every tip with a candidate floor at the last step, NaN elsewhere."""
-        if self._fast_pads:
+        if self.fast_pads:
             return np.where(self.state.candidate_step, self.state.delta, np.nan)
         return self.state.delta.copy()
 
@@ -93,16 +99,6 @@ class Stepping:
         )
         body.force = (body.force.x + float(fx[0]), body.force.y + float(fy[0]))
 
-    @property
-    def work_step(self) -> float:
-        """Work the plate (handle) did on the system during the last step [pJ]."""
-        return self._work_step
-
-    @property
-    def warned_linear(self) -> bool:
-        """Whether a seta deflected beyond 0.1 L under the linear beam model (warned once)."""
-        return self._warned_linear
-
     def advance(self, vpx: float, vpy: float) -> None:
         """One time step with the plate (handle) at velocity (``vpx``, ``vpy``) [µm/µs]; leaves
         the step's reaction, work and dissipation in ``reaction`` [µN],
@@ -113,10 +109,10 @@ class Stepping:
         w.plate.velocity = (vpx, vpy)
         pp = w.plate.position
         pnx, pny = pp.x + vpx * dt, pp.y + vpy * dt
-        self._pnext = (pnx, pny)
+        self.plate_next = (pnx, pny)
         ph.events = []
         ph.diss = 0.0
-        if self._loop is not None:
+        if self.loop is not None:
             opx, opy = self._advance_loop(pnx, pny, vpx, vpy)
         else:
             w.read()
@@ -125,12 +121,12 @@ class Stepping:
             x += s.pv[0]  # where pymunk will evaluate forces
             np.multiply(s.pv[3], dt, out=y)
             y += s.pv[1]
-            roots = bk.roots(pnx, pny, vpx, vpy)
+            roots = bk.roots(pnx, pny, vpx, vpy, dt)
             opx, opy = ph.spring_damp(*roots)
             bk.hold(s)
             if self.params.mechanics == "linear":
                 self._check_linear(ph.max_u2)
-            if self._fast_pads:
+            if self.fast_pads:
                 ph.contact_pads()
             elif self.contact_path == "batch":
                 ph.contact_general()
@@ -138,45 +134,37 @@ class Stepping:
                 s.F_damp_contact.fill(0.0)
                 s.delta.fill(np.nan)
                 ph.any_contact_damping = True
-            if self._implicit is not None:
-                ph.diss += self._implicit.correct(roots)
+            if self.implicit_step is not None:
+                ph.diss += self.implicit_step.correct(roots)
             w.write_forces(s.F)
             if self.contact_path == "callback":
                 # Tips that lost their candidate while attached (no pre_solve will come).
                 np.copyto(s.candidate_step, s.candidate)
                 ph.lost(s.candidate_step)
-        if w.pads and (self._loop is None or self._res[6] > w.pad_slack):
+        if w.pads and (self.loop is None or self.loop_results[6] > w.pad_slack):
             w.recentre_pads(s.xy[0])
         w.step(dt)
         self.time += dt
-        if self._loop is None:
+        if self.loop is None:
             ph.bookkeeping(vpx, vpy)
-        if self._implicit is not None and ph.events:
-            ph.diss += self._implicit.book_releases(ph.events)
+        if self.implicit_step is not None and ph.events:
+            ph.diss += self.implicit_step.book_releases(ph.events)
         opx, opy = bk.advance(dt, pnx, pny, vpx, vpy, (opx, opy))
-        ppx, ppy = self._on_plate_prev
-        self._work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
-        self._on_plate_prev = (opx, opy)
+        ppx, ppy = self.on_plate_prev
+        self.work_step = (0.5 * (opx + ppx) * vpx + 0.5 * (opy + ppy) * vpy) * dt
+        self.on_plate_prev = (opx, opy)
         self.reaction = (-opx, -opy)
 
     def _advance_loop(self, pnx, pny, vpx, vpy):
         s, w, ph = self.state, self.world, self.physics
         data = w.read_raw()
         np.copyto(s.candidate_step, s.candidate)
-        res = self._res
+        res = self.loop_results
         ext = s.external_force
-        self._loop(
+        arrays = PadArrays(
             data,
             w.order,
             w.out,
-            self._constants,
-            self.law.constants,
-            pnx,
-            pny,
-            vpx,
-            vpy,
-            max(math.hypot(vpx, vpy), 1e-4),
-            bool(ext.any()),
             w.h,
             s.candidate_step,
             s.attached,
@@ -186,19 +174,21 @@ class Stepping:
             w.pad_centre,
             ph.rest,
             ph.root,
-            self._lost_idx,
-            self._gone_idx,
+            self.lost_idx,
+            self.gone_idx,
             res,
         )
-        if self._implicit is not None:
-            ph.diss += self._implicit.correct((pnx, pny, vpx, vpy), rebook_damping=True)
+        plate = PlateStep(pnx, pny, vpx, vpy, max(math.hypot(vpx, vpy), 1e-4), bool(ext.any()))
+        self.loop(arrays, plate, self.constants, self.law.constants)
+        if self.implicit_step is not None:
+            ph.diss += self.implicit_step.correct((pnx, pny, vpx, vpy), rebook_damping=True)
             w.write_forces(s.F)
         else:
             w.write_forces()
         ph.diss += float(res[2])
         n_lost, n_gone = int(res[3]), int(res[4])
         if n_lost or n_gone:
-            lost, gone = self._lost_idx[:n_lost].copy(), self._gone_idx[:n_gone].copy()
+            lost, gone = self.lost_idx[:n_lost].copy(), self.gone_idx[:n_gone].copy()
             d, P = s.delta, s.P
             ph.events.extend((int(i), -np.inf, float(P[i])) for i in lost)
             ph.events.extend((int(i), float(d[i]), float(P[i])) for i in gone)
@@ -206,14 +196,32 @@ class Stepping:
             P[idx] = 0.0
             s.Ft[idx] = 0.0
             s.slip[idx] = False
-        if not self._constants.rod:
+        if not self.constants.rod:
             self._check_linear(float(res[5]))
         ph.any_contact_damping = True
         return float(res[0]), float(res[1])
 
+    def pop_releases(self) -> list:
+        """The tips that let go in the last step (``physics.events``), each as (seta, overlap
+        [µm], release overlap [µm], force [µN]): the release overlap is where the tip started
+        to run away from its equilibrium (its overlap at the step if it never did); the force
+        is the law's at δ_detach for a tip that passed it (:meth:`~gecko_agents.contact.base.
+        ContactLaw.release_force`, not the step's overshoot), else its last force. Clears
+        those tips' release marks (``state.jump``), so each release is reported once."""
+        jump = self.state.jump
+        located = self.law.release_force()
+        out = []
+        for i, d, force in self.physics.events:
+            j = jump[i]
+            if -math.inf < d < self.law.detach_overlap and not math.isnan(located):
+                force = located
+            out.append((i, d, d if np.isnan(j) else float(j), force))
+            jump[i] = np.nan
+        return out
+
     def _check_linear(self, max_u2):
-        if max_u2 > (0.1 * self.L) ** 2 and not self._warned_linear:
-            self._warned_linear = True
+        if max_u2 > (0.1 * self.L) ** 2 and not self.warned_linear:
+            self.warned_linear = True
             warnings.warn(
                 f"a seta deflected by {math.sqrt(max_u2) / self.L:.2f} L under the linear beam "
                 "model (eq 16–21 assume small deflection); mechanics='rod' stays physical",
@@ -231,14 +239,14 @@ class Stepping:
         self.advance(vx, vy)
         return (
             np.array(self.reaction),
-            self._work_step,
+            self.work_step,
             self.spring_energies(),
             self.state.xy.T.copy(),
         )
 
     def reset_state_arrays(self):
         """Start the energy and force bookkeeping afresh (as at the start of :meth:`run`)."""
-        self._on_plate_prev = (0.0, 0.0)
+        self.on_plate_prev = (0.0, 0.0)
         self.state.P[:] = 0.0
         # Nothing stored in the contacts counts as dissipated at a first-step snap-off.
         self.state.a[:] = self.law.jump_radius

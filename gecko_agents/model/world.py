@@ -12,10 +12,10 @@ Units: µm, µN, µs, ng (:mod:`gecko_agents.params`).
 * Forces are read and written for all bodies at once with ``pymunk.batch``.
 
 Detection (pad floors): ``"full"`` keeps every sensor in the space, so pymunk tests every tip
-against its pad every step (~90 % of a step at N = 10⁴ when every tip is pressed). ``"lazy"``
-(see :meth:`World.update_sensors`) gives a tip its sensor only while the tip is within a thin
-band around the sensor's edge, the only place where a begin or separate can happen; pymunk
-delivers those events, and the flags of the other tips follow from where they are. The flags
+against its pad every step (~90 % of a step at N = 10⁴ when every tip is pressed). ``"lazy"`` (see
+:meth:`gecko_agents.model.sensors.LazySensors.update`) gives a tip its sensor only while the tip is
+within a thin band around the sensor's edge, the only place where a begin or separate can happen;
+pymunk delivers those events, and the flags of the other tips follow from where they are. The flags
 after every step are the full detection's, so histories are bit-identical.
 
 Floors: with a pad floor (correlation length 0, the paper's eq 28) seta i meets only its own
@@ -37,6 +37,7 @@ import pymunk
 import pymunk.batch as pb
 
 from gecko_agents import floor
+from gecko_agents.model.sensors import LazySensors
 from gecko_agents.physics import beam
 
 __all__ = ["World", "TIP", "FLOOR", "DETECTIONS"]
@@ -58,13 +59,10 @@ class World:
     floor_profile : a given floor (e.g. a measured surface) instead of one drawn from
         ``params.floor``.
     detection : ``"full"`` (every sensor in the space every step: the reference),
-        ``"lazy"`` (pad floors only: a sensor only near its edge, :meth:`update_sensors`; the
-        same flags on every step) or ``"auto"`` (lazy on a pad floor, else full); the one used
-        is ``detection``.
+        ``"lazy"`` (pad floors only: a sensor only near its edge,
+        :class:`gecko_agents.model.sensors.LazySensors`; the same flags on every step) or
+        ``"auto"`` (lazy on a pad floor, else full); the one used is ``detection``.
     """
-
-    band = 0.05
-    """Rounding margin of lazy detection [µm] (see :meth:`update_sensors`)."""
 
     def __init__(
         self,
@@ -110,8 +108,6 @@ class World:
             detection = "lazy" if self.pads else "full"
         self.lazy = detection == "lazy"
         self.detection = detection
-        self._quiet = False  # ignore the separate pymunk fires when lazy detection removes
-        self.geometric_flips = 0  # flags lazy detection changed without a pymunk event
         self._build_floor(p, touch_x)
         self._build_tips(mass)
         self.pairs: set[tuple[int, int]] = set()
@@ -168,18 +164,19 @@ class World:
             bit = 1 << (i % 32) if self.pads else pymunk.ShapeFilter.ALL_CATEGORIES()
             shape.filter = pymunk.ShapeFilter(group=1, categories=bit, mask=bit)
             if self.lazy:
-                self.space.add(body)  # sensors join while near their edge (update_sensors)
+                self.space.add(body)  # sensors join while near their edge (LazySensors)
             else:
                 self.space.add(body, shape)
             self.tips.append(body)
             self.sensors.append(shape)
             self._tip_index[shape] = i
-        self.in_space = np.full(self.n, not self.lazy)
-        self._want = np.zeros(self.n, dtype=bool)
-        self._g = np.zeros(self.n)
-        self._w = np.zeros(self.n)
-        self._d = np.zeros(self.n)
-        self._primed = False
+        self.lazy_sensors = None  # the lazy detection's sensors (LazySensors)
+        self.in_space = np.full(self.n, True)  # the tips whose sensors are in the space
+        if self.lazy:
+            self.lazy_sensors = LazySensors(
+                self.state, self.h, self.sensor_radius, self.space, self.sensors, self._pad_shapes
+            )
+            self.in_space = self.lazy_sensors.in_space
         # Chipmunk's body order is internal: map batch rows to setae through body ids.
         ids = np.array([b.id for b in self.tips], dtype=np.uintp)
         self._id_sorted = np.sort(ids)
@@ -197,8 +194,8 @@ class World:
         self.pairs_dirty = True
 
     def _separate(self, arbiter, space, data):
-        if self._quiet:
-            return
+        if self.lazy_sensors is not None and self.lazy_sensors.removing:
+            return  # lazy detection took the sensor out: not a separation
         tip_shape, seg_shape = arbiter.shapes
         i, j = self._tip_index.get(tip_shape), self._seg_index.get(seg_shape)
         if self.pads:
@@ -311,115 +308,13 @@ class World:
     def step(self, dt: float) -> None:
         """One pymunk step of ``dt`` [µs] (lazy detection: :meth:`update_sensors` first)."""
         if self.lazy:
-            self.update_sensors(dt)
+            self.lazy_sensors.update(dt)
         self.space.step(dt)
 
-    def update_sensors(self, dt: float) -> None:
-        """Lazy detection: before a step of ``dt`` [µs], give sensors to the tips near the
-        sensor's edge, take them from the others and set the others' flags.
-
-        Reads ``state.xy`` (2, N) [µm], the positions x + v·dt that pymunk integrates the tips
-        to and detects collisions at (the model's step leaves them there), and ``state.pv``.
-
-        Why the flags equal full detection's. A sensor of radius r_s overlaps its pad, a
-        horizontal window at height h reaching more than r_s beyond the tip on both sides
-        (:meth:`recentre_pads`), exactly when the gap g = |y − h| < r_s: pymunk finds the
-        window's closest point (x, h) and tests distance² < r_s². Tip i keeps a sensor this
-        step iff |g − r_s| ≤ m_i = ``band`` + 2·|v_y|·dt. Those tips are tested by pymunk as
-        under full detection. The others are at least m_i ≥ ``band`` = 0.05 µm from the edge,
-        ~10¹⁰ times the rounding of g and of pymunk's distance (µm-sized numbers, relative
-        precision 1e-16), so their overlap is decided by the sign of g − r_s and set here:
-        True inside (g < r_s − m_i), False outside. A tip whose sensor joins this step starts
-        False, so only a begin from pymunk in this step makes it True; a sensor leaving the
-        space fires a separate, which is ignored (the flag is set from g as for any tip
-        without a sensor). Hence after every step ``state.candidate`` is the overlap of every
-        sensor with its pad at the step's positions, as full detection gives it.
-
-        Why pymunk still delivers the events. A flag changes only when g crosses r_s. The
-        band's 2·|v_y|·dt term holds a tip moving at up to twice its current vertical speed
-        in the band on the step it crosses, so the crossing is seen by pymunk's callbacks;
-        a tip that jumps across the whole band in one step is still set right, and is counted
-        in ``geometric_flips`` (0 in the tests and benchmarks: see ``tests/test_world.py``).
-        """
-        s, r_s = self.state, self.sensor_radius
-        g, m, want = self._g, self._w, self._want
-        np.subtract(s.xy[1], self.h, out=g)
-        np.abs(g, out=g)
-        np.abs(s.pv[3], out=m)
-        m *= 2.0 * dt
-        m += self.band
-        d = self._d
-        np.subtract(g, r_s, out=d)
-        inside = d < 0.0
-        np.abs(d, out=d)
-        np.less_equal(d, m, out=want)
-        cand, have = s.candidate, self.in_space
-        if not np.array_equal(want, have):
-            space, sensors, pads = self.space, self.sensors, self._pad_shapes
-            leave = np.flatnonzero(have & ~want)
-            join = np.flatnonzero(want & ~have)
-            if leave.size:
-                self._quiet = True
-                try:
-                    space.remove(*(sensors[i] for i in leave))
-                    space.remove(*(pads[i] for i in leave))
-                finally:
-                    self._quiet = False
-            if join.size:
-                cand[join] = False  # a begin in this step makes it True
-                space.add(*(pads[i] for i in join))
-                space.add(*(sensors[i] for i in join))
-            np.copyto(have, want)
-        free = ~want
-        if self._primed:  # the first step sets the flags pymunk's first begins would
-            self.geometric_flips += int(np.count_nonzero((cand != inside) & free))
-        self._primed = True
-        np.copyto(cand, inside, where=free)
-
-    def skip_free_travel(self, vp, omega: float, dt: float, target=None) -> float:
-        """Move plate and tips rigidly along the plate velocity ``vp`` [µm/µs] while nothing
-        can touch; returns the travel [µm] (0 if nothing was moved).
-
-        Only when every tip rests relative to the plate: deflection below 1e-3 of the lag
-        v/ω of a seta dragged at the plate speed (ω [rad/µs] its slowest free frequency),
-        relative velocity below 1e-3 of the plate speed (a free seta then just follows the
-        plate, wherever it is). The plate stops where the first sensor circle would reach the
-        floor, and a few steps (of ``dt`` [µs]) before ``target`` (x, y) [µm] if given.
-        """
-        vx, vy = vp
-        speed = math.hypot(vx, vy)
-        if speed == 0.0:
-            return 0.0
-        self.read()
-        px, py, tvx, tvy = self.state.pv
-        pp = self.plate.position
-        tol_u, tol_v = 1e-3 * speed / omega, 1e-3 * speed
-        if (
-            np.abs(px - pp.x - self.rest_dx).max() > tol_u
-            or np.abs(py - pp.y - self.rest_dy).max() > tol_u
-            or np.abs(tvx - vx).max() > tol_v
-            or np.abs(tvy - vy).max() > tol_v
-        ):
-            return 0.0
-        reach = self.sensor_radius + 2.0 * speed * dt
-        if self.pads:
-            gap = float(np.min(py - self.h)) - reach
-        else:
-            gap = float(np.min(py)) - self.floor_top() - reach
-        travel = math.inf if vy >= 0 else gap * speed / -vy
-        if target is not None:
-            travel = min(travel, math.hypot(target[0] - pp.x, target[1] - pp.y) - 3.0 * speed * dt)
-        if not travel > 20.0 * speed * dt:
-            return 0.0
-        self.translate(vx / speed * travel, vy / speed * travel, px, py)
-        return travel
-
-    def translate(self, sx: float, sy: float, px, py) -> None:
-        """Move the plate by (sx, sy) [µm] and put the tips at (px + sx, py + sy)."""
-        pp = self.plate.position
-        self.plate.position = (pp.x + sx, pp.y + sy)
-        for body, x, y in zip(self.tips, px.tolist(), py.tolist(), strict=True):
-            body.position = (x + sx, y + sy)
+    @property
+    def geometric_flips(self) -> int:
+        """Flags lazy detection changed without a pymunk event (0 with full detection)."""
+        return 0 if self.lazy_sensors is None else self.lazy_sensors.geometric_flips
 
     def floor_top(self) -> float:
         """Highest floor point [µm]."""

@@ -45,6 +45,7 @@ from gecko_agents.params.checks import (
     SURFACE_ENERGY_MAX,
     check,
 )
+from gecko_agents.params.spatulae import Spatulae, check_spatulae
 from gecko_agents.params.tips import FLAT_FACE_TIPS, Mushroom, check_tip_options
 from gecko_agents.physics import beam, jkr
 from gecko_agents.physics.friction import friction_cap
@@ -54,11 +55,12 @@ DETACHMENT_RULES = ("fold", "delta_s", "load_control")
 SHEAR_COUPLINGS = ("none", "savkoor_briggs")
 MIN_LINKS = 14
 """Fewest links of the elastica's bar chain: its three Euler loads within 2 % (``Seta.links``)."""
-TIPS = ("sphere", "hertz", "spatula", "flat_punch", "mushroom")
+TIPS = ("sphere", "hertz", "spatula", "flat_punch", "mushroom", "spatulae")
 """Tip contact laws (``gecko_agents.contact.TIP_LAWS``): the adhesive JKR sphere of the
 paper, a Hertz sphere without adhesion, a thin-film spatula that peels (:class:`Spatula`) or
 the flat end of a pillar, a punch of radius ``contact.R`` (Kendall 1971, J Phys D 4:1186), or
-a mushroom tip, a flange of radius ``contact.R`` on its stalk (:class:`Mushroom`)."""
+a mushroom tip, a flange of radius ``contact.R`` on its stalk (:class:`Mushroom`), or a
+branched seta ending in ``spatulae.count`` spatula films (:class:`Spatulae`)."""
 FRICTION_LAWS = ("adhesive", "paper")
 FLOOR_KINDS = ("gaussian", "self_affine", "probe")
 
@@ -431,6 +433,7 @@ class SetaArray:
     spatula: Spatula = field(default_factory=Spatula)
     backing: Backing = field(default_factory=Backing)
     mushroom: Mushroom = field(default_factory=Mushroom)
+    spatulae: Spatulae = field(default_factory=Spatulae)
 
     def __post_init__(self):
         for name, cls in _GROUPS.items():
@@ -453,6 +456,7 @@ class SetaArray:
                     "wide as the probe cannot sit on it"
                 )
         check_tip_options(self)
+        check_spatulae(self)
 
     # Derived quantities used throughout ---------------------------------------------------
     @property
@@ -531,6 +535,7 @@ class SetaArray:
             spatula=Spatula(**d.get("spatula", {})),
             backing=Backing(**d.get("backing", {})),
             mushroom=Mushroom(**d.get("mushroom", {})),
+            spatulae=Spatulae(**d.get("spatulae", {})),
         )
 
 
@@ -558,6 +563,7 @@ _GROUPS = {
     "spatula": Spatula,
     "backing": Backing,
     "mushroom": Mushroom,
+    "spatulae": Spatulae,
 }
 
 

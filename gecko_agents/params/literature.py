@@ -11,8 +11,9 @@ the number it is compared with. Not registered as run-file presets (only
 
 from __future__ import annotations
 
-from gecko_agents.params import Array, Contact, Floor, Seta, SetaArray
+from gecko_agents.params import Array, Contact, Floor, Friction, Seta, SetaArray, Spatula
 from gecko_agents.params.presets import PAPER_ARRAY
+from gecko_agents.params.spatulae import Spatulae
 
 __all__ = [
     "AUTUMN2006_SETA",
@@ -26,6 +27,7 @@ __all__ = [
     "FRICTIONAL_SPATULA",
     "FRICTIONAL_SPHERE",
     "KRONER_PILLARS",
+    "TOKAY_SETA",
 ]
 
 
@@ -130,3 +132,43 @@ misalignment study's strip and stiff mount. Cited: r = a = 2.35 µm and L = 1.95
 structures). Assumed: the paper's polyurethane and its w (their PDMS modulus and work of
 adhesion are not in the abstract), a pitch of twice the diameter, μ = 0.5; the tilt and the
 number of pillars (the probe's size) are set per run."""
+
+TOKAY_SETA = SetaArray(
+    contact=Contact(R=0.1, E1=1600.0, nu1=0.3, E2=70_000.0, nu2=0.25, w=0.05),
+    seta=Seta(r=2.0, L=110.0, theta_deg=45.0, density=1.2e-3),
+    array=Array(count=1, pitch=8.3),
+    floor=Floor(sigma=0.0),
+    friction=Friction(mu=0.29),
+    mechanics="rod",
+    tip="spatulae",
+    spatula=Spatula(b=0.2, h=0.01, E_f=1600.0, length=0.2),
+    spatulae=Spatulae(count=300),
+)
+"""One tokay gecko seta (*Gekko gecko*): a β-keratin shaft on a rigid mount, branching into
+N spatula films (``tip = "spatulae"``), on a flat glass floor, for the single-seta and
+single-spatula measurements of Autumn et al. (2000, Nature 405:681), Huber et al. (2005, PNAS
+102:16293) and Autumn et al. (2006, J Exp Biol 209:3569).
+
+Cited: a seta "branches into hundreds of 200-nm spatulae" (Hansen & Autumn 2005, PNAS 102:385,
+abstract, https://pmc.ncbi.nlm.nih.gov/articles/PMC544316): b = 0.2 µm; spatulae "≈ 200 nm
+wide and long" (Huber et al. 2005 as summarised at soft-matter.seas.harvard.edu, "Evidence for
+capillarity contributions to gecko adhesion ..."): the pad length ℓ0 = 0.2 µm; the setal
+keratin's modulus E = 1.6 GPa for *Gekko gecko* (Peattie, Majidi, Corder & Full 2007, abstract,
+as :data:`AUTUMN2006_SETA`) for the shaft and the films; μ = 0.29, the setal arrays'
+friction coefficient along their natural drag on PTFE (Autumn et al. 2006a, J Exp Biol
+209:3558, Table 1, jeb.biologists.org/highwire/markup/1089599/expansion).
+Cited range: N = 300 spatulae, inside "100 to 1000 spatulae" per seta (de.zxc.wiki/wiki/Spatula,
+a translation of the German Wikipedia, a secondary source); h = 0.01 µm, the low end of its
+spatula thickness "ten to 15 nanometers" (same source); L = 110 µm and r = 2.0 µm, inside the
+tokay's "ca. 2–4 μm in diameter and ca. 11–115 μm in length" (Scientific Reports 2022,
+doi:10.1038/s41598-022-15698-2, introduction; 110 µm is the length the literature quotes from
+Autumn et al. 2000, whose text we did not read).
+Assumed: w = 0.05 J/m² (a van der Waals work of adhesion of non-polar solids, 2γ with
+γ ≈ 25 mJ/m²; no text we read gives the spatula's on glass; it is not taken from Huber's force,
+which the validation compares with); θ = 45° between shaft and mount (as
+:data:`AUTUMN2006_SETA`: the setae are curved and no text we read gives a straight shaft's
+angle); the spatula body's radius R = 0.1 µm (half its width: the Hertz compression of a pressed
+spatula); ν = 0.3 and the density of a polymer, 1.2 g/cm³; the pitch 8.3 µm of a patch,
+1/√(:data:`TOKAY_SETAL_DENSITY`); a glass floor (E = 70 GPa,
+ν = 0.25); rigid branches sharing the load equally (:class:`gecko_agents.contact.spatulae.
+SpatulaeTip`)."""

@@ -259,7 +259,7 @@ class Scene:
             zorder=5,
         )
         side.add_collection(self.tips)
-        self._legend()
+        state_legend(self.fig, film=self.film is not None, front=self.front is not None)
         apply_style(force)
         draw_force_curve(force, self.h, annotate=False)
         force.legend(loc="lower left", fontsize=8)
@@ -309,41 +309,6 @@ class Scene:
                 gid="detachment front",
             )
         return body
-
-    def _legend(self) -> None:
-        """Tip states (and the detachment front of an elastic backing) below the side view."""
-        handles = [
-            Line2D([], [], ls="", marker="o", markersize=8, color=c, mec="#333333", label=name)
-            for name, c in (
-                ("free", STATE_COLOURS["free"]),
-                ("attached, compressed", STATE_COLOURS["compressed"]),
-                ("attached, tension", STATE_COLOURS["tension"]),
-                ("sliding", STATE_COLOURS["sliding"]),
-            )
-        ]
-        if self.film is not None:
-            handles.append(Line2D([], [], color=FILM_COLOUR, lw=2.0, label="film, pad"))
-        if self.front is not None:
-            handles.append(
-                Line2D(
-                    [],
-                    [],
-                    ls="",
-                    marker="v",
-                    markersize=8,
-                    color=FRONT_COLOUR,
-                    mec="#222222",
-                    label="detachment front",
-                )
-            )
-        self.fig.legend(
-            handles=handles,
-            loc="lower left",
-            bbox_to_anchor=(0.06, 0.0),
-            ncol=len(handles),
-            frameon=False,
-            fontsize=9,
-        )
 
     def rgb_fast(self, k: int) -> np.ndarray:
         """Record ``k`` as an RGB array, redrawing only the moving artists.
@@ -473,4 +438,33 @@ def render_frame(history: History, k: int, *, window: int = 40, dpi: float = DPI
         scene.front,
         scene.films,
         scene.pads,
+    )
+
+
+def state_legend(fig, film: bool, front: bool) -> None:
+    """The tip states below a scene's side view on ``fig``, with the film and pad (``film``)
+    and the detachment front of an elastic backing (``front``)."""
+    handles = [
+        Line2D([], [], ls="", marker="o", markersize=8, color=c, mec="#333333", label=name)
+        for name, c in (
+            ("free", STATE_COLOURS["free"]),
+            ("attached, compressed", STATE_COLOURS["compressed"]),
+            ("attached, tension", STATE_COLOURS["tension"]),
+            ("sliding", STATE_COLOURS["sliding"]),
+        )
+    ]
+    if film:
+        handles.append(Line2D([], [], color=FILM_COLOUR, lw=2.0, label="film, pad"))
+    if front:
+        handles.append(
+            Line2D([], [], ls="", marker="v", markersize=8, color=FRONT_COLOUR, mec="#222222",
+                   label="detachment front")
+        )  # fmt: skip
+    fig.legend(
+        handles=handles,
+        loc="lower left",
+        bbox_to_anchor=(0.06, 0.0),
+        ncol=len(handles),
+        frameon=False,
+        fontsize=9,
     )

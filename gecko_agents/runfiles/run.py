@@ -25,8 +25,9 @@ Run file
                                        # implicit step where verified, gecko_agents.model.implicit)
     event_dt_us = 0.5                  # the implicit step near events [µs] (default: one
                                        # explicit step; longer: fewer steps, later releases)
-    multirate = true                   # near events, only the setae near them step short
-                                       # (default: true, where the setae are independent)
+    multirate = false                  # near events, only the setae near them step short
+                                       # (default: where the setae are independent; true
+                                       # where they are not is refused)
 
     [[protocol]]                       # segments in order ...
     segment = "press_to"

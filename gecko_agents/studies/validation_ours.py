@@ -24,8 +24,8 @@ from gecko_agents.model import Model, Numerics
 from gecko_agents.params import literature as lit
 from gecko_agents.physics import beam, curved_rod, punch
 from gecko_agents.studies import frictional_adhesion as fa
+from gecko_agents.studies import gecko_seta, pad_peel
 from gecko_agents.studies import misalignment as mis
-from gecko_agents.studies import pad_peel
 from gecko_agents.studies import validation_magnitudes as magnitudes
 
 # --- closed forms on a tokay seta (AUTUMN2006_SETA) ------------------------------------------
@@ -572,6 +572,7 @@ OURS = {
 } | magnitudes.OURS
 """The functions a row's ``ours`` may name (with the magnitude rows' of
 :mod:`gecko_agents.studies.validation_magnitudes`)."""
+OURS |= gecko_seta.OURS  # the gecko seta's rows ("gecko_*"): :mod:`.gecko_seta`
 QUICK_SIZED = {
     "frictional_adhesion",
     "gillies_rough",
