@@ -21,11 +21,6 @@ from gecko_agents.physics import jkr
 from gecko_agents.physics import savkoor_briggs as sj
 from gecko_agents.physics.friction import combined_shear_modulus
 
-needs_numba = pytest.mark.skipif(
-    not numba_available(), reason="numba is not installed (optional extra 'fast')"
-)
-
-
 SHEARED = PAPER_ARRAY.replace(
     **{"contact.shear_coupling": "savkoor_briggs", "mechanics": "rod", "floor.sigma": 0.0}
 )
@@ -220,7 +215,6 @@ def _drag_pull(params, drag, kernel="auto", speed=0.05, **kw):
         return m.run(protocol.drag_pull(0.2, drag, 90.0, speed=speed), progress=False)
 
 
-@needs_numba
 def test_pull_off_after_a_gripping_drag_is_savkoor_briggs():
     """One rod seta (θ = 60°, μ = 10) pressed to 0.2 µN, dragged 8 µm back along its shaft and
     pulled straight off: the soft seta loads its tip nearly as a dead load, so the pull-off is
@@ -240,7 +234,6 @@ def law_fc():
     return float(jkr.pull_off_force(R, W))
 
 
-@needs_numba
 def test_without_friction_it_is_the_jkr_sphere():
     """μ = 0 with the paper's friction law: the tip never carries shear (ξ = 0), and a
     press–pull gives the JKR sphere's history to rounding."""
@@ -271,7 +264,6 @@ def test_without_friction_it_is_the_jkr_sphere():
 def test_kernels_agree(kernel):
     """Three setae dragged both ways and pulled: the per-seta loop (compiled or interpreted)
     gives the numpy path's history to rounding."""
-    from gecko_agents.model import numba_available
 
     if kernel == "numba" and not numba_available():
         pytest.skip(extras.reason("fast"))

@@ -16,11 +16,6 @@ from gecko_agents.history import STATE_SLIP, STATE_STICK
 from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.params import PAPER_ARRAY
 
-needs_numba = pytest.mark.skipif(
-    not numba_available(), reason="numba is not installed (optional extra 'fast')"
-)
-
-
 SPATULA = PAPER_ARRAY.replace(**{"tip": "spatula", "mechanics": "rod", "floor.sigma": 0.0})
 BONDED = SPATULA.replace(**{"spatula.interface": "bonded"})
 
@@ -181,7 +176,6 @@ def test_kernels_agree_on_a_drag_and_pull():
     assert along == pytest.approx(along_np, rel=1e-9)
 
 
-@needs_numba
 def test_gripping_drag_holds_at_least_twice_the_releasing_one():
     """A seta dragged back along its shaft (the plate to −x, small peel angle) holds more than
     one pushed over its pad, pulled at 90° quasi-statically: 1.185 / 0.566 µN = ×2.10 at μ = 10
@@ -356,7 +350,6 @@ def test_kernels_agree_on_a_pressed_drag(kernel):
     """Spatula setae pressed hard and dragged both ways (tip bodies stick, slide and pads peel),
     then pulled off: the per-seta loop (compiled or interpreted) gives the numpy path's
     history to rounding."""
-    from gecko_agents.model import numba_available
 
     if kernel == "numba" and not numba_available():
         pytest.skip(extras.reason("fast"))
