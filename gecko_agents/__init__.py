@@ -10,7 +10,11 @@ neither pymunk nor numba)::
     params = ga.PAPER_TABLE1.replace(mechanics="rod")
     history = ga.Model(params, seed=1).run(ga.protocol.press_pull(depth=1.0))
     history.save("my_run")
-    same = ga.load("my_run")
+    same = ga.load_history("my_run")
+
+``dir(gecko_agents)`` and ``__all__`` list the public names only. The old names ``load`` (now
+``load_history``: a run directory) and ``load_run`` (now ``read_run_file``: a TOML run file)
+still work, with a DeprecationWarning, until 0.3.
 """
 
 from importlib import import_module as _import_module
@@ -27,8 +31,8 @@ _LAZY = {
     "Model": ("gecko_agents.model", "Model"),
     "Numerics": ("gecko_agents.numerics", "Numerics"),
     "History": ("gecko_agents.history", "History"),
-    "load": ("gecko_agents.history", "load"),
-    "read_run_file": ("gecko_agents.runfiles.run", "load_run"),
+    "load_history": ("gecko_agents.history", "load_history"),
+    "read_run_file": ("gecko_agents.runfiles.run", "read_run_file"),
     "SetaArray": ("gecko_agents.params", "SetaArray"),
     "PAPER_TABLE1": ("gecko_agents.params", "PAPER_TABLE1"),
     "PAPER_ARRAY": ("gecko_agents.params", "PAPER_ARRAY"),
@@ -39,25 +43,18 @@ _LAZY = {
     "floor": ("gecko_agents.floor", None),
 }
 
-__all__ = ["__version__", *_LAZY]
+# old name -> new name: each still works, with a DeprecationWarning, until 0.3
+_RENAMED = {"load": "load_history", "load_run": "read_run_file"}
 
-# older name -> (its new name, why): still served, with a DeprecationWarning, until 0.3
-_RENAMED = {
-    "load_run": ("read_run_file", "it reads a run file (.toml); ga.load reads a saved run"),
-}
+__all__ = ["__version__", *_LAZY]
 
 
 def __getattr__(name: str):
-    if name in _RENAMED:
-        import warnings
+    if name in _RENAMED:  # not cached: every use of an old name warns
+        from gecko_agents._deprecation import warn_renamed
 
-        new, why = _RENAMED[name]
-        warnings.warn(
-            f"gecko_agents.{name} is deprecated and goes in 0.3: use gecko_agents.{new} ({why})",
-            DeprecationWarning,
-            stacklevel=2,
-        )
-        return __getattr__(new)
+        warn_renamed(f"gecko_agents.{name}", f"gecko_agents.{_RENAMED[name]}")
+        return __getattr__(_RENAMED[name])
     try:
         module, attribute = _LAZY[name]
     except KeyError:
@@ -70,5 +67,5 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    """The public API only (not the helpers this module imports)."""
+    """The public API only (``__all__``; not the helpers this module imports)."""
     return sorted(__all__)

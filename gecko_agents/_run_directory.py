@@ -1,5 +1,5 @@
 """Reading a run directory's files and checking that they belong together, for
-:func:`gecko_agents.history.load` (which states the integrity rules): ``metadata.json``'s
+:func:`gecko_agents.history.load_history` (which states the integrity rules): ``metadata.json``'s
 fields against their digests, each data file against its SHA-256, ``history.csv``'s table and
 ``setae.npz``'s arrays."""
 

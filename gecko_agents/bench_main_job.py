@@ -2,7 +2,7 @@
 
 ``python -m gecko_agents.bench --main-job`` (``--quick`` for the short form of the job,
 ``--docs PATH`` to also write the result as a Markdown page) runs the main job,
-``python scenarios/reproduce_paper.py`` (:func:`gecko_agents.studies.reproduce_paper.main`,
+``python scenarios/reproduce_paper.py`` (``gecko_agents.studies.reproduce_paper.main``,
 two scenarios at a time), twice in one run, each in a process of its own writing to a
 temporary folder:
 
@@ -11,7 +11,7 @@ temporary folder:
   (:func:`without_fast_paths`): the agent model's multirate stepping
   (:class:`~gecko_agents.numerics.Numerics` ``multirate = False``: the whole patch takes
   the located steps) and the quasi-static Fig 11 sweeps' curves
-  (:data:`gecko_agents.studies.preload.CURVES` = False: one press-and-pull per preload point
+  (``gecko_agents.studies.preload.CURVES = False``: one press-and-pull per preload point
   instead of one shared approach per floor).
 
 For each it measures the wall time and the CPU seconds of the job and every process it started

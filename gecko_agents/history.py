@@ -18,8 +18,8 @@ identifier (:meth:`History.run_id`, a hash of the parameters, seed, protocol, co
 series) as ``"run_id"`` and the SHA-256 of each data file as ``"files"``; ``setae.npz`` carries
 the identifier too; every other field of ``metadata.json`` (``dt_us``, ``n_sim``,
 ``record_every``, ``scale_to_array``, …) has the SHA-256 of its value in ``"fields_sha256"``.
-:func:`load` refuses files that disagree, a table not the one the identifier was made from or
-not ``n_records`` long, a file whose SHA-256 is not the recorded one (naming it), and a
+:func:`load_history` refuses files that disagree, a table not the one the identifier was made
+from or not ``n_records`` long, a file whose SHA-256 is not the recorded one (naming it), and a
 metadata field edited, added or removed after the save (naming it;
 ``gecko_agents._run_directory`` reads and checks the files). Directories saved before the
 checksums (a ``# run_id: <id>`` first line in ``history.csv``, no ``"files"``) still load,
@@ -38,6 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
+from gecko_agents._deprecation import renamed
 from gecko_agents._run_directory import (
     ID_FIELDS,
     check_checksums,
@@ -59,7 +60,7 @@ __all__ = [
     "STATE_FREE",
     "STATE_STICK",
     "STATE_SLIP",
-    "load",
+    "load_history",
     "versions",
     "atomic_write_bytes",
     "invariant_violations",
@@ -289,8 +290,8 @@ class History:
 
     @classmethod
     def load(cls, directory) -> History:
-        """Read a run directory written by :meth:`save` (the same as :func:`load`)."""
-        return load(directory)
+        """Read a run directory written by :meth:`save` (the same as :func:`load_history`)."""
+        return load_history(directory)
 
     def metadata(self) -> dict:
         """Everything needed to reproduce the run: parameters, seed, meta, versions, run_id."""
@@ -372,7 +373,7 @@ def _json_default(obj):
     raise TypeError(f"cannot store {type(obj).__name__} in metadata.json")
 
 
-def load(directory) -> History:
+def load_history(directory) -> History:
     """Read a run saved by :meth:`History.save`, checking that its files belong together.
 
     Raises
@@ -386,7 +387,11 @@ def load(directory) -> History:
         inside = (d.parent / "metadata.json").is_file()
         raise FileNotFoundError(
             f"{str(d)!r} is a file, not a run directory"
-            + (f"; load the run directory it is in: load({str(d.parent)!r})" if inside else "")
+            + (
+                f"; load the run directory it is in: load_history({str(d.parent)!r})"
+                if inside
+                else ""
+            )
         )
     if not d.is_dir():
         raise FileNotFoundError(f"run directory {str(d)!r} does not exist")
@@ -441,6 +446,9 @@ def load(directory) -> History:
             "regenerate it"
         )
     return h
+
+
+load = renamed("gecko_agents.history.load", "gecko_agents.history.load_history", load_history)
 
 
 ENERGY_RTOL = 0.02

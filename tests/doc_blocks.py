@@ -34,6 +34,8 @@ EXTRA_MODULES = {
     "dask": "distributed",
     "video": "imageio_ffmpeg",
     "design": "optuna",
+    "contactmechanics": "ContactMechanics",
+    "docs": "sphinx",
 }
 """Optional extra → the module it installs (pyproject.toml's optional dependencies)."""
 

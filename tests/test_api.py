@@ -1,7 +1,10 @@
 """The public API in one import: ``import gecko_agents as ga``."""
 
+import pkgutil
+import re
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,7 +15,8 @@ import gecko_agents as ga
 def test_importing_the_package_loads_neither_pymunk_nor_numba():
     code = (
         "import sys, gecko_agents as ga\n"
-        "ga.PAPER_TABLE1.replace(mechanics='rod'); ga.protocol.press_pull(depth=1.0); ga.load\n"
+        "ga.PAPER_TABLE1.replace(mechanics='rod'); ga.protocol.press_pull(depth=1.0)\n"
+        "ga.load_history\n"
         "print(sorted(m for m in ('pymunk', 'numba') if m in sys.modules))\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
@@ -24,6 +28,47 @@ def test_every_public_name_resolves_to_its_home(name):
     module, attribute = ga._LAZY[name]
     home = __import__(module, fromlist=["_"])
     assert getattr(ga, name) is (home if attribute is None else getattr(home, attribute))
+
+
+def test_dir_shows_the_public_names_and_no_helper_of_the_loader():
+    public = [n for n in dir(ga) if not n.startswith("__")]
+    assert public == sorted(n for n in ga.__all__ if n != "__version__")
+    assert "__version__" in dir(ga)
+    for leaked in ("import_module", "version", "PackageNotFoundError", "load", "load_run"):
+        assert leaked not in dir(ga)
+
+
+@pytest.mark.parametrize(
+    "old, new, home",
+    [
+        ("load", "load_history", "gecko_agents.history"),
+        ("load_run", "read_run_file", "gecko_agents.runfiles.run"),
+    ],
+)
+def test_an_old_name_warns_with_its_new_name_and_is_the_same_function(old, new, home):
+    with pytest.warns(DeprecationWarning, match=rf"gecko_agents\.{old} .* 0\.3: .*\.{new}"):
+        function = getattr(ga, old)
+    assert function is getattr(ga, new)
+    module = __import__(home, fromlist=["_"])
+    with pytest.warns(DeprecationWarning, match=rf"{home}\.{old} .* 0\.3: .*\.{new}"):
+        with pytest.raises((FileNotFoundError, ValueError), match="no/such/run"):
+            getattr(module, old)("no/such/run")
+
+
+def test_the_old_names_read_what_the_new_ones_read(tmp_path):
+    from test_history import _toy
+
+    from gecko_agents.history import load as old_load
+    from gecko_agents.runfiles.run import load_run as old_load_run
+
+    run_dir = _toy().save(tmp_path / "run")
+    with pytest.warns(DeprecationWarning, match="load_history"):
+        old = old_load(run_dir)
+    assert old.run_id() == ga.load_history(run_dir).run_id()
+    path = Path(__file__).resolve().parents[1] / "examples" / "preload_pull.toml"
+    with pytest.warns(DeprecationWarning, match="read_run_file"):
+        spec = old_load_run(path, quick=True)
+    assert spec == ga.read_run_file(path, quick=True)
 
 
 def test_an_unknown_name_is_an_attribute_error():
@@ -89,6 +134,31 @@ def test_from_options_takes_every_kind_of_option_without_a_warning(recwarn):
     assert not [w for w in recwarn if issubclass(w.category, DeprecationWarning)]
 
 
+def _api_reference_modules():
+    """(public, internal) module lists of docs/api.rst's autosummaries, split at its line."""
+    text = (Path(__file__).resolve().parents[1] / "docs" / "api.rst").read_text("utf-8")
+    public, internal = text.split("\n----\n")
+    modules = re.compile(r"^   (gecko_agents[\w.]*)$", re.M)
+    return public, modules.findall(public), modules.findall(internal)
+
+
+def test_the_api_reference_lists_every_module_once_as_public_or_internal():
+    package = Path(ga.__file__).parent
+    top_level = {
+        f"gecko_agents.{m.name}"
+        for m in pkgutil.iter_modules([str(package)])
+        if not m.name.startswith("_")
+    }
+    public_text, public, internal = _api_reference_modules()
+    assert not set(public) & set(internal)
+    applications = {"gecko_agents.studies"}  # command lines with reports, named in the text
+    assert sorted(public + internal) == sorted(top_level - applications)
+    assert all(f"``{name}``" in public_text for name in applications)
+    for name in (n for n in ga.__all__ if n != "__version__"):
+        assert f"``ga.{name}``" in public_text, f"ga.{name} is not in the public API's table"
+        module, attribute = ga._LAZY[name]
+        if attribute is None:
+            assert module in public, f"{module} (ga.{name}) is listed as internal"
 def test_dir_lists_the_public_api_only():
     import gecko_agents as ga
 

@@ -2,6 +2,7 @@
 (momentum conserved), no work (a free chain keeps its energy), the gap closed, and the compiled
 loop equal to the numpy/LAPACK path."""
 
+import extras
 import numpy as np
 import pytest
 
@@ -64,7 +65,7 @@ def test_pivots_do_no_work_on_a_ringing_free_chain():
     assert np.ptp(energy) < 0.01 * energy[0]
 
 
-@pytest.mark.skipif(compiled() is None, reason="numba not installed")
+@pytest.mark.skipif(compiled() is None, reason=extras.reason("fast"))
 @pytest.mark.parametrize(
     "n, clamp", [pytest.param(300, False, marks=pytest.mark.slow), (7, True), (2, False), (1, True)]
 )

@@ -6,12 +6,13 @@ run, and are drawn from the loaded run."""
 import hashlib
 import warnings
 
+import extras
 import numpy as np
 import pytest
 
 from gecko_agents import history, protocol, render
 from gecko_agents.backing.elastic import STRIP_ARRAYS, STRIP_COLUMNS
-from gecko_agents.model import Model, Numerics, numba_available
+from gecko_agents.model import Model, Numerics
 from gecko_agents.params import PAPER_ARRAY
 
 ROUGH = PAPER_ARRAY.replace(**{"array.count": 6, "seta.L": 5.0, "floor.sigma": 0.3})
@@ -28,15 +29,11 @@ def _digest(h) -> str:
     return d.hexdigest()[:16]
 
 
-NEEDS_NUMBA = pytest.mark.skipif(
-    not numba_available(), reason="'auto' runs numba's loop only with numba (extra 'fast')"
-)
-
-
 @pytest.mark.parametrize(
     "kernel, press, digest",
-    [pytest.param("auto", False, "30b14a5a22253292", marks=NEEDS_NUMBA),
-     ("numpy", True, "a1c736c72a242776"), ("python", False, "792f9f9053e0f64a")],
+    [pytest.param("auto", False, "30b14a5a22253292", marks=extras.needs("fast")),
+     ("numpy", True, "a1c736c72a242776"),
+     ("python", False, "792f9f9053e0f64a")],
 )  # fmt: skip
 def test_rigid_plate_histories_are_bit_identical_to_before(kernel, press, digest):
     """The rigid plate (``backing.kind = "rigid"``, the default) as a component: the same
@@ -100,7 +97,7 @@ def test_strip_records_are_history_columns_and_arrays(peeled):
 @pytest.mark.slow
 def test_saved_elastic_run_loads_from_its_directory_alone(peeled):
     _, h, run_dir = peeled
-    loaded = history.load(run_dir)
+    loaded = history.load_history(run_dir)
     assert loaded.columns == h.columns == history.SCALAR_COLUMNS + STRIP_COLUMNS
     for c in h.columns:
         np.testing.assert_array_equal(loaded[c], h[c])
@@ -126,7 +123,7 @@ def test_a_strip_column_edited_on_disk_is_refused(peeled, tmp_path):
     lines[1] = ",".join(row)
     csv.write_text("\n".join(lines))
     with pytest.raises(ValueError, match="history.csv is not the file run .* SHA-256"):
-        history.load(tmp_path)
+        history.load_history(tmp_path)
 
 
 @pytest.mark.slow
@@ -135,7 +132,7 @@ def test_loaded_elastic_run_is_drawn_with_its_strip(peeled, tmp_path):
     record, the front marker sits on it at the recorded front's abscissa, and the animation
     is written."""
     m, h, run_dir = peeled
-    loaded = history.load(run_dir)
+    loaded = history.load_history(run_dir)
     front = h["strip_front_x_um"]
     k = int(np.flatnonzero(np.isfinite(front))[len(h) // 4])
     frame = render.render_frame(loaded, k, window=m.n)

@@ -62,7 +62,7 @@ def test_main_job_baseline_switches_off_multirate_and_the_sweep_curves():
         "before = (Numerics(), preload.CURVES)\n"
         "w()\n"
         "after = Numerics(record_every=1)\n"
-        "assert before == (Numerics(multirate=True), True), before\n"
+        "assert before == (Numerics(multirate=None), True), before\n"
         "assert after == Numerics(multirate=False, record_every=1), after\n"
         "assert preload.CURVES is False\n"
     )

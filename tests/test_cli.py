@@ -9,6 +9,7 @@ import sys
 import tomllib
 from pathlib import Path
 
+import extras
 import pytest
 
 from gecko_agents import cli, history, sweep
@@ -114,7 +115,7 @@ def test_example_run_quick(path, tmp_path):
     ):
         assert (out / name).is_file(), name
     assert (out / runfile.RUN_FILE_NAME).read_bytes() == path.read_bytes()
-    h = history.load(out)
+    h = history.load_history(out)
     assert history.invariant_violations(h) == []
     assert len(h) > 5 and h.peak_pull_off > 0
     assert h.meta["run_file"]["quick"] is True
@@ -203,7 +204,7 @@ def test_error_names_value_and_range(tmp_path):
     path = tmp_path / "bad.toml"
     path.write_text(BAD["negative modulus"][0])
     with pytest.raises(runfile.RunFileError, match=r"contact\.E1.*-1\.4.*allowed range"):
-        runfile.load_run(path)
+        runfile.read_run_file(path)
 
 
 def test_missing_file_and_foreign_out_dir(tmp_path, capsys):
@@ -323,11 +324,11 @@ def test_calibrate_is_a_command_like_the_others(capsys):
 
 # History.to_dataframe ---------------------------------------------------------------------------
 def test_to_dataframe(tmp_path):
-    pd = pytest.importorskip("pandas")
+    pd = extras.require("pandas")
     src = tmp_path / "study.toml"
     src.write_text(GOOD)
     assert cli.main(["run", str(src), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
-    h = history.load(tmp_path / "o")
+    h = history.load_history(tmp_path / "o")
     df = h.to_dataframe()
     assert isinstance(df, pd.DataFrame)
     assert list(df.columns) == list(history.SCALAR_COLUMNS) and len(df) == len(h)

@@ -35,7 +35,7 @@ def test_run_whose_history_breaks_its_invariants_exits_1(tmp_path, monkeypatch):
     src.write_text(RUN)
     out = tmp_path / "out"
     assert cli.main(["run", str(src), "--out", str(out), "--no-progress"]) == 1
-    h = history.load(out)
+    h = history.load_history(out)
     assert history.invariant_violations(h) != []
     meta_bad = h.meta["run_file"]["invariant_violations"]
     assert len(meta_bad) >= 1 and meta_bad == history.invariant_violations(h)
@@ -46,7 +46,7 @@ def test_the_same_run_unbroken_exits_0(tmp_path):
     src.write_text(RUN)
     out = tmp_path / "out"
     assert cli.main(["run", str(src), "--out", str(out), "--no-progress"]) == 0
-    assert history.load(out).meta["run_file"]["invariant_violations"] == []
+    assert history.load_history(out).meta["run_file"]["invariant_violations"] == []
 
 
 def test_sweep_with_failed_points_exits_1_and_stores_the_rest(tmp_path):

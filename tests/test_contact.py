@@ -3,6 +3,7 @@ per-contact reference path) pinned to its closed form point by point."""
 
 import math
 
+import extras
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -75,7 +76,7 @@ def test_numpy_and_scalar_forms_match_the_closed_form(i):
     _check_forms(law, law.radius_scalar, law.force_scalar, law.energy_scalar)
 
 
-@pytest.mark.skipif(not numba_available(), reason="numba not installed (the 'fast' extra)")
+@extras.needs("fast")
 @pytest.mark.parametrize("i", range(3))
 def test_compiled_scalar_forms_match_the_closed_form(i):
     import numba

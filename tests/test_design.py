@@ -1,9 +1,9 @@
 """The design search (gecko_agents.design): design files refused before any trial, the search
 finding what closed forms know, a killed study resuming, and the quick example end to end."""
 
-import importlib.util
 import math
 
+import extras
 import pytest
 
 from gecko_agents.design import load_design, search
@@ -11,9 +11,7 @@ from gecko_agents.design.space import KPA
 from gecko_agents.physics import flaw_tolerance, jkr, punch
 from gecko_agents.runfiles.schema import RunFileError
 
-needs_optuna = pytest.mark.skipif(
-    importlib.util.find_spec("optuna") is None, reason="the design extra (optuna)"
-)
+needs_optuna = extras.needs("design")
 
 E, NU, W = 1.413, 0.3, 0.165
 
@@ -143,7 +141,7 @@ def test_with_a_buckling_preload_the_best_aspect_ratio_sits_on_the_constraint(tm
 
 @needs_optuna
 def test_a_killed_study_resumes_with_every_finished_trial(tmp_path):
-    optuna = pytest.importorskip("optuna")
+    optuna = extras.require("design")
     spec = load_design(design(tmp_path))
     out = tmp_path / "out"
     first = search.run_search(spec, out, trials=5)
@@ -180,7 +178,7 @@ def test_the_quick_example_runs_in_well_under_a_minute_and_its_run_file_reproduc
 
     from gecko_agents.analysis.pull import pull_off
     from gecko_agents.cli import main
-    from gecko_agents.runfiles.run import load_run
+    from gecko_agents.runfiles.run import read_run_file
 
     example = Path(__file__).resolve().parents[1] / "examples" / "design_pillars.toml"
     out = tmp_path / "design"
@@ -190,7 +188,7 @@ def test_the_quick_example_runs_in_well_under_a_minute_and_its_run_file_reproduc
     for name in ("report.md", "trials.csv", "pareto_front.png", "objectives_vs_parameters.png"):
         assert (out / name).stat().st_size > 0
     best = json.loads((out / "best.json").read_text())["best"][0]
-    run = load_run(out / "runs" / "design_1.toml")
+    run = read_run_file(out / "runs" / "design_1.toml")
     h = run.build_model().run(run.protocol, progress=False)
     area = run.params.array.count * run.params.array.pitch**2
     assert pull_off(h).adhesion / area / KPA == pytest.approx(best["engine"]["runs"][0], rel=1e-9)
@@ -199,17 +197,17 @@ def test_the_quick_example_runs_in_well_under_a_minute_and_its_run_file_reproduc
 def test_a_run_file_floor_table_is_the_scan_from_its_offset(tmp_path):
     from gecko_agents.data import DEKTAK_PROFILE
     from gecko_agents.floor import readers
-    from gecko_agents.runfiles.run import load_run
+    from gecko_agents.runfiles.run import read_run_file
 
     text = 'preset = "PAPER_TABLE1"\n[floor]\nfile = "dektak"\noffset_um = 100.0\n'
     text += '[protocol]\npreset = "press_pull"\ndepth_um = 0.5\n'
-    spec = load_run(design(tmp_path, text, "run.toml"))
+    spec = read_run_file(design(tmp_path, text, "run.toml"))
     scan = readers.read_text(DEKTAK_PROFILE)
     k = int(scan.x.searchsorted(scan.x[0] + 100.0))
     assert spec.floor_profile.x[0] == 0.0
     assert list(spec.floor_profile.y) == list(scan.y[k:])
     with pytest.raises(RunFileError, match=r"\[floor\] offset_um.*outside the scan"):
-        load_run(design(tmp_path, text.replace("100.0", "1e9"), "run.toml"))
+        read_run_file(design(tmp_path, text.replace("100.0", "1e9"), "run.toml"))
 
 
 @pytest.mark.parametrize(
@@ -311,7 +309,7 @@ def test_the_largest_preload_bound_is_the_force_that_brings_every_tip_down(tmp_p
 @pytest.mark.slow
 @needs_optuna
 def test_a_local_dask_cluster_fills_and_confirms_one_study(tmp_path):
-    pytest.importorskip("distributed")
+    extras.require("dask")
     from gecko_agents.design import run_design
 
     spec = load_design(design(tmp_path, BASE.replace("confirm = 0", "confirm = 1")))

@@ -72,6 +72,7 @@ def test_one_process_holds_a_design_folder_at_a_time(tmp_path):
         ("postgresql+nosuchdriver://u:secret@host/db", ("postgresql+nosuchdriver",)),
     ],
 )
+@needs_optuna  # the check opens the URL with SQLAlchemy, which Optuna installs
 def test_storage_urls_that_cannot_hold_a_study_are_refused(url, names):
     with pytest.raises(folder.DesignFolderError) as err:
         folder.check_storage(url)
@@ -80,6 +81,7 @@ def test_storage_urls_that_cannot_hold_a_study_are_refused(url, names):
     assert "secret" not in str(err.value)
 
 
+@needs_optuna
 @pytest.mark.skipif(os.geteuid() == 0, reason="root writes a read-only file")
 def test_a_read_only_storage_file_is_refused(tmp_path):
     db = tmp_path / "ro.db"
@@ -89,6 +91,7 @@ def test_a_read_only_storage_file_is_refused(tmp_path):
         folder.check_storage(f"sqlite:///{db}")
 
 
+@needs_optuna
 def test_a_new_sqlite_file_in_a_writable_folder_is_taken_and_nothing_written(tmp_path):
     folder.check_storage(f"sqlite:///{tmp_path / 'designs.db'}")
     assert list(tmp_path.iterdir()) == []
@@ -130,6 +133,7 @@ def test_a_confirmation_the_engine_cannot_run_is_a_row_with_its_reason(tmp_path,
     assert "| design_1 | 2 | 50 | failed (below) | — | — |" in text
 
 
+@needs_optuna
 def test_a_study_continues_only_in_the_store_it_was_started_in(tmp_path):
     spec = load_design(design(tmp_path))
     out, name = tmp_path / "out", search.study_name(spec)

@@ -1,12 +1,14 @@
 """Every ```python block of README.md, CONTRIBUTING.md and docs/**/*.md runs (tests/doc_blocks.py
-says how pages are run and marked). A block marked for an extra that is not installed is
-skipped with its reason, the rest of its page run; .ci/wheel_check runs the same pages on the
-bare installed wheel."""
+says how pages are run and marked). A block marked for an extra runs where the extra is
+installed and skips the page's test, naming the extra, where it is not; .ci/wheel_check runs
+the same pages on the bare installed wheel."""
 
+import tomllib
 from pathlib import Path
 
+import extras
 import pytest
-from doc_blocks import Block, python_blocks, run_page
+from doc_blocks import EXTRA_MODULES, Block, python_blocks, run_page
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = sorted(
@@ -22,6 +24,14 @@ def test_blocks_are_found_and_the_marks_read():
         "<!-- extra: topography -->\n```python\nz = 3\n```\n```bash\nls\n```\n"
     )
     assert python_blocks(text) == [Block(3, "x = 1\n", None), Block(11, "z = 3\n", "topography")]
+
+
+def test_every_extra_that_installs_a_module_is_known_by_its_module():
+    """The pages' marks and the tests' skips (tests/extras.py) know every optional extra of
+    pyproject.toml but the developer tool sets."""
+    with open(ROOT / "pyproject.toml", "rb") as f:
+        declared = tomllib.load(f)["project"]["optional-dependencies"]
+    assert set(EXTRA_MODULES) == set(declared) - {"dev", "mutation"}
 
 
 def test_a_failing_block_names_its_page_and_line(tmp_path):
@@ -41,10 +51,11 @@ def test_the_readme_and_the_tutorials_have_runnable_code():
     "page", PAGES_WITH_CODE, ids=lambda p: p.relative_to(ROOT).as_posix().replace("/", ".")
 )
 def test_page_code_runs(page):
-    skipped = run_page(page, skip_missing_extras=True)  # the rest of the page still runs
+    """Every block runs; a block marked for an extra that is not installed is skipped, and the
+    page's test says which extra to install."""
+    skipped = run_page(page, skip_missing_extras=True)
     if skipped:
-        extras = sorted({b.extra for b in skipped})
-        pytest.skip(f"blocks at lines {[b.line for b in skipped]} need the extras {extras}")
+        pytest.skip("; ".join(sorted({extras.reason(block.extra) for block in skipped})))
 
 
 def test_the_readme_test_command_is_the_one_ci_runs():

@@ -3,6 +3,7 @@
 import json
 import math
 
+import extras
 import numpy as np
 import pytest
 
@@ -14,7 +15,7 @@ from gecko_agents.params import PAPER_ARRAY, Floor
 DATA = SURFACES
 DEKTAK = DATA / "dektak_profile.csv"
 WSXM = DATA / "wsxm_afm.top"
-NEEDS_ST = "needs the optional extra: pip install 'gecko_agents[topography]' (SurfaceTopography)"
+NEEDS_ST = extras.reason("topography")
 
 
 def _st():

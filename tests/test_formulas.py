@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 
+import extras
 import numpy as np
 import pytest
 
@@ -83,7 +84,7 @@ def test_every_friction_cap_is_the_home():
 
 
 def test_friction_cap_compiles():
-    numba = pytest.importorskip("numba")
+    numba = extras.require("fast")
 
     @numba.njit
     def caps(P):

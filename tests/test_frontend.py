@@ -6,6 +6,7 @@ import subprocess
 import sys
 import warnings
 
+import extras
 import numpy as np
 import pytest
 
@@ -147,7 +148,7 @@ def saved_run(tmp_path_factory):
 def test_pandas_reads_history_csv_with_default_arguments(saved_run):
     import numpy as np
 
-    pd = pytest.importorskip("pandas")
+    pd = extras.require("pandas")
     from gecko_agents.history import SCALAR_COLUMNS, History
 
     h, d = saved_run

@@ -36,7 +36,7 @@ def _toy(n=5, N=3):
 def test_round_trip(tmp_path):
     h = _toy()
     h.save(tmp_path / "run")
-    g = hist.load(tmp_path / "run")
+    g = hist.load_history(tmp_path / "run")
     assert g.params == h.params and g.seed == 42 and g.meta["dt_us"] == 0.1
     for c in hist.SCALAR_COLUMNS:
         np.testing.assert_array_equal(g[c], h[c])
@@ -50,14 +50,14 @@ def test_round_trip(tmp_path):
 
 def test_missing_and_corrupt_runs(tmp_path):
     with pytest.raises(FileNotFoundError, match="does not exist"):
-        hist.load(tmp_path / "nope")
+        hist.load_history(tmp_path / "nope")
     _toy().save(tmp_path / "run")
     (tmp_path / "run" / "history.csv").write_text("garbage,1\nx,y\n")
     with pytest.raises(ValueError, match="history.csv"):
-        hist.load(tmp_path / "run")
+        hist.load_history(tmp_path / "run")
     (tmp_path / "run" / "metadata.json").unlink()
     with pytest.raises(FileNotFoundError, match="metadata.json"):
-        hist.load(tmp_path / "run")
+        hist.load_history(tmp_path / "run")
 
 
 def test_columns_are_checked():
@@ -166,7 +166,7 @@ def test_truncated_csv_is_refused(tmp_path):
     lines = (d / "history.csv").read_text().splitlines(keepends=True)
     (d / "history.csv").write_text("".join(lines[:20]))  # cut at a line boundary
     with pytest.raises(ValueError, match=r"history.csv has 19 data rows.*n_records = 39"):
-        hist.load(d)
+        hist.load_history(d)
 
 
 def test_header_only_csv_says_so(tmp_path):
@@ -174,18 +174,18 @@ def test_header_only_csv_says_so(tmp_path):
     lines = (d / "history.csv").read_text().splitlines(keepends=True)
     (d / "history.csv").write_text("".join(lines[:1]))
     with pytest.raises(ValueError, match=r"history.csv has a header and no data rows"):
-        hist.load(d)
+        hist.load_history(d)
 
 
 def test_files_of_two_runs_are_refused(tmp_path):
     a, b = _two_runs(tmp_path)
     shutil.copy(b / "history.csv", a / "history.csv")  # new data under old metadata
     with pytest.raises(ValueError, match=r"history.csv is not the file run .* saved"):
-        hist.load(a)
+        hist.load_history(a)
     a, b = _two_runs(tmp_path / "2")
     shutil.copy(b / "setae.npz", a / "setae.npz")
     with pytest.raises(ValueError, match=r"setae.npz belongs to run"):
-        hist.load(a)
+        hist.load_history(a)
 
 
 def test_edited_series_or_parameters_are_refused(tmp_path):
@@ -194,7 +194,7 @@ def test_edited_series_or_parameters_are_refused(tmp_path):
     meta["seed"] = 7
     (d / "metadata.json").write_text(json.dumps(meta))
     with pytest.raises(ValueError, match=r"history.csv does not hold the series"):
-        hist.load(d)
+        hist.load_history(d)
 
 
 def test_interrupted_save_onto_an_old_run_does_not_load(tmp_path, monkeypatch):
@@ -212,17 +212,17 @@ def test_interrupted_save_onto_an_old_run_does_not_load(tmp_path, monkeypatch):
     with pytest.raises(KeyboardInterrupt):
         newer.save(a)
     with pytest.raises((FileNotFoundError, ValueError), match="metadata.json"):
-        hist.load(a)
+        hist.load_history(a)
 
 
 def test_garbage_metadata_names_the_file(tmp_path):
     d = _toy().save(tmp_path / "run")
     (d / "metadata.json").write_bytes(b"\xff\xfe\x00garbage\x81")
     with pytest.raises(ValueError, match=r"metadata.json is not a gecko_agents metadata"):
-        hist.load(d)
+        hist.load_history(d)
     (d / "metadata.json").write_text("[1, 2]")
     with pytest.raises(ValueError, match=r"metadata.json is not a gecko_agents metadata"):
-        hist.load(d)
+        hist.load_history(d)
 
 
 @pytest.mark.parametrize("seed", [-3, 2.5, "abc", True])
@@ -232,7 +232,7 @@ def test_nonsense_seed_in_metadata_is_refused(tmp_path, seed):
     meta["seed"] = seed
     (d / "metadata.json").write_text(json.dumps(meta))
     with pytest.raises(ValueError, match=r"metadata.json .*seed = "):
-        hist.load(d)
+        hist.load_history(d)
 
 
 def test_truncated_npz_names_the_file(tmp_path):
@@ -240,7 +240,7 @@ def test_truncated_npz_names_the_file(tmp_path):
     data = (d / "setae.npz").read_bytes()
     (d / "setae.npz").write_bytes(data[: len(data) // 2])
     with pytest.raises(ValueError, match=r"setae.npz is corrupt or truncated") as err:
-        hist.load(d)
+        hist.load_history(d)
     assert type(err.value) is ValueError
 
 
@@ -248,13 +248,13 @@ def test_saving_a_new_run_removes_stale_files_of_the_old_one(tmp_path):
     a, b = _two_runs(tmp_path)
     (a / "detachment.gif").write_bytes(b"GIF89a old run")
     (a / "notes.txt").write_text("mine")
-    hist.load(b).save(a)
+    hist.load_history(b).save(a)
     assert not (a / "detachment.gif").exists()  # drawn from the previous run
     assert (a / "notes.txt").read_text() == "mine"  # not a run file: left alone
-    assert hist.load(a).run_id() == hist.load(b).run_id()
+    assert hist.load_history(a).run_id() == hist.load_history(b).run_id()
     # Re-saving the same run keeps what was drawn from it.
     (a / "detachment.gif").write_bytes(b"GIF89a this run")
-    hist.load(a).save(a)
+    hist.load_history(a).save(a)
     assert (a / "detachment.gif").exists()
 
 
@@ -264,7 +264,7 @@ def test_runs_saved_before_run_ids_still_load(tmp_path):
     del meta["run_id"], meta["files"]
     (d / "metadata.json").write_text(json.dumps(meta))
     (d / "setae.npz").unlink()
-    assert len(hist.load(d)) == 5
+    assert len(hist.load_history(d)) == 5
 
 
 def test_quasistatic_results_speak_the_same_vocabulary(tmp_path):
@@ -284,7 +284,7 @@ def test_quasistatic_results_speak_the_same_vocabulary(tmp_path):
     assert h.detachments["seta"].size == len(res.releases)
     render.plot_history(h, tmp_path / "qs.png")  # the agent's plot takes it
     h.save(tmp_path / "run")
-    g = hist.load(tmp_path / "run")
+    g = hist.load_history(tmp_path / "run")
     np.testing.assert_array_equal(g["force_normal_uN"], h["force_normal_uN"])
 
 
@@ -305,10 +305,10 @@ def test_runs_saved_before_a_parameter_field_existed_still_load(tmp_path, monkey
     d = _toy().save(tmp_path / "run")
     monkeypatch.setattr(SetaArray, "to_dict", real)
     assert "shear_coupling" not in json.loads((d / "metadata.json").read_text())["params"]
-    h = hist.load(d)
+    h = hist.load_history(d)
     assert len(h) == 5 and h.params.contact.shear_coupling == "none"
     meta = json.loads((d / "metadata.json").read_text())
     meta["params"]["contact"]["R"] = 5.0
     (d / "metadata.json").write_text(json.dumps(meta))
     with pytest.raises(ValueError, match=r"history.csv does not hold the series"):
-        hist.load(d)
+        hist.load_history(d)

@@ -10,6 +10,7 @@ One to three setae and a few dozen steps each: the fast tier's guard of the impl
 Units: µm, µN, µs, ng, pJ.
 """
 
+import extras
 import numpy as np
 import pytest
 
@@ -237,7 +238,7 @@ def test_a_free_linear_seta_steps_as_the_linearly_implicit_recurrence(kernel):
     by numpy (agreement 1e-15 µm measured). At ω·dt = 15 it decays (backward Euler damps what rings
     faster than 1/dt) where the explicit step would diverge."""
     if kernel == "numba" and pad_kernels() is None:
-        pytest.skip("numba not installed")
+        pytest.skip(extras.reason("fast"))
     m = _free_linear(kernel, 1.0)
     dt, mass, c, K = m.dt, m.mass, m.c_seta, m.K
     assert m.omega_max * dt > 2.0  # past the explicit step's stability bound
@@ -265,7 +266,7 @@ def test_a_free_linear_springs_books_close_to_rounding(kernel, switch):
     booked), while the scheme's own dissipation, booked as the work of F' − F, takes most of
     the energy (it damps what rings faster than 1/dt)."""
     if kernel == "numba" and pad_kernels() is None:
-        pytest.skip("numba not installed")
+        pytest.skip(extras.reason("fast"))
     m = _free_linear(kernel, 0.0)
     step, dt = m._implicit, m.dt
     total, dissipated = [], 0.0
@@ -286,7 +287,7 @@ def test_the_loops_rebooked_dampers_give_the_numpy_books():
     mid-step velocity and rebooks them on F' − F) books the same dissipation, step by step,
     as the numpy step (1e-16 pJ measured)."""
     if pad_kernels() is None:
-        pytest.skip("numba not installed")
+        pytest.skip(extras.reason("fast"))
     books = []
     for kernel in ("numpy", "python"):
         m = _free_linear(kernel, 1.0)
@@ -426,7 +427,7 @@ def test_the_compiled_pad_step_gives_the_numpy_steps(mechanics):
     tip positions (bit for bit compiled; 1e-12 µm allowed for the interpreted loop) and the
     same books."""
     if pad_kernels() is None:
-        pytest.skip("numba not installed")
+        pytest.skip(extras.reason("fast"))
     runs = []
     for kernel in ("numpy", "numba"):
         m = _model(THREE.replace(mechanics=mechanics), kernel=kernel)

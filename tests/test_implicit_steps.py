@@ -10,6 +10,7 @@ bookkeeping. Units: µm, µN, µs, ng.
 import math
 from types import SimpleNamespace
 
+import extras
 import numpy as np
 import pytest
 
@@ -252,7 +253,7 @@ def test_a_sticking_tip_past_its_cap_slides_at_the_cap(compiled):
     m = _model()
     if compiled:
         if pad_kernels() is None:
-            pytest.skip("numba not installed")
+            pytest.skip(extras.reason("fast"))
         m._implicit._pad = pad_kernels()
     Fc, mu, kt0, dt, mass = m.Fc, 0.2, m.k_t, m.dt, m.mass
     cap = friction_cap(1.0, Fc, mu, False)
@@ -315,7 +316,7 @@ def test_the_compiled_kernels_run_only_where_their_assumptions_hold():
     """The compiled pad solve needs numba's pad loop, a pad floor (no contact normals), a rigid
     plate (one root point) and a linear or rod seta: any one missing, the numpy step runs."""
     if pad_kernels() is None:
-        pytest.skip("numba not installed")
+        pytest.skip(extras.reason("fast"))
     fits = dict(kernel="numba", rigid=True, mechanics="rod", normal=None)
     for change in ({}, {"mechanics": "linear"}):
         k = fits | change

@@ -178,7 +178,7 @@ def test_run_file_chooses_the_integrator(tmp_path, capsys):
 
     path = tmp_path / "implicit.toml"
     path.write_text(_RUN_FILE.format(integrator="implicit"))
-    assert runfile.load_run(path).model["integrator"] == "implicit"
+    assert runfile.read_run_file(path).model["integrator"] == "implicit"
     out = tmp_path / "out"
     assert cli.main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
     meta = json.loads((out / "metadata.json").read_text())
@@ -186,7 +186,7 @@ def test_run_file_chooses_the_integrator(tmp_path, capsys):
     bad = tmp_path / "bad.toml"
     bad.write_text(_RUN_FILE.format(integrator="rk4"))
     with pytest.raises(runfile.RunFileError, match=r"\[model\] integrator.*rk4.*'implicit'"):
-        runfile.load_run(bad)
+        runfile.read_run_file(bad)
     assert cli.main(["run", str(bad), "--out", str(tmp_path / "o2"), "--no-progress"]) == 2
     assert "integrator" in capsys.readouterr().err and not (tmp_path / "o2").exists()
 
@@ -203,14 +203,14 @@ def test_run_file_sets_the_step_near_events(tmp_path, capsys):
     text = _RUN_FILE.format(integrator="implicit") + ""
     path = tmp_path / "event.toml"
     path.write_text(text.replace("n_sim = 1\n", "n_sim = 1\nevent_dt_us = 0.2\n"))
-    assert runfile.load_run(path).model["event_dt"] == 0.2
+    assert runfile.read_run_file(path).model["event_dt"] == 0.2
     out = tmp_path / "out"
     assert cli.main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
     assert 0.0 < json.loads((out / "metadata.json").read_text())["event_dt_us"] <= 0.2
     bad = tmp_path / "bad.toml"
     bad.write_text(text.replace("n_sim = 1\n", "n_sim = 1\nevent_dt_us = -1.0\n"))
     with pytest.raises(runfile.RunFileError, match=r"\[model\] event_dt_us.*-1.0.*> 0 µs"):
-        runfile.load_run(bad)
+        runfile.read_run_file(bad)
     explicit = tmp_path / "explicit.toml"
     explicit.write_text(
         _RUN_FILE.format(integrator="explicit").replace(
@@ -218,7 +218,7 @@ def test_run_file_sets_the_step_near_events(tmp_path, capsys):
         )
     )
     with pytest.raises(runfile.RunFileError, match=r"\[model\] event_dt_us.*explicit step"):
-        runfile.load_run(explicit).build_model()
+        runfile.read_run_file(explicit).build_model()
 
 
 def test_a_change_of_step_is_booked_exactly(monkeypatch):

@@ -4,6 +4,7 @@ function where installed, and the rigid flat punch's pressure on a thick layer."
 
 import math
 
+import extras
 import numpy as np
 import pytest
 from scipy import integrate
@@ -41,7 +42,7 @@ def test_factor_continuous_across_branches():
 
 def test_contact_mechanics_greens_function():
     """The same G(q) as ContactMechanics' finite-thickness PeriodicFFTElasticHalfSpace."""
-    cm = pytest.importorskip("ContactMechanics")
+    cm = extras.require("contactmechanics")
     size, n, t = 64.0, 16, 10.0
     sub = cm.PeriodicFFTElasticHalfSpace((n, n), E, physical_sizes=(size, size),
                                          thickness=t, poisson=NU)  # fmt: skip

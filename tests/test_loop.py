@@ -3,6 +3,7 @@ detachments."""
 
 import warnings
 
+import extras
 import numpy as np
 import pytest
 
@@ -13,7 +14,7 @@ from gecko_agents.params import PAPER_ARRAY
 
 # Threaded runs and the blocked loop over whole histories: the slow tier.
 pytestmark = [
-    pytest.mark.skipif(not numba_available(), reason="numba (optional extra 'fast')"),
+    pytest.mark.skipif(not numba_available(), reason=extras.reason("fast")),
     pytest.mark.slow,
 ]
 

@@ -3,6 +3,7 @@
 import math
 import warnings
 
+import extras
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -224,7 +225,7 @@ def test_kernels_give_the_same_history(kernel, mechanics):
     """The per-seta loop (compiled by numba, or interpreted) against the numpy path, on a drag
     that makes tips stick, slide sideways past their pad window, and let go."""
     if kernel == "numba" and not numba_available():
-        pytest.skip("numba is not installed (optional extra 'fast')")
+        pytest.skip(extras.reason("fast"))
     p = STUBBY.replace(**{"array.count": 5, "mechanics": mechanics})
     prot = protocol.drag_pull(10.0, 12.0 if mechanics == "rod" else -8.0, 60.0, speed=0.05)
     with warnings.catch_warnings():
@@ -365,7 +366,7 @@ def test_sliding_dissipates_the_coulomb_work(kernel):
     # One rod seta pressed and dragged at constant speed: once it slides steadily, the friction
     # dissipates W = cap·Δx (Coulomb), cap = μ|P + 2Fc| (adhesive law), nothing more.
     if kernel == "numba" and not numba_available():
-        pytest.skip("numba not installed")
+        pytest.skip(extras.reason("fast"))
     p = PAPER_TABLE1.replace(**{"mechanics": "rod", "seta.L": 5.0})
     m = Model(p, record_setae=True, numerics=Numerics(kernel=kernel, record_every=5))
     h = m.run([protocol.PressTo(0.3, 0.05), protocol.Move(dx=8.0, speed=0.1)], progress=False)

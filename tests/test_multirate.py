@@ -169,11 +169,11 @@ depth_um = 0.1
     for value, on in (("false", False), ("true", True)):
         path = tmp_path / f"{value}.toml"
         path.write_text(text.format(value=value))
-        assert runfile.load_run(path).model["multirate"] is on
+        assert runfile.read_run_file(path).model["multirate"] is on
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            assert (runfile.load_run(path).build_model()._multirate is not None) is on
+            assert (runfile.read_run_file(path).build_model()._multirate is not None) is on
     bad = tmp_path / "bad.toml"
     bad.write_text(text.format(value='"yes"'))
     with pytest.raises(runfile.RunFileError, match=r"\[model\] multirate"):
-        runfile.load_run(bad)
+        runfile.read_run_file(bad)

@@ -15,6 +15,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+import extras
 import numpy as np
 import pytest
 from test_cli import GOOD  # a minimal run file: one seta of Table 1, 5 µm long
@@ -111,7 +112,7 @@ def _edited_run(probe: Probe, edit):
     h.meta.update(n_sim=3, scale_to_array=1.0, record_every=10)  # as a model run records them
     d = h.save(probe.tmp / "run")
     edit(d)
-    return _raised(lambda: hist.load(d))
+    return _raised(lambda: hist.load_history(d))
 
 
 def _set_field(key, value):
@@ -179,6 +180,7 @@ class Row:
     expected: object
     names: tuple[str, ...]
     slow: bool = False  # a run of several pillars: the slow tier
+    extra: str | None = None  # the optional extra it needs (tests/extras.py)
 
 
 ROWS = [
@@ -335,9 +337,9 @@ def _pull_off(probe: Probe, kw: dict, item: str):
 def _probe_pillars(probe_radius: float):
     """The pillars example on a probe of ``probe_radius``: (most tips attached at once, the
     pull-off of one flat punch if at most one touched)."""
-    from gecko_agents.runfiles.run import load_run
+    from gecko_agents.runfiles.run import read_run_file
 
-    spec = load_run(ROOT / "examples" / "pillars_probe.toml")
+    spec = read_run_file(ROOT / "examples" / "pillars_probe.toml")
     p = spec.params.replace(floor={"probe_radius": probe_radius})
     h = Model(p, **spec.model).run(spec.protocol, progress=False)
     return int(np.max(h["n_attached"])), ""
@@ -346,9 +348,9 @@ def _probe_pillars(probe_radius: float):
 def _crowded_pillars(probe: Probe):
     """Pillars at pitch 3.2 (r = 1.5) pressed to 3 µN under the 30 µm probe buckle into each
     other: the validity item pillars_meet says so."""
-    from gecko_agents.runfiles.run import load_run
+    from gecko_agents.runfiles.run import read_run_file
 
-    spec = load_run(ROOT / "examples" / "pillars_probe.toml")
+    spec = read_run_file(ROOT / "examples" / "pillars_probe.toml")
     m = Model(spec.params.replace(array={"pitch": 3.2}), **spec.model)
     h = m.run([protocol.Press(3.0, speed=0.01), protocol.PullOff(0.02)], progress=False)
     it = h.meta["validity"]["items"]["pillars_meet"]
@@ -400,7 +402,7 @@ def _fields_digest_removed(probe: Probe):
     h.meta.update(n_sim=3, scale_to_array=1.0, record_every=10, versions={"gecko_agents": "0.2.0"})
     d = h.save(probe.tmp / "run")
     _drop(d, "fields_sha256")
-    return _raised(lambda: hist.load(d))
+    return _raised(lambda: hist.load_history(d))
 
 
 def _quiet_description(probe: Probe):
@@ -579,12 +581,12 @@ def _truncated_history(probe: Probe):
     d = _saved(probe)
     lines = (d / "history.csv").read_text().split("\n")
     (d / "history.csv").write_text("\n".join(lines[:4]) + "\n" + ",".join(lines[4].split(",")[:2]))
-    return _raised(lambda: hist.load(d))
+    return _raised(lambda: hist.load_history(d))
 
 
 def _load_a_file(probe: Probe):
     d = _saved(probe)
-    err, message = _raised(lambda: hist.load(d / "history.csv"))
+    err, message = _raised(lambda: hist.load_history(d / "history.csv"))
     return err, message.replace(str(probe.tmp), "TMP")
 
 
@@ -672,10 +674,10 @@ ROWS_54_MESSAGES = [
     Row("run --out --gif interrupted", _interrupted_run, 130,
         ("start again with: gecko-agents run TMP/r.toml --out TMP/ri --gif",)),
     # 17. A damaged history.csv, and a file given for its run directory.
-    Row("ga.load: history.csv cut in a row", _truncated_history, ValueError,
+    Row("ga.load_history: history.csv cut in a row", _truncated_history, ValueError,
         ("history.csv", "line 5")),
-    Row("ga.load of run/history.csv", _load_a_file, FileNotFoundError,
-        ("TMP/run/history.csv", "load('TMP/run')")),
+    Row("ga.load_history of run/history.csv", _load_a_file, FileNotFoundError,
+        ("TMP/run/history.csv", "load_history('TMP/run')")),
     # 20. The closing summary agrees with the warning that a row under a probe is no patch.
     Row("run file: 2 of 3 setae under a probe",
         lambda p: _run_summary(p, [_write(p, _probe_file('"array.count" = 3',
@@ -894,34 +896,36 @@ ROWS_54_DESIGN = [
     # 1–2. A folder is a design folder only when it holds a study this command wrote.
     Row("design --out a folder with a user's report.md",
         lambda p: _design_over_users_files(p, "report.md"), 2, ("not a design folder",
-                                                                "report.md")),
+                                                                "report.md"), extra="design"),
     Row("design --out a folder with a user's runs/design_1.toml",
         lambda p: _design_over_users_files(p, "runs/design_1.toml"), 2,
-        ("not a design folder", "runs")),
+        ("not a design folder", "runs"), extra="design"),
     Row("design --quick into the full study's --out", lambda p: _second_study(p, "--quick"), 2,
-        ("holds the study", "d.toml", "--out"), slow=True),
+        ("holds the study", "d.toml", "--out"), slow=True, extra="design"),
     Row("design of another file into the same --out",
         lambda p: _second_study(p, text=DESIGN.replace("seed = 0", "seed = 1")), 2,
-        ("holds the study", "d.toml", "--out"), slow=True),
+        ("holds the study", "d.toml", "--out"), slow=True, extra="design"),
     Row("design into its own folder resumes", _same_study_again, 0, ("6 screening trials",),
-        slow=True),
+        slow=True, extra="design"),
     # 4. A local study file belongs to one process.
     Row("two design commands on one local study", _two_processes, 2, ("another", "o"),
-        slow=True),
+        slow=True, extra="design"),
     # 8–9. A model that cannot evaluate a design: a failed trial or a failed confirmation.
     Row("design: the screen's model raises RuntimeError", _model_raises, (0, True, True),
-        ("RuntimeError", "preload not reached", "failed_trials"), slow=True),
+        ("RuntimeError", "preload not reached", "failed_trials"), slow=True, extra="design"),
     Row("design: an engine confirmation fails", _confirmation_fails, 0,
-        ("Confirmations that failed", "design_1", "RuntimeError", "no equilibrium"), slow=True),
+        ("Confirmations that failed", "design_1", "RuntimeError", "no equilibrium"), slow=True,
+        extra="design"),
     # 10. --storage checked before any work.
     *[
         Row(f"design --storage {url}", lambda p, u=url: _design_refused(p, DESIGN, "--storage",
                                                                         u.format(tmp=p.tmp)),
-            2, ("--storage", url.split("{tmp}")[-1]))
+            2, ("--storage", url.split("{tmp}")[-1]), extra="design")
         for url in ("not_a_url", "sqlite:///{tmp}/missing/study.db", "sqlite:///{tmp}",
                     "nosuchdialect://host/db")
     ],
-    Row("design with a full disk", _full_disk, 1, ("study.db", "full"), slow=True),
+    Row("design with a full disk", _full_disk, 1, ("study.db", "full"), slow=True,
+        extra="design"),
     # 11. Seeds the sampler takes.
     Row("design seed 1e17", lambda p: _design_refused(p, SEED_1E17), 2,
         ("seed", "99999999999999999", "4294967295")),
@@ -930,13 +934,21 @@ ROWS_54_DESIGN = [
         ("[constraints] min_gap_um", "1e+06", "leaves no design")),
     # 21. --trials below the study's.
     Row("design --trials 2 on a study of 4", _trials_below_the_study, 0,
-        ("trials = 2", "holds 4"), slow=True),
+        ("trials = 2", "holds 4"), slow=True, extra="design"),
 ]  # fmt: skip
 
 
 @pytest.mark.parametrize(
     "row",
-    [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_DESIGN],
+    [
+        pytest.param(
+            r,
+            id=r.id,
+            marks=([pytest.mark.slow] if r.slow else [])
+            + ([extras.needs(r.extra)] if r.extra else []),
+        )
+        for r in ROWS_54_DESIGN
+    ],
 )
 def test_probe_54_design(row, tmp_path, capsys, monkeypatch):
     outcome, message = row.act(Probe(tmp_path, capsys, monkeypatch))
@@ -1187,6 +1199,7 @@ ROWS_54_REVIEW = [
     "row",
     [pytest.param(r, id=r.id, marks=[pytest.mark.slow] if r.slow else []) for r in ROWS_54_REVIEW],
 )
+@extras.needs("design")  # every row runs the design search or opens its store
 def test_probe_54_review(row, tmp_path, capsys, monkeypatch):
     test_probe_54_design(row, tmp_path, capsys, monkeypatch)
 

@@ -3,6 +3,7 @@
 import math
 import warnings
 
+import extras
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -110,7 +111,7 @@ def test_kernels_agree_on_rate_dependent_contact(kernel):
     from gecko_agents.model import numba_available
 
     if kernel == "numba" and not numba_available():
-        pytest.skip("numba not installed")
+        pytest.skip(extras.reason("fast"))
     p = _rate(1.0).replace(**{"array.count": 3, "floor.sigma": 0.2})
     ref = _pull(p, 0.05, kernel="numpy")
     h = _pull(p, 0.05, kernel=kernel)

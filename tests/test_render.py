@@ -4,6 +4,7 @@ import re
 import subprocess
 import sys
 
+import extras
 import numpy as np
 import pytest
 from PIL import Image
@@ -380,7 +381,7 @@ def test_one_sign_convention_for_displacement_in_plots_and_animation(toy):
 
 
 def test_mp4_is_written_with_the_video_extra(toy, tmp_path):
-    pytest.importorskip("imageio_ffmpeg", reason="MP4 needs the 'video' extra (imageio-ffmpeg)")
+    extras.require("video")
     out = render.animate(toy, tmp_path / "run.mp4", frames=4, dpi=40)
     data = out.read_bytes()
     assert len(data) > 1000 and data[4:8] == b"ftyp"  # an ISO media (MP4) file

@@ -24,7 +24,7 @@ def test_elastic_backing_of_a_saved_run_is_drawn_through_its_recorded_nodes(tmp_
         m = Model(p, seed=1, record_setae=True)
         h = m.run(protocol.press_pull(0.3, speed=0.05), progress=False)
     h.save(tmp_path / "run")
-    loaded = history.load(tmp_path / "run")
+    loaded = history.load_history(tmp_path / "run")
     assert loaded.meta["backing"] == h.meta["backing"]
     nodes_x, nodes_y = loaded.backing["strip_node_x_um"], loaded.backing["strip_node_y_um"]
     np.testing.assert_array_equal(nodes_x, h.backing["strip_node_x_um"])

@@ -4,6 +4,7 @@ exactly and compiled by numba to rounding, on batches where setae sit at their f
 
 import math
 
+import extras
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
@@ -94,7 +95,7 @@ def test_vectorized_solve_of_each_seta_equals_the_full_batch_iteration(batches):
     assert dx == 0.0 and da == 0.0
 
 
-@pytest.mark.skipif(not HAVE_NUMBA, reason="numba is not installed")
+@pytest.mark.skipif(not HAVE_NUMBA, reason=extras.reason("fast"))
 def test_compiled_solve_equals_the_full_batch_iteration_to_rounding(batches):
     folds, dx, da = _compare(batches, compiled=True)
     assert folds >= 5
@@ -115,7 +116,7 @@ def test_the_per_seta_loop_interpreted_equals_the_full_batch_iteration(batches, 
     assert dx < 1e-9 and da < 1e-9
 
 
-@pytest.mark.skipif(not HAVE_NUMBA, reason="numba is not installed")
+@pytest.mark.skipif(not HAVE_NUMBA, reason=extras.reason("fast"))
 def test_compiled_and_vectorized_histories_agree():
     """A whole press-pull of 40 rod setae (stick and slide, releases at folds) with either
     Newton: the same releases at the same steps and the same force curve to rounding."""
@@ -147,7 +148,7 @@ def test_compiled_without_numba_is_refused(monkeypatch):
 
 def test_no_compiled_loop_when_numba_compilation_is_off(monkeypatch):
     """NUMBA_DISABLE_JIT would run the per-seta loop interpreted: the vectorized path is used."""
-    numba = pytest.importorskip("numba")
+    numba = extras.require("fast")
     monkeypatch.setattr(numba.config, "DISABLE_JIT", True)
     req.newton_loop.cache_clear()
     try:

@@ -78,7 +78,7 @@ def test_scenario_quick(name, tmp_path):
     # Agent runs: each saved history loads back and passes the invariants on every record.
     for meta in out.rglob("metadata.json"):
         if (meta.parent / "history.csv").is_file():
-            h = hist.load(meta.parent)
+            h = hist.load_history(meta.parent)
             assert hist.invariant_violations(h) == [], meta.parent
     # Nothing was written outside the output folder.
     assert sorted(p.name for p in tmp_path.iterdir()) == [name]

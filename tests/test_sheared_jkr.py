@@ -6,6 +6,7 @@ a dragged-and-pulled seta against the load-controlled pull-off under shear."""
 import math
 import warnings
 
+import extras
 import numpy as np
 import pytest
 from scipy.optimize import brentq, minimize_scalar
@@ -19,11 +20,6 @@ from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import jkr
 from gecko_agents.physics import savkoor_briggs as sj
 from gecko_agents.physics.friction import combined_shear_modulus
-
-needs_numba = pytest.mark.skipif(
-    not numba_available(), reason="numba is not installed (optional extra 'fast')"
-)
-
 
 SHEARED = PAPER_ARRAY.replace(
     **{"contact.shear_coupling": "savkoor_briggs", "mechanics": "rod", "floor.sigma": 0.0}
@@ -211,7 +207,7 @@ def test_pressed_tip_slides_where_its_branch_ends():
     assert work == pytest.approx(books, rel=2e-3)
 
 
-def _drag_pull(params, drag, kernel="numba", speed=0.05, **kw):
+def _drag_pull(params, drag, kernel="auto", speed=0.05, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         p = params.replace(**{"array.count": 1})
@@ -219,7 +215,6 @@ def _drag_pull(params, drag, kernel="numba", speed=0.05, **kw):
         return m.run(protocol.drag_pull(0.2, drag, 90.0, speed=speed), progress=False)
 
 
-@needs_numba
 def test_pull_off_after_a_gripping_drag_is_savkoor_briggs():
     """One rod seta (θ = 60°, μ = 10) pressed to 0.2 µN, dragged 8 µm back along its shaft and
     pulled straight off: the soft seta loads its tip nearly as a dead load, so the pull-off is
@@ -239,7 +234,6 @@ def law_fc():
     return float(jkr.pull_off_force(R, W))
 
 
-@needs_numba
 def test_without_friction_it_is_the_jkr_sphere():
     """μ = 0 with the paper's friction law: the tip never carries shear (ξ = 0), and a
     press–pull gives the JKR sphere's history to rounding."""
@@ -270,10 +264,9 @@ def test_without_friction_it_is_the_jkr_sphere():
 def test_kernels_agree(kernel):
     """Three setae dragged both ways and pulled: the per-seta loop (compiled or interpreted)
     gives the numpy path's history to rounding."""
-    from gecko_agents.model import numba_available
 
     if kernel == "numba" and not numba_available():
-        pytest.skip("numba is not installed (optional extra 'fast')")
+        pytest.skip(extras.reason("fast"))
     p = SHEARED.replace(**{"array.count": 3, "friction.mu": 0.5})
     dp = protocol.drag_pull(0.4, 6.0, 60.0, speed=0.05)
     prot = [*dp[:-1], protocol.Move(dx=-10.0, speed=0.05), dp[-1]]

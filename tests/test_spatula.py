@@ -4,6 +4,7 @@ parameters, and a dragged-and-pulled seta whose history passes the invariants (c
 import math
 import warnings
 
+import extras
 import numpy as np
 import pytest
 
@@ -14,11 +15,6 @@ from gecko_agents.contact.spatula import K_MU, K_PAPER, _film_force
 from gecko_agents.history import STATE_SLIP, STATE_STICK
 from gecko_agents.model import Model, Numerics, numba_available
 from gecko_agents.params import PAPER_ARRAY
-
-needs_numba = pytest.mark.skipif(
-    not numba_available(), reason="numba is not installed (optional extra 'fast')"
-)
-
 
 SPATULA = PAPER_ARRAY.replace(**{"tip": "spatula", "mechanics": "rod", "floor.sigma": 0.0})
 BONDED = SPATULA.replace(**{"spatula.interface": "bonded"})
@@ -156,7 +152,7 @@ def test_unknown_tip_refused():
         SPATULA.replace(tip="suction cup")
 
 
-def _pull_off(drag, kernel="numba", mu=10.0, speed=protocol.DEFAULT_SPEED, damping=None):
+def _pull_off(drag, kernel="auto", mu=10.0, speed=protocol.DEFAULT_SPEED, damping=None):
     """Pull-off [µN] (:func:`gecko_agents.analysis.pull.pull_off`: the largest adhesion in the
     pull after the drag) of a spatula seta pressed to 0.2 µN, dragged ``drag`` [µm] and pulled
     at 90°, the plate at ``speed`` [µm/µs]; and its history."""
@@ -170,6 +166,7 @@ def _pull_off(drag, kernel="numba", mu=10.0, speed=protocol.DEFAULT_SPEED, dampi
 
 
 @pytest.mark.slow
+@extras.needs("fast")
 def test_kernels_agree_on_a_drag_and_pull():
     """Numba loop and numpy path give the same history to rounding (a fast plate: the kernels
     are compared, not the physics)."""
@@ -179,7 +176,6 @@ def test_kernels_agree_on_a_drag_and_pull():
     assert along == pytest.approx(along_np, rel=1e-9)
 
 
-@needs_numba
 def test_gripping_drag_holds_at_least_twice_the_releasing_one():
     """A seta dragged back along its shaft (the plate to −x, small peel angle) holds more than
     one pushed over its pad, pulled at 90° quasi-statically: 1.185 / 0.566 µN = ×2.10 at μ = 10
@@ -354,10 +350,9 @@ def test_kernels_agree_on_a_pressed_drag(kernel):
     """Spatula setae pressed hard and dragged both ways (tip bodies stick, slide and pads peel),
     then pulled off: the per-seta loop (compiled or interpreted) gives the numpy path's
     history to rounding."""
-    from gecko_agents.model import numba_available
 
     if kernel == "numba" and not numba_available():
-        pytest.skip("numba is not installed (optional extra 'fast')")
+        pytest.skip(extras.reason("fast"))
     p = SPATULA.replace(**{"array.count": 3, "friction.mu": 0.5})
     prot = [
         *protocol.drag_pull(0.4, 6.0, 60.0, speed=0.05)[:-1],
@@ -422,7 +417,7 @@ def test_film_front_and_pad_length_are_recorded_for_film_tips_only(tmp_path):
     assert ell[first] == pytest.approx(p.spatula.length, rel=1e-3)
     assert front[first] == pytest.approx(h.setae["tip_x_um"][first, 0], abs=0.05)
     h.save(tmp_path / "run")
-    back = hist.load(tmp_path / "run")
+    back = hist.load_history(tmp_path / "run")
     np.testing.assert_array_equal(back.setae["film_attached_um"], h.setae["film_attached_um"])
     sphere = PAPER_ARRAY.replace(**{"mechanics": "rod", "floor.sigma": 0.0})
     with warnings.catch_warnings():

@@ -8,6 +8,7 @@ check that says what rounding it allows."""
 
 import warnings
 
+import extras
 import numpy as np
 import pytest
 
@@ -17,7 +18,7 @@ from gecko_agents.model.implicit_kernel import pad_kernels, pad_solver, step_boo
 from gecko_agents.params import PAPER_ARRAY
 from gecko_agents.physics import beam, jkr
 
-needs_numba = pytest.mark.skipif(not numba_available(), reason="numba not installed")
+needs_numba = pytest.mark.skipif(not numba_available(), reason=extras.reason("fast"))
 
 # 16 stubby setae on a rough pad floor (pads at different heights), dragged and pulled.
 FEW = PAPER_ARRAY.replace(**{"array.count": 16, "seta.L": 5.0, "floor.sigma": 0.3})

@@ -11,7 +11,7 @@ import pytest
 
 from gecko_agents import protocol
 from gecko_agents.contact import FlatPunch, MushroomTip, contact_law
-from gecko_agents.history import load as load_history
+from gecko_agents.history import load_history
 from gecko_agents.model import Model
 from gecko_agents.params import PAPER_ARRAY, Contact
 from gecko_agents.params.tips import Mushroom

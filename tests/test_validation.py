@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 
 from gecko_agents.params import literature as lit
-from gecko_agents.studies import misalignment as mis
 from gecko_agents.studies import pad_peel, reproduce_paper
 from gecko_agents.studies import validation as val
 from gecko_agents.studies import validation_ours as vo
@@ -314,7 +313,7 @@ def test_one_model_number_never_scores_two_observations(tmp_path):
 
 def test_reproduce_beyond_writes_the_literature_comparison_beside_the_report(tmp_path, monkeypatch):
     calls = []
-    monkeypatch.setattr(reproduce_paper, "run_scenarios", lambda base, args, log: {})
+    monkeypatch.setattr(reproduce_paper, "run_scenarios", lambda base, args, log, *setup: {})
     monkeypatch.setattr(reproduce_paper, "conclusion_rows", lambda quick: [])
     monkeypatch.setattr(reproduce_paper, "run_scenario", lambda *a: calls.append(a[:2]))
     reproduce_paper.main(["--quick", "--beyond", "--jobs", "1", "--out", str(tmp_path)])
@@ -390,25 +389,25 @@ def test_quick_report_rows_and_files(report):
 
 @pytest.mark.slow
 def test_backing_rows_are_scored_on_the_layer_backing(report):
-    """Kim & Sitti and Booth (aligned) are scored on the layer backing's field model: the
-    thinner layer holds at least as much (its edge takes less of the load)."""
-    from gecko_agents.studies import validation_ours as ours
+    """Kim & Sitti and Booth (aligned) are scored on the layer backing's field model at pad
+    scale: the thinner layer holds at least as much (its edge takes less of the load)."""
+    from gecko_agents.studies import pad_scale
 
     for rid in ("kim_sitti2007_backing", "booth2018_aligned"):
         row = report[1][rid]
         assert row["verdict"] not in ("pending", "not scored")
         assert math.isfinite(row["ours_value"]) and row["ours_value"] >= 1.0
     assert report[1]["kim_sitti2007_backing"]["ours_value"] == pytest.approx(
-        ours.kim_sitti_backing(quick=True)["value"], rel=1e-12
+        pad_scale.kim_sitti_pad(quick=True)["value"], rel=1e-12
     )
 
 
 @pytest.mark.slow
 def test_booth_rows(report):
-    k = lit.BOOTH2018_STIFF_MOUNT.backing.handle_stiffness
-    stiff, compliant = (mis.run_point(200, 1.413, kh, 0.8)["pull_off_over_NFc"]
-                        for kh in (k, k / lit.BOOTH2018_COMPLIANCE_RATIO))  # fmt: skip
-    assert report[1]["booth2018_misalignment"]["ours_value"] == pytest.approx(compliant / stiff)
+    from gecko_agents.studies import pad_scale
+
+    expected = pad_scale.booth_pad_misaligned(quick=True)["value"]
+    assert report[1]["booth2018_misalignment"]["ours_value"] == pytest.approx(expected, rel=1e-12)
 
 
 @pytest.mark.slow

@@ -83,7 +83,7 @@ def cmd_run(args, extra) -> int:
     from gecko_agents.model.cost import RunCostError
     from gecko_agents.runfiles import run as runfile
 
-    spec = runfile.load_run(args.runfile, quick=args.quick)
+    spec = runfile.read_run_file(args.runfile, quick=args.quick)
     out = args.out if args.out is not None else checked(_default_run_dir(args.runfile))
     seg = ", ".join(type(s).__name__ for s in spec.protocol)
     print(

@@ -9,8 +9,8 @@ the diagnostics of several runs as a markdown table (for ``renders/paper_compari
 :func:`diagnose` reads the :class:`~gecko_agents.history.History` alone: its parameters, series,
 floor (``geometry["floor_y_um"]``) and the facts of the live model that the run recorded into
 its metadata (:data:`MODEL_FACTS`, written by :func:`model_facts`). A run loaded from disk
-(:func:`gecko_agents.history.load`) is therefore diagnosed exactly as it was when it ran; one
-whose metadata lacks a fact is refused with an error naming the key.
+(:func:`gecko_agents.history.load_history`) is therefore diagnosed exactly as it was when it
+ran; one whose metadata lacks a fact is refused with an error naming the key.
 
 Units: µm, µN, µs, ng (:mod:`gecko_agents.params`). Each item is a dict::
 
@@ -536,7 +536,7 @@ def diagnose(history, *, warn: bool = True) -> dict:
     """Validity of one run (module docstring): ``{"ok", "violations", "items"}``.
 
     Reads the history alone (its parameters, series, floor and :data:`MODEL_FACTS`), so a run
-    loaded with :func:`gecko_agents.history.load` gives what the live run gave.
+    loaded with :func:`gecko_agents.history.load_history` gives what the live run gave.
 
     Parameters
     ----------

@@ -205,8 +205,9 @@ def dugdale_punch_strength(a, sigma0, E_star, w):
 def punch_pull_off(a, w, E_star, sigma0=math.inf):
     """Pull-off force of a flat punch with a flawed edge whose interface has the strength σ₀
     [µN]: the Dugdale punch, πa²·:func:`dugdale_punch_strength`, between σ₀πa² (small
-    punches) and Kendall's √(8πE*wa³) (large ones; :func:`gecko_agents.physics.punch.
-    kendall_pull_off`), and below both. σ₀ = inf returns Kendall's exactly.
+    punches) and Kendall's √(8πE*wa³) (large ones;
+    :func:`gecko_agents.physics.punch.kendall_pull_off`), and below both. σ₀ = inf returns
+    Kendall's exactly.
 
     The sharp, bonded 90° corner (an edge with no flaw) holds more: Tang's stress
     (:func:`tang_strength`) is 1.30·χ^0.1 times Kendall's where both fall with size, the

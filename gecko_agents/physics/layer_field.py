@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from scipy.sparse.linalg import LinearOperator, cg
@@ -48,7 +49,7 @@ class LayerField:
 
     Attributes
     ----------
-    n : fibres per side (n² in all), 1 … 1000.
+    n : fibres per side (n² in all), 1 … ``n_max``.
     pitch : lattice spacing s [µm], > 0.
     radius : fibre base radius c [µm], in (0, s/2].
     stiffness : fibre stiffness k [µN/µm], > 0.
@@ -67,13 +68,18 @@ class LayerField:
     thickness: float
     modulus: float
     poisson: float
+    n_max: ClassVar[int] = 1000
+    """Largest n taken: the event-to-event solution of :func:`press_pull` is the oracle of
+    small fields (:mod:`gecko_agents.physics.pad_field` takes pads to 4096².)"""
 
     def __post_init__(self):
         def bad(name, span):
-            raise ValueError(f"LayerField.{name} = {getattr(self, name)!r} must be in {span}")
+            raise ValueError(
+                f"{type(self).__name__}.{name} = {getattr(self, name)!r} must be in {span}"
+            )
 
-        if not (isinstance(self.n, int | np.integer) and 1 <= self.n <= 1000):
-            bad("n", "[1, 1000] (an integer)")
+        if not (isinstance(self.n, int | np.integer) and 1 <= self.n <= self.n_max):
+            bad("n", f"[1, {self.n_max}] (an integer)")
         for name in ("pitch", "stiffness", "release_force", "modulus"):
             v = getattr(self, name)
             if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):

@@ -37,7 +37,7 @@ import numpy as np
 from matplotlib.animation import FFMpegWriter, PillowWriter
 from PIL import Image
 
-from gecko_agents.history import History, load
+from gecko_agents.history import History, load_history
 from gecko_agents.output_paths import replace_into
 from gecko_agents.render.force_plots import (
     PRESSING_LABEL,
@@ -224,7 +224,7 @@ def run(args: argparse.Namespace) -> int:
         window_range(1, args.window)
         if args.frames is not None:
             frame_records(max(args.frames, 1), args.frames)
-        history = load(args.run_dir)
+        history = load_history(args.run_dir)
         png = args.run_dir / "force_history.png"
         plot_history(history, png)
         print(f"wrote {png}")

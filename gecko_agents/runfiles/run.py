@@ -88,6 +88,7 @@ from pathlib import Path
 
 import numpy as np
 
+from gecko_agents._deprecation import renamed
 from gecko_agents._run_directory import saved_run_id
 from gecko_agents.diagnostics import MeaninglessRunError
 from gecko_agents.history import RUN_FILES, History, invariant_violations
@@ -119,7 +120,7 @@ __all__ = [
     "PROTOCOL_PRESETS",
     "preset_docs",
     "point_functions",
-    "load_run",
+    "read_run_file",
     "load_sweep",
     "execute_run",
     "RUN_FILE_NAME",
@@ -290,7 +291,7 @@ def _run_variant(ctx: Ctx, data: dict, quick: dict | None, path: Path, raw: byte
     )
 
 
-def load_run(path, *, quick: bool = False) -> RunSpec:
+def read_run_file(path, *, quick: bool = False) -> RunSpec:
     """Read and check a run file; with ``quick`` take its ``[quick]`` variant.
 
     Both variants are checked whichever is asked for. Without a ``[quick]`` table, ``quick``
@@ -317,6 +318,11 @@ def load_run(path, *, quick: bool = False) -> RunSpec:
         n = n if full.params.floor.kind == "probe" else min(n, 3)
         fast = dataclasses.replace(full, quick=True, model={**full.model, "n_sim": n})
     return fast if quick else full
+
+
+load_run = renamed(
+    "gecko_agents.runfiles.run.load_run", "gecko_agents.runfiles.run.read_run_file", read_run_file
+)
 
 
 # Running -----------------------------------------------------------------------------------------

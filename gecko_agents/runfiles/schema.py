@@ -216,7 +216,7 @@ def apply_params(
 ) -> SetaArray:
     """``base`` with the overrides, applied together (a constraint between fields, such as
     ``floor.kind = "probe"`` with ``floor.sigma = 0``, holds whatever their order); if that
-    fails the error names the key or keys to blame (:func:`_culprits`)."""
+    fails the error names the key or keys to blame (``_culprits``)."""
     typed = {}
     for key, value in overrides.items():
         where = f"[{'quick.' if key in quick_keys else ''}{table}] {key!r}"

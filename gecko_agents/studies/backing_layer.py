@@ -28,9 +28,11 @@ Compared with the literature, never tuned to it (reading notes in
   tested pads were millimetres; the fibres here let go at a fixed force (no spatulate tips,
   no rate), the floor is flat and aligned, and the layer's shear compliance is left out.
   Which of these (or the test's own alignment and the backing's bending) makes the factor 9
-  the abstract does not say. Measured (full run): the field's pull-off on 160 µm is ×1.07
-  that on 1120 µm for a 50×50 field (0.2 mm) and ×1.27 for 100×100 (0.4 mm); the row of 40
-  setae ×1.06; a 10 µm layer holds 0.97 N·F_r, a 2 mm one 0.58 (E_b = 1.413 MPa).
+  the abstract does not say; :mod:`gecko_agents.studies.pad_scale` takes the field to
+  millimetres (the ratio grows with the pad's width). Measured (full run): the field's
+  pull-off on 160 µm is ×1.07 that on 1120 µm for a 50×50 field (0.2 mm) and ×1.27 for
+  100×100 (0.4 mm); the row of 40 setae ×1.06; a 10 µm layer holds 0.97 N·F_r, a 2 mm one
+  0.58 (E_b = 1.413 MPa).
 * Booth, Bacca, McMeeking & Foster 2018: aligned, the detachment force is highest for the
   thinnest backing (the model: yes, monotone in t); misaligned, compliant backings help
   (+43 %; the model: at 3° a 10 µm layer of 0.3 MPa holds 27 % more than one of 5 MPa; a

@@ -206,12 +206,12 @@ def one_blas_thread():
 def saved_runs(base: Path) -> dict:
     """Every saved agent run under ``base`` that carries ``meta["validity"]``: its folder
     (relative to ``base``) → its :class:`~gecko_agents.history.History`."""
-    from gecko_agents.history import load
+    from gecko_agents.history import load_history
 
     runs = {}
     for meta in sorted(base.glob("*/**/metadata.json")):
         if (meta.parent / "history.csv").is_file():
-            h = load(meta.parent)
+            h = load_history(meta.parent)
             if "validity" in h.meta:
                 runs[str(meta.parent.relative_to(base))] = h
     return runs

@@ -27,6 +27,7 @@ from gecko_agents.studies import frictional_adhesion as fa
 from gecko_agents.studies import gecko_seta, pad_peel
 from gecko_agents.studies import misalignment as mis
 from gecko_agents.studies import validation_magnitudes as magnitudes
+from gecko_agents.studies.pad_scale import booth_pad_aligned, booth_pad_misaligned, kim_sitti_pad
 
 # --- closed forms on a tokay seta (AUTUMN2006_SETA) ------------------------------------------
 _SETA_KEYS = {"E": "contact.E1", "r": "seta.r", "L": "seta.L", "theta": "seta.theta_deg"}
@@ -570,6 +571,9 @@ OURS = {
         buckled_preload,
         kendall_punch,
         two_heights,
+        kim_sitti_pad,
+        booth_pad_misaligned,
+        booth_pad_aligned,
     )
 } | magnitudes.OURS
 """The functions a row's ``ours`` may name (with the magnitude rows' of
@@ -585,6 +589,9 @@ QUICK_SIZED = {
     "booth_layer_aligned",
     "kim_sitti_backing",
     "kroner_flat_misalignment",
+    "kim_sitti_pad",
+    "booth_pad_misaligned",
+    "booth_pad_aligned",
 }
 """Rows whose ours runs smaller (fewer setae, fewer pulls, a shorter peel) in ``--quick``: their
 quick verdict may differ from the full run's, and the report marks it."""

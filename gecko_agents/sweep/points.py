@@ -110,8 +110,8 @@ def quasistatic_preload_point(
     ``curve_uN``: the preloads [µN] of the whole curve this point is one of (``preload_uN``
     among them). The point is then read off one :func:`gecko_agents.quasistatic.preload_pulls`
     over them all — one shared approach and the retracts batched into one vectorized solve,
-    both in moves of up to :data:`CURVE_STRIDE` plate steps where no seta changes state — that
-    this process computes once per parameter set and seed (:func:`_preload_curve`) and serves
+    both in moves of up to ``CURVE_STRIDE`` plate steps where no seta changes state — that
+    this process computes once per parameter set and seed (``_preload_curve``) and serves
     the curve's other points from. Its turning points are bisected as without ``curve_uN``,
     so each point equals the one press-and-pull to the solver's 1e-9.
 
