@@ -3,7 +3,7 @@ fibres N = n² from 64² to 1024², and the pad tolerances' error beside them.
 
 Run ``python -m gecko_agents.bench_pad`` (``--quick``: 32² and 64²; ``--max-n``: the largest
 field; ``--docs PATH``: also write the table as a Markdown page). Each field is the
-backing-layer study's pillars (:data:`gecko_agents.studies.probe_test.PILLARS`, pitch 4 µm)
+backing-layer study's pillars (``gecko_agents.studies.probe_test.PILLARS``, pitch 4 µm)
 on a layer of :data:`THICKNESSES` (E = 1.413 MPa, ν = 0.3), pressed by a flat probe to
 0.2 N·F_r and pulled off by :func:`gecko_agents.physics.pad_field.press_pull_pad` at
 :data:`~gecko_agents.physics.pad_field.PAD_TOLERANCES` (two FFT threads). Time is CPU

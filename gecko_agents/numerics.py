@@ -42,7 +42,7 @@ class Numerics:
         the rest the long one, where the setae are independent
         (:mod:`gecko_agents.model.multirate`). None (default): where it applies; True: asked
         for, refused where it does not apply (naming what rules it out,
-        :func:`gecko_agents.model.build.choose_multirate`); False: the whole array takes them.
+        ``gecko_agents.model.build.choose_multirate``); False: the whole array takes them.
     """
 
     integrator: str = "auto"

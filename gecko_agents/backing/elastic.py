@@ -120,7 +120,7 @@ and 2.98 (20); half the explicit bound ω·dt < 2 keeps a margin, as the explici
 
 def strip_step(setup) -> float:
     """The strip's own step [µs] in a run of ``setup`` (a
-    :class:`gecko_agents.model.build.Setup`, or a :class:`gecko_agents.model.Model`): the run's
+    ``gecko_agents.model.build.Setup``, or a :class:`gecko_agents.model.Model`): the run's
     dt with the explicit integrator (the strip steps with the tips); with the implicit one,
     the explicit step the run would take (0.75/ω_max of the tips' stiffest spring,
     ``explicit_dt``), or its dt if shorter. The links' inertia is scaled for this step

@@ -32,12 +32,12 @@ class RigidBacking:
     :class:`~gecko_agents.model.recorder.Recorder` writes per record), :attr:`geometry` and
     :attr:`info` (static, for the History), :attr:`rigid` (the roots move with the plate: the
     compiled pad loop and the skip of the free approach apply); and what it runs with, which
-    the build step (:func:`gecko_agents.model.build.build`) checks: :attr:`implicit`,
+    the build step (:func:`gecko_agents.model.build`) checks: :attr:`implicit`,
     :attr:`loops`, :attr:`contacts`, :attr:`mechanics`.
 
     Parameters
     ----------
-    setup : the run's :class:`gecko_agents.model.build.Setup` (its parameters, seta constants
+    setup : the run's ``gecko_agents.model.build.Setup`` (its parameters, seta constants
         and steps). world : the :class:`gecko_agents.model.world.World` (the handle, the
         roots' offsets). state : the per-seta state. physics : the step's forces
         (:class:`gecko_agents.model.step_numpy.NumpyStep`). spring_force : the setae's

@@ -62,7 +62,7 @@ class SpatulaeTip(SpatulaTip):
     is the package's film (:class:`gecko_agents.contact.SpatulaTip`: Kendall's peel with the
     pad's pre-tension, the tip body's Hertz compression and friction), and all N hang from the
     seta's tip and lie in one state, so the law is the film's with every extensive constant
-    times N (:data:`EXTENSIVE`) and the state's pre-tension P0 the N films' total.
+    times N (``EXTENSIVE``) and the state's pre-tension P0 the N films' total.
 
     Why this is exact: the film's energy release rate per width g (Kendall 1975, J Phys D
     8:1449, eq 4; Chen, Wu & Gao 2009, J R Soc Interface 6:529) depends on the force per width

@@ -70,7 +70,7 @@ The contact items (``a_over_R``, ``tabor``) apply to sphere tips that touched (n
     "Energy bookkeeping"; Hairer, Lubich & Wanner, *Geometric Numerical Integration*, §I.1).
     Limit 1 (the model's default is 0.75). The implicit step is stable at any step; near an
     event it takes steps of the explicit length
-    (:meth:`gecko_agents.model.implicit.ImplicitStep.substeps`), and those are judged; where it
+    (:meth:`gecko_agents.model.event_steps.EventSteps.substeps`), and those are judged; where it
     cannot locate events (the elastic backing) its whole step is.
 ``touched``
     Whether any tip ever attached. 1 if so, 0 if not. A run in which the plate never went past

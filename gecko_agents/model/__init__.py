@@ -3,8 +3,8 @@
 Units: µm, µN, µs, ng (:mod:`gecko_agents.params`); a seta's mass is then O(0.1–1). Sign
 conventions: :mod:`gecko_agents.contact` and ``docs/physics.md``.
 
-:class:`Model` is a façade: :func:`gecko_agents.model.build.build` makes every choice of the
-run once (a frozen :class:`~gecko_agents.model.build.Setup`, compatibility checked there), the
+:class:`Model` is a façade: :func:`gecko_agents.model.build` makes every choice of the
+run once (a frozen ``gecko_agents.model.build.Setup``, compatibility checked there), the
 model assembles the parts from it and runs a protocol once into a History; the pieces live in
 their own modules:
 
@@ -90,7 +90,7 @@ class Model(Stepping):
 
     Attributes
     ----------
-    setup : the run's :class:`~gecko_agents.model.build.Setup` (its choices and the seta's
+    setup : the run's ``gecko_agents.model.build.Setup`` (its choices and the seta's
         constants, also attributes of the model by their names: ``mass``, ``K``, ``Fc``, …).
     backing : what holds the seta roots, built from ``params.backing``
         (:mod:`gecko_agents.backing`): the rigid plate, an elastic strip or layer.

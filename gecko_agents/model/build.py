@@ -1,5 +1,5 @@
 """The build step: a run's choices made once, from its parameters and numerics, into one frozen
-:class:`Setup` that the model's parts read.
+``Setup`` that the model's parts read.
 
 Each choice comes from a registry, as tip laws do (:data:`gecko_agents.contact.TIP_LAWS`): the
 seta mechanics (:data:`MECHANICS`), the backing (:data:`gecko_agents.backing.BACKINGS`, each
@@ -192,7 +192,7 @@ def build(
     damping: Damping = DEFAULT_DAMPING,
     floor_profile: Profile | None = None,
 ) -> Setup:
-    """A run's :class:`Setup` from its parameters and numerics, every choice checked once
+    """A run's ``Setup`` from its parameters and numerics, every choice checked once
     (arguments as :class:`gecko_agents.model.Model`'s; a refusal names the parameter, its
     value and what it would run with)."""
     numerics = Numerics() if numerics is None else numerics

@@ -30,14 +30,14 @@ IMPLICIT_TRAVEL = 0.01
 """Largest plate travel per default implicit step at the default plate speed [µm]."""
 
 FREE_RINGING_SHARE = 0.1 * ENERGY_RTOL
-"""Free tips faster than twice the plate count as near an event (:meth:`ImplicitStep.substeps`)
+"""Free tips faster than twice the plate count as near an event (:meth:`EventSteps.substeps`)
 only while their kinetic energy together exceeds this share of the run's energy scale so far
 [-] (:func:`gecko_agents.history.energy_balance_error`'s scale): a tenth of the balance's
 tolerance, since long steps book a ringing seta's energy only to within about its size
 (``tests/test_event_location.py`` checks both sides)."""
 
 IMPLICIT_EVENT_FACTOR = 1.0
-"""The step near an event (:meth:`ImplicitStep.substeps`) in units of the explicit one
+"""The step near an event (:meth:`EventSteps.substeps`) in units of the explicit one
 (0.75/ω_max) [-], at most the step between events; ``Model(event_dt=...)`` sets another. Chosen
 by accuracy: a located tip lets go a few event steps of plate travel later than at the
 explicit step, the scheme's own first-order error, so the event step is the resolution of

@@ -54,7 +54,8 @@ within one step, an error ∝ dt in the books (:data:`gecko_agents.history.ENERG
 times the explicit one at a k times longer step: a snap-off's share is booked
 (:meth:`ImplicitStep.book_releases`), a jump-in's is not.
 
-Event location. Near an event (:meth:`ImplicitStep.substeps`) the runner takes k steps of
+Event location. Near an event
+(:meth:`~gecko_agents.model.event_steps.EventSteps.substeps`) the runner takes k steps of
 dt/k, each no longer than :data:`IMPLICIT_EVENT_FACTOR` explicit steps, so the event and its
 share of the books are resolved as the explicit step resolves them; a change of step is
 booked exactly (``ImplicitStep._switch_term``). Every body steps with one dt (pymunk), so one
@@ -111,7 +112,7 @@ the errors. At the default plate speed :data:`IMPLICIT_TRAVEL` caps it
 
 def choose_integrator(integrator, contact: str, mechanics: Mechanics, backing) -> str:
     """The integrator a run takes: ``integrator`` if it is one of
-    :data:`INTEGRATORS` and goes with the rest; ``"auto"`` is the
+    ``INTEGRATORS`` and goes with the rest; ``"auto"`` is the
     implicit step where it is verified (the batch contact path, a mechanics with its
     Jacobian, a backing measured with it: docs/physics.md, "Time stepping"), the explicit one
     elsewhere. The implicit step is refused, naming both choices, where it is not verified."""

@@ -9,7 +9,7 @@ A step size can then differ between setae, the multirate idea of Gear & Wells (1
 "Multirate linear multistep methods", BIT 24(4), 484–502 (doi:10.1007/BF01934907): a slow
 component keeps the long step while a fast one takes several short ones over the same
 interval. Here the fast components are the setae
-:meth:`gecko_agents.model.implicit.ImplicitStep.substeps` finds near an event (a snap-off, a
+:meth:`gecko_agents.model.event_steps.EventSteps.substeps` finds near an event (a snap-off, a
 fold, a jump-in, a slip, a released tip's ringing): over one long step dt they take k steps of
 dt/k in a pymunk space of their own (:class:`SubWorld`), with the kernels, event location
 and energy books of the whole array's located steps; the others take one step of dt. Each
@@ -50,7 +50,7 @@ _SET = pb.BodyFields.POSITION | pb.BodyFields.VELOCITY
 
 def multirate_applies(model) -> bool:
     """Whether ``model``'s located steps are multirate (the build step decides:
-    :func:`gecko_agents.model.build.choose_multirate`)."""
+    ``gecko_agents.model.build.choose_multirate``)."""
     return model.multirate is not None
 
 
@@ -177,7 +177,7 @@ class Multirate:
 
     def near(self, near: np.ndarray, k: int) -> np.ndarray | None:
         """The setae that take the k short steps of a located step whose ``near`` setae are
-        these (bool (N,), :meth:`gecko_agents.model.implicit.ImplicitStep.substeps`): they and
+        these (bool (N,), :meth:`gecko_agents.model.event_steps.EventSteps.substeps`): they and
         the setae that attached or let go in the multirate step just before, so that an
         event's aftermath (a released tip's ringing, a jumped-in one's settling) is stepped
         short as the whole array's located steps step it (the energy books of
@@ -245,8 +245,8 @@ class Multirate:
         """One long step of the model's dt with the ``near`` setae (bool (N,)) taking k steps
         of dt/k; leaves the model as :meth:`gecko_agents.model.stepping.Stepping.advance`
         does (reaction, work, dissipation, state) and returns the releases as (time [µs],
-        plate (x, y) [µm], :meth:`gecko_agents.model.Model.pop_releases` list, step [µs]) per
-        step they fell in."""
+        plate (x, y) [µm], :meth:`gecko_agents.model.stepping.Stepping.pop_releases` list,
+        step [µs]) per step they fell in."""
         m = self.m
         idx = np.flatnonzero(near)
         dt = m.dt

@@ -121,7 +121,7 @@ class Stepping:
     def advance(self, vpx: float, vpy: float) -> None:
         """One time step with the plate (handle) at velocity (``vpx``, ``vpy``) [µm/µs]; leaves
         the step's reaction, work and dissipation in ``reaction`` [µN],
-        :attr:`work_step` [pJ] and ``physics.diss`` [pJ], the tips that let go in
+        ``work_step`` [pJ] and ``physics.diss`` [pJ], the tips that let go in
         ``physics.events`` (:meth:`pop_releases`). The backing (:attr:`backing`) gives the
         roots the setae pull on and steps after the tips."""
         dt, s, ph, w, bk = self.dt, self.state, self.physics, self.world, self.backing
@@ -224,8 +224,9 @@ class Stepping:
         """The tips that let go in the last step (``physics.events``), each as (seta, overlap
         [µm], release overlap [µm], force [µN]): the release overlap is where the tip started
         to run away from its equilibrium (its overlap at the step if it never did); the force
-        is the law's at δ_detach for a tip that passed it (:meth:`~gecko_agents.contact.base.
-        ContactLaw.release_force`, not the step's overshoot), else its last force. Clears
+        is the law's at δ_detach for a tip that passed it
+        (:meth:`~gecko_agents.contact.base.ContactLaw.release_force`, not the step's
+        overshoot), else its last force. Clears
         those tips' release marks (``state.jump``), so each release is reported once."""
         jump = self.state.jump
         located = self.law.release_force()

@@ -306,7 +306,8 @@ class World:
         pb.set_space_bodies(self.space, pb.BodyFields.FORCE, self._force_buf)
 
     def step(self, dt: float) -> None:
-        """One pymunk step of ``dt`` [µs] (lazy detection: :meth:`update_sensors` first)."""
+        """One pymunk step of ``dt`` [µs] (lazy detection:
+        :meth:`gecko_agents.model.sensors.LazySensors.update` first)."""
         if self.lazy:
             self.lazy_sensors.update(dt)
         self.space.step(dt)

@@ -170,5 +170,5 @@ which the validation compares with); θ = 45° between shaft and mount (as
 angle); the spatula body's radius R = 0.1 µm (half its width: the Hertz compression of a pressed
 spatula); ν = 0.3 and the density of a polymer, 1.2 g/cm³; the pitch 8.3 µm of a patch,
 1/√(:data:`TOKAY_SETAL_DENSITY`); a glass floor (E = 70 GPa,
-ν = 0.25); rigid branches sharing the load equally (:class:`gecko_agents.contact.spatulae.
-SpatulaeTip`)."""
+ν = 0.25); rigid branches sharing the load equally
+(:class:`gecko_agents.contact.spatulae.SpatulaeTip`)."""

@@ -2,9 +2,10 @@
 :mod:`gecko_agents.physics.layer_field` solved by load steps instead of event to event.
 
 Same fibres, layer, probe and law (units µm, µN, MPa; compression positive): fibre i is a
-spring of stiffness k on the layer's compliance C (:func:`gecko_agents.physics.layer.
-point_kernel` on the lattice), attached fibres satisfy (C_AA + I/k)·f_A = d + h_A, and a fibre
-lets go at the tension F_r. What changes is how the path is followed:
+spring of stiffness k on the layer's compliance C
+(:func:`gecko_agents.physics.layer.point_kernel` on the lattice), attached fibres satisfy
+(C_AA + I/k)·f_A = d + h_A, and a fibre lets go at the tension F_r. What changes is how the
+path is followed:
 
 * **the press** is the frictionless unilateral contact of the fibres with the probe at the
   preload P: attached fibres push (f ≥ 0), free ones clear the probe (gap ≤ 0), solved by
@@ -23,12 +24,13 @@ lets go at the tension F_r. What changes is how the path is followed:
   which the cascade would stop is taken again without them (so the tolerance never moves
   where a cascade ends).
 
-The tolerance's effect on the pull-off, against :func:`~gecko_agents.physics.layer_field.
-press_pull` (the oracle of small fields), is pinned in ``tests/test_layer_field_pad.py`` and
-measured against N by :mod:`gecko_agents.bench_pad`. C·f is one real FFT of the field padded
-to n + (the kernel's reach, :data:`gecko_agents.physics.layer.CUTOFF` thicknesses), at most
-2n (``scipy.fft``, ``workers`` threads); the solves are scipy's conjugate gradients on the
-whole lattice with the free fibres' rows the identity (Jacobi preconditioned).
+The tolerance's effect on the pull-off, against
+:func:`~gecko_agents.physics.layer_field.press_pull` (the oracle of small fields), is pinned in
+``tests/test_layer_field_pad.py`` and measured against N by :mod:`gecko_agents.bench_pad`.
+C·f is one real FFT of the field padded to n + (the kernel's reach,
+:data:`gecko_agents.physics.layer.CUTOFF` thicknesses), at most 2n (``scipy.fft``, ``workers``
+threads); the solves are scipy's conjugate gradients on the whole lattice with the free fibres'
+rows the identity (Jacobi preconditioned).
 """
 
 from __future__ import annotations
@@ -101,8 +103,8 @@ def _interpolated_kernel(r, thickness, modulus, poisson, radius):
 def lattice_kernel(field: LayerField, m: int) -> np.ndarray:
     """The layer's kernel [µm/µN] at every slot of an m×m grid (m ≥ n) holding the lattice
     offsets 0 … n − 1 then −(m − n) … −1 along each axis: the FFT's wrapped kernel. Distances
-    are taken once each (by the integer i² + j²); past :data:`DIRECT_MAX` of them through
-    :func:`_interpolated_kernel`."""
+    are taken once each (by the integer i² + j²); past ``DIRECT_MAX`` of them through
+    ``_interpolated_kernel``."""
     n, s = field.n, field.pitch
     i = np.arange(m)
     off = np.where(i < n, i, i - m).astype(np.int64)
