@@ -159,6 +159,8 @@ def test_the_api_reference_lists_every_module_once_as_public_or_internal():
         module, attribute = ga._LAZY[name]
         if attribute is None:
             assert module in public, f"{module} (ga.{name}) is listed as internal"
+
+
 def test_dir_lists_the_public_api_only():
     import gecko_agents as ga
 
