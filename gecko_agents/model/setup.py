@@ -39,7 +39,7 @@ _LOADAVG = "/proc/loadavg"  # Linux: its fourth field is runnable/total scheduli
 
 
 def numba_available() -> bool:
-    """Whether the optional numba kernel can be used (``pip install gecko_agents[fast]``)."""
+    """Whether the optional numba kernel can be used (``pip install numba``)."""
     return _numba_installed()
 
 
@@ -170,9 +170,7 @@ def choose_kernel(kernel: str, fast_pads: bool, n: int, law_type, threads: int =
         if fast_pads:
             kernel = "numba" if numba_available() else "python" if n <= _PYTHON_MAX_N else "numpy"
     if kernel == "numba" and not numba_available():
-        raise ValueError(
-            "kernel='numba' needs numba (pip install 'gecko_agents[fast]'); use kernel='numpy'"
-        )
+        raise ValueError("kernel='numba' needs numba (pip install numba); use kernel='numpy'")
     if kernel == "numpy":
         return kernel, None, 1
     # The blocks on numba's threads: the same history either way.

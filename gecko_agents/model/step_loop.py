@@ -487,7 +487,7 @@ def _tangential_loop(law_type, compiled: bool):
 
 
 def numba_available() -> bool:
-    """Whether numba is installed (``pip install 'gecko_agents[fast]'``)."""
+    """Whether numba is installed (a dependency: ``pip install numba``)."""
     try:
         import numba  # noqa: F401
     except ImportError:

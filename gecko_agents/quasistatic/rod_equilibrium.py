@@ -280,7 +280,7 @@ def rod_newton(
     a_min = rs.a_c * (1.0 + 1e-9)
     loop = newton_loop() if compiled or compiled is None else None
     if compiled and loop is None:
-        raise ValueError("compiled = True needs numba (pip install 'gecko_agents[fast]')")
+        raise ValueError("compiled = True needs numba (pip install numba)")
     K = constants(rs)
     if loop is None:
         ok = newton_masked(mode, K, c, x, a, anc, dirs, int(iters), a_min)
