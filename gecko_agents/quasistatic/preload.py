@@ -263,6 +263,8 @@ def preload_pulls(
         raise ValueError(f"approach_stride = {approach_stride!r} must be an integer ≥ 1")
     if turning not in ("secant", "bisect"):
         raise ValueError(f"turning = {turning!r} must be 'secant' or 'bisect'")
+    if not (isinstance(retract_stride, int) and retract_stride >= 1):
+        raise ValueError(f"retract_stride = {retract_stride!r} must be an integer ≥ 1")
     stride = approach_stride if gaussian is None and not rod else 1
     turn = _turning_point if turning == "secant" else _bisected_turn
     approach, turns = _shared_approach(
@@ -271,8 +273,6 @@ def preload_pulls(
     # Retracts of every preload together: copy c of the setae starts from turn c.
     Zc = np.array([turns[c].Z for c in range(pre.size)])
     dzc, n_c, n_up = _retract_schedule(params, br, top, Zc, dz, retract_steps, retract_dz)
-    if not (isinstance(retract_stride, int) and retract_stride >= 1):
-        raise ValueError(f"retract_stride = {retract_stride!r} must be an integer ≥ 1")
     rec, peaks, hh, ww = _batched_retracts(
         br,
         step_fn,
